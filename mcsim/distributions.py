@@ -1,0 +1,133 @@
+"""Summit-height distributions in units of σ (zero mean, unit standard deviation).
+
+A distribution supplies what both halves of mcsim need:
+
+* the analytic GW integrals: :meth:`HeightDistribution.gw_integrals` evaluates
+  ∫_h^∞ g(s − h) p(s) ds for per-summit laws g (Eqs. 1, 3, 5, 7 with a general p);
+* the Monte Carlo sampler: :meth:`HeightDistribution.sample_above` draws heights from
+  the distribution truncated to s > s_min (the summits that can touch at all).
+
+Heights are measured from the mean of the summit heights, as in the paper, so a
+separation h = d/σ means the same in the sample and in the integrals.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Protocol, runtime_checkable
+
+import numpy as np
+from scipy import special
+
+LawIntegrand = Callable[[np.ndarray], np.ndarray]
+
+
+@runtime_checkable
+class HeightDistribution(Protocol):
+    """Interface of a standardized summit-height distribution (variable s = z/σ)."""
+
+    name: str
+
+    def pdf(self, s: np.ndarray) -> np.ndarray:
+        """Probability density of s."""
+
+    def sf(self, s: np.ndarray) -> np.ndarray:
+        """Survival function P(S > s): the contact fraction N_c/N at h = s (Eq. 1)."""
+
+    def sample_above(self, n: int, s_min: float, rng: np.random.Generator) -> np.ndarray:
+        """``n`` draws from the distribution truncated to s > s_min (s_min may be -inf)."""
+
+    def gw_integrals(self, g: LawIntegrand, h: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Partial expectations E[g(S − h); S > h] = scale · integral, for each h.
+
+        ``g`` maps an array of Δ = s − h ≥ 0 to an array with one leading axis per
+        quantity, shape ``(q, *Δ.shape)``. Returns ``scale`` of shape ``(len(h),)`` and
+        ``integral`` of shape ``(q, len(h))``. The split keeps ratios such as μ
+        finite where the expectations themselves underflow (far tails).
+        """
+
+
+# Composite Gauss–Legendre rule in u = √Δ (removes the δ^{3/2} branch point at Δ = 0).
+_PANELS = 8
+_NODES_PER_PANEL = 24
+_TAIL = 41.0  # integrate until the Gaussian weight drops below e^-41 ≈ 1.6e-18 of its peak
+
+
+def _panel_rule() -> tuple[np.ndarray, np.ndarray]:
+    x, w = np.polynomial.legendre.leggauss(_NODES_PER_PANEL)
+    edges = np.linspace(0.0, 1.0, _PANELS + 1)
+    half = np.diff(edges) / 2
+    mid = (edges[:-1] + edges[1:]) / 2
+    nodes = (mid[:, None] + half[:, None] * x).ravel()
+    weights = (half[:, None] * w).ravel()
+    return nodes, weights
+
+
+_U_NODES, _U_WEIGHTS = _panel_rule()
+
+
+class Gaussian:
+    """Standard normal summit heights, as in Greenwood & Williamson (1966) and the paper."""
+
+    name = "gaussian"
+
+    def __repr__(self) -> str:
+        return "Gaussian()"
+
+    def __eq__(self, other: object) -> bool:
+        return isinstance(other, Gaussian)
+
+    def __hash__(self) -> int:
+        return hash(self.name)
+
+    def pdf(self, s: np.ndarray) -> np.ndarray:
+        return np.exp(-0.5 * np.square(s)) / np.sqrt(2 * np.pi)
+
+    def sf(self, s: np.ndarray) -> np.ndarray:
+        """F_0(h) = ½ erfc(h/√2) (Eq. 1 with the Gaussian φ)."""
+        return 0.5 * special.erfc(np.asarray(s, dtype=float) / np.sqrt(2))
+
+    def sample_above(self, n: int, s_min: float, rng: np.random.Generator) -> np.ndarray:
+        if s_min == -np.inf:
+            return rng.standard_normal(n)
+        p = float(self.sf(s_min))
+        if s_min > 0:
+            # Inverse transform on the upper tail: sf(s) = u·p with u ~ U(0, 1].
+            return -special.ndtri((1.0 - rng.random(n)) * p)
+        # Rejection from the full normal: acceptance p >= 1/2.
+        out = np.empty(n)
+        filled = 0
+        while filled < n:
+            draw = rng.standard_normal(int((n - filled) / p * 1.05) + 16)
+            keep = draw[draw > s_min][: n - filled]
+            out[filled : filled + keep.size] = keep
+            filled += keep.size
+        return out
+
+    def gw_integrals(self, g: LawIntegrand, h: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Gaussian partial expectations by Gauss–Legendre quadrature in u = √Δ.
+
+        E[g(S−h); S>h] = ∫_0^∞ g(Δ) φ(h+Δ) dΔ. For h > 0 the factor φ(h) is taken out
+        (returned as ``scale``) and the weight is exp(−hΔ − Δ²/2); for h ≤ 0 the
+        weight is φ(h+Δ) itself. Δ runs over the range where the weight exceeds
+        e^-41 of its peak, on 8 panels of 24 nodes in u. Accurate to ~1e-13 relative
+        for smooth laws growing at most polynomially (tested against mpmath).
+        """
+        h = np.atleast_1d(np.asarray(h, dtype=float))
+        hp = np.maximum(h, 0.0)
+        d_lo = np.maximum(-h - np.sqrt(2 * _TAIL), 0.0)
+        d_hi = -h + np.sqrt(hp**2 + 2 * _TAIL)
+        u_lo, u_hi = np.sqrt(d_lo), np.sqrt(d_hi)
+        u = u_lo[:, None] + (u_hi - u_lo)[:, None] * _U_NODES
+        delta = u * u
+        # log weight relative to φ(max(h, 0)) · √(2π)
+        log_w = -0.5 * (h[:, None] + delta) ** 2 + 0.5 * hp[:, None] ** 2
+        jac = 2 * u * (u_hi - u_lo)[:, None] * _U_WEIGHTS
+        weight = np.exp(log_w) * jac / np.sqrt(2 * np.pi)
+        values = np.asarray(g(delta))
+        integral = np.sum(values * weight, axis=-1)
+        scale = np.exp(-0.5 * hp**2)
+        return scale, integral
+
+
+GAUSSIAN = Gaussian()

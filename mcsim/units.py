@@ -1,0 +1,141 @@
+"""Quantities as users write them (``"1.4 nm"``, ``"17 um^-2"``, ``"160 GPa"``) to SI floats.
+
+One unit table, refusing anything it does not know. Inside mcsim everything is SI;
+this module sits at the edge (TOML files, CLI options).
+"""
+
+import math
+import re
+
+from .errors import UnitError
+
+# Base units per dimension, as a factor to SI.
+_LENGTH = {
+    "m": 1.0,
+    "mm": 1e-3,
+    "um": 1e-6,
+    "µm": 1e-6,
+    "μm": 1e-6,
+    "micron": 1e-6,
+    "nm": 1e-9,
+    "pm": 1e-12,
+    "A": 1e-10,
+    "Å": 1e-10,
+}
+_PRESSURE = {"Pa": 1.0, "kPa": 1e3, "MPa": 1e6, "GPa": 1e9, "N/m^2": 1.0}
+_ENERGY_PER_AREA = {"J/m^2": 1.0, "mJ/m^2": 1e-3, "N/m": 1.0, "mN/m": 1e-3}
+
+#: SI unit of each dimension, as printed in messages and labels.
+SI_UNITS = {
+    "length": "m",
+    "area": "m^2",
+    "density": "m^-2",
+    "pressure": "Pa",
+    "energy_per_area": "J/m^2",
+    "dimensionless": "1",
+}
+
+_POWER = re.compile(r"^(?P<base>[^\^\s]+?)(?:\^|\*\*)?(?P<exp>-?[0-9]+)?$")
+_NUMBER = re.compile(
+    r"^\s*(?P<num>[-+]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][-+]?[0-9]+)?)\s*(?P<unit>.*?)\s*$"
+)
+
+
+def unit_factor(unit: str, dimension: str) -> float:
+    """Factor that converts a value in ``unit`` to the SI unit of ``dimension``.
+
+    Parameters
+    ----------
+    unit : str
+        Unit as written, e.g. ``"nm"``, ``"um^-2"``, ``"µm²"``, ``"GPa"``, ``"J/m^2"``.
+    dimension : {"length", "area", "density", "pressure", "energy_per_area", "dimensionless"}
+        The dimension the caller expects.
+
+    Returns
+    -------
+    float
+        Multiply a value in ``unit`` by this to get SI.
+
+    Raises
+    ------
+    UnitError
+        If the unit is unknown or of another dimension.
+    """
+    u = unit.strip().replace("²", "^2").replace("⁻²", "^-2").replace("⁻", "^-")
+    u = u.replace("^-^2", "^-2").replace(" ", "")
+    if dimension == "dimensionless":
+        if u in ("", "1"):
+            return 1.0
+    elif dimension == "pressure":
+        if u in _PRESSURE:
+            return _PRESSURE[u]
+    elif dimension == "energy_per_area":
+        if u in _ENERGY_PER_AREA:
+            return _ENERGY_PER_AREA[u]
+    elif dimension in ("length", "area", "density"):
+        want = {"length": 1, "area": 2, "density": -2}[dimension]
+        m = _POWER.match(u)
+        if m and m["base"] in _LENGTH:
+            exp = int(m["exp"]) if m["exp"] else 1
+            if exp == want:
+                return _LENGTH[m["base"]] ** exp
+        if dimension == "density" and u.startswith("1/"):
+            return 1.0 / unit_factor(u[2:], "area")
+    else:
+        raise ValueError(f"unknown dimension {dimension!r}")
+    raise UnitError(
+        f"unknown unit {unit!r} for a {dimension.replace('_', ' ')} "
+        f"(SI unit {SI_UNITS[dimension]}; e.g. {_examples(dimension)})"
+    )
+
+
+def _examples(dimension: str) -> str:
+    return {
+        "length": "m, mm, um, µm, nm, A",
+        "area": "m^2, mm^2, um^2, nm^2",
+        "density": "m^-2, um^-2, µm^-2, 1/um^2",
+        "pressure": "Pa, MPa, GPa",
+        "energy_per_area": "J/m^2, mJ/m^2, N/m",
+        "dimensionless": "no unit",
+    }[dimension]
+
+
+def parse_quantity(value: object, dimension: str, field: str) -> float:
+    """Convert a number (taken as SI) or a string with a unit to an SI float.
+
+    Parameters
+    ----------
+    value : float, int or str
+        ``1.4e-9`` (SI), ``"1.4 nm"``, ``"1.4nm"``, ``"17 um^-2"``.
+    dimension : str
+        Expected dimension (see :func:`unit_factor`).
+    field : str
+        Name used in error messages.
+
+    Returns
+    -------
+    float
+        The value in SI units.
+
+    Raises
+    ------
+    UnitError
+        On a malformed string, an unknown unit or a unit of another dimension.
+    """
+    if isinstance(value, bool):
+        raise UnitError(f"{field}: expected a number or a quantity string, got {value!r}")
+    if isinstance(value, int | float):
+        return float(value)
+    if not isinstance(value, str):
+        raise UnitError(f"{field}: expected a number or a quantity string, got {value!r}")
+    m = _NUMBER.match(value)
+    if not m:
+        raise UnitError(f"{field}: cannot read {value!r} as a number with a unit (e.g. '1.4 nm')")
+    try:
+        factor = unit_factor(m["unit"], dimension)
+    except UnitError as err:
+        raise UnitError(f"{field}: {err}") from None
+    result = float(m["num"]) * factor
+    if not math.isfinite(result):
+        raise UnitError(f"{field}: {value!r} is not finite")
+    return result
