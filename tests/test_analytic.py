@@ -32,7 +32,7 @@ def reference_curves(surface: Surface, material: Material, h: float) -> dict[str
         u = sorted({mp.sqrt(p) for p in points})
         # mpmath's quad converges on an absolute error: integrate a function of order one
         scale = f(mp.mpf(1)) * weight(max(-h, 0))
-        return scale * mp.quad(lambda x: f(x * x) * weight(x * x) * 2 * x / scale, u + [mp.inf])
+        return scale * mp.quad(lambda x: f(x * x) * weight(x * x) * 2 * x / scale, [*u, mp.inf])
 
     P = integral(lambda d: A0 * R0**-0.5 * d**1.5)  # Eq. 3
     F = integral(  # Eq. 5
