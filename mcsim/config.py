@@ -7,12 +7,27 @@
     sigma = "1.4 nm"          # std of summit heights
     R = "1.7 um"              # summit radius
     eta = "17 um^-2"          # summit density
+    heights = "gaussian"      # optional: "gaussian" (default) or a histogram file
 
     [material]                # optional in a surface file; E and nu set both solids
     E = "160 GPa"
     nu = 0.22
     gamma = "0.5 J/m^2"       # work of adhesion
     H = "12.5 GPa"            # optional, for the plasticity index
+
+The summit-height distribution is Gaussian unless ``heights`` names a measured
+histogram: a text file (read by :mod:`mcsim.readers.histogram`, its path relative
+to the TOML file's folder), or a table with the file or the bins inline:
+
+.. code-block:: toml
+
+    [surface.heights]
+    file = "hist.csv"         # or, inline: edges = [...] with counts = [...] (or densities = [...])
+    unit = "nm"               # height unit of the file or of the edges, if the file names none
+
+With a measured histogram, ``sigma`` is optional and defaults to the histogram's
+own standard deviation (of its piecewise-uniform density,
+:class:`~mcsim.empirical.Empirical`); a given ``sigma`` rescales its shape.
 
 Plain numbers are SI. Unknown keys, missing keys, unknown units and out-of-range
 values raise a :class:`~mcsim.errors.MCSimError` naming the file and the field.
@@ -24,6 +39,7 @@ import tomllib
 from pathlib import Path
 from typing import Any
 
+from .empirical import Empirical
 from .errors import MCSimError, ParameterError
 from .params import Material, Surface, combine_surfaces
 from .presets import MATERIALS, SURFACES
@@ -34,6 +50,7 @@ _SURFACE_KEYS = {
     "R": ("length", "summit radius, e.g. '1.7 um'"),
     "eta": ("density", "summit density, e.g. '17 um^-2'"),
 }
+_HEIGHTS_KEYS = {"file", "edges", "counts", "densities", "unit"}
 _MATERIAL_KEYS = {
     "E1": ("pressure", "Young's modulus of solid 1, e.g. '160 GPa'"),
     "E2": ("pressure", "Young's modulus of solid 2"),
@@ -72,19 +89,92 @@ def _quantities(table: dict[str, Any], keys: dict, where: str, optional=()) -> d
     return out
 
 
-def surface_from_table(table: dict[str, Any], where: str = "surface") -> Surface:
-    """Build a :class:`Surface` from a TOML-like table (see the module docstring)."""
+def _table(data: dict[str, Any], key: str, path: Path) -> dict[str, Any]:
+    if key not in data:
+        raise ParameterError(f"{path}: missing table [{key}]")
+    if not isinstance(data[key], dict):
+        raise ParameterError(f"{path}: [{key}] must be a table, got {data[key]!r}")
+    return data[key]
+
+
+def _heights_from_value(value: Any, where: str, base_dir: Path | None) -> Empirical | None:
+    """The ``heights`` entry of a surface table: None for Gaussian, else the histogram."""
+    from .readers import read_histogram
+
+    if isinstance(value, str) and value.strip().lower() == "gaussian":
+        return None
+    if isinstance(value, str):
+        value = {"file": value}
+    if not isinstance(value, dict):
+        raise ParameterError(
+            f"{where}: heights must be 'gaussian', a histogram file or a table, got {value!r}"
+        )
+    unknown = set(value) - _HEIGHTS_KEYS
+    if unknown:
+        raise ParameterError(
+            f"{where}: heights: unknown key(s) {', '.join(sorted(unknown))} "
+            f"(allowed: {', '.join(sorted(_HEIGHTS_KEYS))})"
+        )
+    unit = value.get("unit")
+    if "file" in value:
+        if {"edges", "counts", "densities"} & set(value):
+            raise ParameterError(f"{where}: heights: give either file or edges, not both")
+        path = Path(value["file"])
+        if base_dir is not None and not path.is_absolute():
+            path = base_dir / path
+        try:
+            return read_histogram(path, unit=unit).to_empirical()
+        except MCSimError as err:
+            raise ParameterError(f"{where}: heights: {err}") from None
+    if "edges" not in value or ("counts" in value) == ("densities" in value):
+        raise ParameterError(
+            f"{where}: heights: give file, or edges with one of counts or densities"
+        )
+    factor = (
+        1.0 if unit is None else parse_quantity(f"1 {unit}", "length", f"{where}: heights: unit")
+    )
+    weights = value.get("counts", value.get("densities"))
+    try:
+        return Empirical.from_histogram(
+            [factor * e for e in value["edges"]],
+            weights,
+            density="densities" in value,
+            source=f"{where}: inline histogram",
+        )
+    except (ParameterError, TypeError) as err:
+        raise ParameterError(f"{where}: heights: {err}") from None
+
+
+def surface_from_table(
+    table: dict[str, Any], where: str = "surface", base_dir: Path | None = None
+) -> Surface:
+    """Build a :class:`Surface` from a TOML-like table (see the module docstring).
+
+    ``base_dir`` is the folder that relative histogram paths in ``heights`` start
+    from (the TOML file's folder); the working directory if None.
+    """
     name = str(table.get("name", ""))
     try:
         if "combine" in table:
             pair = table["combine"]
-            if not (isinstance(pair, list) and len(pair) == 2):
+            if not (
+                isinstance(pair, list) and len(pair) == 2 and all(isinstance(p, str) for p in pair)
+            ):
                 raise ParameterError(f"{where}: combine must list two surfaces, got {pair!r}")
             rest = {k: v for k, v in table.items() if k not in ("combine", "name")}
             eta = _quantities(rest, {"eta": _SURFACE_KEYS["eta"]}, where)["eta"]
-            first, second = (load_surface(p) for p in pair)
+            try:
+                first, second = (load_surface(_relative_to(p, base_dir)) for p in pair)
+            except MCSimError as err:
+                raise type(err)(f"{where}: combine: {err}") from None
             return combine_surfaces(first, second, eta=eta, name=name)
-        return Surface(**_quantities(table, _SURFACE_KEYS, where), name=name)
+        table = dict(table)
+        heights = _heights_from_value(table.pop("heights", "gaussian"), where, base_dir)
+        if heights is None:
+            return Surface(**_quantities(table, _SURFACE_KEYS, where), name=name)
+        values = _quantities(table, _SURFACE_KEYS, where, optional=("sigma",))
+        values.setdefault("sigma", heights.sigma)
+        return Surface(**values, heights=heights, name=name)
     except ParameterError as err:
         if str(err).startswith(where):
             raise
@@ -95,6 +185,8 @@ def material_from_table(table: dict[str, Any], where: str = "material") -> Mater
     """Build a :class:`Material` from a TOML-like table; ``E``/``nu`` set both solids."""
     table = dict(table)
     for both, (one, two) in {"E": ("E1", "E2"), "nu": ("nu1", "nu2")}.items():
+        if both in table and (one in table or two in table):
+            raise ParameterError(f"{where}: give either {both} or {one} and {two}, not both")
         if both in table:
             value = table.pop(both)
             table.setdefault(one, value)
@@ -115,10 +207,15 @@ def load_surface(spec: str | Path) -> Surface:
         raise ParameterError(
             f"unknown surface {str(spec)!r}: give a preset ({', '.join(SURFACES)}) or a .toml file"
         )
-    data = _read_toml(path)
-    if "surface" not in data:
-        raise ParameterError(f"{path}: missing table [surface]")
-    return surface_from_table(data["surface"], where=f"{path} [surface]")
+    table = _table(_read_toml(path), "surface", path)
+    return surface_from_table(table, where=f"{path} [surface]", base_dir=path.parent)
+
+
+def _relative_to(spec: str, base: Path | None) -> str | Path:
+    """A surface file named in ``combine``, relative to the including file's folder."""
+    if base is None or Path(spec).suffix != ".toml" or Path(spec).is_absolute():
+        return spec
+    return base / spec
 
 
 def load_material(spec: str | Path) -> Material:
@@ -130,10 +227,8 @@ def load_material(spec: str | Path) -> Material:
         raise ParameterError(
             f"unknown material {str(spec)!r}: give a preset ({', '.join(MATERIALS)}) or a .toml file"
         )
-    data = _read_toml(path)
-    if "material" not in data:
-        raise ParameterError(f"{path}: missing table [material]")
-    return material_from_table(data["material"], where=f"{path} [material]")
+    table = _table(_read_toml(path), "material", path)
+    return material_from_table(table, where=f"{path} [material]")
 
 
 def material_in_surface_file(spec: str | Path) -> Material | None:
@@ -144,4 +239,4 @@ def material_in_surface_file(spec: str | Path) -> Material | None:
     data = _read_toml(path)
     if "material" not in data:
         return None
-    return material_from_table(data["material"], where=f"{path} [material]")
+    return material_from_table(_table(data, "material", path), where=f"{path} [material]")

@@ -37,7 +37,9 @@ SI_UNITS = {
 
 _POWER = re.compile(r"^(?P<base>[^\^\s]+?)(?:\^|\*\*)?(?P<exp>-?[0-9]+)?$")
 _NUMBER = re.compile(
-    r"^\s*(?P<num>[-+]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][-+]?[0-9]+)?)\s*(?P<unit>.*?)\s*$"
+    r"^\s*(?P<num>[-+]?(?:(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][-+]?[0-9]+)?|inf(?:inity)?|nan))"
+    r"\s*(?P<unit>.*?)\s*$",
+    re.IGNORECASE,
 )
 
 
@@ -80,11 +82,19 @@ def unit_factor(unit: str, dimension: str) -> float:
             if exp == want:
                 return _LENGTH[m["base"]] ** exp
         if dimension == "density" and u.startswith("1/"):
-            return 1.0 / unit_factor(u[2:], "area")
+            m = _POWER.match(u[2:])
+            if m and m["base"] in _LENGTH and m["exp"] == "2":
+                return _LENGTH[m["base"]] ** -2
     else:
         raise ValueError(f"unknown dimension {dimension!r}")
-    raise UnitError(
-        f"unknown unit {unit!r} for a {dimension.replace('_', ' ')} "
+    raise UnitError(f"unknown unit {unit!r} for {_allowed(dimension)}")
+
+
+def _allowed(dimension: str) -> str:
+    """'a length (SI unit m; e.g. m, mm, ...)': the dimension and its units, for messages."""
+    article = "an" if dimension[0] in "aeiou" else "a"
+    return (
+        f"{article} {dimension.replace('_', ' ')} "
         f"(SI unit {SI_UNITS[dimension]}; e.g. {_examples(dimension)})"
     )
 
@@ -122,20 +132,32 @@ def parse_quantity(value: object, dimension: str, field: str) -> float:
     UnitError
         On a malformed string, an unknown unit or a unit of another dimension.
     """
-    if isinstance(value, bool):
-        raise UnitError(f"{field}: expected a number or a quantity string, got {value!r}")
+    if isinstance(value, bool) or not isinstance(value, int | float | str):
+        raise UnitError(
+            f"{field}: expected a number (SI) or a quantity string, got {value!r}; "
+            f"units for {_allowed(dimension)}"
+        )
     if isinstance(value, int | float):
-        return float(value)
-    if not isinstance(value, str):
-        raise UnitError(f"{field}: expected a number or a quantity string, got {value!r}")
+        return _finite(float(value), value, field)
     m = _NUMBER.match(value)
     if not m:
-        raise UnitError(f"{field}: cannot read {value!r} as a number with a unit (e.g. '1.4 nm')")
+        raise UnitError(
+            f"{field}: cannot read {value!r} as a number with a unit; "
+            f"units for {_allowed(dimension)}"
+        )
+    if not m["unit"]:
+        return _finite(float(m["num"]), value, field)  # a bare number is SI
     try:
         factor = unit_factor(m["unit"], dimension)
     except UnitError as err:
         raise UnitError(f"{field}: {err}") from None
     result = float(m["num"]) * factor
+    if not math.isfinite(result):
+        raise UnitError(f"{field}: {value!r} is not finite; units for {_allowed(dimension)}")
+    return result
+
+
+def _finite(result: float, value: object, field: str) -> float:
     if not math.isfinite(result):
         raise UnitError(f"{field}: {value!r} is not finite")
     return result

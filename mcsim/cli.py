@@ -1,0 +1,364 @@
+"""The ``mcsim`` command line: a thin layer over the Python API.
+
+Errors in the input print one line (``mcsim: error: ...``) and exit with status 2;
+``--debug`` shows the traceback instead. Ctrl-C exits with status 130 and leaves no
+partial output.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from pathlib import Path
+
+from ._version import __version__
+from .errors import MCSimError, ParameterError
+
+_FORMATS = ("table", "csv", "json")
+
+
+def parse_h(spec: str) -> list[float]:
+    """``"-1,0,1.5"`` (a list) or ``"4:-1:51"`` (start:stop:num, inclusive) to a list of floats."""
+    import numpy as np
+
+    text = spec.strip()
+    if not text:
+        raise ParameterError("--h: empty list of separations")
+    try:
+        if ":" in text:
+            start, stop, num = text.split(":")
+            start, stop, num = float(start), float(stop), int(num)
+        else:
+            values = [float(x) for x in text.split(",")]
+    except ValueError:
+        raise ParameterError(
+            f"--h: cannot read {spec!r} (give a list '-1,0,1.5' or start:stop:num '4:-1:51')"
+        ) from None
+    if ":" in text:
+        if num < 1:
+            raise ParameterError(f"--h: {spec!r} asks for {num} points (allowed: num >= 1)")
+        values = np.linspace(start, stop, num).tolist()
+    bad = [v for v in values if not np.isfinite(v)]
+    if bad:
+        raise ParameterError(f"--h: separations must be finite, got {bad[0]!r}")
+    return values
+
+
+def _inputs(args):
+    from .config import load_material, load_surface, material_in_surface_file
+
+    surface = load_surface(args.surface)
+    if args.material is not None:
+        material = load_material(args.material)
+    else:
+        from .presets import MATERIALS
+
+        material = material_in_surface_file(args.surface) or MATERIALS["silicon"]
+    return surface, material
+
+
+def _describe(surface, material) -> list[str]:
+    from .params import plasticity_index, surface_energy_parameter
+
+    psi = plasticity_index(surface, material)
+    lines = [
+        f"surface {surface.name or '(file)'}: sigma = {surface.sigma * 1e9:.4g} nm, R = {surface.R * 1e6:.4g} um, "
+        f"eta = {surface.eta * 1e-12:.4g} um^-2, heights {surface.heights.name}",
+        f"material {material.name or '(file)'}: K = {material.K / 1e9:.4g} GPa, G = {material.G / 1e9:.4g} GPa, "
+        f"gamma = {material.gamma:.4g} J/m^2",
+        f"A0 = eta R sigma = {surface.A0:.4g}, B0 = gamma/(K sigma) = {surface_energy_parameter(surface, material):.4g}, "
+        f"R0 = R/sigma = {surface.R0:.4g}",
+    ]
+    if psi is not None:
+        note = (
+            " (> 1: mostly plastic contacts; the elastic model is questionable)" if psi > 1 else ""
+        )
+        lines.append(f"plasticity index psi = (E*/H) sqrt(sigma/R) = {psi:.3g}{note}")
+    return lines
+
+
+def _print_rows(
+    rows: list[dict], columns: list[str], fmt: str, header: list[str] | None = None
+) -> None:
+    if fmt == "json":
+        print(json.dumps(rows, indent=1, default=lambda v: None))
+        return
+    if fmt == "csv":
+        import csv
+
+        writer = csv.DictWriter(
+            sys.stdout, fieldnames=columns, extrasaction="ignore", lineterminator="\n"
+        )
+        writer.writeheader()
+        for row in rows:
+            writer.writerow({k: ("" if isinstance(v, float) and v != v else (repr(v) if isinstance(v, float) else v))
+                             for k, v in row.items()})  # fmt: skip
+        return
+    for line in header or []:
+        print(f"# {line}")
+
+    def cell(v):
+        if isinstance(v, float):
+            return "" if v != v else f"{v:.6g}"
+        return str(v)
+
+    table = [[cell(r.get(c, "")) for c in columns] for r in rows]
+    widths = [
+        max(len(c), *(len(t[i]) for t in table)) if table else len(c) for i, c in enumerate(columns)
+    ]
+    print("  ".join(c.rjust(w) for c, w in zip(columns, widths)).rstrip())
+    for t in table:
+        print("  ".join(v.rjust(w) for v, w in zip(t, widths)).rstrip())
+
+
+# --- commands ----------------------------------------------------------------------------
+
+
+def cmd_analytic(args) -> int:
+    from .analytic import gw_curves
+
+    surface, material = _inputs(args)
+    curves = gw_curves(surface, material, parse_h(args.h), args.law)
+    columns = list(curves.table())
+    table = curves.table()
+    rows = [{c: float(table[c][i]) for c in columns} for i in range(curves.h.size)]
+    header = [
+        *_describe(surface, material),
+        "dimensionless: P, F, T = force/(A_n K) (Eqs. 3, 5, 7); mu = T/(P+F) (Eq. 8)",
+    ]
+    _print_rows(rows, columns, args.format, header)
+    return 0
+
+
+def cmd_paper(args) -> int:
+    from .paper import paper_monte_carlo, reproduce_paper
+
+    mc = None if args.no_mc else paper_monte_carlo(args.out, seed=args.seed)
+    result = reproduce_paper(out_dir=args.out, mc=mc)
+    print(
+        f"wrote {len(result['figures'])} figures, {result['curves_csv'].name} and {result['mu_table_csv'].name} to {args.out}"
+    )
+    return 0
+
+
+def _default_run_path(surface) -> Path:
+    import datetime as dt
+
+    stamp = dt.datetime.now().strftime("%Y%m%d-%H%M%S")
+    folder = Path("runs")
+    folder.mkdir(exist_ok=True)
+    return folder / f"{surface.name or 'surface'}-{stamp}.h5"
+
+
+def cmd_simulate(args) -> int:
+    import time
+
+    from .simulation import cli_command, simulate
+
+    surface, material = _inputs(args)
+    h = parse_h(args.h)
+    out = Path(args.out) if args.out else _default_run_path(surface)
+    show_progress = not args.quiet and sys.stderr.isatty()
+    t0 = time.perf_counter()
+    run = simulate(
+        surface, material, h, args.area, realizations=args.realizations, seed=args.seed, law=args.law,
+        count=args.count, workers=args.workers, chunk_size=args.chunk_size, keep_heights=args.keep_heights,
+        out=out, overwrite=args.overwrite, progress=show_progress, command=cli_command(),
+    )  # fmt: skip
+    elapsed = time.perf_counter() - t0
+    if not args.quiet:
+        n = run.n_summits
+        print(f"wrote {run.path}: {run.spec.realizations} realizations x {len(h)} separations, "
+              f"N = {n.mean():.6g} summits per patch on average, {elapsed:.2f} s")  # fmt: skip
+        print(f"next: mcsim compare {run.path}   |   mcsim plot {run.path}")
+    return 0
+
+
+def cmd_compare(args) -> int:
+    from .runfile import read_run
+
+    run = read_run(args.run)
+    rows = run.compare().to_dict("records")
+    columns = ["h", "quantity", "mc_mean", "mc_se", "analytic", "z"]
+    notes = sorted({(r["h"], r["note"]) for r in rows if r["note"]}, key=lambda t: -t[0])
+    if args.format == "table":
+        columns.append("note")
+        for r in rows:
+            r["note"] = r["note"].split(":")[0]
+    _print_rows(
+        rows, columns, args.format, header=[f"run {run.path}", "z = (mc_mean - analytic)/mc_se"]
+    )
+    if args.format == "csv" and notes:
+        for h, note in notes:
+            print(f"mcsim: note: h = {h:g}: z left empty: {note}", file=sys.stderr)
+    return 0
+
+
+def cmd_show(args) -> int:
+    import numpy as np
+
+    from .runfile import read_run
+
+    run = read_run(args.run)
+    a, spec = run.attrs, run.spec
+    print(f"run file      {run.path}")
+    print(
+        f"created       {a.get('created')} by mcsim {a.get('mcsim_version')} (schema {a.get('schema_version')})"
+    )
+    print(f"command       {a.get('command')}")
+    print(f"seed entropy  {spec.entropy}")
+    for line in _describe(spec.surface, spec.material):
+        print(f"input         {line}")
+    print(f"law set       {spec.law}")
+    print(
+        f"patch         A = {spec.area * 1e12:.6g} um^2, N ~ {spec.count}, E[N] = {spec.expected_summits:.6g}"
+    )
+    print(f"realizations  {spec.realizations}: N = {', '.join(str(int(n)) for n in run.n_summits[:8])}"
+          f"{' ...' if spec.realizations > 8 else ''}")  # fmt: skip
+    print(f"separations   {spec.h.size}: h = {spec.h.min():g} .. {spec.h.max():g}")
+    z = run.compare()["z"].to_numpy()
+    finite = z[np.isfinite(z)]
+    if finite.size:
+        print(f"vs GW         max |z| = {np.max(np.abs(finite)):.2f} over {finite.size} (h, quantity) pairs "
+              f"with enough contacts; details: mcsim compare {run.path}")  # fmt: skip
+    return 0
+
+
+def cmd_plot(args) -> int:
+    from .plotting import run_figure, save
+    from .runfile import read_run
+
+    run = read_run(args.run)
+    out = Path(args.out) if args.out else Path(run.path).with_suffix(".png")
+    save(run_figure(run), out)
+    print(f"wrote {out}")
+    return 0
+
+
+# --- parser ------------------------------------------------------------------------------
+
+
+def _add_inputs(p: argparse.ArgumentParser) -> None:
+    p.add_argument(
+        "--surface",
+        required=True,
+        help="preset (rough, intermediate, smooth, super-smooth, ...) or FILE.toml",
+    )
+    p.add_argument(
+        "--material",
+        help="preset (silicon) or FILE.toml; default: the surface file's [material], else silicon",
+    )
+    p.add_argument("--law", default="seed", help="law set (default: seed, the paper as written)")
+    p.add_argument("--h", required=True, metavar="SPEC",
+                   help="separations d/sigma: a list '--h=-1,0,1.5' or start:stop:num '--h=4:-1:51'")  # fmt: skip
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="mcsim",
+        description="Monte Carlo discrete-asperity simulator for adhesion and adhesional friction of rough surfaces.",
+    )
+    parser.add_argument("--version", action="version", version=f"mcsim {__version__}")
+    parser.add_argument("--debug", action="store_true", help="show tracebacks on errors")
+    sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
+
+    p = sub.add_parser(
+        "analytic",
+        help="analytic GW curves (Eqs. 1-8)",
+        description="Analytic GW curves versus h = d/sigma.",
+    )
+    _add_inputs(p)
+    p.add_argument("--format", choices=_FORMATS, default="table")
+    p.set_defaults(func=cmd_analytic)
+
+    p = sub.add_parser("paper", help="reproduce the paper's Figs. 2-6", description="Reproduce the paper's Figs. 2-6 "
+                       "(analytic curves with Monte Carlo points), a CSV of the curves and a table of mu.")  # fmt: skip
+    p.add_argument("--out", default="runs/paper", help="output folder (default: runs/paper)")
+    p.add_argument("--no-mc", action="store_true", help="analytic curves only")
+    p.add_argument(
+        "--seed", type=int, default=2026, help="seed of the Monte Carlo patches (default: 2026)"
+    )
+    p.set_defaults(func=cmd_paper)
+
+    p = sub.add_parser("simulate", help="Monte Carlo run on finite patches, stored as HDF5",
+                       description="Sample finite patches, sum the per-summit laws, store the run as HDF5.")  # fmt: skip
+    _add_inputs(p)
+    p.add_argument(
+        "--area", required=True, help="patch area: m^2 or with a unit ('100um^2', '0.01mm^2')"
+    )
+    p.add_argument("--realizations", type=int, default=1, help="independent patches (default: 1)")
+    p.add_argument(
+        "--seed", type=int, help="root seed (default: fresh entropy, recorded in the file)"
+    )
+    p.add_argument(
+        "--count",
+        choices=("poisson", "fixed"),
+        default="poisson",
+        help="N ~ Poisson(eta A) or round(eta A)",
+    )
+    p.add_argument("--out", help="run file (default: runs/<surface>-<time>.h5)")
+    p.add_argument("--overwrite", action="store_true", help="replace an existing run file")
+    p.add_argument(
+        "--workers", type=int, default=1, help="worker threads (results do not depend on it)"
+    )
+    p.add_argument(
+        "--chunk-size",
+        type=int,
+        default=1 << 20,
+        help="summits per task (results do not depend on it)",
+    )
+    p.add_argument(
+        "--keep-heights", action="store_true", help="store the sampled heights (compressed)"
+    )
+    p.add_argument("--quiet", action="store_true", help="no progress bar or summary")
+    p.set_defaults(func=cmd_simulate)
+
+    p = sub.add_parser("compare", help="Monte Carlo versus analytic, with z-scores",
+                       description="For every h and quantity: MC mean, its standard error, the analytic value and "
+                       "z = (mc - analytic)/se.")  # fmt: skip
+    p.add_argument("run", help="run file (.h5)")
+    p.add_argument("--format", choices=_FORMATS, default="table")
+    p.set_defaults(func=cmd_compare)
+
+    p = sub.add_parser(
+        "show", help="human summary of a run file", description="Summarise a run file."
+    )
+    p.add_argument("run", help="run file (.h5)")
+    p.set_defaults(func=cmd_show)
+
+    p = sub.add_parser("plot", help="Monte Carlo points over the analytic curves",
+                       description="Plot a run: Monte Carlo means with error bars over the analytic curves.")  # fmt: skip
+    p.add_argument("run", help="run file (.h5)")
+    p.add_argument("--out", help="PNG file (default: next to the run file)")
+    p.set_defaults(func=cmd_plot)
+    return parser
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    try:
+        return args.func(args)
+    except KeyboardInterrupt:
+        print("mcsim: interrupted; no output written", file=sys.stderr)
+        return 130
+    except BrokenPipeError:  # output piped into `head` and the like
+        import os
+
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return 0
+    except (MCSimError, OSError) as err:
+        if args.debug:
+            raise
+        message = (
+            str(err)
+            if isinstance(err, MCSimError)
+            else f"{err.filename or ''}: {err.strerror or err}"
+        )
+        print(f"mcsim: error: {message}", file=sys.stderr)
+        return 2
+
+
+if __name__ == "__main__":
+    sys.exit(main())

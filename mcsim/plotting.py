@@ -1,0 +1,361 @@
+"""Figures of the GW curves versus mean separation, as in the paper's Figs. 2-6.
+
+Plots sit at the edge of mcsim: matplotlib is imported inside the functions, and
+figures are built as :class:`matplotlib.figure.Figure` objects without pyplot, so
+they work headless, in scripts and in Jupyter (a ``Figure`` displays itself there)
+without touching the global backend.
+
+Conventions a tribologist expects from the paper's figures:
+
+* x axis: the dimensionless mean separation h = d/σ runs from large to small, left
+  to right (4 → −1 in the paper), so reading a figure left to right follows the
+  surfaces being pressed together (loading);
+* y axis: logarithmic for the forces P̄, F̄, P̄ + F̄ and T̄ (they grow by six
+  decades over 4 ≥ h ≥ −1), linear for μ and for the contact fraction;
+* one colour and line style per surface, the same in every figure.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from pathlib import Path
+
+import numpy as np
+
+from .analytic import AnalyticCurves
+from .errors import MCSimError
+from .presets import PAPER_SURFACES
+
+#: Axis label of each plottable quantity; forces are divided by A_n K (Eqs. 3, 5, 7).
+LABELS = {
+    "P": r"External force $\bar P = P/(A_n K)$",
+    "F": r"Adhesive term $\bar F = F/(A_n K)$ (Eq. 5)",
+    "total": r"Total force $(\bar P + \bar F)$",
+    "T": r"Friction force $\bar T = T/(A_n K)$",
+    "mu": r"Friction coefficient $\mu = \bar T/(\bar P + \bar F)$",
+    "contact_fraction": r"Contact fraction $N_c/N$",
+}
+
+#: Label of the x axis of every figure.
+X_LABEL = r"Dimensionless mean separation $h = d/\sigma$"
+
+#: The paper's figure number and caption for each quantity it plots.
+PAPER_FIGURES = {
+    "P": (2, "External force vs. mean separation"),
+    "F": (3, "Adhesive force vs. mean separation"),
+    "total": (4, "Total force vs. mean separation"),
+    "T": (5, "Friction force vs. mean separation"),
+    "mu": (6, "Coefficient of friction vs. mean separation"),
+}
+
+#: Quantities drawn on a logarithmic y axis.
+LOG_QUANTITIES = frozenset({"P", "F", "total", "T"})
+
+# Colour-blind-safe colours (Okabe & Ito 2008) and line styles: the paper's surfaces
+# first, in its order, so each keeps its colour in every figure; others follow.
+_COLOURS = ("#0072B2", "#E69F00", "#009E73", "#CC79A7", "#D55E00", "#56B4E9", "#000000")
+_LINESTYLES = ("-", "--", "-.", ":")
+
+
+def surface_style(name: str, position: int = 0) -> dict[str, str]:
+    """Colour and line style of a surface: fixed for the paper's four surfaces.
+
+    Parameters
+    ----------
+    name : str
+        Surface name.
+    position : int
+        Position of the surface in its figure, used for surfaces that are not
+        among :data:`mcsim.presets.PAPER_SURFACES`.
+
+    Returns
+    -------
+    dict
+        ``color`` and ``linestyle`` keyword arguments for matplotlib.
+    """
+    if name in PAPER_SURFACES:
+        index = PAPER_SURFACES.index(name)
+    else:
+        index = len(PAPER_SURFACES) + position
+    return {
+        "color": _COLOURS[index % len(_COLOURS)],
+        "linestyle": _LINESTYLES[index % len(_LINESTYLES)],
+    }
+
+
+def surface_label(name: str, curves: AnalyticCurves) -> str:
+    """Legend entry: the surface name with σ in nm, R in µm and η in µm⁻²."""
+    s = curves.surface
+    return (
+        f"{name} ($\\sigma$ = {s.sigma * 1e9:.3g} nm, $R$ = {s.R * 1e6:.3g} µm, "
+        f"$\\eta$ = {s.eta * 1e-12:.3g} µm$^{{-2}}$)"
+    )
+
+
+def quantity_values(curves: AnalyticCurves, quantity: str) -> np.ndarray:
+    """Values of ``quantity`` (a key of :data:`LABELS`) from analytic curves; total = P̄ + F̄."""
+    _check_quantity(quantity)
+    if quantity == "total":
+        return curves.P + curves.F
+    return getattr(curves, quantity)
+
+
+def curve_figure(
+    quantity: str,
+    curves: Mapping[str, AnalyticCurves],
+    mc: Mapping[str, Mapping] | None = None,
+):
+    """One quantity versus h, one line per surface, optionally with Monte Carlo points.
+
+    Parameters
+    ----------
+    quantity : str
+        A key of :data:`LABELS`: ``"P"``, ``"F"``, ``"total"`` (P̄ + F̄), ``"T"``,
+        ``"mu"`` or ``"contact_fraction"``. Forces are dimensionless, divided by
+        A_n K.
+    curves : mapping of str to AnalyticCurves
+        Analytic curves by surface name, drawn as lines in this order.
+    mc : mapping of str to dict, optional
+        Monte Carlo results by surface name (each must also be in ``curves``):
+        ``{"h": array, "mean": {quantity: array}, "se": {quantity: array}}``, with
+        the same scaling as the curves. Drawn as markers in the surface's colour with
+        error bars of ±2 standard errors. A surface whose ``mean`` lacks
+        ``quantity`` is not overlaid in this figure; one whose ``se`` lacks it gets
+        markers without error bars. On a log axis non-positive means (e.g. no
+        summit in contact) are left out.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure, h decreasing from left to right; its title names the paper's
+        figure where the paper has one.
+    """
+    from matplotlib.figure import Figure
+    from matplotlib.lines import Line2D
+
+    _check_quantity(quantity)
+    if not curves:
+        raise MCSimError("`curves` must contain at least one surface.")
+    mc = dict(mc or {})
+    unknown = sorted(set(mc) - set(curves))
+    if unknown:
+        raise MCSimError(f"Monte Carlo results for {unknown} have no analytic curve to match.")
+    log = quantity in LOG_QUANTITIES
+
+    fig = Figure(figsize=(7.5, 6.0), layout="constrained")
+    ax = fig.add_subplot()
+    handles = []
+    h_all = []
+    for position, (name, c) in enumerate(curves.items()):
+        style = surface_style(name, position)
+        y = np.asarray(quantity_values(c, quantity), dtype=float)
+        if log:
+            y = np.where(y > 0, y, np.nan)
+        (line,) = ax.plot(c.h, y, lw=1.8, label=surface_label(name, c), **style)
+        handles.append(line)
+        h_all.append(c.h)
+        if name in mc:
+            h_all.append(_overlay(ax, mc[name], quantity, style["color"], log))
+    if mc:
+        handles.append(
+            Line2D(
+                [],
+                [],
+                color="0.3",
+                marker="o",
+                linestyle="none",
+                markerfacecolor="none",
+                label="Monte Carlo mean ± 2 SE",
+            )
+        )
+
+    h_all = np.concatenate([np.ravel(x) for x in h_all])
+    # h decreasing, left to right: the surfaces approach; a margin keeps end markers whole
+    h_max, h_min = np.nanmax(h_all), np.nanmin(h_all)
+    pad = 0.015 * (h_max - h_min) if mc else 0.0
+    if h_max == h_min:  # a single separation: show it mid-axis
+        pad = 0.5
+    ax.set_xlim(h_max + pad, h_min - pad)
+    if log:
+        ax.set_yscale("log")
+    else:
+        ax.set_ylim(bottom=0)
+    if quantity == "mu":
+        limit = _single_summit_mu_limit(curves)
+        if limit is not None:
+            ax.axhline(limit, color="0.45", lw=0.8, zorder=1)
+            ax.annotate(
+                f"single-summit limit $(2/\\sqrt{{3}})\\sqrt{{G/K}}$ = {limit:.3f}",
+                xy=(0.02, limit),
+                xycoords=("axes fraction", "data"),
+                xytext=(0, 3),
+                textcoords="offset points",
+                fontsize=8,
+                color="0.35",
+                bbox={"facecolor": "white", "edgecolor": "none", "alpha": 0.8, "pad": 1},
+            )
+            ax.set_ylim(0, max(ax.get_ylim()[1], 1.15 * limit))
+    ax.set_xlabel(X_LABEL)
+    ax.set_ylabel(LABELS[quantity])
+    ax.grid(True, which="major", alpha=0.5)
+    if log:
+        ax.grid(True, which="minor", alpha=0.15)
+    # below the axes, where it cannot hide a curve whatever the surfaces
+    ax.legend(
+        handles=handles,
+        fontsize=8,
+        loc="upper center",
+        bbox_to_anchor=(0.5, -0.11),
+        ncols=2,
+        frameon=False,
+    )
+    ax.set_title(_title(quantity, curves), fontsize=10)
+    return fig
+
+
+def save(fig, path) -> Path:
+    """Write ``fig`` as a PNG at 150 dpi, with the mcsim version in its metadata.
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        The figure.
+    path : str or Path
+        Output file; its folder must exist.
+
+    Returns
+    -------
+    Path
+        The path written.
+    """
+    from ._version import __version__
+
+    path = Path(path)
+    try:
+        fig.savefig(path, dpi=150, format="png", metadata={"Software": f"mcsim {__version__}"})
+    except OSError as error:
+        raise MCSimError(f"cannot write figure {str(path)!r}: {error.strerror or error}") from None
+    return path
+
+
+def _check_quantity(quantity: str) -> None:
+    if quantity not in LABELS:
+        raise MCSimError(f"`quantity` must be one of {sorted(LABELS)}, got {quantity!r}.")
+
+
+def _overlay(ax, result: Mapping, quantity: str, colour: str, log: bool) -> np.ndarray:
+    """Draw one surface's Monte Carlo means (open markers, ±2 SE bars); return its h."""
+    h = np.asarray(result["h"], dtype=float)
+    if quantity not in result.get("mean", {}):
+        return h
+    mean = np.asarray(result["mean"][quantity], dtype=float)
+    se = result.get("se", {}).get(quantity)
+    if mean.shape != h.shape or (se is not None and np.shape(se) != h.shape):
+        raise MCSimError(
+            f"Monte Carlo {quantity!r}: `h`, `mean` and `se` must have one shape, "
+            f"got {h.shape}, {mean.shape} and {np.shape(se)}."
+        )
+    keep = np.isfinite(mean) & (mean > 0 if log else True)
+    yerr = None if se is None else 2 * np.asarray(se, dtype=float)[keep]
+    if yerr is not None and log:
+        # a bar below zero has no place on a log axis: clip it just above zero
+        yerr = np.vstack([np.minimum(yerr, 0.999 * mean[keep]), yerr])
+    ax.errorbar(
+        h[keep],
+        mean[keep],
+        yerr=yerr,
+        color=colour,
+        marker="o",
+        markersize=4,
+        markerfacecolor="none",
+        linestyle="none",
+        capsize=2,
+        elinewidth=0.9,
+    )
+    return h
+
+
+def _single_summit_mu_limit(curves: Mapping[str, AnalyticCurves]) -> float | None:
+    """(2/√3)√(G/K), the supremum of T_a/(P_a + F_a) per summit, if all curves share it."""
+    if {c.law for c in curves.values()} != {"seed"}:
+        return None
+    limits = {
+        round(2 / math.sqrt(3) * math.sqrt(c.material.G / c.material.K), 12)
+        for c in curves.values()
+    }
+    return limits.pop() if len(limits) == 1 else None
+
+
+def _title(quantity: str, curves: Mapping[str, AnalyticCurves]) -> str:
+    """Paper figure and caption, then the material and law set if shared by all curves."""
+    if quantity in PAPER_FIGURES:
+        number, caption = PAPER_FIGURES[quantity]
+        first = f"Fig. {number} of the paper: {caption}"
+    else:
+        first = f"{LABELS[quantity].split(' $')[0]} vs. mean separation"
+    materials = {c.material for c in curves.values()}
+    laws = {c.law for c in curves.values()}
+    if len(materials) != 1 or len(laws) != 1:
+        return first
+    m = materials.pop()
+    name = f"{m.name}: " if m.name else ""
+    return (
+        f"{first}\n{name}$K$ = {m.K * 1e-9:.4g} GPa, $G$ = {m.G * 1e-9:.4g} GPa, "
+        f"$\\gamma$ = {m.gamma:.3g} J/m$^2$; analytic GW, law set '{laws.pop()}'"
+    )
+
+
+def run_figure(run):
+    """Monte Carlo means (±2 SE) of a run over the analytic GW curves, one panel per quantity.
+
+    Parameters
+    ----------
+    run : mcsim.simulation.Run
+        A run, fresh or read from a file.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    from matplotlib.figure import Figure
+
+    from .analytic import gw_curves
+    from .statistics import expected_values
+
+    spec = run.spec
+    lo, hi = float(spec.h.min()), float(spec.h.max())
+    fine = np.linspace(hi, lo, 200) if hi > lo else np.array([hi])
+    curves = expected_values(spec, gw_curves(spec.surface, spec.material, fine, spec.law))
+    fig = Figure(figsize=(12, 7), layout="constrained")
+    axes = fig.subplots(2, 3).ravel()
+    for ax, q in zip(axes, ("contact_fraction", "P", "F", "T", "mu")):
+        log = q in LOG_QUANTITIES
+        y = np.where(curves[q] > 0, curves[q], np.nan) if log else curves[q]
+        ax.plot(fine, y, color="0.2", lw=1.5, label="analytic GW")
+        mean, se = run.summary.mean[q], run.summary.se[q]
+        keep = np.isfinite(mean) & ((mean > 0) if log else True)
+        err = 2 * se[keep]
+        if log:
+            err = np.vstack([np.minimum(err, 0.999 * mean[keep]), err])
+        ax.errorbar(spec.h[keep], mean[keep], yerr=err, color=_COLOURS[0], marker="o", markersize=4,
+                    markerfacecolor="none", linestyle="none", capsize=2, label="Monte Carlo mean ± 2 SE")  # fmt: skip
+        ax.set_xlim(hi + 0.05 * (hi - lo + 1e-9), lo - 0.05 * (hi - lo + 1e-9))
+        ax.set_yscale("log" if log else "linear")
+        ax.set_xlabel(X_LABEL, fontsize=8)
+        ax.set_ylabel(LABELS[q], fontsize=8)
+        ax.grid(True, alpha=0.4)
+    axes[0].legend(fontsize=8)
+    s, m = spec.surface, spec.material
+    axes[5].axis("off")
+    axes[5].text(0, 1, "\n".join([
+        f"run: {run.path.name if run.path else '(not saved)'}",
+        f"surface {s.name}: $\\sigma$ = {s.sigma * 1e9:.4g} nm, $R$ = {s.R * 1e6:.4g} µm,",
+        f"   $\\eta$ = {s.eta * 1e-12:.4g} µm$^{{-2}}$, heights {s.heights.name}",
+        f"material {m.name}: $K$ = {m.K * 1e-9:.4g} GPa, $G$ = {m.G * 1e-9:.4g} GPa,",
+        f"   $\\gamma$ = {m.gamma:.3g} J/m$^2$; law set '{spec.law}'",
+        f"patch $A$ = {spec.area * 1e12:.4g} µm$^2$, N ~ {spec.count}, E[N] = {spec.expected_summits:.4g}",
+        f"{spec.realizations} realization(s), seed entropy {spec.entropy}",
+        "forces divided by $A K$ (Eqs. 3, 5, 7)",
+    ]), va="top", fontsize=9, transform=axes[5].transAxes)  # fmt: skip
+    return fig

@@ -1,0 +1,201 @@
+"""``simulate()``: the Monte Carlo engine, its statistics and storage joined, and the result.
+
+>>> from mcsim import simulate
+>>> from mcsim.presets import SURFACES, MATERIALS
+>>> run = simulate(SURFACES["smooth"], MATERIALS["silicon"], h=[2, 1, 0], area="1000 um^2",
+...                realizations=4, seed=1)                                  # doctest: +SKIP
+>>> run.compare()                                                           # doctest: +SKIP
+"""
+
+from __future__ import annotations
+
+import shlex
+import sys
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from . import runfile
+from .analytic import QUANTITIES
+from .montecarlo import DEFAULT_CHUNK, MonteCarloSpec, run_sums
+from .params import Material, Surface
+from .statistics import Summary, compare_table, expected_values, per_realization, summarize
+from .units import parse_quantity
+
+
+@dataclass(frozen=True)
+class Run:
+    """A Monte Carlo run with its statistics and the GW expectation for the same inputs.
+
+    Attributes
+    ----------
+    spec : MonteCarloSpec
+        The inputs that define the numbers.
+    n_summits : ndarray, shape (R,)
+        Summits per patch.
+    sums : ndarray, shape (R, M, 10)
+        Raw sums (:data:`mcsim.kernels.SUM_COLUMNS`, forces in N).
+    realizations : dict of ndarray
+        (R, M) dimensionless curves per quantity (N_c/N; force/(A·K); μ).
+    summary : Summary
+        Ensemble estimates and standard errors.
+    analytic : dict of ndarray
+        GW expected values of the estimators, per quantity.
+    attrs : dict
+        Provenance (command, versions, creation time) once written or read.
+    path : Path or None
+        The run file, if any.
+    heights : list of ndarray or None
+        Sampled heights above h_min (m), when kept.
+    """
+
+    spec: MonteCarloSpec
+    n_summits: np.ndarray
+    sums: np.ndarray
+    realizations: dict
+    summary: Summary
+    analytic: dict
+    attrs: dict = field(default_factory=dict)
+    path: Path | None = None
+    heights: list | None = field(default=None, repr=False)
+
+    @property
+    def h(self) -> np.ndarray:
+        return self.spec.h
+
+    @property
+    def d(self) -> np.ndarray:
+        return self.spec.d
+
+    def compare(self):
+        """DataFrame ``h, quantity, mc_mean, mc_se, analytic, z, note`` (see :mod:`mcsim.statistics`)."""
+        import pandas as pd
+
+        return pd.DataFrame(compare_table(self.summary, self.analytic, self.h))
+
+    def to_dataframe(self):
+        """Tidy table: one row per (source, realization, h, quantity).
+
+        Columns: ``source`` (``realization``, ``mean``, ``se``, ``std``, ``se_between``
+        or ``analytic``), ``realization`` (index, -1 for the others), ``h`` (d/σ), ``d``
+        (m), ``quantity``, ``value``, ``unit``. Values are dimensionless: N_c/N (Eq. 1),
+        force/(A·K) for P, F, T (Eqs. 3, 5, 7) and T/(P+F) for μ (Eq. 8); ``unit``
+        spells out the normalisation.
+        """
+        import pandas as pd
+
+        def frame(source, realization, q, values):
+            return pd.DataFrame({"source": source, "realization": realization, "h": self.h, "d": self.d,
+                                 "quantity": q, "value": values, "unit": runfile.NORMALISED[q]})  # fmt: skip
+
+        frames = []
+        for q in QUANTITIES:
+            frames += [
+                frame("realization", r, q, row) for r, row in enumerate(self.realizations[q])
+            ]
+            frames += [frame(stat, -1, q, getattr(self.summary, stat)[q]) for stat in runfile.STATS]
+            frames.append(frame("analytic", -1, q, self.analytic[q]))
+        return pd.concat(frames, ignore_index=True)
+
+
+def _api_command(**kwargs) -> str:
+    shown = ", ".join(f"{k}={v!r}" for k, v in kwargs.items())
+    return f"mcsim.simulate({shown})"
+
+
+def simulate(
+    surface: Surface,
+    material: Material,
+    h,
+    area: float | str,
+    *,
+    realizations: int = 1,
+    seed: int | None = None,
+    law: str = "seed",
+    count: str = "poisson",
+    workers: int = 1,
+    chunk_size: int = DEFAULT_CHUNK,
+    keep_heights: bool = False,
+    out: str | Path | None = None,
+    overwrite: bool = False,
+    progress: bool = False,
+    command: str | None = None,
+) -> Run:
+    """Simulate ``realizations`` patches of area ``area`` and compare with the GW curves.
+
+    Parameters
+    ----------
+    surface, material : Surface, Material
+        Inputs (see :mod:`mcsim.presets` and :mod:`mcsim.config`).
+    h : array_like
+        Dimensionless separations d/σ.
+    area : float or str
+        Nominal patch area, m² or with a unit (``"100 um^2"``).
+    realizations : int
+        Independent patches.
+    seed : int or None
+        Root seed; None draws fresh entropy (recorded in the result).
+    law : str
+        Law set (``"seed"``: the paper as written).
+    count : {"poisson", "fixed"}
+        N ~ Poisson(ηA) or N = round(ηA).
+    workers : int
+        Threads; the numbers do not depend on it.
+    chunk_size : int
+        Summits per task; the numbers do not depend on it.
+    keep_heights : bool
+        Keep the sampled heights (above h_min) in the result and file.
+    out : path, optional
+        Write the run to this HDF5 file (atomically; never over an existing file
+        unless ``overwrite``).
+    progress : bool
+        Show a progress bar on stderr.
+    command : str, optional
+        Provenance string stored in the file (the CLI passes its command line).
+
+    Returns
+    -------
+    Run
+    """
+    area_m2 = parse_quantity(area, "area", "area")
+    entropy = np.random.SeedSequence(seed).entropy
+    spec = MonteCarloSpec(surface, material, h, area_m2, realizations, entropy, law, count)
+    if out is not None:
+        runfile.check_output_path(out, overwrite)
+    bar = None
+    if progress:
+        from tqdm import tqdm
+
+        total = spec.realizations * spec.expected_summits * float(surface.heights.sf(spec.h.min()))
+        bar = tqdm(
+            total=round(total), unit=" summits", unit_scale=True, file=sys.stderr, leave=False
+        )
+    try:
+        ens = run_sums(spec, workers=workers, chunk_size=chunk_size, keep_heights=keep_heights,
+                       progress=bar.update if bar else None)  # fmt: skip
+    finally:
+        if bar is not None:
+            bar.close()
+    from .statistics import analytic_for
+
+    run = Run(
+        spec=spec,
+        n_summits=ens.n_summits,
+        sums=ens.sums,
+        realizations=per_realization(ens),
+        summary=summarize(ens),
+        analytic=expected_values(spec, analytic_for(spec)),
+        heights=ens.heights,
+    )
+    if out is None:
+        return run
+    if command is None:
+        command = _api_command(surface=surface.name or surface, material=material.name or material, h=[float(x) for x in spec.h],
+                               area=area_m2, realizations=realizations, seed=seed, law=law, count=count)  # fmt: skip
+    return runfile.write_run(out, run, command=command, overwrite=overwrite)
+
+
+def cli_command() -> str:
+    """The current command line, quoted, for provenance."""
+    return " ".join(shlex.quote(a) for a in ["mcsim", *sys.argv[1:]])

@@ -1,0 +1,179 @@
+"""The mcsim command line: outputs, formats and one-line errors with non-zero exit codes."""
+
+import csv
+import io
+import json
+import os
+import signal
+import subprocess
+import sys
+import time
+
+import numpy as np
+import pytest
+
+from mcsim.analytic import gw_curves
+from mcsim.cli import main
+from mcsim.presets import MATERIALS, SURFACES
+
+
+def run_cli(capsys, *argv):
+    code = main(list(argv))
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def test_analytic_csv_has_the_six_columns_and_the_analytic_values(capsys):
+    code, out, _ = run_cli(
+        capsys, "analytic", "--surface", "smooth", "--h=4:-1:6", "--format", "csv"
+    )
+    assert code == 0
+    rows = list(csv.DictReader(io.StringIO(out)))
+    assert list(rows[0]) == ["h", "contact_fraction", "P", "F", "T", "mu"]
+    h = [float(r["h"]) for r in rows]
+    assert h == [4.0, 3.0, 2.0, 1.0, 0.0, -1.0]
+    ref = gw_curves(SURFACES["smooth"], MATERIALS["silicon"], h)
+    for q in ("contact_fraction", "P", "F", "T", "mu"):
+        np.testing.assert_array_equal([float(r[q]) for r in rows], getattr(ref, q), err_msg=q)
+
+
+def test_analytic_json_and_table_formats(capsys):
+    _, out, _ = run_cli(
+        capsys, "analytic", "--surface", "rough", "--h=-1,0,1.5", "--format", "json"
+    )
+    data = json.loads(out)
+    assert [d["h"] for d in data] == [-1.0, 0.0, 1.5]
+    _, out, _ = run_cli(capsys, "analytic", "--surface", "rough", "--h=0")
+    assert "plasticity index psi" in out and "mu" in out
+
+
+def test_analytic_reads_a_surface_file_with_units(capsys, tmp_path):
+    f = tmp_path / "s.toml"
+    f.write_text('[surface]\nsigma = "1.4 nm"\nR = "1.7 um"\neta = "17 um^-2"\n')
+    _, a, _ = run_cli(capsys, "analytic", "--surface", str(f), "--h=0,1", "--format", "csv")
+    _, b, _ = run_cli(capsys, "analytic", "--surface", "smooth", "--h=0,1", "--format", "csv")
+    np.testing.assert_allclose(np.loadtxt(io.StringIO(a), delimiter=",", skiprows=1),
+                               np.loadtxt(io.StringIO(b), delimiter=",", skiprows=1), rtol=1e-14)  # fmt: skip
+
+
+def test_simulate_then_compare_csv_rows_have_small_z(capsys, tmp_path):
+    out = tmp_path / "t.h5"
+    code, text, _ = run_cli(capsys, "simulate", "--surface", "smooth", "--area", "1e-9", "--h=3:-1:9",
+                            "--realizations", "8", "--seed", "1", "--out", str(out))  # fmt: skip
+    assert code == 0 and out.exists() and "wrote" in text
+    code, text, _ = run_cli(capsys, "compare", str(out), "--format", "csv")
+    rows = list(csv.DictReader(io.StringIO(text)))
+    assert list(rows[0]) == ["h", "quantity", "mc_mean", "mc_se", "analytic", "z"]
+    assert len(rows) == 9 * 5
+    assert {r["quantity"] for r in rows} == {"contact_fraction", "P", "F", "T", "mu"}
+    z = np.array([float(r["z"]) for r in rows if r["z"]])
+    assert z.size >= 40 and np.all(np.abs(z) < 5)
+
+
+def test_show_and_plot_describe_a_run(capsys, tmp_path):
+    out = tmp_path / "t.h5"
+    run_cli(
+        capsys,
+        "simulate",
+        "--surface",
+        "rough",
+        "--area",
+        "100um^2",
+        "--h=2,0",
+        "--seed",
+        "2",
+        "--out",
+        str(out),
+    )
+    code, text, _ = run_cli(capsys, "show", str(out))
+    assert code == 0
+    for word in ("seed entropy  2", "sigma = 15.8 nm", "A = 100 um^2", "law set       seed"):
+        assert word in text
+    code, text, _ = run_cli(capsys, "plot", str(out), "--out", str(tmp_path / "p.png"))
+    assert code == 0 and (tmp_path / "p.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+@pytest.mark.parametrize(
+    ("argv", "message"),
+    [
+        (["analytic", "--surface", "smoth", "--h=0"], "unknown surface 'smoth'"),
+        (
+            ["analytic", "--surface", "smooth", "--material", "steel", "--h=0"],
+            "unknown material 'steel'",
+        ),
+        (["analytic", "--surface", "smooth", "--h="], "empty list of separations"),
+        (["analytic", "--surface", "smooth", "--h=1,x"], "cannot read '1,x'"),
+        (["analytic", "--surface", "smooth", "--h=1:2"], "cannot read '1:2'"),
+        (["analytic", "--surface", "smooth", "--h=1,nan"], "separations must be finite"),
+        (["analytic", "--surface", "smooth", "--h=1:0:0"], "asks for 0 points"),
+        (["analytic", "--surface", "smooth", "--law", "dmt", "--h=0"], "unknown law set 'dmt'"),
+        (
+            ["simulate", "--surface", "smooth", "--area", "0", "--h=0"],
+            r"area = 0.0 m\^2 is out of range",
+        ),
+        (["simulate", "--surface", "smooth", "--area=-1um^2", "--h=0"], "area = -1e-12"),
+        (
+            ["simulate", "--surface", "smooth", "--area", "1 parsec^2", "--h=0"],
+            "unknown unit 'parsec",
+        ),
+        (
+            ["simulate", "--surface", "smooth", "--area", "1e-9", "--h=0", "--realizations", "0"],
+            "realizations = 0",
+        ),
+        (
+            [
+                "simulate",
+                "--surface",
+                "smooth",
+                "--area",
+                "1e-9",
+                "--h=0",
+                "--out",
+                "/nonexistent/x.h5",
+            ],
+            "does not exist",
+        ),
+        (["compare", "missing.h5"], "missing.h5: no such file"),
+        (["show", "missing.h5"], "no such file"),
+    ],
+)
+def test_bad_input_prints_one_line_and_exits_2(capsys, argv, message):
+    code, _, err = run_cli(capsys, *argv)
+    assert code == 2
+    assert err.count("\n") == 1 and err.startswith("mcsim: error: ")
+    assert __import__("re").search(message, err), err
+
+
+def test_debug_flag_shows_the_traceback():
+    with pytest.raises(Exception, match="unknown surface"):
+        main(["--debug", "analytic", "--surface", "smoth", "--h=0"])
+
+
+def test_installed_entry_point_reports_version_and_fails_cleanly():
+    exe = os.path.join(os.path.dirname(sys.executable), "mcsim")
+    done = subprocess.run([exe, "--version"], capture_output=True, text=True)
+    assert done.returncode == 0 and done.stdout.startswith("mcsim ")
+    done = subprocess.run(
+        [exe, "analytic", "--surface", "smoth", "--h=0"], capture_output=True, text=True
+    )
+    assert done.returncode == 2 and "Traceback" not in done.stderr
+
+
+def test_ctrl_c_leaves_no_file_and_keeps_the_earlier_run(tmp_path):
+    """SIGINT during a long simulate: exit 130, the old run file byte-identical, no temporaries."""
+    exe = os.path.join(os.path.dirname(sys.executable), "mcsim")
+    out = tmp_path / "t.h5"
+    base = [exe, "simulate", "--surface", "smooth", "--h=4:-1:51", "--seed", "1", "--out", str(out)]
+    subprocess.run([*base, "--area", "1e-10"], check=True, capture_output=True)
+    before = out.read_bytes()
+    proc = subprocess.Popen(
+        [*base, "--area", "1e-4", "--overwrite"], stderr=subprocess.PIPE, text=True
+    )
+    time.sleep(4.0)  # past start-up and kernel compilation, well inside the ~minutes of work
+    assert proc.poll() is None, "the long run finished before it could be interrupted"
+    proc.send_signal(signal.SIGINT)
+    _, err = proc.communicate(timeout=60)
+    assert proc.returncode == 130, err
+    assert "interrupted" in err
+    assert out.read_bytes() == before
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["t.h5"]

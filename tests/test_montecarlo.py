@@ -1,0 +1,189 @@
+"""The Monte Carlo engine: kernel correctness, reproducibility, sampling and statistics."""
+
+import numpy as np
+import pytest
+from scipy import stats
+
+from mcsim import ParameterError
+from mcsim.distributions import GAUSSIAN
+from mcsim.kernels import block_sums, block_sums_numpy
+from mcsim.laws import SEED
+from mcsim.montecarlo import BLOCK, MonteCarloSpec, run_sums
+from mcsim.presets import MATERIALS, SURFACES
+from mcsim.simulation import simulate
+
+SILICON = MATERIALS["silicon"]
+SMOOTH = SURFACES["smooth"]
+
+
+def spec(**kw):
+    base = dict(
+        surface=SMOOTH,
+        material=SILICON,
+        h=np.linspace(3, -1, 9),
+        area=1e-9,
+        realizations=3,
+        entropy=1,
+    )
+    return MonteCarloSpec(**{**base, **kw})
+
+
+@pytest.mark.parametrize("name", ["rough", "smooth", "super-smooth"])
+def test_fused_kernel_matches_numpy_reference_to_1e12(name):
+    surface = SURFACES[name]
+    args = SEED.arguments(surface, SILICON)
+    rng = np.random.default_rng(7)
+    for _ in range(5):
+        z = rng.standard_normal(rng.integers(1, 5000)) * surface.sigma
+        h = np.sort(rng.uniform(-4, 4, rng.integers(1, 40)))[::-1]
+        d = h * surface.sigma
+        fast = block_sums(z, d, SEED, args)
+        ref = block_sums_numpy(z, d, SEED, args)
+        np.testing.assert_array_equal(fast[:, 0], ref[:, 0], err_msg="contact counts")
+        np.testing.assert_allclose(fast, ref, rtol=1e-12, atol=0)
+
+
+def test_kernel_counts_a_summit_exactly_at_the_separation_as_not_touching():
+    z = np.array([1e-9, 2e-9])
+    d = np.array([2e-9, 1e-9, 0.0])
+    out = block_sums(z, d, SEED, SEED.arguments(SMOOTH, SILICON))
+    np.testing.assert_array_equal(out[:, 0], [0, 1, 2])
+
+
+def test_same_seed_gives_bit_identical_sums():
+    a, b = run_sums(spec()), run_sums(spec())
+    np.testing.assert_array_equal(a.sums, b.sums)
+    np.testing.assert_array_equal(a.n_summits, b.n_summits)
+
+
+def test_chunk_size_and_worker_count_do_not_change_a_single_bit():
+    s = spec(area=4e-8, realizations=2)  # ~680k summits: several blocks per patch
+    ref = run_sums(s, workers=1, chunk_size=1 << 20)
+    assert ref.n_summits.min() > 4 * BLOCK
+    for workers, chunk in [(2, 1), (3, BLOCK), (2, 3 * BLOCK + 5), (1, 10**9)]:
+        other = run_sums(s, workers=workers, chunk_size=chunk)
+        np.testing.assert_array_equal(
+            other.sums, ref.sums, err_msg=f"workers={workers}, chunk={chunk}"
+        )
+
+
+def test_different_seeds_give_different_patches():
+    assert not np.array_equal(run_sums(spec(entropy=1)).sums, run_sums(spec(entropy=2)).sums)
+
+
+def test_separation_order_does_not_change_the_numbers():
+    h = np.array([0.5, -1.0, 2.0, 1.0])
+    a = run_sums(spec(h=h))
+    order = np.argsort(-h)
+    b = run_sums(spec(h=h[order]))
+    np.testing.assert_array_equal(a.sums[:, order], b.sums)
+
+
+def test_fixed_count_puts_round_eta_area_summits_in_every_patch():
+    s = spec(count="fixed", area=1.03e-10)
+    ens = run_sums(s)
+    assert np.all(ens.n_summits == round(SMOOTH.eta * 1.03e-10))
+
+
+def test_kept_heights_are_the_summits_above_the_lowest_separation():
+    s = spec(h=[1.0, 0.5])
+    ens = run_sums(s, keep_heights=True)
+    for r, z in enumerate(ens.heights):
+        assert np.all(z > 0.5 * SMOOTH.sigma)
+        assert z.size == ens.sums[r, 1, 0]  # every kept summit touches at h = 0.5
+
+
+@pytest.mark.parametrize("s_min", [-np.inf, -1.5, 0.0, 0.7, 3.0])
+def test_truncated_gaussian_sampler_has_the_truncated_mean_and_variance(s_min):
+    """E[S | S > a] = φ(a)/Q(a), Var = 1 + aφ/Q − (φ/Q)²; z of the sample mean < 5."""
+    n = 200_000
+    x = GAUSSIAN.sample_above(n, s_min, np.random.default_rng(3))
+    assert x.size == n and np.all(x > s_min)
+    dist = stats.truncnorm(s_min, np.inf)
+    z = (x.mean() - dist.mean()) / (dist.std() / np.sqrt(n))
+    assert abs(z) < 5
+    ks = stats.kstest(x[:20_000], dist.cdf)
+    assert ks.pvalue > 1e-4, "KS test: distribution shape"
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "match"),
+    [
+        ({"area": 0.0}, r"area = 0.0 m\^2 is out of range \(allowed: > 0"),
+        ({"area": -1e-9}, r"area = -1e-09"),
+        ({"area": float("nan")}, "area = nan"),
+        ({"realizations": 0}, r"realizations = 0 is out of range \(allowed: integer >= 1\)"),
+        ({"realizations": 2.5}, "realizations = 2.5"),
+        ({"h": []}, "h must be a non-empty list"),
+        ({"h": [0.0, np.inf]}, "h must be finite"),
+        ({"law": "dmt"}, r"unknown law set 'dmt' \(allowed: seed\)"),
+        ({"count": "exact"}, "count = 'exact' is not one of poisson, fixed"),
+        ({"count": "fixed", "area": 1e-15}, r"round\(eta\*area\) must be >= 1"),
+    ],
+)
+def test_invalid_run_inputs_raise_a_parameter_error(kwargs, match):
+    with pytest.raises(ParameterError, match=match):
+        spec(**kwargs)
+
+
+def test_workers_and_chunk_size_must_be_positive():
+    with pytest.raises(ParameterError, match="workers = 0"):
+        run_sums(spec(), workers=0)
+    with pytest.raises(ParameterError, match="chunk_size = 0"):
+        run_sums(spec(), chunk_size=0)
+
+
+# --- statistics against the GW integrals -----------------------------------------------
+
+
+def test_acceptance_run_agrees_with_gw_within_5_standard_errors():
+    """The issue's acceptance run: smooth, A = 1e-9 m², h = 3..-1 (9), 8 realizations, seed 1."""
+    run = simulate(SMOOTH, SILICON, np.linspace(3, -1, 9), 1e-9, realizations=8, seed=1)
+    table = run.compare()
+    rated = table[table["note"] == ""]
+    assert len(rated) >= 40
+    assert np.all(np.abs(rated["z"]) < 5), rated.loc[np.abs(rated["z"]) >= 5]
+
+
+@pytest.mark.parametrize(
+    ("quantity", "h"), [("P", 1.0), ("F", 0.0), ("T", 2.0), ("mu", 0.5), ("contact_fraction", 1.5)]
+)
+def test_z_scores_over_independent_seeds_are_standard_normal(quantity, h):
+    """One z per seed (independent), n = 150: |mean| < 5/√n and |var − 1| < 5·√(2/(n−1))."""
+    n = 150
+    zs = []
+    for seed in range(n):
+        run = simulate(SURFACES["intermediate"], SILICON, [h], 2e-10, realizations=2, seed=seed)
+        zs.append(run.compare().set_index("quantity").loc[quantity, "z"])
+    zs = np.array(zs)
+    assert np.all(np.isfinite(zs))
+    assert abs(zs.mean()) < 5 / np.sqrt(n)
+    assert abs(zs.var(ddof=1) - 1) < 5 * np.sqrt(2 / (n - 1))
+
+
+@pytest.mark.parametrize("count", ["poisson", "fixed"])
+def test_single_patch_standard_error_matches_the_spread_across_patches(count):
+    """The summit-level SE of one patch predicts the across-patch std: ratio 1 within
+    5 relative SEs of a sample std, 1/√(2(R−1))."""
+    R = 300
+    run = simulate(SMOOTH, SILICON, [0.0, 1.5], 2e-10, realizations=R, seed=11, count=count)
+    for q in ("P", "F", "T", "mu"):
+        single_se = run.summary.se[q] * np.sqrt(R)  # SE of one patch
+        ratio = run.summary.std[q] / single_se
+        np.testing.assert_allclose(ratio, 1.0, atol=5 / np.sqrt(2 * (R - 1)), err_msg=q)
+
+
+def test_few_contacts_are_flagged_instead_of_given_a_z():
+    run = simulate(SMOOTH, SILICON, [4.0, 0.0], 1e-10, realizations=1, seed=3)
+    table = run.compare()
+    high = table[table["h"] == 4.0]
+    assert high["z"].isna().all()
+    assert high["note"].str.startswith("few contacts").all()
+    assert table[table["h"] == 0.0]["z"].notna().all()
+
+
+def test_mu_is_undefined_not_zero_for_a_patch_without_contact():
+    run = simulate(SMOOTH, SILICON, [6.0], 1e-11, realizations=2, seed=5)
+    assert np.all(run.realizations["P"] == 0)
+    assert np.all(np.isnan(run.realizations["mu"]))
+    assert np.isnan(run.summary.mean["mu"][0])

@@ -1,0 +1,150 @@
+"""HDF5 run files: content, provenance, round trip, atomic and non-destructive writes."""
+
+import h5py
+import numpy as np
+import pytest
+
+from mcsim import RunFileError
+from mcsim.analytic import QUANTITIES
+from mcsim.presets import MATERIALS, SURFACES
+from mcsim.runfile import SCHEMA_VERSION, read_run
+from mcsim.simulation import simulate
+
+H = [2.0, 1.0, 0.0]
+
+
+def make_run(path, **kw):
+    args = dict(realizations=3, seed=4, out=path)
+    return simulate(SURFACES["smooth"], MATERIALS["silicon"], H, "300 um^2", **{**args, **kw})
+
+
+def test_run_file_records_provenance_and_inputs_with_units(tmp_path):
+    make_run(tmp_path / "a.h5")
+    with h5py.File(tmp_path / "a.h5") as f:
+        assert f.attrs["schema_version"] == SCHEMA_VERSION
+        for key in (
+            "mcsim_version",
+            "created",
+            "command",
+            "seed_entropy",
+            "law",
+            "count",
+            "area",
+            "realizations",
+        ):
+            assert key in f.attrs, key
+        assert f.attrs["seed_entropy"] == "4"
+        assert f.attrs["area"] == pytest.approx(300e-12)
+        assert f["input/surface"].attrs["sigma"] == pytest.approx(1.4e-9)
+        assert "m^-2" in f["input/surface"].attrs["units"]
+        assert f["d"].attrs["unit"] == "m"
+        assert f["realizations/sums"].shape == (3, 3, 10)
+        for q in QUANTITIES:
+            assert f[f"realizations/{q}"].shape == (3, 3)
+            assert f[f"analytic/{q}"].shape == (3,)
+            assert f[f"summary/se/{q}"].attrs["unit"] == "1"
+
+
+def test_reader_returns_what_was_written(tmp_path):
+    run = make_run(tmp_path / "a.h5")
+    back = read_run(tmp_path / "a.h5")
+    assert back.spec.surface == run.spec.surface
+    assert back.spec.material == run.spec.material
+    np.testing.assert_array_equal(back.h, run.h)
+    np.testing.assert_array_equal(back.sums, run.sums)
+    for q in QUANTITIES:
+        np.testing.assert_array_equal(back.summary.mean[q], run.summary.mean[q])
+        np.testing.assert_array_equal(back.analytic[q], run.analytic[q])
+    assert back.compare().equals(run.compare())
+
+
+def test_same_seed_writes_identical_datasets(tmp_path):
+    make_run(tmp_path / "a.h5")
+    make_run(tmp_path / "b.h5", workers=2, chunk_size=1000)
+    with h5py.File(tmp_path / "a.h5") as a, h5py.File(tmp_path / "b.h5") as b:
+        names = []
+        a.visititems(
+            lambda name, obj: names.append(name) if isinstance(obj, h5py.Dataset) else None
+        )
+        assert len(names) > 20
+        for name in names:
+            np.testing.assert_array_equal(a[name][()], b[name][()], err_msg=name)
+
+
+def test_dataframe_has_one_row_per_source_realization_h_and_quantity(tmp_path):
+    df = read_run(make_run(tmp_path / "a.h5").path).to_dataframe()
+    assert list(df.columns) == ["source", "realization", "h", "d", "quantity", "value", "unit"]
+    # 3 realizations + mean, se, std, se_between, analytic; 3 separations; 5 quantities
+    assert len(df) == (3 + 5) * 3 * 5
+    assert not df.duplicated(["source", "realization", "h", "quantity"]).any()
+    one = df.query("source == 'realization' and realization == 1 and quantity == 'P' and h == 0.0")
+    assert one["unit"].item() == "P/(A K)"
+
+
+def test_existing_run_is_never_overwritten_without_asking(tmp_path):
+    path = tmp_path / "a.h5"
+    make_run(path)
+    before = path.read_bytes()
+    with pytest.raises(RunFileError, match="file exists"):
+        make_run(path, seed=5)
+    assert path.read_bytes() == before
+    make_run(path, seed=5, overwrite=True)
+    assert read_run(path).spec.entropy == 5
+
+
+def test_interrupted_run_leaves_no_partial_file_and_the_old_run_intact(tmp_path, monkeypatch):
+    path = tmp_path / "a.h5"
+    make_run(path)
+    before = path.read_bytes()
+
+    def interrupt(*args, **kwargs):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr("mcsim.runfile._dataset", interrupt)  # dies while writing
+    with pytest.raises(KeyboardInterrupt):
+        make_run(path, seed=6, overwrite=True)
+    assert path.read_bytes() == before
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["a.h5"], "no temporary file left"
+
+
+def test_reader_refuses_an_unknown_schema_version(tmp_path):
+    path = make_run(tmp_path / "a.h5").path
+    with h5py.File(path, "r+") as f:
+        f.attrs["schema_version"] = 99
+    with pytest.raises(RunFileError, match="schema version 99 is not supported"):
+        read_run(path)
+
+
+def test_reader_refuses_files_that_are_not_runs(tmp_path):
+    (tmp_path / "x.h5").write_bytes(b"not hdf5 at all")
+    with pytest.raises(RunFileError, match="not an HDF5 file"):
+        read_run(tmp_path / "x.h5")
+    with h5py.File(tmp_path / "y.h5", "w") as f:
+        f["a"] = 1
+    with pytest.raises(RunFileError, match="not an mcsim run file"):
+        read_run(tmp_path / "y.h5")
+    with pytest.raises(RunFileError, match="no such file"):
+        read_run(tmp_path / "missing.h5")
+
+
+def test_output_folder_must_exist_and_be_writable(tmp_path):
+    with pytest.raises(RunFileError, match="does not exist"):
+        make_run(tmp_path / "nope" / "a.h5")
+
+
+def test_output_folder_must_be_writable(tmp_path, monkeypatch):
+    monkeypatch.setattr(
+        "os.access", lambda path, mode: False
+    )  # as if not writable (root ignores modes)
+    with pytest.raises(RunFileError, match="is not writable"):
+        make_run(tmp_path / "a.h5")
+
+
+def test_kept_heights_are_stored_compressed(tmp_path):
+    run = make_run(tmp_path / "a.h5", keep_heights=True)
+    back = read_run(run.path)
+    assert len(back.heights) == 3
+    for a, b in zip(run.heights, back.heights):
+        np.testing.assert_array_equal(a, b)
+    with h5py.File(run.path) as f:
+        assert f["heights/0"].compression == "gzip"

@@ -1,0 +1,135 @@
+"""Quantities as users write them become SI floats; anything else is refused by name."""
+
+import math
+
+import pytest
+
+from mcsim.errors import MCSimError, UnitError
+from mcsim.units import parse_quantity, unit_factor
+
+LENGTH_UNITS = r"m, mm, um, µm, nm, A"
+AREA_UNITS = r"m\^2, mm\^2, um\^2, nm\^2"
+DENSITY_UNITS = r"m\^-2, um\^-2, µm\^-2, 1/um\^2"
+PRESSURE_UNITS = r"Pa, MPa, GPa"
+ENERGY_UNITS = r"J/m\^2, mJ/m\^2, N/m"
+
+
+@pytest.mark.parametrize(
+    ("text", "dimension", "si"),
+    [
+        ("1.4 nm", "length", 1.4e-9),
+        ("1.4nm", "length", 1.4e-9),
+        ("1.7 um", "length", 1.7e-6),
+        ("1.7 µm", "length", 1.7e-6),  # micro sign U+00B5
+        ("1.7 μm", "length", 1.7e-6),  # Greek mu U+03BC
+        ("3 A", "length", 3e-10),
+        ("2 m", "length", 2.0),
+        ("  2e-3 m  ", "length", 2e-3),
+        ("5 um^2", "area", 5e-12),
+        ("5 µm²", "area", 5e-12),
+        ("5 mm^2", "area", 5e-6),
+        ("17 um^-2", "density", 17e12),
+        ("17 µm⁻²", "density", 17e12),
+        ("17 1/um^2", "density", 17e12),
+        ("17 1/µm²", "density", 17e12),
+        ("3 Pa", "pressure", 3.0),
+        ("3 MPa", "pressure", 3e6),
+        ("160 GPa", "pressure", 160e9),
+        ("0.5 J/m^2", "energy_per_area", 0.5),
+        ("500 mJ/m^2", "energy_per_area", 0.5),
+        ("0.5 N/m", "energy_per_area", 0.5),
+        ("0.22", "dimensionless", 0.22),
+        ("1.4e-9", "length", 1.4e-9),  # a bare number in a string is SI too
+    ],
+)
+def test_quantity_string_converts_to_si(text, dimension, si):
+    assert parse_quantity(text, dimension, "field") == pytest.approx(si, rel=1e-14)
+
+
+@pytest.mark.parametrize("dimension", ["length", "area", "density", "pressure", "dimensionless"])
+@pytest.mark.parametrize("number", [1.4e-9, 17, 0.0, -2.5])
+def test_plain_number_is_taken_as_si(number, dimension):
+    value = parse_quantity(number, dimension, "field")
+    assert value == number
+    assert type(value) is float
+
+
+@pytest.mark.parametrize(
+    ("unit", "dimension", "factor"),
+    [("nm", "length", 1e-9), ("um^2", "area", 1e-12), ("um^-2", "density", 1e12)],
+)
+def test_unit_factor_converts_a_unit_to_si(unit, dimension, factor):
+    assert unit_factor(unit, dimension) == pytest.approx(factor, rel=1e-14)
+
+
+def test_unit_factor_refuses_an_unknown_dimension():
+    with pytest.raises(ValueError, match="unknown dimension 'volume'"):
+        unit_factor("m^3", "volume")
+
+
+def test_unit_error_is_an_mcsim_error():
+    assert issubclass(UnitError, MCSimError)
+
+
+@pytest.mark.parametrize(
+    ("text", "dimension", "message"),
+    [
+        ("1.4 furlong", "length", rf"sigma: unknown unit 'furlong' for a length .*{LENGTH_UNITS}"),
+        ("1.4 GPa", "length", rf"sigma: unknown unit 'GPa' for a length .*{LENGTH_UNITS}"),
+        ("1.4 um^2", "length", rf"sigma: unknown unit 'um\^2' for a length .*{LENGTH_UNITS}"),
+        ("5 nm", "area", rf"sigma: unknown unit 'nm' for an area .*{AREA_UNITS}"),
+        ("17 um^2", "density", rf"sigma: unknown unit 'um\^2' for a density .*{DENSITY_UNITS}"),
+        ("17 1/um", "density", rf"sigma: unknown unit '1/um' for a density .*{DENSITY_UNITS}"),
+        ("17 /um^2", "density", rf"sigma: unknown unit '/um\^2' for a density .*{DENSITY_UNITS}"),
+        (
+            "160 GPa/m",
+            "pressure",
+            rf"sigma: unknown unit 'GPa/m' for a pressure .*{PRESSURE_UNITS}",
+        ),
+        (
+            "0.5 J",
+            "energy_per_area",
+            rf"sigma: unknown unit 'J' for an energy per area .*{ENERGY_UNITS}",
+        ),
+        ("0.22 GPa", "dimensionless", r"sigma: unknown unit 'GPa' for a dimensionless .*no unit"),
+    ],
+)
+def test_unknown_or_wrong_dimension_unit_names_field_and_allowed_units(text, dimension, message):
+    with pytest.raises(UnitError, match=message):
+        parse_quantity(text, dimension, "sigma")
+
+
+@pytest.mark.parametrize("text", ["", "  ", "nm", "nm 1.4", "one nm", "--1 nm"])
+def test_string_without_leading_number_names_field_and_allowed_units(text):
+    with pytest.raises(UnitError, match=rf"^R: cannot read '{text}' as a number .*{LENGTH_UNITS}"):
+        parse_quantity(text, "length", "R")
+
+
+@pytest.mark.parametrize(("text", "rest"), [("1.4.2 nm", ".2 nm"), ("1,4 nm", ",4 nm")])
+def test_junk_after_the_number_is_refused_as_a_unit(text, rest):
+    with pytest.raises(
+        UnitError, match=rf"^R: unknown unit '{rest}' for a length .*{LENGTH_UNITS}"
+    ):
+        parse_quantity(text, "length", "R")
+
+
+@pytest.mark.parametrize("text", ["inf nm", "-inf nm", "Infinity nm", "nan nm", "1e400 nm"])
+def test_non_finite_string_names_field_and_allowed_units(text):
+    with pytest.raises(UnitError, match=rf"^R: '{text}' is not finite; .*{LENGTH_UNITS}"):
+        parse_quantity(text, "length", "R")
+
+
+@pytest.mark.parametrize("value", [math.inf, -math.inf, math.nan])
+def test_non_finite_plain_number_names_the_field(value):
+    with pytest.raises(UnitError, match=rf"^R: {value!r} is not finite"):
+        parse_quantity(value, "length", "R")
+
+
+@pytest.mark.parametrize(
+    ("value", "shown"), [(True, "True"), (False, "False"), (None, "None"), ([1.4], r"\[1.4\]")]
+)
+def test_non_number_value_names_field_and_allowed_units(value, shown):
+    with pytest.raises(
+        UnitError, match=rf"^E1: expected a number .* got {shown}; .*{PRESSURE_UNITS}"
+    ):
+        parse_quantity(value, "pressure", "E1")
