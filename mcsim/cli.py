@@ -163,7 +163,7 @@ def cmd_simulate(args) -> int:
     t0 = time.perf_counter()
     run = simulate(
         surface, material, h, args.area, realizations=args.realizations, seed=args.seed, law=args.law,
-        count=args.count, workers=args.workers, chunk_size=args.chunk_size, keep_heights=args.keep_heights,
+        count=args.count, workers=args.workers, scheduler=args.scheduler or args.dask, chunk_size=args.chunk_size, keep_heights=args.keep_heights,
         out=out, overwrite=args.overwrite, progress=show_progress, command=cli_command(),
     )  # fmt: skip
     elapsed = time.perf_counter() - t0
@@ -236,6 +236,43 @@ def cmd_plot(args) -> int:
     return 0
 
 
+def cmd_ingest(args) -> int:
+    from .ingest import check_new_files, ingest_file
+    from .simulation import cli_command
+    from .units import parse_quantity
+
+    def length(value, option):
+        return None if value is None else parse_quantity(value, "length", option)
+
+    result = ingest_file(
+        args.file, unit=args.unit, pixel_size=length(args.pixel_size, "--pixel-size"),
+        route=args.route, level=args.level, heights=args.heights, R=length(args.R, "--R"),
+        eta=None if args.eta is None else parse_quantity(args.eta, "density", "--eta"),
+    )  # fmt: skip
+    out = Path(args.out) if args.out else Path(f"{Path(args.file).stem}.toml")
+    extra = result.companion_paths(out)
+    figures = [extra["histogram_figure"]] + ([extra["comparison_figure"]] if args.plot else [])
+    check_new_files([out, extra["histogram"], *figures], args.overwrite)
+    for line in result.summary_lines():
+        print(line)
+    written = result.write_surface(out, overwrite=args.overwrite, command=cli_command())
+    from .plotting import comparison_figure, histogram_figure, save
+
+    title = f"{result.heights_from}: {Path(args.file).name}"
+    save(histogram_figure(result.distribution, result.distribution.sigma, title=title), figures[0])
+    if args.plot:
+        from .presets import MATERIALS
+
+        s = result.surface
+        fig = comparison_figure(
+            s, result.gaussian_surface, MATERIALS["silicon"], parse_h("4:-1:51")
+        )
+        save(fig, figures[1])
+    print(f"wrote {', '.join(str(p) for p in [*written, *figures])}")
+    print(f"next: mcsim analytic --surface {out} --h=4:-1:11")
+    return 0
+
+
 # --- parser ------------------------------------------------------------------------------
 
 
@@ -300,7 +337,16 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--out", help="run file (default: runs/<surface>-<time>.h5)")
     p.add_argument("--overwrite", action="store_true", help="replace an existing run file")
     p.add_argument(
-        "--workers", type=int, default=1, help="worker threads (results do not depend on it)"
+        "--workers",
+        type=int,
+        help="worker threads (default: all cores); results do not depend on it",
+    )
+    p.add_argument("--scheduler", metavar="ADDRESS",
+                   help="run on an existing Dask cluster, e.g. tcp://host:8786 (needs mcsim[dask])")  # fmt: skip
+    p.add_argument(
+        "--dask",
+        choices=("local",),
+        help="'local': start a local Dask cluster of --workers processes",
     )
     p.add_argument(
         "--chunk-size",
@@ -332,6 +378,27 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("run", help="run file (.h5)")
     p.add_argument("--out", help="PNG file (default: next to the run file)")
     p.set_defaults(func=cmd_plot)
+
+    p = sub.add_parser("ingest", help="height map or histogram to a surface file",
+                       description="Read a measured height map (.gwy .ibw .nid .npy .xyz, text matrix) or a text "
+                       "histogram; print its height and summit statistics (direct and spectral routes); write a "
+                       "surface TOML file with the measured summit-height histogram beside it.")  # fmt: skip
+    p.add_argument("file", help="height map or text histogram")
+    p.add_argument("--unit", help="height unit if the file stores none (e.g. nm)")
+    p.add_argument("--pixel-size", help="pixel size if the file stores none (e.g. 10nm)")
+    p.add_argument("--out", help="surface file (default: <file stem>.toml here)")
+    p.add_argument("--overwrite", action="store_true", help="replace existing output files")
+    p.add_argument("--route", choices=("direct", "spectral"), default="direct",
+                   help="summit statistics written as sigma, R, eta (default: direct)")  # fmt: skip
+    p.add_argument("--level", default="plane", choices=("none", "plane", "poly2", "poly3", "poly4", "poly5"),
+                   help="levelling before analysis (default: plane; none removes the mean only)")  # fmt: skip
+    p.add_argument("--heights", choices=("summits", "map"), default="summits",
+                   help="histogram written: direct-route summit heights (default) or all map heights")  # fmt: skip
+    p.add_argument("--R", help="summit radius for a histogram input (e.g. 1.7um)")
+    p.add_argument("--eta", help="summit density for a histogram input (e.g. 17um^-2)")
+    p.add_argument("--plot", action="store_true",
+                   help="also plot the analytic curves against the Gaussian GW curves (silicon)")  # fmt: skip
+    p.set_defaults(func=cmd_ingest)
     return parser
 
 

@@ -17,8 +17,11 @@ chunk size and any number of workers.
 
 from __future__ import annotations
 
+import contextlib
+import itertools
 import math
-from collections.abc import Callable, Iterator
+import os
+from collections.abc import Callable
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 
@@ -171,19 +174,62 @@ class EnsembleSums:
     heights: list[np.ndarray] | None = field(default=None, repr=False)
 
 
-def _tasks(plans: list[PatchPlan], chunk_blocks: int) -> Iterator[tuple[int, int, int]]:
-    for r, plan in enumerate(plans):
-        for start in range(0, plan.n_blocks, chunk_blocks):
-            yield r, start, min(start + chunk_blocks, plan.n_blocks)
+@dataclass(frozen=True)
+class Task:
+    """A unit of work: blocks ``start`` to ``stop`` (excluded) of realization ``realization``."""
+
+    realization: int
+    start: int
+    stop: int
+    plan: PatchPlan
+
+    @property
+    def n_summits(self) -> int:
+        return sum(self.plan.block_size(b) for b in range(self.start, self.stop))
+
+
+def make_tasks(plans: list[PatchPlan], chunk_size: int) -> list[Task]:
+    """Split every patch into tasks of about ``chunk_size`` summits (whole blocks)."""
+    chunk_blocks = max(1, math.ceil(chunk_size / BLOCK))
+    return [
+        Task(r, start, min(start + chunk_blocks, plan.n_blocks), plan)
+        for r, plan in enumerate(plans)
+        for start in range(0, plan.n_blocks, chunk_blocks)
+    ]
+
+
+def run_task(spec: MonteCarloSpec, task: Task, keep_heights: bool = False):
+    """Sample and sum the blocks of one task; runs in a thread, a process or on Dask.
+
+    Returns the per-block partial sums (each ``(M, 10)``, separations in descending
+    order of d) and, if asked, the sampled heights.
+    """
+    law = get_law_set(spec.law)
+    args = law.arguments(spec.surface, spec.material)
+    d_desc = np.sort(spec.d)[::-1]
+    blocks = [
+        sample_block(spec, task.plan, task.realization, b) for b in range(task.start, task.stop)
+    ]
+    partials = [block_sums(z, d_desc, law, args) for z in blocks]
+    return partials, (blocks if keep_heights else None)
+
+
+def default_workers() -> int:
+    """All cores available to this process."""
+    try:
+        return len(os.sched_getaffinity(0))
+    except AttributeError:  # not on Linux
+        return os.cpu_count() or 1
 
 
 def run_sums(
     spec: MonteCarloSpec,
     *,
-    workers: int = 1,
+    workers: int | None = None,
     chunk_size: int = DEFAULT_CHUNK,
     keep_heights: bool = False,
     progress: Callable[[int], None] | None = None,
+    client=None,
 ) -> EnsembleSums:
     """Sample every patch of ``spec`` and sum the per-summit laws at every separation.
 
@@ -191,47 +237,60 @@ def run_sums(
     ----------
     spec : MonteCarloSpec
         The run.
-    workers : int
-        Threads running tasks (the kernel and the samplers release the GIL).
+    workers : int, optional
+        Local worker threads (the numba kernel and NumPy's samplers release the GIL,
+        so threads use every core without copying data between processes); all
+        cores by default. Ignored when ``client`` is given.
     chunk_size : int
-        Summits per task, rounded up to whole blocks; does not change the numbers.
+        Summits per task, rounded up to whole blocks.
     keep_heights : bool
         Keep the sampled heights (memory grows with N).
     progress : callable, optional
         Called with the number of summits finished after each task.
+    client : dask.distributed.Client, optional
+        Run the tasks on this Dask cluster instead.
 
     Returns
     -------
     EnsembleSums
+        Identical, bit for bit, for every ``workers``, ``chunk_size`` and backend:
+        the random streams and the partial sums belong to fixed blocks, and the
+        partial sums are added in block order.
     """
-    if workers < 1:
+    workers = default_workers() if workers is None else workers
+    if isinstance(workers, bool) or not isinstance(workers, int | np.integer) or workers < 1:
         raise ParameterError(f"workers = {workers!r} is out of range (allowed: integer >= 1)")
-    if chunk_size < 1:
+    if (
+        isinstance(chunk_size, bool)
+        or not isinstance(chunk_size, int | np.integer)
+        or chunk_size < 1
+    ):
         raise ParameterError(f"chunk_size = {chunk_size!r} is out of range (allowed: integer >= 1)")
-    law = get_law_set(spec.law)
-    args = law.arguments(spec.surface, spec.material)
-    order = np.argsort(-spec.d, kind="stable")
-    d_desc = spec.d[order]
     plans = [plan_patch(spec, r) for r in range(spec.realizations)]
-    chunk_blocks = max(1, math.ceil(chunk_size / BLOCK))
-
-    def task(item: tuple[int, int, int]):
-        r, start, stop = item
-        blocks = [sample_block(spec, plans[r], r, b) for b in range(start, stop)]
-        partial = [block_sums(z, d_desc, law, args) for z in blocks]
-        return item, partial, (blocks if keep_heights else None)
-
+    tasks = make_tasks(plans, chunk_size)
     sums_desc = np.zeros((spec.realizations, spec.d.size, len(SUM_COLUMNS)))
     kept: list[list[np.ndarray]] = [[] for _ in plans]
-    with ThreadPoolExecutor(max_workers=workers) as pool:
-        # map() yields in submission order: partial sums are added in block order.
-        for (r, start, stop), partial, blocks in pool.map(task, _tasks(plans, chunk_blocks)):
-            for part in partial:
-                sums_desc[r] += part
+    with contextlib.ExitStack() as stack:
+        if client is None:
+            pool = stack.enter_context(ThreadPoolExecutor(max_workers=workers))
+            results = pool.map(
+                run_task, itertools.repeat(spec), tasks, itertools.repeat(keep_heights)
+            )
+        else:
+            futures = client.map(
+                run_task, [spec] * len(tasks), tasks, keep_heights=keep_heights, pure=False
+            )
+            stack.callback(client.cancel, futures)
+            results = (future.result() for future in futures)
+        # results arrive in task order: partial sums are added in block order
+        for task, (partials, blocks) in zip(tasks, results):
+            for part in partials:
+                sums_desc[task.realization] += part
             if blocks is not None:
-                kept[r].extend(blocks)
+                kept[task.realization].extend(blocks)
             if progress is not None:
-                progress(sum(plans[r].block_size(b) for b in range(start, stop)))
+                progress(task.n_summits)
+    order = np.argsort(-spec.d, kind="stable")
     sums = np.empty_like(sums_desc)
     sums[:, order] = sums_desc  # back to the order of spec.h
     heights = [np.concatenate(k) if k else np.empty(0) for k in kept] if keep_heights else None

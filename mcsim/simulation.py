@@ -9,6 +9,7 @@
 
 from __future__ import annotations
 
+import contextlib
 import shlex
 import sys
 from dataclasses import dataclass, field
@@ -114,7 +115,8 @@ def simulate(
     seed: int | None = None,
     law: str = "seed",
     count: str = "poisson",
-    workers: int = 1,
+    workers: int | None = None,
+    scheduler=None,
     chunk_size: int = DEFAULT_CHUNK,
     keep_heights: bool = False,
     out: str | Path | None = None,
@@ -140,8 +142,12 @@ def simulate(
         Law set (``"seed"``: the paper as written).
     count : {"poisson", "fixed"}
         N ~ Poisson(ηA) or N = round(ηA).
-    workers : int
-        Threads; the numbers do not depend on it.
+    workers : int, optional
+        Local worker threads, all cores by default; or worker processes of a local
+        Dask cluster. The numbers do not depend on it.
+    scheduler : str or dask.distributed.Client, optional
+        Run on Dask: ``"local"`` (a local cluster of ``workers`` processes), the
+        address of an existing scheduler (``"tcp://host:8786"``) or a client.
     chunk_size : int
         Summits per task; the numbers do not depend on it.
     keep_heights : bool
@@ -171,12 +177,16 @@ def simulate(
         bar = tqdm(
             total=round(total), unit=" summits", unit_scale=True, file=sys.stderr, leave=False
         )
-    try:
-        ens = run_sums(spec, workers=workers, chunk_size=chunk_size, keep_heights=keep_heights,
-                       progress=bar.update if bar else None)  # fmt: skip
-    finally:
+    with contextlib.ExitStack() as stack:
         if bar is not None:
-            bar.close()
+            stack.callback(bar.close)
+        client = scheduler
+        if isinstance(scheduler, str):
+            from .cluster import dask_client
+
+            client = stack.enter_context(dask_client(scheduler, workers))
+        ens = run_sums(spec, workers=workers, chunk_size=chunk_size, keep_heights=keep_heights,
+                       progress=bar.update if bar else None, client=client)  # fmt: skip
     from .statistics import analytic_for
 
     run = Run(

@@ -177,3 +177,11 @@ def test_ctrl_c_leaves_no_file_and_keeps_the_earlier_run(tmp_path):
     assert "interrupted" in err
     assert out.read_bytes() == before
     assert sorted(p.name for p in tmp_path.iterdir()) == ["t.h5"]
+
+
+def test_unreachable_dask_scheduler_is_a_one_line_error(capsys, tmp_path):
+    pytest.importorskip("distributed", reason="Dask (extra 'dask') not installed")
+    code, _, err = run_cli(capsys, "simulate", "--surface", "smooth", "--area", "1e-10", "--h=0",
+                           "--scheduler", "tcp://127.0.0.1:9", "--out", str(tmp_path / "x.h5"))  # fmt: skip
+    assert code == 2 and "cannot reach the Dask scheduler at 'tcp://127.0.0.1:9'" in err
+    assert not (tmp_path / "x.h5").exists()
