@@ -12,6 +12,7 @@ from .params import (
     plasticity_index,
     surface_energy_parameter,
 )
+from .simulation import Run, simulate
 
 __all__ = [
     "GAUSSIAN",
@@ -23,6 +24,7 @@ __all__ = [
     "MCSimError",
     "Material",
     "ParameterError",
+    "Run",
     "RunFileError",
     "Surface",
     "UnitError",
@@ -31,5 +33,6 @@ __all__ = [
     "get_law_set",
     "gw_curves",
     "plasticity_index",
+    "simulate",
     "surface_energy_parameter",
 ]

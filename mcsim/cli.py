@@ -161,11 +161,21 @@ def cmd_simulate(args) -> int:
     out = Path(args.out) if args.out else _default_run_path(surface)
     show_progress = not args.quiet and sys.stderr.isatty()
     t0 = time.perf_counter()
-    run = simulate(
-        surface, material, h, args.area, realizations=args.realizations, seed=args.seed, law=args.law,
-        count=args.count, workers=args.workers, scheduler=args.scheduler or args.dask, chunk_size=args.chunk_size, keep_heights=args.keep_heights,
-        out=out, overwrite=args.overwrite, progress=show_progress, command=cli_command(),
-    )  # fmt: skip
+    try:
+        run = simulate(
+            surface, material, h, args.area, realizations=args.realizations, seed=args.seed, law=args.law,
+            count=args.count, workers=args.workers, scheduler=args.scheduler or args.dask,
+            chunk_size=args.chunk_size, keep_heights=args.keep_heights, out=out, overwrite=args.overwrite,
+            resume=args.resume, checkpoint_every=args.checkpoint_every, progress=show_progress,
+            command=cli_command(),
+        )  # fmt: skip
+    except KeyboardInterrupt:
+        if out.exists() and not args.keep_heights:
+            print(f"mcsim: interrupted; progress saved in {out}: run the same command with --resume "
+                  "to finish it", file=sys.stderr)  # fmt: skip
+        else:
+            print("mcsim: interrupted; no output written", file=sys.stderr)
+        return 130
     elapsed = time.perf_counter() - t0
     if not args.quiet:
         n = run.n_summits
@@ -178,7 +188,7 @@ def cmd_simulate(args) -> int:
 def cmd_compare(args) -> int:
     from .runfile import read_run
 
-    run = read_run(args.run)
+    run = read_run(args.run, allow_incomplete=args.partial)
     rows = run.compare().to_dict("records")
     columns = ["h", "quantity", "mc_mean", "mc_se", "analytic", "z"]
     notes = sorted({(r["h"], r["note"]) for r in rows if r["note"]}, key=lambda t: -t[0])
@@ -189,6 +199,9 @@ def cmd_compare(args) -> int:
     _print_rows(
         rows, columns, args.format, header=[f"run {run.path}", "z = (mc_mean - analytic)/mc_se"]
     )
+    if not run.complete:
+        print(f"mcsim: note: {run.path} is incomplete: compared over its {run.spec.realizations} "
+              "completed realization(s)", file=sys.stderr)  # fmt: skip
     if args.format == "csv" and notes:
         for h, note in notes:
             print(f"mcsim: note: h = {h:g}: z left empty: {note}", file=sys.stderr)
@@ -198,11 +211,17 @@ def cmd_compare(args) -> int:
 def cmd_show(args) -> int:
     import numpy as np
 
-    from .runfile import read_run
+    from .runfile import read_run, read_state
 
-    run = read_run(args.run)
-    a, spec = run.attrs, run.spec
-    print(f"run file      {run.path}")
+    state, a = read_state(args.run)
+    spec = state.spec
+    print(f"run file      {args.run}")
+    status = "complete" if state.complete else (
+        f"INCOMPLETE: {int(state.done_blocks.sum())} of {int(state.n_blocks.sum())} blocks done, "
+        f"{int(np.sum(state.done_blocks == state.n_blocks))} of {spec.realizations} realizations complete; "
+        "finish it with the same `mcsim simulate` command plus --resume"
+    )  # fmt: skip
+    print(f"status        {status}")
     print(
         f"created       {a.get('created')} by mcsim {a.get('mcsim_version')} (schema {a.get('schema_version')})"
     )
@@ -214,14 +233,17 @@ def cmd_show(args) -> int:
     print(
         f"patch         A = {spec.area * 1e12:.6g} um^2, N ~ {spec.count}, E[N] = {spec.expected_summits:.6g}"
     )
-    print(f"realizations  {spec.realizations}: N = {', '.join(str(int(n)) for n in run.n_summits[:8])}"
+    print(f"realizations  {spec.realizations}: N = {', '.join(str(int(n)) for n in state.n_summits[:8])}"
           f"{' ...' if spec.realizations > 8 else ''}")  # fmt: skip
     print(f"separations   {spec.h.size}: h = {spec.h.min():g} .. {spec.h.max():g}")
-    z = run.compare()["z"].to_numpy()
+    if not np.any(state.done_blocks == state.n_blocks):
+        return 0
+    z = read_run(args.run, allow_incomplete=True).compare()["z"].to_numpy()
     finite = z[np.isfinite(z)]
     if finite.size:
+        part = "" if state.complete else " (completed realizations only)"
         print(f"vs GW         max |z| = {np.max(np.abs(finite)):.2f} over {finite.size} (h, quantity) pairs "
-              f"with enough contacts; details: mcsim compare {run.path}")  # fmt: skip
+              f"with enough contacts{part}; details: mcsim compare {args.run}")  # fmt: skip
     return 0
 
 
@@ -357,6 +379,13 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument(
         "--keep-heights", action="store_true", help="store the sampled heights (compressed)"
     )
+    p.add_argument(
+        "--resume",
+        action="store_true",
+        help="continue the incomplete run in --out (same arguments)",
+    )
+    p.add_argument("--checkpoint-every", type=float, default=60.0, metavar="SECONDS",
+                   help="save progress to --out this often (default: 60 s)")  # fmt: skip
     p.add_argument("--quiet", action="store_true", help="no progress bar or summary")
     p.set_defaults(func=cmd_simulate)
 
@@ -365,6 +394,11 @@ def build_parser() -> argparse.ArgumentParser:
                        "z = (mc - analytic)/se.")  # fmt: skip
     p.add_argument("run", help="run file (.h5)")
     p.add_argument("--format", choices=_FORMATS, default="table")
+    p.add_argument(
+        "--partial",
+        action="store_true",
+        help="accept an incomplete run: use its completed realizations",
+    )
     p.set_defaults(func=cmd_compare)
 
     p = sub.add_parser(

@@ -17,10 +17,15 @@ chunk size and any number of workers.
 
 from __future__ import annotations
 
+import collections
 import contextlib
+import copy
+import dataclasses
+import functools
 import itertools
 import math
 import os
+import time
 from collections.abc import Callable
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
@@ -42,7 +47,7 @@ DEFAULT_CHUNK = 1 << 20
 COUNT_MODES = ("poisson", "fixed")
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class MonteCarloSpec:
     """Everything that defines a Monte Carlo run (and so its numbers).
 
@@ -100,6 +105,19 @@ class MonteCarloSpec:
             )
         get_law_set(self.law)
 
+    def fields(self) -> dict:
+        """The defining inputs, comparable with ``==`` (h as a tuple)."""
+        return {f.name: (tuple(self.h.tolist()) if f.name == "h" else getattr(self, f.name))
+                for f in dataclasses.fields(self)}  # fmt: skip
+
+    def __eq__(self, other: object) -> bool:
+        return isinstance(other, MonteCarloSpec) and self.fields() == other.fields()
+
+    def differences(self, other: MonteCarloSpec) -> list[str]:
+        """Names of the inputs that differ from ``other``."""
+        a, b = self.fields(), other.fields()
+        return [k for k in a if a[k] != b[k]]
+
     @property
     def d(self) -> np.ndarray:
         """Separations in m."""
@@ -153,7 +171,7 @@ def sample_block(spec: MonteCarloSpec, plan: PatchPlan, r: int, b: int) -> np.nd
 
 @dataclass
 class EnsembleSums:
-    """Raw Monte Carlo totals of a run.
+    """Raw Monte Carlo totals of a run, complete or in progress.
 
     Attributes
     ----------
@@ -163,7 +181,10 @@ class EnsembleSums:
         N of each patch.
     sums : ndarray, shape (R, M, 10)
         Per realization and separation (in the order of ``spec.h``): the columns of
-        :data:`mcsim.kernels.SUM_COLUMNS`, forces in N.
+        :data:`mcsim.kernels.SUM_COLUMNS`, forces in N, summed over the blocks done.
+    n_blocks, done_blocks : ndarray, shape (R,)
+        Blocks of each patch, and how many of them (from the first, in order) are in
+        ``sums``.
     heights : list of ndarray or None
         Sampled heights above h_min (m) per realization, when kept.
     """
@@ -171,7 +192,39 @@ class EnsembleSums:
     spec: MonteCarloSpec
     n_summits: np.ndarray
     sums: np.ndarray
+    n_blocks: np.ndarray
+    done_blocks: np.ndarray
     heights: list[np.ndarray] | None = field(default=None, repr=False)
+
+    @property
+    def complete(self) -> bool:
+        return bool(np.all(self.done_blocks == self.n_blocks))
+
+    @classmethod
+    def start(cls, spec: MonteCarloSpec) -> EnsembleSums:
+        """Nothing done yet: the counts of every patch drawn, no block summed."""
+        plans = [plan_patch(spec, r) for r in range(spec.realizations)]
+        R = spec.realizations
+        return cls(
+            spec=spec,
+            n_summits=np.array([p.n_summits for p in plans], dtype=np.int64),
+            sums=np.zeros((R, spec.h.size, len(SUM_COLUMNS))),
+            n_blocks=np.array([p.n_blocks for p in plans], dtype=np.int64),
+            done_blocks=np.zeros(R, dtype=np.int64),
+        )
+
+    def plans(self) -> list[PatchPlan]:
+        return [plan_patch(self.spec, r) for r in range(self.spec.realizations)]
+
+    def completed(self) -> EnsembleSums:
+        """The realizations whose every block is done, as a complete ensemble."""
+        done = np.flatnonzero(self.done_blocks == self.n_blocks)
+        spec = dataclasses.replace(self.spec, realizations=max(done.size, 1))
+        if done.size == 0:
+            raise ParameterError("no realization of this run is complete yet")
+        return EnsembleSums(
+            spec, self.n_summits[done], self.sums[done], self.n_blocks[done], self.done_blocks[done]
+        )
 
 
 @dataclass(frozen=True)
@@ -188,13 +241,15 @@ class Task:
         return sum(self.plan.block_size(b) for b in range(self.start, self.stop))
 
 
-def make_tasks(plans: list[PatchPlan], chunk_size: int) -> list[Task]:
-    """Split every patch into tasks of about ``chunk_size`` summits (whole blocks)."""
+def make_tasks(plans: list[PatchPlan], chunk_size: int, first_block=None) -> list[Task]:
+    """Split every patch into tasks of about ``chunk_size`` summits (whole blocks),
+    starting at ``first_block[r]`` (0 by default) for realization r."""
     chunk_blocks = max(1, math.ceil(chunk_size / BLOCK))
+    first = [0] * len(plans) if first_block is None else first_block
     return [
         Task(r, start, min(start + chunk_blocks, plan.n_blocks), plan)
         for r, plan in enumerate(plans)
-        for start in range(0, plan.n_blocks, chunk_blocks)
+        for start in range(int(first[r]), plan.n_blocks, chunk_blocks)
     ]
 
 
@@ -222,6 +277,32 @@ def default_workers() -> int:
         return os.cpu_count() or 1
 
 
+def _in_order(submit: Callable, tasks: list[Task], window: int):
+    """Yield ``(task, result)`` in task order, with at most ``window`` tasks in flight.
+
+    Pending tasks are cancelled if the consumer stops (an error, Ctrl-C).
+    """
+    pending: collections.deque = collections.deque()
+    queue = iter(tasks)
+    try:
+        for task in itertools.islice(queue, window):
+            pending.append((task, submit(task)))
+        while pending:
+            task, future = pending.popleft()
+            result = future.result()
+            for nxt in itertools.islice(queue, 1):
+                pending.append((nxt, submit(nxt)))
+            yield task, result
+    finally:
+        for _, future in pending:
+            future.cancel()
+
+
+def _check_count(name: str, value) -> None:
+    if isinstance(value, bool) or not isinstance(value, int | np.integer) or value < 1:
+        raise ParameterError(f"{name} = {value!r} is out of range (allowed: integer >= 1)")
+
+
 def run_sums(
     spec: MonteCarloSpec,
     *,
@@ -230,6 +311,9 @@ def run_sums(
     keep_heights: bool = False,
     progress: Callable[[int], None] | None = None,
     client=None,
+    resume: EnsembleSums | None = None,
+    checkpoint: Callable[[EnsembleSums], None] | None = None,
+    checkpoint_every: float = 60.0,
 ) -> EnsembleSums:
     """Sample every patch of ``spec`` and sum the per-summit laws at every separation.
 
@@ -240,58 +324,71 @@ def run_sums(
     workers : int, optional
         Local worker threads (the numba kernel and NumPy's samplers release the GIL,
         so threads use every core without copying data between processes); all
-        cores by default. Ignored when ``client`` is given.
+        cores by default. On Dask, the tasks in flight are twice the cluster's threads.
     chunk_size : int
         Summits per task, rounded up to whole blocks.
     keep_heights : bool
-        Keep the sampled heights (memory grows with N).
+        Keep the sampled heights (memory grows with N; not with ``resume``).
     progress : callable, optional
         Called with the number of summits finished after each task.
     client : dask.distributed.Client, optional
         Run the tasks on this Dask cluster instead.
+    resume : EnsembleSums, optional
+        An unfinished run of the same ``spec`` to continue.
+    checkpoint : callable, optional
+        Called with the state so far at most every ``checkpoint_every`` seconds, and
+        once more if the run is interrupted (then the interruption propagates).
+    checkpoint_every : float
+        Seconds between checkpoints.
 
     Returns
     -------
     EnsembleSums
-        Identical, bit for bit, for every ``workers``, ``chunk_size`` and backend:
-        the random streams and the partial sums belong to fixed blocks, and the
-        partial sums are added in block order.
+        Identical, bit for bit, for every ``workers``, ``chunk_size``, backend and
+        interruption: the random streams and the partial sums belong to fixed
+        blocks, and the partial sums are added in block order.
     """
     workers = default_workers() if workers is None else workers
-    if isinstance(workers, bool) or not isinstance(workers, int | np.integer) or workers < 1:
-        raise ParameterError(f"workers = {workers!r} is out of range (allowed: integer >= 1)")
-    if (
-        isinstance(chunk_size, bool)
-        or not isinstance(chunk_size, int | np.integer)
-        or chunk_size < 1
-    ):
-        raise ParameterError(f"chunk_size = {chunk_size!r} is out of range (allowed: integer >= 1)")
-    plans = [plan_patch(spec, r) for r in range(spec.realizations)]
-    tasks = make_tasks(plans, chunk_size)
-    sums_desc = np.zeros((spec.realizations, spec.d.size, len(SUM_COLUMNS)))
+    _check_count("workers", workers)
+    _check_count("chunk_size", chunk_size)
+    if resume is not None and resume.spec != spec:
+        raise ParameterError(
+            f"cannot resume: {', '.join(resume.spec.differences(spec))} differ(s) from the run's"
+        )
+    if resume is not None and keep_heights:
+        raise ParameterError("keep_heights cannot be combined with resuming a run")
+    state = EnsembleSums.start(spec) if resume is None else copy.deepcopy(resume)
+    plans = state.plans()
+    tasks = make_tasks(plans, chunk_size, state.done_blocks)
+    order = np.argsort(-spec.d, kind="stable")  # kernel rows are in descending d
     kept: list[list[np.ndarray]] = [[] for _ in plans]
+    last = time.monotonic()
     with contextlib.ExitStack() as stack:
         if client is None:
             pool = stack.enter_context(ThreadPoolExecutor(max_workers=workers))
-            results = pool.map(
-                run_task, itertools.repeat(spec), tasks, itertools.repeat(keep_heights)
-            )
+            submit = functools.partial(pool.submit, run_task, spec, keep_heights=keep_heights)
+            window = 2 * workers
         else:
-            futures = client.map(
-                run_task, [spec] * len(tasks), tasks, keep_heights=keep_heights, pure=False
+            submit = functools.partial(
+                client.submit, run_task, spec, keep_heights=keep_heights, pure=False
             )
-            stack.callback(client.cancel, futures)
-            results = (future.result() for future in futures)
-        # results arrive in task order: partial sums are added in block order
-        for task, (partials, blocks) in zip(tasks, results):
-            for part in partials:
-                sums_desc[task.realization] += part
-            if blocks is not None:
-                kept[task.realization].extend(blocks)
-            if progress is not None:
-                progress(task.n_summits)
-    order = np.argsort(-spec.d, kind="stable")
-    sums = np.empty_like(sums_desc)
-    sums[:, order] = sums_desc  # back to the order of spec.h
-    heights = [np.concatenate(k) if k else np.empty(0) for k in kept] if keep_heights else None
-    return EnsembleSums(spec, np.array([p.n_summits for p in plans]), sums, heights)
+            window = 2 * max(1, sum(client.nthreads().values()))
+        try:
+            for task, (partials, blocks) in _in_order(submit, tasks, window):
+                for part in partials:  # in block order
+                    state.sums[task.realization, order] += part
+                state.done_blocks[task.realization] = task.stop
+                if blocks is not None:
+                    kept[task.realization].extend(blocks)
+                if progress is not None:
+                    progress(task.n_summits)
+                if checkpoint is not None and time.monotonic() - last > checkpoint_every:
+                    checkpoint(state)
+                    last = time.monotonic()
+        except BaseException:
+            if checkpoint is not None:
+                checkpoint(state)
+            raise
+    if keep_heights:
+        state.heights = [np.concatenate(k) if k else np.empty(0) for k in kept]
+    return state

@@ -359,3 +359,126 @@ def run_figure(run):
         "forces divided by $A K$ (Eqs. 3, 5, 7)",
     ]), va="top", fontsize=9, transform=axes[5].transAxes)  # fmt: skip
     return fig
+
+
+def histogram_figure(empirical, gaussian_sigma: float, *, title: str | None = None):
+    """A measured height histogram against the Gaussian of the same mean and σ.
+
+    Parameters
+    ----------
+    empirical : mcsim.empirical.Empirical
+        The measured distribution; drawn in physical heights (its ``mean`` and
+        ``sigma``), as a probability density per nm.
+    gaussian_sigma : float
+        Standard deviation of the Gaussian drawn for comparison, m (usually
+        ``empirical.sigma``).
+    title : str, optional
+        Figure title; by default the histogram's ``source``.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        Linear and logarithmic density panels side by side (the log panel shows the
+        upper tail, where contact starts).
+    """
+    from matplotlib.figure import Figure
+
+    if not (math.isfinite(gaussian_sigma) and gaussian_sigma > 0):
+        raise MCSimError(f"`gaussian_sigma` must be positive, got {gaussian_sigma!r} m.")
+    edges_nm = (empirical.mean + empirical.edges * empirical.sigma) * 1e9
+    density_nm = empirical.densities / (empirical.sigma * 1e9)
+    z = np.linspace(
+        min(edges_nm[0], empirical.mean * 1e9 - 4 * gaussian_sigma * 1e9),
+        max(edges_nm[-1], empirical.mean * 1e9 + 4 * gaussian_sigma * 1e9),
+        400,
+    )
+    s_nm = gaussian_sigma * 1e9
+    gauss = np.exp(-0.5 * ((z - empirical.mean * 1e9) / s_nm) ** 2) / (
+        s_nm * math.sqrt(2 * math.pi)
+    )
+    fig = Figure(figsize=(10, 4), layout="constrained")
+    for ax, log in zip(fig.subplots(1, 2), (False, True)):
+        ax.stairs(density_nm, edges_nm, fill=True, color=_COLOURS[0], alpha=0.45,
+                  label=f"measured ({empirical.densities.size} bins, $\\sigma$ = "
+                  f"{empirical.sigma * 1e9:.3g} nm)")  # fmt: skip
+        ax.plot(z, gauss, color=_COLOURS[4], lw=1.5, label=f"Gaussian, $\\sigma$ = {s_nm:.3g} nm")
+        ax.set_xlabel("Height above the mean plane $z$ (nm)")
+        ax.set_ylabel("Probability density (1/nm)")
+        ax.grid(True, alpha=0.4)
+        if log:
+            positive = density_nm[density_nm > 0]
+            ax.set_yscale("log")
+            ax.set_ylim(0.3 * positive.min(), 3 * max(positive.max(), gauss.max()))
+        else:
+            ax.legend(fontsize=8)
+    fig.suptitle(title or empirical.source, fontsize=10)
+    return fig
+
+
+def comparison_figure(surface_measured, surface_gaussian, material, h, run=None):
+    """Analytic GW curves of a measured surface against the Gaussian GW curves.
+
+    Parameters
+    ----------
+    surface_measured : mcsim.params.Surface
+        The surface with its measured (e.g. :class:`~mcsim.empirical.Empirical`)
+        summit heights.
+    surface_gaussian : mcsim.params.Surface
+        The Gaussian reference, usually the same (σ, R, η).
+    material : mcsim.params.Material
+        The material pair.
+    h : array_like
+        Separations d/σ for the curves (each surface's own σ and mean summit height).
+    run : mcsim.simulation.Run, optional
+        A Monte Carlo run of ``surface_measured``: its means ± 2 standard errors
+        are drawn over the measured curves.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        Contact fraction, P̄, F̄, T̄ (divided by A_n K, Eqs. 3, 5, 7) and μ versus h.
+    """
+    from matplotlib.figure import Figure
+
+    from .analytic import gw_curves
+
+    h = np.sort(np.atleast_1d(np.asarray(h, dtype=float)))[::-1]
+    measured = gw_curves(surface_measured, material, h)
+    gaussian = gw_curves(surface_gaussian, material, h)
+    fig = Figure(figsize=(12, 7), layout="constrained")
+    axes = fig.subplots(2, 3).ravel()
+    for ax, q in zip(axes, ("contact_fraction", "P", "F", "T", "mu")):
+        log = q in LOG_QUANTITIES
+        for curves, style, label in (
+            (measured, {"color": _COLOURS[0], "linestyle": "-"}, "measured heights (analytic)"),
+            (gaussian, {"color": _COLOURS[4], "linestyle": "--"}, "Gaussian GW, same ($\\sigma$, $R$, $\\eta$)"),
+        ):  # fmt: skip
+            y = np.asarray(quantity_values(curves, q), dtype=float)
+            if log:
+                y = np.where(y > 0, y, np.nan)
+            ax.plot(h, y, lw=1.6, label=label, **style)
+        if run is not None:
+            mean, se = run.summary.mean[q], run.summary.se[q]
+            keep = np.isfinite(mean) & ((mean > 0) if log else True)
+            err = 2 * se[keep]
+            if log:
+                err = np.vstack([np.minimum(err, 0.999 * mean[keep]), err])
+            ax.errorbar(run.spec.h[keep], mean[keep], yerr=err, color=_COLOURS[0], marker="o", markersize=4,
+                        markerfacecolor="none", linestyle="none", capsize=2, label="Monte Carlo mean ± 2 SE")  # fmt: skip
+        ax.set_xlim(h[0], h[-1])
+        ax.set_yscale("log" if log else "linear")
+        ax.set_xlabel(X_LABEL, fontsize=8)
+        ax.set_ylabel(LABELS[q], fontsize=8)
+        ax.grid(True, alpha=0.4)
+    axes[0].legend(fontsize=8)
+    s, m = surface_measured, material
+    axes[5].axis("off")
+    axes[5].text(0, 1, "\n".join([
+        f"surface {s.name}: $\\sigma$ = {s.sigma * 1e9:.4g} nm, $R$ = {s.R * 1e6:.4g} µm,",
+        f"   $\\eta$ = {s.eta * 1e-12:.4g} µm$^{{-2}}$, heights {s.heights.name}",
+        f"material {m.name}: $K$ = {m.K * 1e-9:.4g} GPa, $G$ = {m.G * 1e-9:.4g} GPa,",
+        f"   $\\gamma$ = {m.gamma:.3g} J/m$^2$; law set 'seed'",
+        "forces divided by $A_n K$ (Eqs. 3, 5, 7)",
+        "h = d/$\\sigma$, d from the mean summit height",
+    ]), va="top", fontsize=9, transform=axes[5].transAxes)  # fmt: skip
+    return fig

@@ -1,30 +1,45 @@
-"""HDF5 run files: write atomically, read back as a :class:`Run`.
+"""HDF5 run files: atomic, checksummed, resumable; read back as a :class:`~mcsim.simulation.Run`.
 
-Layout (schema version :data:`SCHEMA_VERSION`; every quantity carries a ``unit``
-attribute, dimensionless ones ``"1"`` with a ``normalised_by`` note):
+Layout (schema version :data:`SCHEMA_VERSION`; every dataset carries a ``unit``
+attribute, dimensionless ones ``"1"`` with the normalisation in ``description``):
 
     /                      attrs: schema_version, mcsim_version, created, command,
-                           seed_entropy, law, count, area [m^2], realizations, block_size
+                           seed_entropy, law, count, area [m^2], realizations,
+                           block_size, complete, checksum
     /input/surface         attrs: sigma [m], R [m], eta [m^-2], name, heights (JSON)
     /input/material        attrs: E1, E2 [Pa], nu1, nu2, gamma [J/m^2], H [Pa], name
     /h, /d                 separations: d/σ and d [m]
     /realizations/N        summits per patch
     /realizations/sums     (R, M, 10) raw sums, columns in attrs (forces in N)
+    /progress/n_blocks, /progress/done_blocks   blocks per patch, and done
+    -- complete runs only --
     /realizations/<q>      (R, M) dimensionless curves, q in contact_fraction,P,F,T,mu
     /summary/<stat>/<q>    (M,) stat in mean, se, std, se_between
     /summary/expected_contacts
     /analytic/<q>          (M,) GW curves for the same inputs (expected values)
     /heights/<r>           optional: sampled heights above h_min [m]
 
-The file is written under a temporary name in the target folder and moved into place
-only when complete; an existing file is replaced only with ``overwrite=True``.
+Guarantees:
+
+* every file is written under a temporary name in the target folder and moved into
+  place with one atomic rename, so the path holds either nothing, an earlier
+  complete file or a new complete file — never half a file;
+* a run in progress checkpoints itself to its path as an *incomplete* run
+  (``complete = False``, sums of the blocks done so far), which ``--resume`` continues;
+* a complete run is never replaced without ``overwrite``; a lock file
+  (``<name>.lock``) keeps two processes from writing the same path;
+* ``checksum`` (SHA-256 over every dataset's name, shape, type and bytes) and the
+  shapes are checked on every read: a truncated or edited file is refused.
 """
 
 from __future__ import annotations
 
+import contextlib
 import datetime as _dt
+import hashlib
 import json
 import os
+import socket
 import tempfile
 from pathlib import Path
 
@@ -33,9 +48,9 @@ import numpy as np
 from ._version import __version__
 from .analytic import QUANTITIES
 from .distributions import GAUSSIAN
-from .errors import RunFileError
+from .errors import MCSimError, RunFileError
 from .kernels import SUM_COLUMNS
-from .montecarlo import MonteCarloSpec
+from .montecarlo import BLOCK, EnsembleSums, MonteCarloSpec
 from .params import Material, Surface
 from .statistics import Summary
 
@@ -50,17 +65,65 @@ NORMALISED = {
 }
 
 
-def check_output_path(path: str | Path, overwrite: bool = False) -> Path:
-    """Fail early (before any work) if ``path`` cannot receive a new run file."""
+def check_output_path(path: str | Path, overwrite: bool = False, resume: bool = False) -> Path:
+    """Fail early (before any work) if ``path`` cannot receive this run."""
     path = Path(path)
-    folder = path.parent if str(path.parent) else Path(".")
+    folder = path.parent
     if not folder.is_dir():
         raise RunFileError(f"{path}: output folder {folder} does not exist")
     if not os.access(folder, os.W_OK):
         raise RunFileError(f"{path}: output folder {folder} is not writable")
-    if path.exists() and not overwrite:
+    if resume:
+        if not path.exists():
+            raise RunFileError(f"{path}: nothing to resume (no such file)")
+    elif path.exists() and not overwrite:
         raise RunFileError(f"{path}: file exists (pass --overwrite / overwrite=True to replace it)")
     return path
+
+
+# --- locking --------------------------------------------------------------------------
+
+
+@contextlib.contextmanager
+def lock(path: str | Path):
+    """Hold ``<path>.lock`` while writing ``path``; refuse if another live process does.
+
+    A lock left by a process that no longer runs (killed) on this host is taken over.
+    """
+    lock_path = Path(f"{path}.lock")
+    me = f"{socket.gethostname()} {os.getpid()}"
+    for _ in range(2):
+        try:
+            fd = os.open(lock_path, os.O_CREAT | os.O_EXCL | os.O_WRONLY, 0o644)
+        except FileExistsError:
+            owner = lock_path.read_text(errors="replace").split()
+            if len(owner) == 2 and owner[0] == socket.gethostname() and not _alive(int(owner[1])):
+                lock_path.unlink(missing_ok=True)  # stale: its writer was killed
+                continue
+            raise RunFileError(
+                f"{path}: another mcsim process ({' pid '.join(owner) or 'unknown'}) is writing it "
+                f"(lock file {lock_path.name})"
+            ) from None
+        with os.fdopen(fd, "w") as f:
+            f.write(me)
+        break
+    try:
+        yield
+    finally:
+        lock_path.unlink(missing_ok=True)
+
+
+def _alive(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:
+        return True
+    return True
+
+
+# --- writing --------------------------------------------------------------------------
 
 
 def _heights_to_json(surface: Surface) -> str:
@@ -79,14 +142,26 @@ def _heights_from_json(text: str):
     return Empirical.from_dict({k: v for k, v in data.items() if k != "name"})
 
 
-def write_run(path: str | Path, run, *, command: str, overwrite: bool = False):
-    """Write ``run`` (a :class:`mcsim.simulation.Run`) atomically; return it with path and attrs."""
-    import dataclasses
+def _dataset(f, name: str, data, unit: str, description: str, **options):
+    ds = f.create_dataset(name, data=np.asarray(data), **options)
+    ds.attrs["unit"] = unit
+    ds.attrs["description"] = description
+    return ds
 
-    import h5py
 
-    path = check_output_path(path, overwrite)
-    spec = run.spec
+def _checksum(f) -> str:
+    """SHA-256 over every dataset's name, shape, dtype and bytes, in name order."""
+    digest = hashlib.sha256()
+    names: list[str] = []
+    f.visit(lambda name: names.append(name) if hasattr(f[name], "shape") else None)
+    for name in sorted(names):
+        data = np.ascontiguousarray(f[name][()])
+        digest.update(f"{name}|{data.shape}|{data.dtype.str}|".encode())
+        digest.update(data.tobytes())
+    return digest.hexdigest()
+
+
+def _write_inputs(f, spec: MonteCarloSpec, command: str, complete: bool) -> dict:
     attrs = {
         "schema_version": SCHEMA_VERSION,
         "mcsim_version": __version__,
@@ -98,125 +173,233 @@ def write_run(path: str | Path, run, *, command: str, overwrite: bool = False):
         "area": spec.area,
         "area_unit": "m^2",
         "realizations": spec.realizations,
-        "block_size": _block_size(),
+        "block_size": BLOCK,
+        "complete": complete,
     }
+    f.attrs.update(attrs)
+    s = f.create_group("input/surface")
+    s.attrs.update(sigma=spec.surface.sigma, R=spec.surface.R, eta=spec.surface.eta,
+                   name=spec.surface.name, heights=_heights_to_json(spec.surface))  # fmt: skip
+    s.attrs["units"] = json.dumps({"sigma": "m", "R": "m", "eta": "m^-2"})
+    m = f.create_group("input/material")
+    mat = spec.material
+    m.attrs.update(E1=mat.E1, E2=mat.E2, nu1=mat.nu1, nu2=mat.nu2, gamma=mat.gamma,
+                   H=np.nan if mat.H is None else mat.H, name=mat.name)  # fmt: skip
+    m.attrs["units"] = json.dumps(
+        {"E1": "Pa", "E2": "Pa", "nu1": "1", "nu2": "1", "gamma": "J/m^2", "H": "Pa"}
+    )
+    _dataset(f, "h", spec.h, "1", "d/sigma")
+    _dataset(f, "d", spec.d, "m", "mean separation")
+    return attrs
+
+
+def _write_state(f, state: EnsembleSums) -> None:
+    _dataset(f, "realizations/N", state.n_summits, "1", "summits in the patch")
+    sums = _dataset(
+        f, "realizations/sums", state.sums, "N", "raw per-separation sums over the blocks done"
+    )
+    sums.attrs["columns"] = list(SUM_COLUMNS)
+    _dataset(f, "progress/n_blocks", state.n_blocks, "1", f"blocks of {BLOCK} summits above h_min")
+    _dataset(f, "progress/done_blocks", state.done_blocks, "1", "blocks summed, from the first")
+
+
+def _atomic_write(path: Path, fill) -> None:
+    """Write through ``fill(h5file)`` into a temporary file, then rename it onto ``path``."""
+    import h5py
+
     fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
     os.close(fd)
-    umask = os.umask(0)
-    os.umask(umask)
     try:
+        umask = os.umask(0)
+        os.umask(umask)
         os.chmod(tmp, 0o666 & ~umask)  # mkstemp makes 0600; give the usual permissions
         with h5py.File(tmp, "w") as f:
-            f.attrs.update(attrs)
-            s = f.create_group("input/surface")
-            s.attrs.update(sigma=spec.surface.sigma, R=spec.surface.R, eta=spec.surface.eta,
-                           name=spec.surface.name, heights=_heights_to_json(spec.surface))  # fmt: skip
-            s.attrs["units"] = json.dumps({"sigma": "m", "R": "m", "eta": "m^-2"})
-            m = f.create_group("input/material")
-            mat = spec.material
-            m.attrs.update(E1=mat.E1, E2=mat.E2, nu1=mat.nu1, nu2=mat.nu2, gamma=mat.gamma,
-                           H=np.nan if mat.H is None else mat.H, name=mat.name)  # fmt: skip
-            m.attrs["units"] = json.dumps(
-                {"E1": "Pa", "E2": "Pa", "nu1": "1", "nu2": "1", "gamma": "J/m^2", "H": "Pa"}
-            )
-            _dataset(f, "h", spec.h, "1", "d/sigma")
-            _dataset(f, "d", spec.d, "m", "mean separation")
-            _dataset(f, "realizations/N", run.n_summits, "1", "summits in the patch")
-            sums = _dataset(f, "realizations/sums", run.sums, "N", "raw per-separation sums")
-            sums.attrs["columns"] = list(SUM_COLUMNS)
-            for q in QUANTITIES:
-                _dataset(f, f"realizations/{q}", run.realizations[q], "1", NORMALISED[q])
-                _dataset(f, f"analytic/{q}", run.analytic[q], "1", NORMALISED[q])
-                for stat in STATS:
-                    _dataset(
-                        f, f"summary/{stat}/{q}", getattr(run.summary, stat)[q], "1", NORMALISED[q]
-                    )
-            _dataset(
-                f, "summary/expected_contacts", run.summary.expected_contacts, "1", "R E[N] S(h)"
-            )
-            if run.heights is not None:
-                for r, z in enumerate(run.heights):
-                    ds = f.create_dataset(f"heights/{r}", data=z, compression="gzip", shuffle=True)
-                    ds.attrs["unit"] = "m"
-        if overwrite:
-            os.replace(tmp, path)
-        else:
-            try:
-                os.link(tmp, path)  # atomic, and fails rather than replace a file made meanwhile
-            except FileExistsError:
-                raise RunFileError(
-                    f"{path}: file exists (pass --overwrite to replace it)"
-                ) from None
-            os.unlink(tmp)
+            fill(f)
+            f.attrs["checksum"] = _checksum(f)
+        with open(tmp, "rb") as f:
+            os.fsync(f.fileno())
+        os.replace(tmp, path)
+    except OSError as err:
+        Path(tmp).unlink(missing_ok=True)
+        raise RunFileError(f"{path}: cannot write the run file ({err.strerror or err})") from None
     except BaseException:
         Path(tmp).unlink(missing_ok=True)
         raise
+
+
+def write_checkpoint(path: str | Path, state: EnsembleSums, *, command: str) -> None:
+    """Write a run in progress (``complete = False``), replacing the previous checkpoint."""
+
+    def fill(f):
+        _write_inputs(f, state.spec, command, complete=False)
+        _write_state(f, state)
+
+    _atomic_write(Path(path), fill)
+
+
+def write_run(path: str | Path, run, *, command: str):
+    """Write a complete ``run`` (a :class:`mcsim.simulation.Run`); return it with path and attrs.
+
+    The caller holds :func:`lock` and has checked the path with :func:`check_output_path`.
+    """
+    import dataclasses
+
+    path = Path(path)
+    attrs: dict = {}
+
+    def fill(f):
+        attrs.update(_write_inputs(f, run.spec, command, complete=True))
+        _write_state(f, run.ensemble)
+        for q in QUANTITIES:
+            _dataset(f, f"realizations/{q}", run.realizations[q], "1", NORMALISED[q])
+            _dataset(f, f"analytic/{q}", run.analytic[q], "1", NORMALISED[q])
+            for stat in STATS:
+                _dataset(
+                    f, f"summary/{stat}/{q}", getattr(run.summary, stat)[q], "1", NORMALISED[q]
+                )
+        _dataset(f, "summary/expected_contacts", run.summary.expected_contacts, "1", "R E[N] S(h)")
+        if run.heights is not None:
+            for r, z in enumerate(run.heights):
+                _dataset(
+                    f,
+                    f"heights/{r}",
+                    z,
+                    "m",
+                    "sampled heights above h_min",
+                    compression="gzip",
+                    shuffle=True,
+                )
+
+    _atomic_write(path, fill)
     return dataclasses.replace(run, path=path, attrs=attrs)
 
 
-def _block_size() -> int:
-    from .montecarlo import BLOCK
-
-    return BLOCK
+# --- reading --------------------------------------------------------------------------
 
 
-def _dataset(f, name: str, data, unit: str, description: str):
-    ds = f.create_dataset(name, data=np.asarray(data))
-    ds.attrs["unit"] = unit
-    ds.attrs["description"] = description
-    return ds
-
-
-def read_run(path: str | Path):
-    """Open a run file as a :class:`mcsim.simulation.Run`; refuse other schema versions."""
+def _open(path: Path):
     import h5py
 
-    from .simulation import Run
-
-    path = Path(path)
     if not path.is_file():
         raise RunFileError(f"{path}: no such file")
     try:
         f = h5py.File(path, "r")
     except OSError:
-        raise RunFileError(f"{path}: not an HDF5 file (or truncated)") from None
-    with f:
-        version = f.attrs.get("schema_version")
-        if version is None:
-            raise RunFileError(f"{path}: not an mcsim run file (no schema_version)")
-        if int(version) != SCHEMA_VERSION:
+        raise RunFileError(f"{path}: not an HDF5 file, or truncated") from None
+    version = f.attrs.get("schema_version")
+    if version is None:
+        f.close()
+        raise RunFileError(f"{path}: not an mcsim run file (no schema_version)")
+    if int(version) != SCHEMA_VERSION:
+        f.close()
+        raise RunFileError(
+            f"{path}: run-file schema version {int(version)} is not supported "
+            f"(this mcsim {__version__} reads version {SCHEMA_VERSION})"
+        )
+    return f
+
+
+def _read_state(path: Path, f) -> EnsembleSums:
+    attrs = f.attrs
+    s, m = f["input/surface"].attrs, f["input/material"].attrs
+    surface = Surface(sigma=float(s["sigma"]), R=float(s["R"]), eta=float(s["eta"]),
+                      heights=_heights_from_json(s["heights"]), name=str(s["name"]))  # fmt: skip
+    H = float(m["H"])
+    material = Material(E1=float(m["E1"]), E2=float(m["E2"]), nu1=float(m["nu1"]), nu2=float(m["nu2"]),
+                        gamma=float(m["gamma"]), H=None if np.isnan(H) else H, name=str(m["name"]))  # fmt: skip
+    spec = MonteCarloSpec(surface, material, f["h"][()], float(attrs["area"]), int(attrs["realizations"]),
+                          int(attrs["seed_entropy"]), str(attrs["law"]), str(attrs["count"]))  # fmt: skip
+    R, M = spec.realizations, spec.h.size
+    expected = {
+        "d": (M,),
+        "realizations/N": (R,),
+        "realizations/sums": (R, M, len(SUM_COLUMNS)),
+        "progress/n_blocks": (R,),
+        "progress/done_blocks": (R,),
+    }
+    if bool(attrs["complete"]):
+        expected |= {f"realizations/{q}": (R, M) for q in QUANTITIES}
+        expected |= {f"analytic/{q}": (M,) for q in QUANTITIES}
+        expected |= {f"summary/{stat}/{q}": (M,) for stat in STATS for q in QUANTITIES}
+        expected["summary/expected_contacts"] = (M,)
+    for name, shape in expected.items():
+        if name not in f:
+            raise RunFileError(f"{path}: damaged run file: dataset {name} is missing")
+        if f[name].shape != shape:
             raise RunFileError(
-                f"{path}: run-file schema version {int(version)} is not supported "
-                f"(this mcsim {__version__} reads version {SCHEMA_VERSION})"
+                f"{path}: damaged run file: {name} has shape {f[name].shape}, the inputs ask for {shape}"
             )
-        try:
-            attrs = {k: (v.item() if hasattr(v, "item") else v) for k, v in f.attrs.items()}
-            s, m = f["input/surface"].attrs, f["input/material"].attrs
-            surface = Surface(sigma=float(s["sigma"]), R=float(s["R"]), eta=float(s["eta"]),
-                              heights=_heights_from_json(s["heights"]), name=str(s["name"]))  # fmt: skip
-            H = float(m["H"])
-            material = Material(E1=float(m["E1"]), E2=float(m["E2"]), nu1=float(m["nu1"]), nu2=float(m["nu2"]),
-                                gamma=float(m["gamma"]), H=None if np.isnan(H) else H, name=str(m["name"]))  # fmt: skip
-            h = f["h"][()]
-            spec = MonteCarloSpec(surface, material, h, float(attrs["area"]), int(attrs["realizations"]),
-                                  int(attrs["seed_entropy"]), str(attrs["law"]), str(attrs["count"]))  # fmt: skip
-            stats = {stat: {q: f[f"summary/{stat}/{q}"][()] for q in QUANTITIES} for stat in STATS}
-            summary = Summary(**stats, expected_contacts=f["summary/expected_contacts"][()])
-            heights = (
-                [f[f"heights/{r}"][()] for r in sorted(f["heights"], key=int)]
-                if "heights" in f
-                else None
-            )
-            return Run(
-                spec=spec,
-                n_summits=f["realizations/N"][()],
-                sums=f["realizations/sums"][()],
-                realizations={q: f[f"realizations/{q}"][()] for q in QUANTITIES},
-                summary=summary,
-                analytic={q: f[f"analytic/{q}"][()] for q in QUANTITIES},
-                attrs=attrs,
-                path=path,
-                heights=heights,
-            )
-        except KeyError as err:
-            raise RunFileError(f"{path}: incomplete run file, missing {err}") from None
+    if int(attrs.get("block_size", -1)) != BLOCK:
+        raise RunFileError(
+            f"{path}: written with blocks of {attrs.get('block_size')} summits, this mcsim uses {BLOCK}"
+        )
+    state = EnsembleSums(spec, f["realizations/N"][()], f["realizations/sums"][()],
+                         f["progress/n_blocks"][()], f["progress/done_blocks"][()])  # fmt: skip
+    if state.complete != bool(attrs["complete"]):
+        raise RunFileError(f"{path}: damaged run file: progress disagrees with the 'complete' flag")
+    return state
+
+
+def _verified(path: Path, f) -> None:
+    stored = f.attrs.get("checksum")
+    if stored is None or _checksum(f) != stored:
+        raise RunFileError(f"{path}: damaged run file: checksum mismatch (truncated or edited)")
+
+
+@contextlib.contextmanager
+def _damaged(path: Path):
+    """Report anything a damaged file makes h5py or the parameter checks raise as damage."""
+    try:
+        yield
+    except MCSimError:
+        raise
+    except (KeyError, ValueError, TypeError, OSError) as err:
+        raise RunFileError(f"{path}: damaged run file ({err})") from None
+
+
+def read_state(path: str | Path) -> tuple[EnsembleSums, dict]:
+    """The sums and progress of a run file (complete or not), for resuming, and its attributes."""
+    path = Path(path)
+    with _open(path) as f, _damaged(path):
+        _verified(path, f)
+        return _read_state(path, f), dict(f.attrs)
+
+
+def read_run(path: str | Path, *, allow_incomplete: bool = False):
+    """Open a run file as a :class:`mcsim.simulation.Run`.
+
+    Refuses other schema versions, damaged files (checksum, shapes) and, unless
+    ``allow_incomplete``, runs that did not finish. With ``allow_incomplete`` an
+    unfinished run is summarised over its completed realizations (``run.complete``
+    is then False).
+    """
+    from .simulation import Run, assemble
+
+    path = Path(path)
+    with _open(path) as f, _damaged(path):
+        _verified(path, f)
+        state = _read_state(path, f)
+        attrs = {k: (v.item() if hasattr(v, "item") else v) for k, v in f.attrs.items()}
+        if not state.complete:
+            if not allow_incomplete:
+                done = int(np.sum(state.done_blocks == state.n_blocks))
+                raise RunFileError(
+                    f"{path}: incomplete run ({done} of {state.spec.realizations} realizations done); "
+                    "resume it with `mcsim simulate ... --resume`, or use the completed part (--partial)"
+                )
+            return assemble(state.completed(), attrs=attrs, path=path, complete=False)
+        stats = {stat: {q: f[f"summary/{stat}/{q}"][()] for q in QUANTITIES} for stat in STATS}
+        heights = (
+            [f[f"heights/{r}"][()] for r in sorted(f["heights"], key=int)]
+            if "heights" in f
+            else None
+        )
+        return Run(
+            ensemble=state,
+            realizations={q: f[f"realizations/{q}"][()] for q in QUANTITIES},
+            summary=Summary(**stats, expected_contacts=f["summary/expected_contacts"][()]),
+            analytic={q: f[f"analytic/{q}"][()] for q in QUANTITIES},
+            attrs=attrs,
+            path=path,
+            heights=heights,
+        )

@@ -10,6 +10,7 @@
 from __future__ import annotations
 
 import contextlib
+import functools
 import shlex
 import sys
 from dataclasses import dataclass, field
@@ -18,8 +19,9 @@ from pathlib import Path
 import numpy as np
 
 from . import runfile
+from ._version import __version__
 from .analytic import QUANTITIES
-from .montecarlo import DEFAULT_CHUNK, MonteCarloSpec, run_sums
+from .montecarlo import DEFAULT_CHUNK, EnsembleSums, MonteCarloSpec, run_sums
 from .params import Material, Surface
 from .statistics import Summary, compare_table, expected_values, per_realization, summarize
 from .units import parse_quantity
@@ -31,12 +33,8 @@ class Run:
 
     Attributes
     ----------
-    spec : MonteCarloSpec
-        The inputs that define the numbers.
-    n_summits : ndarray, shape (R,)
-        Summits per patch.
-    sums : ndarray, shape (R, M, 10)
-        Raw sums (:data:`mcsim.kernels.SUM_COLUMNS`, forces in N).
+    ensemble : EnsembleSums
+        The inputs (``ensemble.spec``), the summit counts and the raw sums.
     realizations : dict of ndarray
         (R, M) dimensionless curves per quantity (N_c/N; force/(A·K); μ).
     summary : Summary
@@ -49,17 +47,32 @@ class Run:
         The run file, if any.
     heights : list of ndarray or None
         Sampled heights above h_min (m), when kept.
+    complete : bool
+        False for the completed part of an unfinished run.
     """
 
-    spec: MonteCarloSpec
-    n_summits: np.ndarray
-    sums: np.ndarray
+    ensemble: EnsembleSums
     realizations: dict
     summary: Summary
     analytic: dict
     attrs: dict = field(default_factory=dict)
     path: Path | None = None
     heights: list | None = field(default=None, repr=False)
+    complete: bool = True
+
+    @property
+    def spec(self) -> MonteCarloSpec:
+        return self.ensemble.spec
+
+    @property
+    def n_summits(self) -> np.ndarray:
+        """Summits per patch."""
+        return self.ensemble.n_summits
+
+    @property
+    def sums(self) -> np.ndarray:
+        """Raw sums, shape (R, M, 10) (:data:`mcsim.kernels.SUM_COLUMNS`, forces in N)."""
+        return self.ensemble.sums
 
     @property
     def h(self) -> np.ndarray:
@@ -100,6 +113,20 @@ class Run:
         return pd.concat(frames, ignore_index=True)
 
 
+def assemble(ens: EnsembleSums, **kwargs) -> Run:
+    """Statistics and GW expectations of a complete ensemble, as a :class:`Run`."""
+    from .statistics import analytic_for
+
+    return Run(
+        ensemble=ens,
+        realizations=per_realization(ens),
+        summary=summarize(ens),
+        analytic=expected_values(ens.spec, analytic_for(ens.spec)),
+        heights=ens.heights,
+        **kwargs,
+    )
+
+
 def _api_command(**kwargs) -> str:
     shown = ", ".join(f"{k}={v!r}" for k, v in kwargs.items())
     return f"mcsim.simulate({shown})"
@@ -121,6 +148,8 @@ def simulate(
     keep_heights: bool = False,
     out: str | Path | None = None,
     overwrite: bool = False,
+    resume: bool = False,
+    checkpoint_every: float = 60.0,
     progress: bool = False,
     command: str | None = None,
 ) -> Run:
@@ -137,7 +166,8 @@ def simulate(
     realizations : int
         Independent patches.
     seed : int or None
-        Root seed; None draws fresh entropy (recorded in the result).
+        Root seed; None draws fresh entropy (recorded in the result), or, with
+        ``resume``, takes the one recorded in the file.
     law : str
         Law set (``"seed"``: the paper as written).
     count : {"poisson", "fixed"}
@@ -151,10 +181,17 @@ def simulate(
     chunk_size : int
         Summits per task; the numbers do not depend on it.
     keep_heights : bool
-        Keep the sampled heights (above h_min) in the result and file.
+        Keep the sampled heights (above h_min) in the result and file (no checkpoints).
     out : path, optional
-        Write the run to this HDF5 file (atomically; never over an existing file
-        unless ``overwrite``).
+        Write the run to this HDF5 file. While it runs, the file holds an incomplete,
+        resumable run, rewritten atomically every ``checkpoint_every`` seconds and on
+        interruption; at the end, the complete run. An existing file is refused
+        unless ``overwrite`` (or ``resume``, for an incomplete run of the same inputs).
+    resume : bool
+        Continue the incomplete run in ``out``; the result is bit-identical to an
+        uninterrupted run.
+    checkpoint_every : float
+        Seconds between checkpoints.
     progress : bool
         Show a progress bar on stderr.
     command : str, optional
@@ -164,46 +201,65 @@ def simulate(
     -------
     Run
     """
-    area_m2 = parse_quantity(area, "area", "area")
-    entropy = np.random.SeedSequence(seed).entropy
-    spec = MonteCarloSpec(surface, material, h, area_m2, realizations, entropy, law, count)
-    if out is not None:
-        runfile.check_output_path(out, overwrite)
-    bar = None
-    if progress:
-        from tqdm import tqdm
+    from .errors import ParameterError, RunFileError
 
-        total = spec.realizations * spec.expected_summits * float(surface.heights.sf(spec.h.min()))
-        bar = tqdm(
-            total=round(total), unit=" summits", unit_scale=True, file=sys.stderr, leave=False
-        )
+    area_m2 = parse_quantity(area, "area", "area")
+    if resume and out is None:
+        raise ParameterError("resume needs the run file to continue (out=...)")
     with contextlib.ExitStack() as stack:
-        if bar is not None:
-            stack.callback(bar.close)
+        previous = None
+        if out is not None:
+            out = runfile.check_output_path(out, overwrite=overwrite, resume=resume)
+            stack.enter_context(runfile.lock(out))
+            if resume:
+                previous, attrs = runfile.read_state(out)
+                if previous.complete:
+                    raise RunFileError(f"{out}: the run is already complete; nothing to resume")
+                if attrs.get("mcsim_version") != __version__:
+                    raise RunFileError(
+                        f"{out}: written by mcsim {attrs.get('mcsim_version')}; resume it with that version"
+                    )
+                seed = previous.spec.entropy if seed is None else seed
+        entropy = np.random.SeedSequence(seed).entropy
+        spec = MonteCarloSpec(surface, material, h, area_m2, realizations, entropy, law, count)
+        if previous is not None and previous.spec != spec:
+            raise ParameterError(
+                f"cannot resume {out}: {', '.join(previous.spec.differences(spec))} differ(s) from the recorded run"
+            )
+        if command is None:
+            command = _api_command(surface=surface.name or surface, material=material.name or material,
+                                   h=[float(x) for x in spec.h], area=area_m2, realizations=realizations,
+                                   seed=seed, law=law, count=count)  # fmt: skip
+        checkpoint = None
+        if out is not None and not keep_heights:
+            checkpoint = functools.partial(runfile.write_checkpoint, out, command=command)
+        if progress:
+            from tqdm import tqdm
+
+            total = (
+                spec.realizations * spec.expected_summits * float(surface.heights.sf(spec.h.min()))
+            )
+            bar = stack.enter_context(
+                tqdm(
+                    total=round(total),
+                    unit=" summits",
+                    unit_scale=True,
+                    file=sys.stderr,
+                    leave=False,
+                )
+            )
         client = scheduler
         if isinstance(scheduler, str):
             from .cluster import dask_client
 
             client = stack.enter_context(dask_client(scheduler, workers))
         ens = run_sums(spec, workers=workers, chunk_size=chunk_size, keep_heights=keep_heights,
-                       progress=bar.update if bar else None, client=client)  # fmt: skip
-    from .statistics import analytic_for
-
-    run = Run(
-        spec=spec,
-        n_summits=ens.n_summits,
-        sums=ens.sums,
-        realizations=per_realization(ens),
-        summary=summarize(ens),
-        analytic=expected_values(spec, analytic_for(spec)),
-        heights=ens.heights,
-    )
-    if out is None:
-        return run
-    if command is None:
-        command = _api_command(surface=surface.name or surface, material=material.name or material, h=[float(x) for x in spec.h],
-                               area=area_m2, realizations=realizations, seed=seed, law=law, count=count)  # fmt: skip
-    return runfile.write_run(out, run, command=command, overwrite=overwrite)
+                       progress=bar.update if progress else None, client=client, resume=previous,
+                       checkpoint=checkpoint, checkpoint_every=checkpoint_every)  # fmt: skip
+        run = assemble(ens)
+        if out is None:
+            return run
+        return runfile.write_run(out, run, command=command)
 
 
 def cli_command() -> str:

@@ -185,21 +185,8 @@ def _warn_saturation(z: np.ndarray, fraction: float) -> None:
             )
 
 
-def direct_summits(z: np.ndarray, dx: float, dy: float) -> SummitStatistics:
-    """Summits as 8-neighbour local maxima of a levelled map (rule in the module docstring).
-
-    Parameters
-    ----------
-    z : ndarray
-        Levelled height map, m (NaN allowed).
-    dx, dy : float
-        Pixel size along columns and rows, m.
-
-    Returns
-    -------
-    SummitStatistics
-        NaN fields where no summit is found.
-    """
+def _peaks(z: np.ndarray):
+    """Interior pixels ``c``, a neighbour accessor, the candidate mask and the summit mask."""
     c = z[1:-1, 1:-1]
 
     def nb(di: int, dj: int) -> np.ndarray:
@@ -216,6 +203,43 @@ def direct_summits(z: np.ndarray, dx: float, dy: float) -> SummitStatistics:
             peak &= c > nb(*d)
         for d in after:
             peak &= c >= nb(*d)
+    return c, nb, finite, peak
+
+
+def summit_heights(z) -> np.ndarray:
+    """Heights of the direct-route summits (8-neighbour maxima, module docstring).
+
+    Parameters
+    ----------
+    z : array_like
+        Levelled height map (see :func:`level`), any unit; NaN allowed.
+
+    Returns
+    -------
+    ndarray
+        One height per summit, same unit, in raster order.
+    """
+    c, _, _, peak = _peaks(np.asarray(z, dtype=float))
+    return c[peak]
+
+
+def direct_summits(z: np.ndarray, dx: float, dy: float) -> SummitStatistics:
+    """Summits as 8-neighbour local maxima of a levelled map (rule in the module docstring).
+
+    Parameters
+    ----------
+    z : ndarray
+        Levelled height map, m (NaN allowed).
+    dx, dy : float
+        Pixel size along columns and rows, m.
+
+    Returns
+    -------
+    SummitStatistics
+        NaN fields where no summit is found.
+    """
+    c, nb, finite, peak = _peaks(z)
+    with np.errstate(invalid="ignore"):
         # κ = −(z_xx + z_yy)/2, central second differences
         z_xx = (nb(0, 1) - 2 * c + nb(0, -1)) / dx**2
         z_yy = (nb(1, 0) - 2 * c + nb(-1, 0)) / dy**2

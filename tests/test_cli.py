@@ -159,24 +159,41 @@ def test_installed_entry_point_reports_version_and_fails_cleanly():
     assert done.returncode == 2 and "Traceback" not in done.stderr
 
 
-def test_ctrl_c_leaves_no_file_and_keeps_the_earlier_run(tmp_path):
-    """SIGINT during a long simulate: exit 130, the old run file byte-identical, no temporaries."""
+def test_ctrl_c_leaves_a_resumable_run_that_resumes_to_identical_numbers(tmp_path):
+    """SIGINT during a long simulate: exit 130, an incomplete run at the path (another run
+    in the folder untouched, no temporaries); --resume then gives the uninterrupted datasets."""
+    import h5py
+
+    from mcsim.runfile import read_state
+    from mcsim.simulation import simulate
+
     exe = os.path.join(os.path.dirname(sys.executable), "mcsim")
+    other = tmp_path / "other.h5"
+    subprocess.run([exe, "simulate", "--surface", "rough", "--area", "1e-10", "--h=0", "--out", str(other)],
+                   check=True, capture_output=True)  # fmt: skip
+    before = other.read_bytes()
     out = tmp_path / "t.h5"
-    base = [exe, "simulate", "--surface", "smooth", "--h=4:-1:51", "--seed", "1", "--out", str(out)]
-    subprocess.run([*base, "--area", "1e-10"], check=True, capture_output=True)
-    before = out.read_bytes()
-    proc = subprocess.Popen(
-        [*base, "--area", "1e-4", "--overwrite"], stderr=subprocess.PIPE, text=True
-    )
-    time.sleep(4.0)  # past start-up and kernel compilation, well inside the ~minutes of work
+    args = ["simulate", "--surface", "smooth", "--h=2:-1:7", "--area", "1e-8", "--realizations", "300",
+            "--seed", "3", "--workers", "1", "--out", str(out)]  # fmt: skip
+    proc = subprocess.Popen([exe, *args], stderr=subprocess.PIPE, text=True)
+    time.sleep(3.0)  # past start-up and kernel compilation, well inside the ~10 s of work
     assert proc.poll() is None, "the long run finished before it could be interrupted"
     proc.send_signal(signal.SIGINT)
     _, err = proc.communicate(timeout=60)
     assert proc.returncode == 130, err
-    assert "interrupted" in err
-    assert out.read_bytes() == before
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["t.h5"]
+    assert "--resume" in err
+    state, _ = read_state(out)
+    assert not state.complete and state.done_blocks.sum() > 0
+    assert other.read_bytes() == before
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["other.h5", "t.h5"]
+
+    assert main([*args, "--resume", "--quiet"]) == 0
+    reference = simulate(SURFACES["smooth"], MATERIALS["silicon"], np.linspace(2, -1, 7), 1e-8,
+                         realizations=300, seed=3)  # fmt: skip
+    with h5py.File(out) as f:
+        assert f.attrs["complete"]
+        np.testing.assert_array_equal(f["realizations/sums"][()], reference.sums)
+        np.testing.assert_array_equal(f["summary/se/mu"][()], reference.summary.se["mu"])
 
 
 def test_unreachable_dask_scheduler_is_a_one_line_error(capsys, tmp_path):

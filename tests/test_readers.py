@@ -195,3 +195,51 @@ def test_unknown_map_extension_is_refused(tmp_path):
 def test_missing_file_is_named(tmp_path):
     with pytest.raises(ReaderError, match=r"nope\.npy: no such file"):
         read_height_map(tmp_path / "nope.npy", unit="nm", pixel_size=1)
+
+
+# -- real files from AFMReader 0.0.7 (tests/conftest.py fetches them) ------------------
+
+
+def test_ibw_reads_asylum_height_in_metres_like_igor2_and_afmreader(afm_resources):
+    from igor2 import binarywave
+
+    path = afm_resources / "sample_0.ibw"
+    m = read_height_map(path)
+    wave = binarywave.load(str(path))["wave"]
+    # layer 0 is 'HeightTracee'; Igor stores w[x, y]: transposed to rows along y
+    np.testing.assert_array_equal(m.heights, wave["wData"][:, :, 0].T.astype(float))
+    assert m.channel == "HeightTracee" and m.shape == (512, 512)
+    # AFMReader's own test: the same layer read as metres sums to -218091520 nm (float32 sum)
+    assert m.heights.sum() * 1e9 == pytest.approx(-218091520.0, rel=1e-6)
+    # Asylum's wave scaling: ScanSize (8e-7 m, in the note) over points - 1
+    assert m.dx == pytest.approx(8e-7 / 511, rel=1e-7) and m.dy == m.dx
+
+
+def test_ibw_caller_unit_overrides_the_asylum_default(afm_resources):
+    in_nm = read_height_map(afm_resources / "sample_0.ibw", unit="nm")
+    in_m = read_height_map(afm_resources / "sample_0.ibw")
+    np.testing.assert_allclose(in_nm.heights, in_m.heights * 1e-9, rtol=1e-15)
+    assert "caller" in in_nm.notes[0]
+
+
+def test_gwy_matches_afmreader_on_a_real_file(afm_resources):
+    from mcsim.readers import gwy
+
+    m = gwy.read(afm_resources / "sample_0.gwy", channel="ZSensor")
+    # AFMReader's own .gwy parser (its test_load_gwy): sum in nm and pixel size in nm
+    assert m.heights.sum() * 1e9 == pytest.approx(33836850.232917726, rel=1e-9)
+    assert m.dx * 1e9 == pytest.approx(0.8468632812499975, rel=1e-12)
+    assert m.shape == (512, 512)
+
+
+def test_gwy_default_channel_is_height(afm_resources):
+    assert read_height_map(afm_resources / "sample_0.gwy").channel == "Height"
+
+
+@pytest.mark.parametrize("name", ["sample_0.gwy", "sample_0.ibw"])
+def test_truncated_real_binary_file_is_refused(afm_resources, tmp_path, name):
+    data = (afm_resources / name).read_bytes()
+    cut = tmp_path / name
+    cut.write_bytes(data[: len(data) // 3])
+    with pytest.raises(ReaderError, match=f"{name}: not a readable"):
+        read_height_map(cut)

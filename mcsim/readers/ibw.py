@@ -73,13 +73,34 @@ def read(path: Path | str, channel: str | None = None, unit: str | None = None) 
     else:
         raise ReaderError(f"{path}: no channel {channel!r} (channels: {', '.join(labels)})")
     z_unit = unit or _text(wave.get("data_units") or header.get("dataUnits", b""))
+    origin = "caller" if unit else "wave"
+    if not z_unit and _is_asylum(wave) and labels[index].lower().startswith(_ASYLUM_LENGTHS):
+        z_unit, origin = "m", "Asylum Research files store SI; the wave names none"
     if not z_unit:
         raise ReaderError(f"{path}: missing height unit: pass --unit")
     z = check_heights(path, data[:, :, index].T) * length_factor(z_unit, path, "height unit")
+    xy_units = [_text(u) for u in header["dimUnits"][:2]]
     sfa = np.asarray(header["sfA"], dtype=float)
-    dx, dy = float(sfa[0]), float(sfa[1])
+    dx, dy = (
+        float(sfa[k]) * length_factor(xy_units[k] or "m", path, "lateral unit") for k in (0, 1)
+    )
     if not (dx > 0 and dy > 0):
         raise ReaderError(f"{path}: missing pixel size (wave scaling {dx}, {dy})")
     return HeightMap(
-        z, dx, dy, str(path), channel=labels[index], notes=(f"height unit {z_unit!r}",)
+        z,
+        dx,
+        dy,
+        str(path),
+        channel=labels[index],
+        notes=(f"height unit {z_unit!r} ({origin})", "pixel size from the wave scaling sfA"),
     )
+
+
+#: Asylum channel labels that hold lengths (heights, Z sensor, amplitude).
+_ASYLUM_LENGTHS = ("height", "zsensor", "amplitude")
+
+
+def _is_asylum(wave) -> bool:
+    """Asylum Research's wave note starts with its scan parameters."""
+    note = wave.get("note") or b""
+    return isinstance(note, bytes) and note.startswith(b"ScanSize:")

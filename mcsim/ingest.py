@@ -1,0 +1,560 @@
+"""From a measured file to a surface file: ``mcsim ingest``.
+
+:func:`ingest_file` reads a height map (any format of :mod:`mcsim.readers`) or a text
+histogram of heights, and returns an :class:`IngestResult`: what was read, the height
+statistics, the summit statistics by both routes of :mod:`mcsim.topography`, and the
+GW :class:`~mcsim.params.Surface` built from them. :meth:`IngestResult.write_surface`
+writes that surface as a TOML file that ``mcsim analytic --surface`` and ``mcsim
+simulate --surface`` read (:mod:`mcsim.config`).
+
+What the surface file holds
+---------------------------
+* ``R`` and ``eta`` from the chosen route (``direct``: 8-neighbour summits, default;
+  ``spectral``: Nayak/McCool), and ``sigma`` = that route's σ_s.
+* The *shape* of the summit-height distribution, as a measured histogram: the heights
+  of the direct-route summits (default), or, with ``heights="map"``, of all pixels of
+  the levelled map. It is written to a companion CSV file next to the TOML file,
+  ``<stem>-heights.csv`` (three columns ``left [nm], right [nm], count``), and named
+  by a path relative to the TOML file's folder (``[surface.heights] file = ...``), so
+  the two files move together. The histogram is standardized when read; ``sigma``
+  sets its scale (:mod:`mcsim.config`).
+* Comments with the provenance: source file and channel, creation time, mcsim
+  version, command line, route, levelling, pixel size, both routes' numbers and the
+  caveat that they depend on the sampling interval.
+
+A text histogram as input (two or three columns, see :mod:`mcsim.readers.histogram`)
+carries no summit radius or density: the caller gives ``R`` and ``eta``, and
+``sigma`` is the histogram's own. A text file with more than three numeric columns
+(or a ``.asc``/``.xyz`` file) is a height map.
+
+Summit statistics depend strongly on the pixel size and the instrument bandwidth
+(PHYSICS.md, "Summit statistics from a height map"): they describe the surface *as
+sampled*; the pixel size is written next to them everywhere.
+"""
+
+from __future__ import annotations
+
+import datetime as dt
+import json
+import math
+import re
+import warnings
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from ._version import __version__
+from .empirical import Empirical
+from .errors import MCSimError, ParameterError
+from .params import Surface
+from .readers import ReaderError, read_height_map, read_histogram
+from .readers import histogram as _histogram_format
+from .topography import TopographyResult, summit_heights, summit_statistics
+from .topography import level as level_heights
+
+#: Levelling choices: name → degree of the subtracted polynomial (``none``: the mean only).
+LEVELS = {"none": 0, "plane": 1, **{f"poly{n}": n for n in range(2, 6)}}
+ROUTES = ("direct", "spectral")
+HEIGHTS = ("summits", "map")
+#: Largest number of bins of a written histogram (Freedman–Diaconis otherwise).
+MAX_BINS = 256
+_FORMAT_NAMES = {
+    ".gwy": "Gwyddion .gwy",
+    ".ibw": "Igor binary wave .ibw",
+    ".nid": "Nanosurf .nid",
+    ".npy": "NumPy .npy",
+    ".xyz": "XYZ text",
+}
+_SPLIT = re.compile(r"[,;\s]+")
+
+
+@dataclass(frozen=True)
+class HeightSummary:
+    """Moments and range of a set of heights.
+
+    Attributes
+    ----------
+    count : int
+        Number of heights.
+    mean, sigma : float
+        Mean and population standard deviation, m.
+    skewness : float
+        Third standardized moment (0 for a Gaussian).
+    kurtosis : float
+        Fourth standardized moment, Pearson's (3 for a Gaussian).
+    minimum, maximum : float
+        Range, m.
+    """
+
+    count: int
+    mean: float
+    sigma: float
+    skewness: float
+    kurtosis: float
+    minimum: float
+    maximum: float
+
+    @classmethod
+    def of(cls, z) -> HeightSummary:
+        """Summary of the finite values of ``z`` (m)."""
+        z = np.asarray(z, dtype=float)
+        z = z[np.isfinite(z)]
+        mean, sigma = float(np.mean(z)), float(np.std(z))
+        s = (z - mean) / sigma if sigma > 0 else np.zeros_like(z)
+        return cls(
+            count=int(z.size),
+            mean=mean,
+            sigma=sigma,
+            skewness=float(np.mean(s**3)),
+            kurtosis=float(np.mean(s**4)),
+            minimum=float(z.min()),
+            maximum=float(z.max()),
+        )
+
+    def line(self) -> str:
+        """One line, heights in nm."""
+        return (
+            f"mean {self.mean * 1e9:.4g} nm, sigma {self.sigma * 1e9:.4g} nm, "
+            f"skewness {self.skewness:.3g}, kurtosis {self.kurtosis:.3g} (Gaussian: 0, 3), "
+            f"min {self.minimum * 1e9:.4g} nm, max {self.maximum * 1e9:.4g} nm"
+        )
+
+
+@dataclass(frozen=True)
+class IngestResult:
+    """What :func:`ingest_file` read and derived.
+
+    Attributes
+    ----------
+    source : Path
+        The input file.
+    format : str
+        File format as read.
+    channel : str
+        Channel read ("" for single-channel formats and histograms).
+    reader_notes : tuple of str
+        What the reader assumed (units, scaling).
+    surface : Surface
+        The GW surface written by :meth:`write_surface`.
+    edges : ndarray
+        Edges of the written histogram, m (heights above the mean plane).
+    counts : ndarray
+        Counts (or densities per m, if ``density``) of the written histogram.
+    density : bool
+        Whether ``counts`` are densities (only for a histogram read as densities).
+    heights_from : str
+        What the histogram describes (``"direct-route summit heights"``, ...).
+    route : str
+        Route of ``R``, ``eta`` and ``sigma`` (``direct``, ``spectral``, or ``user``
+        for a histogram input).
+    level : str
+        Levelling applied to a map (a key of :data:`LEVELS`); "" for a histogram.
+    shape : tuple of int or None
+        (rows, columns) of a map.
+    dx, dy : float
+        Pixel size, m (NaN for a histogram).
+    n_nan : int
+        Non-finite pixels dropped.
+    map_heights : HeightSummary or None
+        Heights of the levelled map.
+    summit_heights : HeightSummary or None
+        Heights of the direct-route summits (or of the histogram input).
+    topography : TopographyResult or None
+        Both routes' summit statistics of a map.
+    warnings : tuple of str
+        Warnings raised while analysing (e.g. saturation).
+    """
+
+    source: Path
+    format: str
+    channel: str
+    reader_notes: tuple[str, ...]
+    surface: Surface
+    edges: np.ndarray
+    counts: np.ndarray
+    density: bool
+    heights_from: str
+    route: str
+    level: str
+    shape: tuple[int, int] | None
+    dx: float
+    dy: float
+    n_nan: int
+    map_heights: HeightSummary | None
+    summit_heights: HeightSummary | None
+    topography: TopographyResult | None
+    warnings: tuple[str, ...] = ()
+
+    @property
+    def distribution(self) -> Empirical:
+        """The measured height distribution (standardized, with its σ and mean in m)."""
+        return self.surface.heights
+
+    @property
+    def gaussian_surface(self) -> Surface:
+        """The same (σ, R, η) with Gaussian summit heights: the GW reference."""
+        s = self.surface
+        return Surface(sigma=s.sigma, R=s.R, eta=s.eta, name=f"{s.name} (Gaussian)")
+
+    def summary_lines(self) -> list[str]:
+        """What was read and derived, for a terminal (lengths in nm and µm)."""
+        s = self.surface
+        lines = [f"read       {self.source} ({self.format}{self._channel()})"]
+        lines += [f"reader     {note}" for note in self.reader_notes]
+        if self.topography is not None:
+            rows, cols = self.shape
+            lines += [
+                f"map        {cols} x {rows} pixels (x by y), {cols * self.dx * 1e6:.4g} um x "
+                f"{rows * self.dy * 1e6:.4g} um, pixel size {self.dx * 1e9:.4g} nm x {self.dy * 1e9:.4g} nm",
+                f"pixels     {self.n_nan} NaN of {rows * cols} dropped",
+                f"levelling  {self.level}: least-squares polynomial of degree {LEVELS[self.level]} "
+                "subtracted; heights from the mean plane",
+                f"heights    levelled map: {self.map_heights.line()}",
+                f"summits    direct route, {self.summit_heights.count} summits: "
+                f"{self.summit_heights.line()}",
+                "route        eta (um^-2)     R (um)  sigma_s (nm)  mean height (nm)   summits",
+            ]
+            for name in ROUTES:
+                r = getattr(self.topography, name)
+                lines.append(
+                    f"  {name:<9}  {r.eta * 1e-12:11.5g}  {r.R * 1e6:9.4g}  {r.sigma_s * 1e9:12.4g}"
+                    f"  {r.mean_height * 1e9:16.4g}  {r.count:8.6g}"
+                )
+            lines.append(
+                f"caveat     summit statistics depend strongly on the sampling interval "
+                f"(pixel size {self.dx * 1e9:.4g} nm) and the instrument bandwidth (tip, noise)"
+            )
+        else:
+            lines.append(f"histogram  {self.edges.size - 1} bins: {self.summit_heights.line()}")
+        lines += [f"warning    {w}" for w in self.warnings]
+        lines.append(
+            f"surface    sigma = {s.sigma * 1e9:.4g} nm, R = {s.R * 1e6:.4g} um, "
+            f"eta = {s.eta * 1e-12:.5g} um^-2 (route {self.route}); heights: {self.heights_from}, "
+            f"{self.edges.size - 1} bins"
+        )
+        return lines
+
+    def _channel(self) -> str:
+        return f", channel {self.channel!r}" if self.channel else ""
+
+    def companion_paths(self, path: str | Path) -> dict[str, Path]:
+        """Files written next to the surface file ``path``: histogram CSV and figures."""
+        path = Path(path)
+        return {
+            "histogram": path.with_name(f"{path.stem}-heights.csv"),
+            "histogram_figure": path.with_name(f"{path.stem}-heights.png"),
+            "comparison_figure": path.with_name(f"{path.stem}-gw.png"),
+        }
+
+    def write_surface(
+        self, path: str | Path, *, overwrite: bool = False, command: str | None = None
+    ) -> list[Path]:
+        """Write the surface TOML file and its histogram CSV (module docstring).
+
+        Parameters
+        ----------
+        path : path-like
+            The ``.toml`` file; the histogram goes to ``<stem>-heights.csv`` beside it.
+        overwrite : bool
+            Replace existing files; otherwise an existing one is an error.
+        command : str, optional
+            Command line recorded in the comments.
+
+        Returns
+        -------
+        list of Path
+            The TOML file and the CSV file.
+
+        Raises
+        ------
+        MCSimError
+            Not a ``.toml`` path, a missing folder, or an existing file without
+            ``overwrite``.
+        """
+        path = Path(path)
+        if path.suffix != ".toml":
+            raise ParameterError(f"{path}: the surface file must end in .toml")
+        csv = self.companion_paths(path)["histogram"]
+        check_new_files([path, csv], overwrite)
+        header = self._provenance(command)
+        csv.write_text(self._histogram_text(header), encoding="utf-8")
+        path.write_text(self._toml_text(header, csv.name), encoding="utf-8")
+        return [path, csv]
+
+    def _provenance(self, command: str | None) -> list[str]:
+        now = dt.datetime.now(dt.UTC).isoformat(timespec="seconds")
+        lines = [
+            f"written by mcsim {__version__} (mcsim ingest) on {now}",
+            f"source: {self.source.resolve()} ({self.format}{self._channel()})",
+        ]
+        if command:
+            lines.append(f"command: {command}")
+        if self.topography is not None:
+            rows, cols = self.shape
+            lines += [
+                f"map: {cols} x {rows} pixels, pixel size {self.dx * 1e9:.6g} nm x {self.dy * 1e9:.6g} nm, "
+                f"{self.n_nan} NaN pixels dropped, levelling {self.level} (degree {LEVELS[self.level]})",
+            ]
+        return lines
+
+    def _histogram_text(self, header: list[str]) -> str:
+        weight = "density [1/nm]" if self.density else "count"
+        out = [f"# {line}" for line in header]
+        out += [
+            f"# {self.heights_from}, heights above the mean plane",
+            f"left [nm], right [nm], {weight}",
+        ]
+        values = self.counts * 1e-9 if self.density else self.counts
+        for left, right, w in zip(self.edges[:-1] * 1e9, self.edges[1:] * 1e9, values):
+            out.append(f"{float(left)!r}, {float(right)!r}, {_number(w)}")
+        return "\n".join(out) + "\n"
+
+    def _toml_text(self, header: list[str], csv_name: str) -> str:
+        s = self.surface
+        out = [f"# {line}" for line in header]
+        if self.topography is not None:
+            out += [
+                f"# route: {self.route} (R, eta and sigma below); both routes, with this sampling:",
+                *(
+                    f"#   {name:<8}: eta = {r.eta * 1e-12:.6g} um^-2, R = {r.R * 1e6:.6g} um, "
+                    f"sigma_s = {r.sigma_s * 1e9:.6g} nm, {r.count:.6g} summits"
+                    for name in ROUTES
+                    for r in [getattr(self.topography, name)]
+                ),
+                "# Summit statistics depend strongly on the sampling interval (pixel size) and the",
+                "# instrument bandwidth: they describe the surface as sampled, not the surface alone.",
+            ]
+        else:
+            out.append("# R and eta: given by the user; sigma: the histogram's own")
+        out += [
+            f"# heights: {self.heights_from}, histogram in {csv_name} (path relative to this file)",
+            "# Use: mcsim analytic --surface THIS.toml --h=4:-1:51  (material: --material, default silicon)",
+            "",
+            "[surface]",
+            f"name = {json.dumps(s.name)}",
+            f'sigma = "{s.sigma * 1e9:.12g} nm"',
+            f'R = "{s.R * 1e6:.12g} um"',
+            f'eta = "{s.eta * 1e-12:.12g} um^-2"',
+            "",
+            "[surface.heights]",
+            f"file = {json.dumps(csv_name)}",
+            'unit = "nm"',
+        ]
+        return "\n".join(out) + "\n"
+
+
+def _number(w: float) -> str:
+    return str(int(w)) if float(w).is_integer() else repr(float(w))
+
+
+def check_new_files(paths, overwrite: bool) -> None:
+    """Refuse to replace existing files (unless ``overwrite``) or write into a missing folder."""
+    for p in paths:
+        p = Path(p)
+        if p.exists() and not overwrite:
+            raise MCSimError(f"{p}: file exists (pass --overwrite to replace it)")
+        if not p.parent.is_dir():
+            raise MCSimError(f"{p}: folder {p.parent} does not exist")
+
+
+def _is_histogram_file(path: Path) -> bool:
+    """A text histogram: ``.hist``/``.tsv``, or a text file with at most 3 numeric columns."""
+    suffix = path.suffix.lower()
+    if suffix in (".hist", ".tsv"):
+        return True
+    if suffix not in _HISTOGRAM_OR_MATRIX:
+        return False
+    try:
+        text = path.read_bytes()[:65536].decode("utf-8", errors="replace")
+    except OSError:
+        return False  # the reader names the problem
+    for line in text.splitlines():
+        cells = [c for c in _SPLIT.split(line.strip()) if c]
+        if not cells or line.lstrip().startswith("#"):
+            continue
+        try:
+            [float(c) for c in cells]
+        except ValueError:
+            continue
+        return len(cells) <= 3
+    return True
+
+
+_HISTOGRAM_OR_MATRIX = tuple(set(_histogram_format.EXTENSIONS) - {".hist", ".tsv"})
+
+
+def _histogram_bins(z: np.ndarray) -> np.ndarray:
+    edges = np.histogram_bin_edges(z, bins="fd")
+    if edges.size - 1 > MAX_BINS or edges.size < 3:
+        edges = np.histogram_bin_edges(z, bins=min(MAX_BINS, max(2, int(np.sqrt(z.size)))))
+    return edges
+
+
+def _check_choice(name: str, value: str, allowed) -> None:
+    if value not in allowed:
+        raise ParameterError(f"`{name}` must be one of {', '.join(allowed)}, got {value!r}")
+
+
+def ingest_file(
+    path: str | Path,
+    *,
+    unit: str | None = None,
+    pixel_size: float | tuple[float, float] | None = None,
+    route: str = "direct",
+    level: str = "plane",
+    heights: str = "summits",
+    R: float | None = None,
+    eta: float | None = None,
+    name: str | None = None,
+) -> IngestResult:
+    """Read a height map or a height histogram and derive a GW surface from it.
+
+    Parameters
+    ----------
+    path : path-like
+        Height map (``.gwy .ibw .nid .npy .xyz`` or a text matrix) or text histogram.
+    unit : str, optional
+        Height unit for files that store none (e.g. ``"nm"``).
+    pixel_size : float or (float, float), optional
+        Pixel size, m, for maps that store none.
+    route : {"direct", "spectral"}
+        Summit statistics written as ``sigma``, ``R``, ``eta`` (maps only).
+    level : str
+        A key of :data:`LEVELS`: ``"plane"`` (default), ``"none"`` (mean only),
+        ``"poly2"`` ... ``"poly5"``.
+    heights : {"summits", "map"}
+        Histogram of the direct-route summit heights (default) or of all pixels.
+    R : float, optional
+        Summit radius, m: required for a histogram input, refused for a map.
+    eta : float, optional
+        Summit density, m⁻²: required for a histogram input, refused for a map.
+    name : str, optional
+        Surface name; the file's stem by default.
+
+    Returns
+    -------
+    IngestResult
+
+    Raises
+    ------
+    MCSimError
+        Every problem, as one message that starts with the file name.
+    """
+    _check_choice("route", route, ROUTES)
+    _check_choice("level", level, tuple(LEVELS))
+    _check_choice("heights", heights, HEIGHTS)
+    path = Path(path)
+    name = path.stem if name is None else name
+    if _is_histogram_file(path):
+        return _ingest_histogram(path, unit, R, eta, name)
+    if R is not None or eta is not None:
+        raise ParameterError(
+            f"{path}: R and eta come from the map's summits: give them only with a histogram file"
+        )
+    hmap = read_height_map(path, unit=unit, pixel_size=pixel_size)
+    try:
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            topo = summit_statistics(hmap.heights, hmap.dx, hmap.dy, order=LEVELS[level])
+        levelled = level_heights(hmap.heights, LEVELS[level])
+        peaks = summit_heights(levelled)
+        if peaks.size < 2:
+            raise ParameterError(f"found {peaks.size} summit(s): too few for a distribution")
+        sample = peaks if heights == "summits" else levelled[np.isfinite(levelled)]
+        edges = _histogram_bins(sample)
+        counts, _ = np.histogram(sample, bins=edges)
+        shape = Empirical.from_histogram(edges, counts, source=f"{path} ({heights})")
+        stats = getattr(topo, route)
+        if not (math.isfinite(stats.sigma_s) and stats.sigma_s > 0 and stats.R > 0):
+            raise ParameterError(
+                f"the {route} route gives sigma_s = {stats.sigma_s:.3g} m, R = {stats.R:.3g} m: "
+                "not a summit population (try --route direct or another --level)"
+            )
+        surface = Surface(sigma=stats.sigma_s, R=stats.R, eta=stats.eta, heights=shape, name=name)
+    except ReaderError:
+        raise
+    except MCSimError as err:
+        raise type(err)(f"{path}: {err}") from None
+    return IngestResult(
+        source=path,
+        format=_FORMAT_NAMES.get(path.suffix.lower(), "text matrix"),
+        channel=hmap.channel,
+        reader_notes=hmap.notes,
+        surface=surface,
+        edges=np.asarray(edges, dtype=float),
+        counts=counts.astype(float),
+        density=False,
+        heights_from=(
+            "direct-route summit heights"
+            if heights == "summits"
+            else "all heights of the levelled map"
+        ),
+        route=route,
+        level=level,
+        shape=hmap.shape,
+        dx=hmap.dx,
+        dy=hmap.dy,
+        n_nan=topo.n_nan,
+        map_heights=HeightSummary.of(levelled),
+        summit_heights=HeightSummary.of(peaks),
+        topography=topo,
+        warnings=tuple(str(w.message) for w in caught),
+    )
+
+
+def _histogram_summary(edges, weights, density: bool, sigma: float) -> HeightSummary:
+    """Exact moments of the piecewise-uniform density of a histogram (as :mod:`mcsim.empirical`)."""
+    width = np.diff(edges)
+    mass = weights * width if density else weights
+    p = mass / mass.sum()
+    c = (edges[:-1] + edges[1:]) / 2
+    mean = float(np.sum(p * c))
+    d = c - mean
+    # moments of a uniform density on [c − w/2, c + w/2] about the mean
+    m3 = np.sum(p * (d**3 + d * width**2 / 4))
+    m4 = np.sum(p * (d**4 + d**2 * width**2 / 2 + width**4 / 80))
+    occupied = np.flatnonzero(mass > 0)
+    return HeightSummary(
+        count=0 if density else round(float(mass.sum())),
+        mean=mean,
+        sigma=sigma,
+        skewness=float(m3 / sigma**3),
+        kurtosis=float(m4 / sigma**4),
+        minimum=float(edges[occupied[0]]),
+        maximum=float(edges[occupied[-1] + 1]),
+    )
+
+
+def _ingest_histogram(path: Path, unit, R, eta, name) -> IngestResult:
+    hist = read_histogram(path, unit=unit)
+    emp = hist.to_empirical()
+    if R is None or eta is None:
+        raise ParameterError(
+            f"{path}: a height histogram carries no summit radius or density: pass --R and --eta"
+        )
+    try:
+        surface = Surface(sigma=emp.sigma, R=R, eta=eta, heights=emp, name=name)
+    except MCSimError as err:
+        raise type(err)(f"{path}: {err}") from None
+    summary = _histogram_summary(hist.edges, hist.weights, hist.density, emp.sigma)
+    return IngestResult(
+        source=path,
+        format="text histogram",
+        channel="",
+        reader_notes=hist.notes,
+        surface=surface,
+        edges=hist.edges,
+        counts=np.asarray(hist.weights, dtype=float),
+        density=hist.density,
+        heights_from=f"histogram read from {path.name}",
+        route="user",
+        level="",
+        shape=None,
+        dx=math.nan,
+        dy=math.nan,
+        n_nan=0,
+        map_heights=None,
+        summit_heights=summary,
+        topography=None,
+    )
