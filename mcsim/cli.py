@@ -100,7 +100,7 @@ def _print_rows(
 
     def cell(v):
         if isinstance(v, float):
-            return "" if v != v else f"{v:.6g}"
+            return "undefined" if v != v else f"{v:.6g}"
         return str(v)
 
     table = [[cell(r.get(c, "")) for c in columns] for r in rows]
@@ -373,7 +373,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument(
         "--chunk-size",
         type=int,
-        default=1 << 20,
+        default=1 << 18,
         help="summits per task (results do not depend on it)",
     )
     p.add_argument(

@@ -90,19 +90,14 @@ class Gaussian:
     def sample_above(self, n: int, s_min: float, rng: np.random.Generator) -> np.ndarray:
         if s_min == -np.inf:
             return rng.standard_normal(n)
-        p = float(self.sf(s_min))
         if s_min > 0:
+            p = float(self.sf(s_min))
             # Inverse transform on the upper tail: sf(s) = u·p with u ~ U(0, 1].
             return -special.ndtri((1.0 - rng.random(n)) * p)
-        # Rejection from the full normal: acceptance p >= 1/2.
-        out = np.empty(n)
-        filled = 0
-        while filled < n:
-            draw = rng.standard_normal(int((n - filled) / p * 1.05) + 16)
-            keep = draw[draw > s_min][: n - filled]
-            out[filled : filled + keep.size] = keep
-            filled += keep.size
-        return out
+        # Rejection from the full normal, compiled: acceptance p >= 1/2.
+        from ._rejection import truncated_standard_normal
+
+        return truncated_standard_normal(rng, float(s_min), np.empty(n))
 
     def gw_integrals(self, g: LawIntegrand, h: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Gaussian partial expectations by Gauss–Legendre quadrature in u = √Δ.

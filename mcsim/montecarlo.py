@@ -42,7 +42,7 @@ from .params import Material, Surface, check_range
 BLOCK = 1 << 16
 
 #: Default number of summits handled by one task (a whole number of blocks).
-DEFAULT_CHUNK = 1 << 20
+DEFAULT_CHUNK = 1 << 18
 
 COUNT_MODES = ("poisson", "fixed")
 

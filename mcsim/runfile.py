@@ -28,8 +28,8 @@ Guarantees:
   (``complete = False``, sums of the blocks done so far), which ``--resume`` continues;
 * a complete run is never replaced without ``overwrite``; a lock file
   (``<name>.lock``) keeps two processes from writing the same path;
-* ``checksum`` (SHA-256 over every dataset's name, shape, type and bytes) and the
-  shapes are checked on every read: a truncated or edited file is refused.
+* ``checksum`` (SHA-256 over every dataset and attribute) and the shapes are checked
+  on every read: a truncated or edited file is refused.
 """
 
 from __future__ import annotations
@@ -39,6 +39,7 @@ import datetime as _dt
 import hashlib
 import json
 import os
+import re
 import socket
 import tempfile
 from pathlib import Path
@@ -107,6 +108,8 @@ def lock(path: str | Path):
         with os.fdopen(fd, "w") as f:
             f.write(me)
         break
+    for stale in Path(path).parent.glob(f".{Path(path).name}.*.tmp"):
+        stale.unlink(missing_ok=True)  # left by a writer that was killed; we hold the lock now
     try:
         yield
     finally:
@@ -150,14 +153,19 @@ def _dataset(f, name: str, data, unit: str, description: str, **options):
 
 
 def _checksum(f) -> str:
-    """SHA-256 over every dataset's name, shape, dtype and bytes, in name order."""
+    """SHA-256 over every dataset (name, shape, dtype, bytes) and every attribute but
+    the checksum itself, in name order."""
     digest = hashlib.sha256()
-    names: list[str] = []
-    f.visit(lambda name: names.append(name) if hasattr(f[name], "shape") else None)
+    names: list[str] = [""]
+    f.visit(names.append)
     for name in sorted(names):
-        data = np.ascontiguousarray(f[name][()])
-        digest.update(f"{name}|{data.shape}|{data.dtype.str}|".encode())
-        digest.update(data.tobytes())
+        obj = f[name] if name else f
+        for key in sorted(k for k in obj.attrs if k != "checksum"):
+            digest.update(f"{name}@{key}={np.asarray(obj.attrs[key]).tolist()!r}|".encode())
+        if hasattr(obj, "shape"):
+            data = np.ascontiguousarray(obj[()])
+            digest.update(f"{name}|{data.shape}|{data.dtype.str}|".encode())
+            digest.update(data.tobytes())
     return digest.hexdigest()
 
 
@@ -219,12 +227,20 @@ def _atomic_write(path: Path, fill) -> None:
         with open(tmp, "rb") as f:
             os.fsync(f.fileno())
         os.replace(tmp, path)
-    except OSError as err:
+    except (OSError, RuntimeError) as err:  # h5py reports a failed flush as RuntimeError
         Path(tmp).unlink(missing_ok=True)
-        raise RunFileError(f"{path}: cannot write the run file ({err.strerror or err})") from None
+        raise RunFileError(f"{path}: cannot write the run file ({_reason(err)})") from None
     except BaseException:
         Path(tmp).unlink(missing_ok=True)
         raise
+
+
+def _reason(err: Exception) -> str:
+    """The system's words for a failed write, from an OSError or HDF5's error text."""
+    if getattr(err, "strerror", None):
+        return err.strerror
+    found = re.search(r"error message = '([^']*)'", str(err))
+    return found[1] if found else str(err).splitlines()[0]
 
 
 def write_checkpoint(path: str | Path, state: EnsembleSums, *, command: str) -> None:

@@ -173,10 +173,14 @@ def test_ctrl_c_leaves_a_resumable_run_that_resumes_to_identical_numbers(tmp_pat
                    check=True, capture_output=True)  # fmt: skip
     before = other.read_bytes()
     out = tmp_path / "t.h5"
-    args = ["simulate", "--surface", "smooth", "--h=2:-1:7", "--area", "1e-8", "--realizations", "300",
+    args = ["simulate", "--surface", "smooth", "--h=2:-1:7", "--area", "1e-8", "--realizations", "500",
             "--seed", "3", "--workers", "1", "--out", str(out)]  # fmt: skip
-    proc = subprocess.Popen([exe, *args], stderr=subprocess.PIPE, text=True)
-    time.sleep(3.0)  # past start-up and kernel compilation, well inside the ~10 s of work
+    proc = subprocess.Popen(
+        [exe, *args, "--checkpoint-every", "0.05"], stderr=subprocess.PIPE, text=True
+    )
+    deadline = time.monotonic() + 30
+    while not out.exists() and proc.poll() is None and time.monotonic() < deadline:
+        time.sleep(0.01)  # until the run has checkpointed some progress
     assert proc.poll() is None, "the long run finished before it could be interrupted"
     proc.send_signal(signal.SIGINT)
     _, err = proc.communicate(timeout=60)
@@ -189,7 +193,7 @@ def test_ctrl_c_leaves_a_resumable_run_that_resumes_to_identical_numbers(tmp_pat
 
     assert main([*args, "--resume", "--quiet"]) == 0
     reference = simulate(SURFACES["smooth"], MATERIALS["silicon"], np.linspace(2, -1, 7), 1e-8,
-                         realizations=300, seed=3)  # fmt: skip
+                         realizations=500, seed=3)  # fmt: skip
     with h5py.File(out) as f:
         assert f.attrs["complete"]
         np.testing.assert_array_equal(f["realizations/sums"][()], reference.sums)

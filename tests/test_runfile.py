@@ -148,3 +148,57 @@ def test_kept_heights_are_stored_compressed(tmp_path):
         np.testing.assert_array_equal(a, b)
     with h5py.File(run.path) as f:
         assert f["heights/0"].compression == "gzip"
+
+
+def test_an_edited_result_is_detected_on_open(tmp_path):
+    path = make_run(tmp_path / "a.h5").path
+    with h5py.File(path, "r+") as f:
+        f["summary/mean/P"][1] *= 1.0001
+    with pytest.raises(RunFileError, match="checksum mismatch"):
+        read_run(path)
+
+
+def test_an_edited_input_is_detected_on_open(tmp_path):
+    path = make_run(tmp_path / "a.h5").path
+    with h5py.File(path, "r+") as f:
+        f["input/surface"].attrs["sigma"] = 2e-9
+    with pytest.raises(RunFileError, match="checksum mismatch"):
+        read_run(path)
+
+
+def test_datasets_that_disagree_with_the_inputs_are_refused_even_with_a_valid_checksum(tmp_path):
+    from mcsim.runfile import _checksum
+
+    path = make_run(tmp_path / "a.h5").path
+    with h5py.File(path, "r+") as f:
+        f.attrs["realizations"] = 5
+        f.attrs["checksum"] = _checksum(f)
+    with pytest.raises(
+        RunFileError, match=r"realizations/N has shape \(3,\), the inputs ask for \(5,\)"
+    ):
+        read_run(path)
+
+
+@pytest.mark.parametrize("keep", [0.1, 0.5, 0.9, 0.999])
+def test_a_truncated_file_is_refused_with_a_clear_message(tmp_path, keep):
+    path = make_run(tmp_path / "a.h5").path
+    data = path.read_bytes()
+    path.write_bytes(data[: int(len(data) * keep)])
+    with pytest.raises(RunFileError, match=r"(not an HDF5 file, or truncated|damaged run file)"):
+        read_run(path)
+
+
+def test_an_incomplete_run_is_refused_unless_the_completed_part_is_asked_for(tmp_path):
+    from mcsim.montecarlo import EnsembleSums, MonteCarloSpec, run_sums
+    from mcsim.runfile import write_checkpoint
+
+    spec = MonteCarloSpec(SURFACES["smooth"], MATERIALS["silicon"], np.array(H), 3e-10, 4, 9)
+    full = run_sums(spec)
+    partial = EnsembleSums.start(spec)
+    partial.sums[:2], partial.done_blocks[:2] = full.sums[:2], full.n_blocks[:2]
+    write_checkpoint(tmp_path / "p.h5", partial, command="test")
+    with pytest.raises(RunFileError, match=r"incomplete run \(2 of 4 realizations done\)"):
+        read_run(tmp_path / "p.h5")
+    run = read_run(tmp_path / "p.h5", allow_incomplete=True)
+    assert not run.complete and run.spec.realizations == 2
+    np.testing.assert_array_equal(run.sums, full.sums[:2])
