@@ -248,13 +248,25 @@ def cmd_show(args) -> int:
 
 
 def cmd_plot(args) -> int:
-    from .plotting import run_figure, save
+    import dataclasses
+
+    import numpy as np
+
+    from .distributions import GAUSSIAN
+    from .plotting import comparison_figure, run_figure, save
     from .runfile import read_run
 
-    run = read_run(args.run)
+    run = read_run(args.run, allow_incomplete=args.partial)
     out = Path(args.out) if args.out else Path(run.path).with_suffix(".png")
     save(run_figure(run), out)
     print(f"wrote {out}")
+    surface = run.spec.surface
+    if surface.heights != GAUSSIAN:  # measured heights: also against the Gaussian GW curves
+        gaussian = dataclasses.replace(surface, heights=GAUSSIAN, name=f"{surface.name} (Gaussian)")
+        h = np.linspace(run.h.max(), run.h.min(), 200)
+        other = out.with_name(f"{out.stem}-vs-gaussian.png")
+        save(comparison_figure(surface, gaussian, run.spec.material, h, run=run), other)
+        print(f"wrote {other} (measured heights against the Gaussian of the same sigma, R, eta)")
     return 0
 
 
@@ -411,6 +423,11 @@ def build_parser() -> argparse.ArgumentParser:
                        description="Plot a run: Monte Carlo means with error bars over the analytic curves.")  # fmt: skip
     p.add_argument("run", help="run file (.h5)")
     p.add_argument("--out", help="PNG file (default: next to the run file)")
+    p.add_argument(
+        "--partial",
+        action="store_true",
+        help="accept an incomplete run: plot its completed realizations",
+    )
     p.set_defaults(func=cmd_plot)
 
     p = sub.add_parser("ingest", help="height map or histogram to a surface file",

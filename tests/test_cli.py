@@ -206,3 +206,59 @@ def test_unreachable_dask_scheduler_is_a_one_line_error(capsys, tmp_path):
                            "--scheduler", "tcp://127.0.0.1:9", "--out", str(tmp_path / "x.h5"))  # fmt: skip
     assert code == 2 and "cannot reach the Dask scheduler at 'tcp://127.0.0.1:9'" in err
     assert not (tmp_path / "x.h5").exists()
+
+
+@pytest.mark.parametrize(
+    ("surface", "message"),
+    [
+        (
+            'sigma = "-1.4 nm"\nR = "1.7 um"\neta = "17 um^-2"',
+            r"sigma = -1.4e-09 m is out of range \(allowed: > 0 m\)",
+        ),
+        ('sigma = "1.4 nm"\nR = "0 um"\neta = "17 um^-2"', r"R = 0.0 m is out of range"),
+        (
+            'sigma = "1.4 nm"\nR = "1.7 um"\neta = "-17 um^-2"',
+            r"eta = -1[0-9.e+]* m\^-2 is out of range \(allowed: > 0 m\^-2\)",
+        ),
+        ('sigma = "1.4 nm"\nR = "1.7 um"\neta = "inf um^-2"', "not finite"),
+        ('sigma = "1.4 parsec"\nR = "1.7 um"\neta = "17 um^-2"', "unknown unit 'parsec'"),
+        ('sigma = "1.4 nm"\nR = "1.7 um"', "missing key 'eta'"),
+    ],
+)
+def test_invalid_surface_file_values_give_one_line_and_exit_2(capsys, tmp_path, surface, message):
+    f = tmp_path / "s.toml"
+    f.write_text(f"[surface]\n{surface}\n")
+    code, _, err = run_cli(capsys, "analytic", "--surface", str(f), "--h=0")
+    assert code == 2 and err.count("\n") == 1
+    assert str(f) in err and __import__("re").search(message, err), err
+
+
+@pytest.mark.parametrize(
+    ("material", "message"),
+    [
+        (
+            'E = "-160 GPa"\nnu = 0.22\ngamma = "0.5 J/m^2"',
+            r"E1 = -160000000000.0 Pa is out of range \(allowed: > 0 Pa\)",
+        ),
+        (
+            'E = "160 GPa"\nnu = 0.5\ngamma = "0.5 J/m^2"',
+            r"nu1 = 0.5 is out of range \(allowed: \(-1, 0.5\)\)",
+        ),
+        ('E = "160 GPa"\nnu = -1\ngamma = "0.5 J/m^2"', r"nu1 = -1.0 is out of range"),
+        (
+            'E = "160 GPa"\nnu = 0.22\ngamma = "-0.5 J/m^2"',
+            r"gamma = -0.5 J/m\^2 is out of range \(allowed: >= 0",
+        ),
+        (
+            'E = "160 GPa"\nnu = 0.22\ngamma = "0.5 J/m^2"\nH = "0 GPa"',
+            r"H = 0.0 Pa is out of range",
+        ),
+        ('E = "160 GPa"\nnu = 0.22', "missing key 'gamma'"),
+    ],
+)
+def test_invalid_material_file_values_give_one_line_and_exit_2(capsys, tmp_path, material, message):
+    f = tmp_path / "m.toml"
+    f.write_text(f"[material]\n{material}\n")
+    code, _, err = run_cli(capsys, "analytic", "--surface", "smooth", "--material", str(f), "--h=0")
+    assert code == 2 and err.count("\n") == 1
+    assert str(f) in err and __import__("re").search(message, err), err
