@@ -201,3 +201,42 @@ def test_dask_local_cluster_gives_bit_identical_results():
         distributed = run_sums(s, client=client, chunk_size=BLOCK)
     np.testing.assert_array_equal(distributed.sums, serial.sums)
     np.testing.assert_array_equal(distributed.n_summits, serial.n_summits)
+
+
+def test_changing_a_law_compiles_a_new_kernel_instead_of_reusing_a_stale_cache(
+    tmp_path, monkeypatch
+):
+    """The generated kernel module is named by a hash of the law sources, so numba's
+    on-disk cache can never serve a kernel built from an older law."""
+    import importlib
+    import inspect
+    import sys
+
+    from mcsim import kernels
+    from mcsim.laws import LawSet, seed
+
+    monkeypatch.setenv("MCSIM_CACHE_DIR", str(tmp_path / "cache"))
+    source = inspect.getsource(seed).replace(
+        "return K * np.sqrt(R) * d * np.sqrt(d)", "return 2 * K * np.sqrt(R) * d * np.sqrt(d)"
+    )
+    (tmp_path / "doubled_laws.py").write_text(source)
+    monkeypatch.syspath_prepend(str(tmp_path))
+    doubled = importlib.import_module("doubled_laws")
+    law = LawSet(
+        "doubled",
+        "Hertz load x2",
+        doubled.hertz_load,
+        doubled.johnson_adhesion,
+        doubled.savkoor_briggs_friction,
+    )
+    args = law.arguments(SMOOTH, SILICON)
+    z, d = np.array([1e-9, 2e-9]), np.array([0.0])
+    fast = block_sums(z, d, law, args)
+    np.testing.assert_allclose(fast, block_sums_numpy(z, d, law, args), rtol=1e-12)
+    np.testing.assert_allclose(fast[0, 1], 2 * block_sums(z, d, SEED, args)[0, 1], rtol=1e-12)
+    module = kernels._compiled(law).py_func.__module__
+    assert module.startswith("mcsim_kernel_doubled_")
+    assert (tmp_path / "cache" / "kernels" / f"{module}.py").exists()
+    assert module.split("_")[-1] != kernels._compiled(SEED).py_func.__module__.split("_")[-1]
+    sys.modules.pop("doubled_laws")
+    kernels._compiled.cache_clear()
