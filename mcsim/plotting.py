@@ -256,24 +256,64 @@ def _overlay(ax, result: Mapping, quantity: str, colour: str, log: bool) -> np.n
             f"Monte Carlo {quantity!r}: `h`, `mean` and `se` must have one shape, "
             f"got {h.shape}, {mean.shape} and {np.shape(se)}."
         )
+    _errorbars(ax, h, mean, se, log, colour)
+    return h
+
+
+def _errorbars(ax, h, mean, se, log: bool, colour: str, label: str | None = None) -> None:
+    """Monte Carlo means as open markers with ±2 SE bars; undefined (and, on a log
+    axis, zero) means are left out, and bars are clipped above zero on a log axis."""
+    mean = np.asarray(mean, dtype=float)
     keep = np.isfinite(mean) & (mean > 0 if log else True)
     yerr = None if se is None else 2 * np.asarray(se, dtype=float)[keep]
     if yerr is not None and log:
-        # a bar below zero has no place on a log axis: clip it just above zero
         yerr = np.vstack([np.minimum(yerr, 0.999 * mean[keep]), yerr])
-    ax.errorbar(
-        h[keep],
-        mean[keep],
-        yerr=yerr,
-        color=colour,
-        marker="o",
-        markersize=4,
-        markerfacecolor="none",
-        linestyle="none",
-        capsize=2,
-        elinewidth=0.9,
-    )
-    return h
+    ax.errorbar(np.asarray(h)[keep], mean[keep], yerr=yerr, color=colour, marker="o", markersize=4,
+                markerfacecolor="none", linestyle="none", capsize=2, elinewidth=0.9, label=label)  # fmt: skip
+
+
+#: Quantities of the multi-panel figures, in panel order.
+PANELS = ("contact_fraction", "P", "F", "T", "mu")
+
+
+def _panel_figure(lines, run, info: list[str]):
+    """Five panels (N_c/N, P̄, F̄, T̄, μ versus h, h decreasing to the right) with the
+    curves ``lines`` = [(h, {quantity: values}, style, label)], the Monte Carlo means of
+    ``run`` (if any) and a panel of ``info`` text."""
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=(12, 7), layout="constrained")
+    axes = fig.subplots(2, 3).ravel()
+    h_all = np.concatenate([h for h, *_ in lines] + ([run.h] if run is not None else []))
+    lo, hi = float(h_all.min()), float(h_all.max())
+    pad = 0.03 * (hi - lo) if hi > lo else 0.5
+    for ax, q in zip(axes, PANELS):
+        log = q in LOG_QUANTITIES
+        for h, values, style, label in lines:
+            y = np.asarray(values[q], dtype=float)
+            ax.plot(h, np.where(y > 0, y, np.nan) if log else y, lw=1.6, label=label, **style)
+        if run is not None:
+            _errorbars(ax, run.h, run.summary.mean[q], run.summary.se[q], log, _COLOURS[0],
+                       label="Monte Carlo mean ± 2 SE")  # fmt: skip
+        ax.set_xlim(hi + pad, lo - pad)
+        ax.set_yscale("log" if log else "linear")
+        ax.set_xlabel(X_LABEL, fontsize=8)
+        ax.set_ylabel(LABELS[q], fontsize=8)
+        ax.grid(True, alpha=0.4)
+    axes[0].legend(fontsize=8)
+    axes[5].axis("off")
+    axes[5].text(0, 1, "\n".join(info), va="top", fontsize=9, transform=axes[5].transAxes)
+    return fig
+
+
+def _inputs_text(surface, material, law: str) -> list[str]:
+    s, m = surface, material
+    return [
+        f"surface {s.name}: $\\sigma$ = {s.sigma * 1e9:.4g} nm, $R$ = {s.R * 1e6:.4g} µm,",
+        f"   $\\eta$ = {s.eta * 1e-12:.4g} µm$^{{-2}}$, heights {s.heights.name}",
+        f"material {m.name}: $K$ = {m.K * 1e-9:.4g} GPa, $G$ = {m.G * 1e-9:.4g} GPa,",
+        f"   $\\gamma$ = {m.gamma:.3g} J/m$^2$; law set '{law}'",
+    ]
 
 
 def _single_summit_mu_limit(curves: Mapping[str, AnalyticCurves]) -> float | None:
@@ -318,47 +358,20 @@ def run_figure(run):
     -------
     matplotlib.figure.Figure
     """
-    from matplotlib.figure import Figure
-
     from .analytic import gw_curves
     from .statistics import expected_values
 
     spec = run.spec
-    lo, hi = float(spec.h.min()), float(spec.h.max())
-    fine = np.linspace(hi, lo, 200) if hi > lo else np.array([hi])
+    fine = np.linspace(spec.h.max(), spec.h.min(), 200)
     curves = expected_values(spec, gw_curves(spec.surface, spec.material, fine, spec.law))
-    fig = Figure(figsize=(12, 7), layout="constrained")
-    axes = fig.subplots(2, 3).ravel()
-    for ax, q in zip(axes, ("contact_fraction", "P", "F", "T", "mu")):
-        log = q in LOG_QUANTITIES
-        y = np.where(curves[q] > 0, curves[q], np.nan) if log else curves[q]
-        ax.plot(fine, y, color="0.2", lw=1.5, label="analytic GW")
-        mean, se = run.summary.mean[q], run.summary.se[q]
-        keep = np.isfinite(mean) & ((mean > 0) if log else True)
-        err = 2 * se[keep]
-        if log:
-            err = np.vstack([np.minimum(err, 0.999 * mean[keep]), err])
-        ax.errorbar(spec.h[keep], mean[keep], yerr=err, color=_COLOURS[0], marker="o", markersize=4,
-                    markerfacecolor="none", linestyle="none", capsize=2, label="Monte Carlo mean ± 2 SE")  # fmt: skip
-        ax.set_xlim(hi + 0.05 * (hi - lo + 1e-9), lo - 0.05 * (hi - lo + 1e-9))
-        ax.set_yscale("log" if log else "linear")
-        ax.set_xlabel(X_LABEL, fontsize=8)
-        ax.set_ylabel(LABELS[q], fontsize=8)
-        ax.grid(True, alpha=0.4)
-    axes[0].legend(fontsize=8)
-    s, m = spec.surface, spec.material
-    axes[5].axis("off")
-    axes[5].text(0, 1, "\n".join([
+    info = [
         f"run: {run.path.name if run.path else '(not saved)'}",
-        f"surface {s.name}: $\\sigma$ = {s.sigma * 1e9:.4g} nm, $R$ = {s.R * 1e6:.4g} µm,",
-        f"   $\\eta$ = {s.eta * 1e-12:.4g} µm$^{{-2}}$, heights {s.heights.name}",
-        f"material {m.name}: $K$ = {m.K * 1e-9:.4g} GPa, $G$ = {m.G * 1e-9:.4g} GPa,",
-        f"   $\\gamma$ = {m.gamma:.3g} J/m$^2$; law set '{spec.law}'",
+        *_inputs_text(spec.surface, spec.material, spec.law),
         f"patch $A$ = {spec.area * 1e12:.4g} µm$^2$, N ~ {spec.count}, E[N] = {spec.expected_summits:.4g}",
         f"{spec.realizations} realization(s), seed entropy {spec.entropy}",
         "forces divided by $A K$ (Eqs. 3, 5, 7)",
-    ]), va="top", fontsize=9, transform=axes[5].transAxes)  # fmt: skip
-    return fig
+    ]
+    return _panel_figure([(fine, curves, {"color": "0.2"}, "analytic GW")], run, info)
 
 
 def histogram_figure(empirical, gaussian_sigma: float, *, title: str | None = None):
@@ -438,47 +451,18 @@ def comparison_figure(surface_measured, surface_gaussian, material, h, run=None)
     matplotlib.figure.Figure
         Contact fraction, P̄, F̄, T̄ (divided by A_n K, Eqs. 3, 5, 7) and μ versus h.
     """
-    from matplotlib.figure import Figure
-
     from .analytic import gw_curves
 
     h = np.sort(np.atleast_1d(np.asarray(h, dtype=float)))[::-1]
-    measured = gw_curves(surface_measured, material, h)
-    gaussian = gw_curves(surface_gaussian, material, h)
-    fig = Figure(figsize=(12, 7), layout="constrained")
-    axes = fig.subplots(2, 3).ravel()
-    for ax, q in zip(axes, ("contact_fraction", "P", "F", "T", "mu")):
-        log = q in LOG_QUANTITIES
-        for curves, style, label in (
-            (measured, {"color": _COLOURS[0], "linestyle": "-"}, "measured heights (analytic)"),
-            (gaussian, {"color": _COLOURS[4], "linestyle": "--"}, "Gaussian GW, same ($\\sigma$, $R$, $\\eta$)"),
-        ):  # fmt: skip
-            y = np.asarray(quantity_values(curves, q), dtype=float)
-            if log:
-                y = np.where(y > 0, y, np.nan)
-            ax.plot(h, y, lw=1.6, label=label, **style)
-        if run is not None:
-            mean, se = run.summary.mean[q], run.summary.se[q]
-            keep = np.isfinite(mean) & ((mean > 0) if log else True)
-            err = 2 * se[keep]
-            if log:
-                err = np.vstack([np.minimum(err, 0.999 * mean[keep]), err])
-            ax.errorbar(run.spec.h[keep], mean[keep], yerr=err, color=_COLOURS[0], marker="o", markersize=4,
-                        markerfacecolor="none", linestyle="none", capsize=2, label="Monte Carlo mean ± 2 SE")  # fmt: skip
-        ax.set_xlim(h[0], h[-1])
-        ax.set_yscale("log" if log else "linear")
-        ax.set_xlabel(X_LABEL, fontsize=8)
-        ax.set_ylabel(LABELS[q], fontsize=8)
-        ax.grid(True, alpha=0.4)
-    axes[0].legend(fontsize=8)
-    s, m = surface_measured, material
-    axes[5].axis("off")
-    axes[5].text(0, 1, "\n".join([
-        f"surface {s.name}: $\\sigma$ = {s.sigma * 1e9:.4g} nm, $R$ = {s.R * 1e6:.4g} µm,",
-        f"   $\\eta$ = {s.eta * 1e-12:.4g} µm$^{{-2}}$, heights {s.heights.name}",
-        f"material {m.name}: $K$ = {m.K * 1e-9:.4g} GPa, $G$ = {m.G * 1e-9:.4g} GPa,",
-        f"   $\\gamma$ = {m.gamma:.3g} J/m$^2$; law set 'seed'",
+    lines = [
+        (h, gw_curves(surface_measured, material, h).table(), {"color": _COLOURS[0], "linestyle": "-"},
+         "measured heights (analytic)"),
+        (h, gw_curves(surface_gaussian, material, h).table(), {"color": _COLOURS[4], "linestyle": "--"},
+         "Gaussian GW, same ($\\sigma$, $R$, $\\eta$)"),
+    ]  # fmt: skip
+    info = [
+        *_inputs_text(surface_measured, material, "seed"),
         "forces divided by $A_n K$ (Eqs. 3, 5, 7)",
         "h = d/$\\sigma$, d from the mean summit height",
-    ]), va="top", fontsize=9, transform=axes[5].transAxes)  # fmt: skip
-    return fig
+    ]
+    return _panel_figure(lines, run, info)
