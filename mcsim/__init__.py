@@ -1,38 +1,51 @@
-"""mcsim: Monte Carlo discrete-asperity simulator for adhesion and adhesional friction."""
+"""mcsim: Monte Carlo discrete-asperity simulator for adhesion and adhesional friction.
+
+The public names are imported on first use (PEP 562), so that ``mcsim --help`` and
+other light commands do not pay for SciPy, h5py or numba.
+"""
+
+import importlib
 
 from ._version import __version__
-from .analytic import AnalyticCurves, gw_curves
-from .distributions import GAUSSIAN, Gaussian, HeightDistribution
 from .errors import MCSimError, ParameterError, RunFileError, UnitError
-from .laws import LAW_SETS, LawSet, get_law_set
-from .params import (
-    Material,
-    Surface,
-    combine_surfaces,
-    plasticity_index,
-    surface_energy_parameter,
-)
-from .simulation import Run, simulate
+
+_LAZY = {
+    "AnalyticCurves": "analytic",
+    "gw_curves": "analytic",
+    "GAUSSIAN": "distributions",
+    "Gaussian": "distributions",
+    "HeightDistribution": "distributions",
+    "Empirical": "empirical",
+    "LAW_SETS": "laws",
+    "LawSet": "laws",
+    "get_law_set": "laws",
+    "Material": "params",
+    "Surface": "params",
+    "combine_surfaces": "params",
+    "plasticity_index": "params",
+    "surface_energy_parameter": "params",
+    "Run": "simulation",
+    "simulate": "simulation",
+    "read_run": "runfile",
+}
 
 __all__ = [
-    "GAUSSIAN",
-    "LAW_SETS",
-    "AnalyticCurves",
-    "Gaussian",
-    "HeightDistribution",
-    "LawSet",
     "MCSimError",
-    "Material",
     "ParameterError",
-    "Run",
     "RunFileError",
-    "Surface",
     "UnitError",
     "__version__",
-    "combine_surfaces",
-    "get_law_set",
-    "gw_curves",
-    "plasticity_index",
-    "simulate",
-    "surface_energy_parameter",
+    *sorted(_LAZY),
 ]
+
+
+def __getattr__(name: str):
+    if name in _LAZY:
+        value = getattr(importlib.import_module(f".{_LAZY[name]}", __name__), name)
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module 'mcsim' has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(__all__))

@@ -69,8 +69,12 @@ def _read_toml(path: Path) -> dict[str, Any]:
         raise MCSimError(f"{path}: no such file") from None
     except (tomllib.TOMLDecodeError, UnicodeDecodeError) as err:
         raise MCSimError(f"{path}: not a valid TOML file ({err})") from None
+    except RecursionError:
+        raise MCSimError(f"{path}: not a valid TOML file (nested too deeply)") from None
     except OSError as err:
         raise MCSimError(f"{path}: cannot read ({err.strerror})") from None
+    except ValueError:  # a NUL byte in the name
+        raise MCSimError(f"{path!r}: not a valid file name") from None
 
 
 def _quantities(table: dict[str, Any], keys: dict, where: str, optional=()) -> dict[str, float]:
@@ -116,6 +120,10 @@ def _heights_from_value(value: Any, where: str, base_dir: Path | None) -> Empiri
             f"(allowed: {', '.join(sorted(_HEIGHTS_KEYS))})"
         )
     unit = value.get("unit")
+    if unit is not None and not isinstance(unit, str):
+        raise ParameterError(f"{where}: heights: unit must be a string, got {unit!r}")
+    if "file" in value and not isinstance(value["file"], str):
+        raise ParameterError(f"{where}: heights: file must be a string, got {value['file']!r}")
     if "file" in value:
         if {"edges", "counts", "densities"} & set(value):
             raise ParameterError(f"{where}: heights: give either file or edges, not both")
@@ -134,9 +142,12 @@ def _heights_from_value(value: Any, where: str, base_dir: Path | None) -> Empiri
         1.0 if unit is None else parse_quantity(f"1 {unit}", "length", f"{where}: heights: unit")
     )
     weights = value.get("counts", value.get("densities"))
+    edges = value["edges"]
+    if not (isinstance(edges, list) and all(_is_number(e) for e in edges)):
+        raise ParameterError(f"{where}: heights: edges must be a list of numbers, got {edges!r}")
     try:
         return Empirical.from_histogram(
-            [factor * e for e in value["edges"]],
+            [factor * e for e in edges],
             weights,
             density="densities" in value,
             source=f"{where}: inline histogram",
@@ -145,13 +156,23 @@ def _heights_from_value(value: Any, where: str, base_dir: Path | None) -> Empiri
         raise ParameterError(f"{where}: heights: {err}") from None
 
 
+def _is_number(value: Any) -> bool:
+    return isinstance(value, int | float) and not isinstance(value, bool)
+
+
 def surface_from_table(
-    table: dict[str, Any], where: str = "surface", base_dir: Path | None = None
+    table: dict[str, Any],
+    where: str = "surface",
+    base_dir: Path | None = None,
+    *,
+    including: tuple[Path, ...] = (),
 ) -> Surface:
     """Build a :class:`Surface` from a TOML-like table (see the module docstring).
 
     ``base_dir`` is the folder that relative histogram paths in ``heights`` start
-    from (the TOML file's folder); the working directory if None.
+    from (the TOML file's folder); the working directory if None. ``including`` lists
+    the surface files being read (for ``combine``), so that files including each
+    other are refused.
     """
     name = str(table.get("name", ""))
     try:
@@ -164,7 +185,9 @@ def surface_from_table(
             rest = {k: v for k, v in table.items() if k not in ("combine", "name")}
             eta = _quantities(rest, {"eta": _SURFACE_KEYS["eta"]}, where)["eta"]
             try:
-                first, second = (load_surface(_relative_to(p, base_dir)) for p in pair)
+                first, second = (
+                    load_surface(_relative_to(p, base_dir), including=including) for p in pair
+                )
             except MCSimError as err:
                 raise type(err)(f"{where}: combine: {err}") from None
             return combine_surfaces(first, second, eta=eta, name=name)
@@ -198,8 +221,11 @@ def material_from_table(table: dict[str, Any], where: str = "material") -> Mater
         raise ParameterError(f"{where}: {err}") from None
 
 
-def load_surface(spec: str | Path) -> Surface:
-    """A preset name (``smooth``, ...) or a TOML file with a ``[surface]`` table."""
+def load_surface(spec: str | Path, *, including: tuple[Path, ...] = ()) -> Surface:
+    """A preset name (``smooth``, ...) or a TOML file with a ``[surface]`` table.
+
+    ``including``: the surface files whose ``combine`` led here (refused if repeated).
+    """
     if str(spec) in SURFACES:
         return SURFACES[str(spec)]
     path = Path(spec)
@@ -208,7 +234,14 @@ def load_surface(spec: str | Path) -> Surface:
             f"unknown surface {str(spec)!r}: give a preset ({', '.join(SURFACES)}) or a .toml file"
         )
     table = _table(_read_toml(path), "surface", path)
-    return surface_from_table(table, where=f"{path} [surface]", base_dir=path.parent)
+    if path.resolve() in including:
+        raise ParameterError(f"{path}: combine: the surface files include each other")
+    return surface_from_table(
+        table,
+        where=f"{path} [surface]",
+        base_dir=path.parent,
+        including=(*including, path.resolve()),
+    )
 
 
 def _relative_to(spec: str, base: Path | None) -> str | Path:

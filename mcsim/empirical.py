@@ -187,7 +187,11 @@ class Empirical:
         """
         edges, weights = _validate_histogram(edges, weights)
         width = np.diff(edges)
-        p = weights * width if density else weights
+        with np.errstate(over="ignore", under="ignore"):
+            p = weights * width if density else weights
+        if not (np.all(np.isfinite(p)) and p.max() > 0):
+            raise ParameterError("histogram densities × bin widths overflow or underflow")
+        p = p / p.max()  # first: the sum of huge weights would overflow
         p = p / p.sum()
         # Leading and trailing empty bins carry no probability: drop them.
         occupied = np.flatnonzero(p > 0)
@@ -245,12 +249,19 @@ class Empirical:
     @classmethod
     def from_dict(cls, data: dict[str, Any]) -> Empirical:
         """Inverse of :meth:`to_dict` (exact round trip)."""
-        if data.get("schema") != SCHEMA:
+        schema = data.get("schema") if isinstance(data, dict) else None
+        if schema != SCHEMA:
             raise MCSimError(
-                f"not a stored empirical distribution (schema {data.get('schema')!r}, "
-                f"expected {SCHEMA!r})"
+                f"not a stored empirical distribution (schema {schema!r}, expected {SCHEMA!r})"
             )
-        return cls(data["edges"], data["densities"], data["sigma"], data["mean"], data["source"])
+        missing = {"edges", "densities", "sigma", "mean"} - set(data)
+        if missing:
+            raise MCSimError(f"stored empirical distribution lacks {', '.join(sorted(missing))}")
+        try:
+            sigma, mean = float(data["sigma"]), float(data["mean"])
+        except (TypeError, ValueError):
+            raise ParameterError("stored empirical sigma and mean must be numbers") from None
+        return cls(data["edges"], data["densities"], sigma, mean, str(data.get("source", "")))
 
     # -- value semantics -----------------------------------------------------------
 

@@ -37,10 +37,12 @@ SI_UNITS = {
 
 _POWER = re.compile(r"^(?P<base>[^\^\s]+?)(?:\^|\*\*)?(?P<exp>-?[0-9]+)?$")
 _NUMBER = re.compile(
-    r"^\s*(?P<num>[-+]?(?:(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][-+]?[0-9]+)?|inf(?:inity)?|nan))"
-    r"\s*(?P<unit>.*?)\s*$",
-    re.IGNORECASE,
+    r"(?P<num>[-+]?(?:(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][-+]?[0-9]+)?|inf(?:inity)?|nan))"
+    r"\s*(?P<unit>.*)",
+    re.IGNORECASE | re.DOTALL,
 )
+#: Longer unit strings are refused before any pattern is matched (no unit is this long).
+_MAX_UNIT_LENGTH = 32
 
 
 def unit_factor(unit: str, dimension: str) -> float:
@@ -63,6 +65,9 @@ def unit_factor(unit: str, dimension: str) -> float:
     UnitError
         If the unit is unknown or of another dimension.
     """
+    if not isinstance(unit, str) or len(unit) > _MAX_UNIT_LENGTH:
+        shown = repr(unit) if len(repr(unit)) <= 40 else repr(unit)[:40] + "..."
+        raise UnitError(f"unknown unit {shown} for {_allowed(dimension)}")
     u = unit.strip().replace("²", "^2").replace("⁻²", "^-2").replace("⁻", "^-")
     u = u.replace("^-^2", "^-2").replace(" ", "")
     if dimension == "dimensionless":
@@ -139,7 +144,7 @@ def parse_quantity(value: object, dimension: str, field: str) -> float:
         )
     if isinstance(value, int | float):
         return _finite(float(value), value, field)
-    m = _NUMBER.match(value)
+    m = _NUMBER.fullmatch(value.strip())
     if not m:
         raise UnitError(
             f"{field}: cannot read {value!r} as a number with a unit; "

@@ -2,8 +2,9 @@
 
 Pure, vectorised functions of the interference δ = z − d (m), SI in and out, zero
 for δ ≤ 0. They are plain arithmetic so that the Monte Carlo kernel compiles these
-very functions (see :mod:`mcsim.kernels`). K, G and γ are the paper's: see
-:class:`mcsim.params.Material`.
+very functions (see :mod:`mcsim.kernels`); each writes the Hertz load out in δ, as the
+second lines of Eqs. 4 and 6 do, rather than calling :func:`hertz_load`, so that each
+compiles on its own. K, G and γ are the paper's: see :class:`mcsim.params.Material`.
 """
 
 import numpy as np

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from . import ascii, gwy, histogram, ibw, nid, npy
+from . import ascii, gwy, histogram, ibw, nid, npy, surfacetopography
 from .base import HeightMap, ReaderError
 from .histogram import Histogram
 
@@ -28,12 +28,12 @@ _MAP_FORMATS = {
 }
 
 
-def _check_format(path: Path, formats: dict) -> str:
+def _check_format(path: Path, formats: dict, hint: str = "") -> str:
     suffix = path.suffix.lower()
     if suffix not in formats:
         raise ReaderError(
             f"{path}: unknown file type {suffix or '(no extension)'!r} "
-            f"(known: {', '.join(sorted(formats))})"
+            f"(known: {', '.join(sorted(formats))}){hint}"
         )
     name, detect = formats[suffix]
     if not detect(path):
@@ -51,7 +51,8 @@ def read_height_map(
     Parameters
     ----------
     path : path-like
-        ``.txt .asc .dat .csv`` (matrix), ``.xyz``, ``.npy``, ``.gwy``, ``.ibw``, ``.nid``.
+        ``.txt .asc .dat .csv`` (matrix), ``.xyz``, ``.npy``, ``.gwy``, ``.ibw``, ``.nid``;
+        any other extension goes to :mod:`~mcsim.readers.surfacetopography` if installed.
     unit : str, optional
         Height unit for formats that do not store one (matrix, XYZ, .npy), e.g. ``"nm"``.
     pixel_size : float or (float, float), optional
@@ -63,7 +64,10 @@ def read_height_map(
         Heights in m, rows along y, columns along x.
     """
     path = Path(path)
-    suffix = _check_format(path, _MAP_FORMATS)
+    if path.suffix.lower() not in _MAP_FORMATS and surfacetopography.available():
+        return surfacetopography.read(path, unit=unit, pixel_size=pixel_size)
+    hint = f"; for other formats: {surfacetopography.INSTALL_HINT}"
+    suffix = _check_format(path, _MAP_FORMATS, hint)
     if suffix in ascii.EXTENSIONS:
         return ascii.read(path, unit=unit, pixel_size=pixel_size)
     if suffix in ascii.XYZ_EXTENSIONS:

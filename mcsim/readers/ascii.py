@@ -22,7 +22,7 @@ from .base import HeightMap, ReaderError, check_heights, head, length_factor, pi
 EXTENSIONS = (".txt", ".asc", ".dat", ".csv")
 XYZ_EXTENSIONS = (".xyz",)
 _SPLIT = re.compile(r"[,;\s]+")
-_SIZE = re.compile(r"^#\s*(Width|Height)\s*:\s*([-+0-9.eE]+)\s*(\S+)\s*$")
+_SIZE = re.compile(r"^#\s*(Width|Height)\s*:\s*([-+0-9.eE]++)\s*+(\S+)\s*$")  # possessive: linear
 _UNITS = re.compile(r"^#\s*Value units\s*:\s*(\S+)\s*$")
 
 
@@ -75,7 +75,11 @@ def read(
     header_unit = None
     for line in comments:
         if m := _SIZE.match(line):
-            sizes[m.group(1)] = float(m.group(2)) * length_factor(m.group(3), path, m.group(1))
+            try:
+                value = float(m.group(2))
+            except ValueError:
+                raise ReaderError(f"{path}: cannot read {line[:60]!r}: not a number") from None
+            sizes[m.group(1)] = value * length_factor(m.group(3), path, m.group(1))
         elif m := _UNITS.match(line):
             header_unit = m.group(1)
     chosen = unit or header_unit
@@ -110,6 +114,8 @@ def read_xyz(path: Path | str, unit: str | None = None) -> HeightMap:
     if {len(r) for r in rows} != {3}:
         raise ReaderError(f"{path}: an XYZ file needs exactly 3 columns (x, y, z) on every line")
     x, y, z = np.array(rows).T * length_factor(unit, path, "unit")
+    if not (np.all(np.isfinite(x)) and np.all(np.isfinite(y))):
+        raise ReaderError(f"{path}: x and y must be finite")
     xs, ix = np.unique(x, return_inverse=True)
     ys, iy = np.unique(y, return_inverse=True)
     if xs.size * ys.size != x.size or xs.size < 3 or ys.size < 3:
@@ -123,7 +129,9 @@ def read_xyz(path: Path | str, unit: str | None = None) -> HeightMap:
             raise ReaderError(f"{path}: {name} values are not equally spaced")
     grid = np.full((ys.size, xs.size), np.nan)
     grid[iy, ix] = z
-    if np.count_nonzero(np.isfinite(grid)) != x.size:
+    filled = np.zeros(grid.shape, dtype=bool)
+    filled[iy, ix] = True
+    if np.count_nonzero(filled) != x.size:
         raise ReaderError(f"{path}: duplicate grid points")
     return HeightMap(
         check_heights(path, grid),

@@ -11,6 +11,7 @@ summit statistics (which do not depend on orientation) and round trips are exact
 from __future__ import annotations
 
 import math
+import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -19,9 +20,23 @@ import numpy as np
 from ..errors import MCSimError
 from ..units import unit_factor
 
+#: Largest map a reader accepts, in pixels (16384 × 16384, 2 GiB as float64): a header that
+#: declares more is refused before anything is allocated.
+MAX_PIXELS = 2**28
+
 
 class ReaderError(MCSimError):
-    """A file cannot be read as a height map or a histogram; the message names the file."""
+    """A file cannot be read as a height map or a histogram; the message names the file.
+
+    The message is kept on one line: line breaks (from a file name or from text read
+    out of the file) are shown escaped, e.g. ``\\r``.
+    """
+
+    def __init__(self, message: str) -> None:
+        super().__init__(_LINE_BREAK.sub(lambda m: repr(m.group())[1:-1], str(message)))
+
+
+_LINE_BREAK = re.compile("[\n\r\v\f\x1c\x1d\x1e\x85\u2028\u2029]")
 
 
 @dataclass(frozen=True)
@@ -48,6 +63,14 @@ class HeightMap:
     source: str
     channel: str = ""
     notes: tuple[str, ...] = field(default=())
+
+    def __post_init__(self):
+        for name in ("dx", "dy"):
+            value = getattr(self, name)
+            if not (isinstance(value, float) and math.isfinite(value) and value > 0):
+                raise ReaderError(
+                    f"{self.source}: pixel size {name} = {value!r} m: must be positive and finite"
+                )
 
     @property
     def shape(self) -> tuple[int, int]:
@@ -82,13 +105,21 @@ def pixel_sizes(
 
 
 def check_heights(path: Path | str, z: np.ndarray) -> np.ndarray:
-    """A 2-D float array with at least 3×3 pixels and one finite value."""
-    z = np.asarray(z, dtype=float)
+    """A 2-D float array with at least 3×3 pixels and one finite value; ±inf become NaN."""
+    if np.iscomplexobj(z):
+        raise ReaderError(f"{path}: heights are complex numbers")
+    try:
+        z = np.asarray(z, dtype=float)
+    except (TypeError, ValueError):
+        raise ReaderError(f"{path}: heights are not numbers") from None
     if z.ndim != 2 or min(z.shape) < 3:
         raise ReaderError(f"{path}: a height map needs at least 3×3 pixels, got shape {z.shape}")
-    if not np.any(np.isfinite(z)):
+    if z.size > MAX_PIXELS:
+        raise ReaderError(f"{path}: {z.size} pixels, more than the limit of {MAX_PIXELS}")
+    finite = np.isfinite(z)
+    if not np.any(finite):
         raise ReaderError(f"{path}: the height map has no finite value")
-    return z
+    return np.where(finite, z, np.nan)
 
 
 def head(path: Path, n: int = 64) -> bytes:
@@ -100,3 +131,5 @@ def head(path: Path, n: int = 64) -> bytes:
         raise ReaderError(f"{path}: no such file") from None
     except OSError as err:
         raise ReaderError(f"{path}: cannot read ({err.strerror})") from None
+    except ValueError:  # a NUL byte in the name
+        raise ReaderError(f"{path!r}: not a valid file name") from None

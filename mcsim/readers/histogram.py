@@ -29,7 +29,7 @@ from .base import ReaderError, head, length_factor
 EXTENSIONS = (".csv", ".tsv", ".txt", ".dat", ".hist")
 
 _SPLIT = re.compile(r"[,;\t ]+")
-_UNIT = re.compile(r"[\[(]([^\])]+)[\])]")
+_UNIT = re.compile(r"[\[(]([^\[\]()]+)[\])]")  # no nested brackets: linear time
 _DENSITY = re.compile(r"density|pdf|ρ|\b1/", re.IGNORECASE)
 
 
@@ -153,10 +153,11 @@ def read(path: Path | str, unit: str | None = None) -> Histogram:
         centres = data[:, 0]
         if np.any(np.diff(centres) <= 0):
             raise ReaderError(f"{path}: bin centres must be strictly increasing")
-        mid = (centres[1:] + centres[:-1]) / 2
-        edges = np.concatenate(
-            [[centres[0] - (mid[0] - centres[0])], mid, [centres[-1] + (centres[-1] - mid[-1])]]
-        )
+        with np.errstate(over="ignore", invalid="ignore"):  # overflow is refused below
+            mid = (centres[1:] + centres[:-1]) / 2
+            edges = np.concatenate(
+                [[centres[0] - (mid[0] - centres[0])], mid, [centres[-1] + (centres[-1] - mid[-1])]]
+            )
         layout = "two columns: centre, weight"
     else:
         left, right = data[:, 0], data[:, 1]
@@ -175,10 +176,16 @@ def read(path: Path | str, unit: str | None = None) -> Histogram:
         )
     chosen = unit if unit is not None else found.group(1)
     factor = length_factor(chosen, path, "height unit")
+    edges = edges * factor
+    with np.errstate(over="ignore", invalid="ignore"):
+        span = np.diff(edges)
+        total = edges[-1] - edges[0]
+    if not (np.all(np.isfinite(edges)) and np.all(span > 0) and np.isfinite(total)):
+        raise ReaderError(f"{path}: bin edges overflow or collapse (values too large or too close)")
     weight_header = column_line[found.end() :] if found else column_line
     density = bool(_DENSITY.search(weight_header))
     return Histogram(
-        edges=edges * factor,
+        edges=edges,
         weights=weights,
         density=density,
         source=str(path),

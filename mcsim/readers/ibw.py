@@ -8,15 +8,21 @@ wave's data unit. The array is transposed to the rows-along-y layout.
 
 from __future__ import annotations
 
+import math
+import struct
 from pathlib import Path
 
 import numpy as np
 
-from .base import HeightMap, ReaderError, check_heights, head, length_factor
+from .base import MAX_PIXELS, HeightMap, ReaderError, check_heights, head, length_factor
 
 EXTENSIONS = (".ibw",)
 #: Igor binary-wave versions; the file starts with the version as a 16-bit integer.
 VERSIONS = (1, 2, 3, 5)
+#: Per version: the BinHeader's layout after the version (struct codes; the section
+#: sizes are the ``l`` fields) and where WaveHeader5 keeps ``nDim`` (version 5 only).
+_BIN_HEADERS = {1: "lh", 2: "lllh", 3: "llllh", 5: "hllll4l4llll"}
+_NDIM_OFFSET = 64 + 68
 
 
 def detect(path: Path) -> bool:
@@ -54,11 +60,14 @@ def read(path: Path | str, channel: str | None = None, unit: str | None = None) 
         raise ReaderError(
             f"{path}: reading .ibw files needs the 'igor2' package (pip install mcsim[afm])"
         ) from None
+    _check_declared_sizes(path)
     try:
         wave = binarywave.load(str(path))["wave"]
     except Exception as err:  # igor2 raises struct.error/ValueError/KeyError
         raise ReaderError(f"{path}: not a readable Igor binary wave ({err})") from None
-    data = np.asarray(wave["wData"], dtype=float)
+    data = wave["wData"]
+    if not (isinstance(data, np.ndarray) and np.issubdtype(data.dtype, np.number)):
+        raise ReaderError(f"{path}: not a numeric wave")
     header = wave["wave_header"]
     if data.ndim == 2:
         data = data[:, :, None]
@@ -71,7 +80,9 @@ def read(path: Path | str, channel: str | None = None, unit: str | None = None) 
     elif channel in labels:
         index = labels.index(channel)
     else:
-        raise ReaderError(f"{path}: no channel {channel!r} (channels: {', '.join(labels)})")
+        raise ReaderError(
+            f"{path}: no channel {channel!r} (channels: {', '.join(map(repr, labels))})"
+        )
     z_unit = unit or _text(wave.get("data_units") or header.get("dataUnits", b""))
     origin = "caller" if unit else "wave"
     if not z_unit and _is_asylum(wave) and labels[index].lower().startswith(_ASYLUM_LENGTHS):
@@ -84,7 +95,7 @@ def read(path: Path | str, channel: str | None = None, unit: str | None = None) 
     dx, dy = (
         float(sfa[k]) * length_factor(xy_units[k] or "m", path, "lateral unit") for k in (0, 1)
     )
-    if not (dx > 0 and dy > 0):
+    if not (0 < dx < math.inf and 0 < dy < math.inf):
         raise ReaderError(f"{path}: missing pixel size (wave scaling {dx}, {dy})")
     return HeightMap(
         z,
@@ -104,3 +115,28 @@ def _is_asylum(wave) -> bool:
     """Asylum Research's wave note starts with its scan parameters."""
     note = wave.get("note") or b""
     return isinstance(note, bytes) and note.startswith(b"ScanSize:")
+
+
+def _check_declared_sizes(path: Path) -> None:
+    """Refuse section sizes beyond the file and images beyond the cap, before igor2 allocates."""
+    start = head(path, 64 + 320)
+    order = "<" if int.from_bytes(start[:2], "little") in VERSIONS else ">"
+    version = struct.unpack_from(f"{order}h", start)[0]
+    layout = order + _BIN_HEADERS[version]
+    if len(start) < 2 + struct.calcsize(layout):
+        raise ReaderError(f"{path}: not a readable Igor binary wave ({len(start)} bytes)")
+    fields = struct.unpack_from(layout, start, 2)
+    sizes = fields[1:-2] if version == 5 else fields[:-1]  # v5: after the checksum
+    file_size = path.stat().st_size
+    if min(sizes) < 0 or sum(sizes) > file_size:
+        raise ReaderError(
+            f"{path}: not a readable Igor binary wave (truncated: the header declares "
+            f"sections of {sum(sizes)} bytes, the file has {file_size})"
+        )
+    if version == 5 and len(start) >= _NDIM_OFFSET + 16:
+        dims = [n for n in struct.unpack_from(f"{order}4l", start, _NDIM_OFFSET) if n > 0]
+        if math.prod(dims[:2]) > MAX_PIXELS:
+            raise ReaderError(
+                f"{path}: the wave declares {' × '.join(map(str, dims))} points, more than "
+                f"the limit of {MAX_PIXELS} pixels per image (mcsim.readers.base.MAX_PIXELS)"
+            )

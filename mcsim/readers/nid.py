@@ -12,16 +12,18 @@ recorded in the notes.
 
 from __future__ import annotations
 
+import math
 import re
 from pathlib import Path
 
 import numpy as np
 
-from .base import HeightMap, ReaderError, check_heights, head, length_factor
+from .base import MAX_PIXELS, HeightMap, ReaderError, check_heights, head, length_factor
 
 EXTENSIONS = (".nid",)
 MAGIC = b"[DataSet]"
 _SECTION = re.compile(r"^\[(.+)\]$")
+_CHANNEL = re.compile(r"Gr([0-9]+)-Ch([0-9]+)")
 
 
 def detect(path: Path) -> bool:
@@ -65,16 +67,27 @@ def read(path: Path | str, channel: str | None = None, frame: str = "Scan forwar
     sections = _header(raw[:marker].decode("latin-1"))
     try:
         dataset = sections["DataSet"]
+        groups = _count(dataset, "GroupCount", path)
+        listed = sorted(
+            (int(m[1]), int(m[2]), key) for key in dataset if (m := _CHANNEL.fullmatch(key))
+        )
         names = [
-            dataset[f"Gr{g}-Ch{c}"]
-            for g in range(int(dataset["GroupCount"]))
-            for c in range(int(dataset[f"Gr{g}-Count"]))
-            if f"Gr{g}-Ch{c}" in dataset
+            dataset[key]
+            for g, c, key in listed
+            if g < groups and c < _count(dataset, f"Gr{g}-Count", path)
         ]
         blocks = [sections[n] for n in names]
-        sizes = [int(b["Points"]) * int(b["Lines"]) * int(b["SaveBits"]) // 8 for b in blocks]
-    except (KeyError, ValueError) as err:
-        raise ReaderError(f"{path}: incomplete .nid header ({err})") from None
+    except KeyError as err:
+        raise ReaderError(f"{path}: incomplete .nid header (no {err})") from None
+    sizes = []
+    for b in blocks:
+        pixels = _count(b, "Points", path) * _count(b, "Lines", path)
+        if pixels > MAX_PIXELS:
+            raise ReaderError(
+                f"{path}: a channel declares {pixels} pixels, more than the limit of "
+                f"{MAX_PIXELS} (mcsim.readers.base.MAX_PIXELS)"
+            )
+        sizes.append(pixels * _count(b, "SaveBits", path) // 8)
     if channel is None:
         stored = {b.get("Dim2Name") for b in blocks}
         channel = "Z-Axis" if "Z-Axis" in stored else "Topography"
@@ -82,7 +95,7 @@ def read(path: Path | str, channel: str | None = None, frame: str = "Scan forwar
         k for k, b in enumerate(blocks) if b.get("Dim2Name") == channel and b.get("Frame") == frame
     ]
     if not found:
-        available = sorted({f"{b.get('Frame')}/{b.get('Dim2Name')}" for b in blocks})
+        available = sorted({repr(f"{b.get('Frame')}/{b.get('Dim2Name')}") for b in blocks})
         raise ReaderError(
             f"{path}: no channel {frame}/{channel} (channels: {', '.join(available)})"
         )
@@ -98,18 +111,18 @@ def read(path: Path | str, channel: str | None = None, frame: str = "Scan forwar
     points, lines = int(block["Points"]), int(block["Lines"])
     counts = np.frombuffer(raw, dtype=f"<i{bits // 8}", count=points * lines, offset=start)
     q = 2.0**bits
-    values = (counts.astype(float) + q / 2) / q * float(block["Dim2Range"]) + float(
-        block["Dim2Min"]
+    values = (counts.astype(float) + q / 2) / q * _real(block, "Dim2Range", path) + _real(
+        block, "Dim2Min", path
     )
     z_factor = length_factor(block.get("Dim2Unit", "?"), path, f"channel {channel!r} unit")
     z = check_heights(path, values.reshape(lines, points) * z_factor)
     dx = (
-        float(block["Dim0Range"])
+        _real(block, "Dim0Range", path)
         * length_factor(block.get("Dim0Unit", "?"), path, "x unit")
         / points
     )
     dy = (
-        float(block["Dim1Range"])
+        _real(block, "Dim1Range", path)
         * length_factor(block.get("Dim1Unit", "?"), path, "y unit")
         / lines
     )
@@ -117,3 +130,31 @@ def read(path: Path | str, channel: str | None = None, frame: str = "Scan forwar
     return HeightMap(
         z, dx, dy, str(path), channel=f"{frame}/{channel}", notes=(f"scan direction {direction}",)
     )
+
+
+def _count(section: dict[str, str], key: str, path: Path) -> int:
+    """A non-negative integer header value."""
+    try:
+        value = int(section[key])
+    except KeyError:
+        raise ReaderError(f"{path}: incomplete .nid header (no {key!r})") from None
+    except ValueError:
+        raise ReaderError(
+            f"{path}: .nid header: {key}={section[key]!r} is not an integer"
+        ) from None
+    if value < 0:
+        raise ReaderError(f"{path}: .nid header: {key}={value} is negative")
+    return value
+
+
+def _real(section: dict[str, str], key: str, path: Path) -> float:
+    """A finite real header value."""
+    try:
+        value = float(section[key])
+    except KeyError:
+        raise ReaderError(f"{path}: incomplete .nid header (no {key!r})") from None
+    except ValueError:
+        raise ReaderError(f"{path}: .nid header: {key}={section[key]!r} is not a number") from None
+    if not math.isfinite(value):
+        raise ReaderError(f"{path}: .nid header: {key}={value!r} is not finite")
+    return value
