@@ -12,7 +12,7 @@ summits. Block b of realization r draws from its own stream
 ``SeedSequence(entropy, spawn_key=(r, 1 + b))`` (the counts use ``(r, 0)``); these are
 exactly the children ``SeedSequence(entropy).spawn(...)`` would make. Per-block partial
 sums are combined in block order. The result is therefore bit-identical for any
-chunk size and any number of workers.
+chunk size, number of workers, backend (threads or Dask) and interruption/resume.
 """
 
 from __future__ import annotations
@@ -88,14 +88,7 @@ class MonteCarloSpec:
             raise ParameterError(f"h must be finite, got {h[~np.isfinite(h)][0]!r}")
         object.__setattr__(self, "h", h)
         object.__setattr__(self, "area", check_range("area", self.area, "m^2", low=0))
-        if (
-            isinstance(self.realizations, bool)
-            or not isinstance(self.realizations, int | np.integer)
-            or self.realizations < 1
-        ):
-            raise ParameterError(
-                f"realizations = {self.realizations!r} is out of range (allowed: integer >= 1)"
-            )
+        _check_count("realizations", self.realizations)
         if self.count not in COUNT_MODES:
             raise ParameterError(f"count = {self.count!r} is not one of {', '.join(COUNT_MODES)}")
         if self.count == "fixed" and round(self.surface.eta * self.area) < 1:
@@ -112,6 +105,9 @@ class MonteCarloSpec:
 
     def __eq__(self, other: object) -> bool:
         return isinstance(other, MonteCarloSpec) and self.fields() == other.fields()
+
+    def __hash__(self) -> int:
+        return hash(tuple(self.fields().values()))
 
     def differences(self, other: MonteCarloSpec) -> list[str]:
         """Names of the inputs that differ from ``other``."""

@@ -21,9 +21,17 @@ import numpy as np
 from . import runfile
 from ._version import __version__
 from .analytic import QUANTITIES
+from .errors import ParameterError, RunFileError
 from .montecarlo import DEFAULT_CHUNK, EnsembleSums, MonteCarloSpec, run_sums
 from .params import Material, Surface
-from .statistics import Summary, compare_table, expected_values, per_realization, summarize
+from .statistics import (
+    Summary,
+    analytic_for,
+    compare_table,
+    expected_values,
+    per_realization,
+    summarize,
+)
 from .units import parse_quantity
 
 
@@ -115,8 +123,6 @@ class Run:
 
 def assemble(ens: EnsembleSums, **kwargs) -> Run:
     """Statistics and GW expectations of a complete ensemble, as a :class:`Run`."""
-    from .statistics import analytic_for
-
     return Run(
         ensemble=ens,
         realizations=per_realization(ens),
@@ -201,8 +207,6 @@ def simulate(
     -------
     Run
     """
-    from .errors import ParameterError, RunFileError
-
     area_m2 = parse_quantity(area, "area", "area")
     if resume and out is None:
         raise ParameterError("resume needs the run file to continue (out=...)")

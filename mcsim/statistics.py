@@ -138,9 +138,9 @@ def summarize(ens: EnsembleSums) -> Summary:
     return Summary(mean, se, std, se_between, expected)
 
 
-def analytic_for(ens_spec) -> AnalyticCurves:
-    """GW curves for the inputs of a run."""
-    return gw_curves(ens_spec.surface, ens_spec.material, ens_spec.h, ens_spec.law)
+def analytic_for(spec) -> AnalyticCurves:
+    """GW curves for the inputs of a run (a :class:`~mcsim.montecarlo.MonteCarloSpec`)."""
+    return gw_curves(spec.surface, spec.material, spec.h, spec.law)
 
 
 def expected_values(spec, curves: AnalyticCurves) -> dict[str, np.ndarray]:
