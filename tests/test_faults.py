@@ -27,6 +27,10 @@ ARGS = ["simulate", "--surface", "smooth", "--h=2:-1:7", "--area", "1e-8", "--re
         "--seed", "3", "--workers", "1", "--quiet"]  # fmt: skip
 
 
+#: A run that takes no time.
+SMALL = ["simulate", "--surface", "rough", "--area", "1e-10", "--h=0", "--quiet"]
+
+
 @pytest.fixture(scope="module")
 def reference():
     """The uninterrupted run."""
@@ -73,22 +77,7 @@ def _limit_file_size():
 
 def test_full_disk_gives_a_clear_error_and_leaves_earlier_runs_untouched(tmp_path):
     earlier = tmp_path / "earlier.h5"
-    assert (
-        main(
-            [
-                "simulate",
-                "--surface",
-                "rough",
-                "--area",
-                "1e-10",
-                "--h=0",
-                "--out",
-                str(earlier),
-                "--quiet",
-            ]
-        )
-        == 0
-    )
+    assert main([*SMALL, "--out", str(earlier)]) == 0
     before = earlier.read_bytes()
     out = tmp_path / "big.h5"  # ~100 kB of results: past the 40 kB limit
     done = subprocess.run(
@@ -123,22 +112,7 @@ def test_a_lock_left_by_a_killed_writer_is_taken_over(tmp_path):
     dead.wait()
     (tmp_path / "t.h5.lock").write_text(f"{os.uname().nodename} {dead.pid}")
     (tmp_path / ".t.h5.abc.tmp").write_bytes(b"half a file")
-    assert (
-        main(
-            [
-                "simulate",
-                "--surface",
-                "rough",
-                "--area",
-                "1e-10",
-                "--h=0",
-                "--out",
-                str(out),
-                "--quiet",
-            ]
-        )
-        == 0
-    )
+    assert main([*SMALL, "--out", str(out)]) == 0
     assert sorted(p.name for p in tmp_path.iterdir()) == ["t.h5"]
 
 
