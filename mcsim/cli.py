@@ -82,7 +82,11 @@ def _print_rows(
     rows: list[dict], columns: list[str], fmt: str, header: list[str] | None = None
 ) -> None:
     if fmt == "json":
-        print(json.dumps(rows, indent=1, default=lambda v: None))
+        clean = [
+            {k: (None if isinstance(v, float) and v != v else v) for k, v in r.items()}
+            for r in rows
+        ]
+        print(json.dumps(clean, indent=1, allow_nan=False))  # undefined values are null
         return
     if fmt == "csv":
         import csv

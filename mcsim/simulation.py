@@ -20,13 +20,12 @@ import numpy as np
 
 from . import runfile
 from ._version import __version__
-from .analytic import QUANTITIES
+from .analytic import QUANTITIES, gw_curves
 from .errors import ParameterError, RunFileError
 from .montecarlo import DEFAULT_CHUNK, EnsembleSums, MonteCarloSpec, run_sums
 from .params import Material, Surface
 from .statistics import (
     Summary,
-    analytic_for,
     compare_table,
     expected_values,
     per_realization,
@@ -123,11 +122,12 @@ class Run:
 
 def assemble(ens: EnsembleSums, **kwargs) -> Run:
     """Statistics and GW expectations of a complete ensemble, as a :class:`Run`."""
+    spec = ens.spec
     return Run(
         ensemble=ens,
         realizations=per_realization(ens),
         summary=summarize(ens),
-        analytic=expected_values(ens.spec, analytic_for(ens.spec)),
+        analytic=expected_values(spec, gw_curves(spec.surface, spec.material, spec.h, spec.law)),
         heights=ens.heights,
         **kwargs,
     )

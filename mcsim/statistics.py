@@ -32,7 +32,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .analytic import QUANTITIES, AnalyticCurves, gw_curves
+from .analytic import QUANTITIES, AnalyticCurves
 from .kernels import SUM_COLUMNS
 from .montecarlo import EnsembleSums
 
@@ -136,11 +136,6 @@ def summarize(ens: EnsembleSums) -> Summary:
     se_between = {q: v / np.sqrt(R) for q, v in std.items()}
     expected = R * spec.expected_summits * np.asarray(spec.surface.heights.sf(spec.h))
     return Summary(mean, se, std, se_between, expected)
-
-
-def analytic_for(spec) -> AnalyticCurves:
-    """GW curves for the inputs of a run (a :class:`~mcsim.montecarlo.MonteCarloSpec`)."""
-    return gw_curves(spec.surface, spec.material, spec.h, spec.law)
 
 
 def expected_values(spec, curves: AnalyticCurves) -> dict[str, np.ndarray]:

@@ -262,3 +262,13 @@ def test_invalid_material_file_values_give_one_line_and_exit_2(capsys, tmp_path,
     code, _, err = run_cli(capsys, "analytic", "--surface", "smooth", "--material", str(f), "--h=0")
     assert code == 2 and err.count("\n") == 1
     assert str(f) in err and __import__("re").search(message, err), err
+
+
+def test_json_output_is_strict_json_with_null_for_undefined_values(capsys, tmp_path):
+    out = tmp_path / "t.h5"
+    run_cli(capsys, "simulate", "--surface", "smooth", "--area", "1e-10", "--h=4,0", "--seed", "1",
+            "--out", str(out), "--quiet")  # fmt: skip
+    _, text, _ = run_cli(capsys, "compare", str(out), "--format", "json")
+    rows = json.loads(text, parse_constant=lambda c: pytest.fail(f"non-standard JSON constant {c}"))
+    few = [r for r in rows if r["h"] == 4.0]
+    assert all(r["z"] is None for r in few) and all(r["note"] for r in few)
