@@ -369,22 +369,36 @@ def run_sums(
                 client.submit, run_task, spec, keep_heights=keep_heights, pure=False
             )
             window = 2 * max(1, sum(client.nthreads().values()))
+        # Progress of realization r is committed as one (sums, blocks done) pair in a
+        # single store, so an interruption (Ctrl-C) sees a task wholly done or not at
+        # all, and the checkpoint it writes never counts a block twice on resume.
+        committed = {
+            r: (state.sums[r], int(state.done_blocks[r])) for r in range(spec.realizations)
+        }
+
+        def settle() -> EnsembleSums:
+            for r, (sums, done) in committed.items():
+                state.sums[r], state.done_blocks[r] = sums, done
+            return state
+
         try:
             for task, (partials, blocks) in _in_order(submit, tasks, window):
+                sums = committed[task.realization][0].copy()
                 for part in partials:  # in block order
-                    state.sums[task.realization, order] += part
-                state.done_blocks[task.realization] = task.stop
+                    sums[order] += part
+                committed[task.realization] = (sums, task.stop)
                 if blocks is not None:
                     kept[task.realization].extend(blocks)
                 if progress is not None:
                     progress(task.n_summits)
                 if checkpoint is not None and time.monotonic() - last > checkpoint_every:
-                    checkpoint(state)
+                    checkpoint(settle())
                     last = time.monotonic()
         except BaseException:
             if checkpoint is not None:
-                checkpoint(state)
+                checkpoint(settle())
             raise
+    settle()
     if keep_heights:
         state.heights = [np.concatenate(k) if k else np.empty(0) for k in kept]
     return state

@@ -1,5 +1,7 @@
 """The Monte Carlo engine: kernel correctness, reproducibility, sampling and statistics."""
 
+import copy
+
 import numpy as np
 import pytest
 from scipy import stats
@@ -240,3 +242,38 @@ def test_changing_a_law_compiles_a_new_kernel_instead_of_reusing_a_stale_cache(
     assert module.split("_")[-1] != kernels._compiled(SEED).py_func.__module__.split("_")[-1]
     sys.modules.pop("doubled_laws")
     kernels._compiled.cache_clear()
+
+
+def test_an_interruption_in_the_middle_of_adding_a_task_never_counts_a_block_twice(monkeypatch):
+    """Ctrl-C may land between any two statements: the checkpoint it writes must hold
+    whole tasks only, so that resuming from it reproduces the uninterrupted sums."""
+    import mcsim.montecarlo as mc
+
+    s = spec(area=3e-8, realizations=1)  # ~8 blocks: several tasks of 2 blocks
+    reference = run_sums(s, workers=1, chunk_size=2 * BLOCK)
+    real_run_task = mc.run_task
+    calls = []
+
+    class InterruptedPartials(list):
+        def __iter__(self):  # Ctrl-C after the first block of the task has been added
+            yield self[0]
+            raise KeyboardInterrupt
+
+    def run_task(spec_, task, keep_heights=False):
+        partials, blocks = real_run_task(spec_, task, keep_heights)
+        calls.append(task)
+        return (InterruptedPartials(partials) if len(calls) == 3 else partials), blocks
+
+    monkeypatch.setattr(mc, "run_task", run_task)
+    saved = []
+    with pytest.raises(KeyboardInterrupt):
+        run_sums(
+            s,
+            workers=1,
+            chunk_size=2 * BLOCK,
+            checkpoint=lambda st: saved.append(copy.deepcopy(st)),
+        )
+    monkeypatch.setattr(mc, "run_task", real_run_task)
+    assert saved[-1].done_blocks[0] == 4, "two whole tasks done, the third not at all"
+    resumed = run_sums(s, workers=1, chunk_size=2 * BLOCK, resume=saved[-1])
+    np.testing.assert_array_equal(resumed.sums, reference.sums)
