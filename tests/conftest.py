@@ -69,3 +69,25 @@ def nid_files() -> dict[str, Path]:
     nsfopen = pytest.importorskip("NSFopen", reason="NSFopen ships the real .nid sample files")
     root = Path(nsfopen.__file__).parent / "example"
     return {p.stem: p for p in sorted(root.glob("*/*.nid"))}
+
+
+def interrupt(proc, timeout: float = 60.0) -> tuple[int, str]:
+    """Send Ctrl-C (SIGINT) to ``proc`` and return its exit code and stderr.
+
+    If it has not exited after ``timeout`` seconds, SIGABRT makes Python's faulthandler
+    (``PYTHONFAULTHANDLER=1`` in the child's environment) print every thread's stack,
+    and the test fails with it: a hang is reported with where it hung.
+    """
+    import signal
+    import subprocess
+
+    import pytest
+
+    proc.send_signal(signal.SIGINT)
+    try:
+        _, err = proc.communicate(timeout=timeout)
+    except subprocess.TimeoutExpired:
+        proc.send_signal(signal.SIGABRT)
+        _, err = proc.communicate(timeout=30)
+        pytest.fail(f"no exit {timeout:g} s after SIGINT; stacks:\n{err}")
+    return proc.returncode, err or ""

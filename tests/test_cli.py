@@ -4,13 +4,13 @@ import csv
 import io
 import json
 import os
-import signal
 import subprocess
 import sys
 import time
 
 import numpy as np
 import pytest
+from conftest import interrupt
 
 from mcsim.analytic import gw_curves
 from mcsim.cli import main
@@ -175,16 +175,16 @@ def test_ctrl_c_leaves_a_resumable_run_that_resumes_to_identical_numbers(tmp_pat
     out = tmp_path / "t.h5"
     args = ["simulate", "--surface", "smooth", "--h=2:-1:7", "--area", "1e-8", "--realizations", "500",
             "--seed", "3", "--workers", "1", "--out", str(out)]  # fmt: skip
+    env = {**os.environ, "PYTHONFAULTHANDLER": "1"}
     proc = subprocess.Popen(
-        [exe, *args, "--checkpoint-every", "0.05"], stderr=subprocess.PIPE, text=True
+        [exe, *args, "--checkpoint-every", "0.05"], stderr=subprocess.PIPE, text=True, env=env
     )
     deadline = time.monotonic() + 30
     while not out.exists() and proc.poll() is None and time.monotonic() < deadline:
         time.sleep(0.01)  # until the run has checkpointed some progress
     assert proc.poll() is None, "the long run finished before it could be interrupted"
-    proc.send_signal(signal.SIGINT)
-    _, err = proc.communicate(timeout=60)
-    assert proc.returncode == 130, err
+    code, err = interrupt(proc)
+    assert code == 130, err
     assert "--resume" in err
     state, _ = read_state(out)
     assert not state.complete and state.done_blocks.sum() > 0

@@ -14,6 +14,7 @@ import time
 
 import numpy as np
 import pytest
+from conftest import interrupt
 
 from mcsim import RunFileError
 from mcsim.cli import main
@@ -39,7 +40,9 @@ def reference():
 
 def start_and_wait_for_progress(out):
     """Start a ~4 s run that checkpoints every 20 ms; return once its first checkpoint exists."""
-    proc = subprocess.Popen([EXE, *ARGS, "--out", str(out), "--checkpoint-every", "0.02"])
+    env = {**os.environ, "PYTHONFAULTHANDLER": "1"}
+    proc = subprocess.Popen([EXE, *ARGS, "--out", str(out), "--checkpoint-every", "0.02"],
+                            stderr=subprocess.PIPE, text=True, env=env)  # fmt: skip
     deadline = time.monotonic() + 30
     while not out.exists() and proc.poll() is None and time.monotonic() < deadline:
         time.sleep(0.01)
@@ -130,8 +133,8 @@ def test_resume_refuses_other_arguments(tmp_path, capsys):
     out = tmp_path / "t.h5"
     state_args = [*ARGS, "--out", str(out)]
     proc = start_and_wait_for_progress(out)
-    proc.send_signal(signal.SIGINT)
-    assert proc.wait() == 130
+    code, err = interrupt(proc)
+    assert code == 130, err
     assert not read_state(out)[0].complete
     changed = [a if a != "1e-8" else "2e-8" for a in state_args]
     assert main([*changed, "--resume"]) == 2
