@@ -24,7 +24,7 @@ _LAZY = {
     "combine_surfaces": "params",
     "plasticity_index": "params",
     "surface_energy_parameter": "params",
-    "Run": "simulation",
+    "Run": "results",
     "simulate": "simulation",
     "read_run": "runfile",
 }

@@ -21,6 +21,8 @@ import importlib.util
 import inspect
 import os
 import sys
+import tempfile
+import threading
 from pathlib import Path
 
 import numpy as np
@@ -126,8 +128,21 @@ def cache_dir() -> Path:
     return Path(os.environ.get("XDG_CACHE_HOME", Path.home() / ".cache")) / "mcsim"
 
 
-@functools.cache
+_COMPILE_LOCK = threading.Lock()
+
+
 def _compiled(law: LawSet):
+    """The fused kernel of a law set (see :func:`_generate`), built once per process.
+
+    The lock makes worker threads that start together wait for one build rather than
+    race to write the same module.
+    """
+    with _COMPILE_LOCK:
+        return _generate(law)
+
+
+@functools.cache
+def _generate(law: LawSet):
     """The fused kernel of a law set, compiled by numba from the law set's own functions.
 
     A small module is generated that imports the three law functions and holds the
@@ -155,8 +170,9 @@ def _compiled(law: LawSet):
             f"{sources[0]}\n\n"
             'kernel = numba.njit(nogil=True, cache=True, fastmath={"reassoc", "contract", "nsz"})(_sweep)\n'
         )
-        tmp = path.with_suffix(f".{os.getpid()}.tmp")
-        tmp.write_text(text)
+        fd, tmp = tempfile.mkstemp(dir=folder, prefix=f".{name}.", suffix=".tmp")
+        with os.fdopen(fd, "w") as f:
+            f.write(text)
         os.replace(tmp, path)  # atomic: concurrent processes never see half a module
     spec = importlib.util.spec_from_file_location(name, path)
     module = importlib.util.module_from_spec(spec)

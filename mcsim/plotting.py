@@ -351,7 +351,7 @@ def run_figure(run):
 
     Parameters
     ----------
-    run : mcsim.simulation.Run
+    run : mcsim.results.Run
         A run, fresh or read from a file.
 
     Returns
@@ -442,7 +442,7 @@ def comparison_figure(surface_measured, surface_gaussian, material, h, run=None)
         The material pair.
     h : array_like
         Separations d/σ for the curves (each surface's own σ and mean summit height).
-    run : mcsim.simulation.Run, optional
+    run : mcsim.results.Run, optional
         A Monte Carlo run of ``surface_measured``: its means ± 2 standard errors
         are drawn over the measured curves.
 

@@ -1,4 +1,4 @@
-"""HDF5 run files: atomic, checksummed, resumable; read back as a :class:`~mcsim.simulation.Run`.
+"""HDF5 run files: atomic, checksummed, resumable; read back as a :class:`~mcsim.results.Run`.
 
 Layout (schema version :data:`SCHEMA_VERSION`; every dataset carries a ``unit``
 attribute, dimensionless ones ``"1"`` with the normalisation in ``description``):
@@ -53,17 +53,10 @@ from .errors import MCSimError, RunFileError
 from .kernels import SUM_COLUMNS
 from .montecarlo import BLOCK, EnsembleSums, MonteCarloSpec
 from .params import Material, Surface
+from .results import NORMALISED, STATS, Run, assemble
 from .statistics import Summary
 
 SCHEMA_VERSION = 1
-STATS = ("mean", "se", "std", "se_between")
-NORMALISED = {
-    "contact_fraction": "N_c/N",
-    "P": "P/(A K)",
-    "F": "F/(A K)",
-    "T": "T/(A K)",
-    "mu": "T/(P + F)",
-}
 
 
 def check_output_path(path: str | Path, overwrite: bool = False, resume: bool = False) -> Path:
@@ -254,7 +247,7 @@ def write_checkpoint(path: str | Path, state: EnsembleSums, *, command: str) -> 
 
 
 def write_run(path: str | Path, run, *, command: str):
-    """Write a complete ``run`` (a :class:`mcsim.simulation.Run`); return it with path and attrs.
+    """Write a complete ``run`` (a :class:`mcsim.results.Run`); return it with path and attrs.
 
     The caller holds :func:`lock` and has checked the path with :func:`check_output_path`.
     """
@@ -382,15 +375,13 @@ def read_state(path: str | Path) -> tuple[EnsembleSums, dict]:
 
 
 def read_run(path: str | Path, *, allow_incomplete: bool = False):
-    """Open a run file as a :class:`mcsim.simulation.Run`.
+    """Open a run file as a :class:`mcsim.results.Run`.
 
     Refuses other schema versions, damaged files (checksum, shapes) and, unless
     ``allow_incomplete``, runs that did not finish. With ``allow_incomplete`` an
     unfinished run is summarised over its completed realizations (``run.complete``
     is then False).
     """
-    from .simulation import Run, assemble
-
     path = Path(path)
     with _open(path) as f, _damaged(path):
         _verified(path, f)

@@ -241,7 +241,7 @@ def test_changing_a_law_compiles_a_new_kernel_instead_of_reusing_a_stale_cache(
     assert (tmp_path / "cache" / "kernels" / f"{module}.py").exists()
     assert module.split("_")[-1] != kernels._compiled(SEED).py_func.__module__.split("_")[-1]
     sys.modules.pop("doubled_laws")
-    kernels._compiled.cache_clear()
+    kernels._generate.cache_clear()
 
 
 def test_an_interruption_in_the_middle_of_adding_a_task_never_counts_a_block_twice(monkeypatch):
@@ -277,3 +277,21 @@ def test_an_interruption_in_the_middle_of_adding_a_task_never_counts_a_block_twi
     assert saved[-1].done_blocks[0] == 4, "two whole tasks done, the third not at all"
     resumed = run_sums(s, workers=1, chunk_size=2 * BLOCK, resume=saved[-1])
     np.testing.assert_array_equal(resumed.sums, reference.sums)
+
+
+def test_threads_starting_together_on_a_cold_cache_build_the_kernel_once(monkeypatch, tmp_path):
+    """Worker threads of one run used to race to write the same generated module
+    (FileNotFoundError on the first run after installation)."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    from mcsim import kernels
+
+    monkeypatch.setenv("MCSIM_CACHE_DIR", str(tmp_path / "cache"))
+    kernels._generate.cache_clear()
+    try:
+        with ThreadPoolExecutor(8) as pool:
+            built = list(pool.map(lambda _: kernels._compiled(SEED), range(8)))
+    finally:
+        kernels._generate.cache_clear()
+    assert all(k is built[0] for k in built)
+    assert not list((tmp_path / "cache" / "kernels").glob(".*.tmp"))
