@@ -45,7 +45,9 @@ def cases():
         out[f"sums_{label}"] = run.sums
         out[f"N_{label}"] = run.n_summits
         for stat in ("mean", "se"):
-            out[f"{stat}_{label}"] = np.stack([getattr(run.summary, stat)[q] for q in run.summary.mean])
+            out[f"{stat}_{label}"] = np.stack(
+                [getattr(run.summary, stat)[q] for q in run.summary.mean]
+            )
     rng = np.random.default_rng(3)
     z = rng.standard_normal(5000) * smooth.sigma
     d = np.sort(H * smooth.sigma)[::-1]

@@ -10,7 +10,6 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-
 from make_seed_golden import cases
 
 GOLDEN = np.load(Path(__file__).parent / "data" / "seed_golden.npz")
