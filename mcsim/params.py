@@ -64,7 +64,14 @@ class Material:
         w = 2 γ_s). mcsim uses it as written.
     H : float or None
         Indentation hardness of the softer solid, Pa. Given in the paper but unused
-        by its elastic model; mcsim only reports the plasticity index from it.
+        by its elastic model; used by the ``elastic-plastic`` law set and the
+        plasticity index.
+    z0 : float or None
+        Equilibrium spacing of the surface interaction, m (``dmt``,
+        ``maugis-dugdale`` and the Tabor parameter).
+    tau : float or None
+        Interfacial shear strength, Pa: friction τ·A_r of the new law sets
+        (Bowden–Tabor); no friction is reported without it.
     name : str
         Label for output files and plots.
     """
@@ -76,6 +83,8 @@ class Material:
     gamma: float
     H: float | None = None
     name: str = ""
+    z0: float | None = None
+    tau: float | None = None
 
     def __post_init__(self) -> None:
         for attr in ("E1", "E2"):
@@ -89,6 +98,15 @@ class Material:
         )
         if self.H is not None:
             object.__setattr__(self, "H", check_range("H", self.H, "Pa", low=0))
+        if self.z0 is not None:
+            object.__setattr__(self, "z0", check_range("z0", self.z0, "m", low=0))
+        if self.tau is not None:
+            object.__setattr__(self, "tau", check_range("tau", self.tau, "Pa", low=0))
+
+    @property
+    def nu(self) -> float:
+        """Poisson's ratio of the softer solid (the lower E), as used by Kogut & Etsion."""
+        return self.nu1 if self.E1 <= self.E2 else self.nu2
 
     @property
     def K(self) -> float:

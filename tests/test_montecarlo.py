@@ -215,7 +215,7 @@ def test_changing_a_law_compiles_a_new_kernel_instead_of_reusing_a_stale_cache(
     import sys
 
     from mcsim import kernels
-    from mcsim.laws import LawSet, seed
+    from mcsim.laws import LawSet, Output, seed
 
     monkeypatch.setenv("MCSIM_CACHE_DIR", str(tmp_path / "cache"))
     source = inspect.getsource(seed).replace(
@@ -227,9 +227,11 @@ def test_changing_a_law_compiles_a_new_kernel_instead_of_reusing_a_stale_cache(
     law = LawSet(
         "doubled",
         "Hertz load x2",
-        doubled.hertz_load,
-        doubled.johnson_adhesion,
-        doubled.savkoor_briggs_friction,
+        (
+            Output("P", "N", doubled.hertz_load),
+            Output("F", "N", doubled.johnson_adhesion),
+            Output("T", "N", doubled.savkoor_briggs_friction),
+        ),
     )
     args = law.arguments(SMOOTH, SILICON)
     z, d = np.array([1e-9, 2e-9]), np.array([0.0])

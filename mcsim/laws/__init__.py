@@ -1,16 +1,38 @@
-"""Law sets: the per-summit force laws, interchangeable parts of the model.
+"""Law sets: the per-summit contact models, interchangeable parts of the engine.
 
-A :class:`LawSet` names three pure functions of the interference δ: the load carried
-by a summit, its adhesion term and its adhesional friction. The analytic integrals
-and the Monte Carlo engine call the same functions, so a new law set (DMT, exact
-JKR, ...) plugs in here without touching either. Each law takes δ first, then any
-of the named contact parameters of :func:`contact_parameters`.
+A :class:`LawSet` names pure, vectorised functions of the interference δ = z − d (m),
+its **outputs** (the seed: P, F, T; the new sets: ``load`` and ``area``), and its
+**edges**: where a summit carries force at all. The analytic integrals and the
+Monte Carlo kernel call the same functions, so a law set plugs in here without
+touching either.
+
+Calling convention of an output function::
+
+    f(delta, *params)              # stateless laws (the seed)
+    f(delta, delta_max, *params)   # contact models with approach and retraction
+
+``params`` are looked up by name in :func:`contact_parameters` merged with the law
+set's own ``constants(surface, material)``. ``delta_max`` is the largest interference
+the summit has reached: δ itself on approach, z − d_turn on retraction after the
+closest approach d_turn. A summit is *in contact* when ``delta_max > jump_in`` and
+``delta > break_off`` (:class:`Edges`); out of contact it may still feel a
+non-contact attraction down to ``delta > reach``. Every function must return finite
+values for every finite input (the kernel and the quadrature evaluate them only where
+the edges say a force may act, but vectorised callers evaluate everywhere).
+
+Law functions are restricted to a small vocabulary so that the same source also
+compiles as a CUDA device function: arithmetic, comparisons, ``np.sqrt``,
+``np.cbrt``, ``np.exp``, ``np.log``, ``np.abs``, ``np.maximum``, ``np.minimum``,
+``np.floor``, ``np.arctan``, ``np.cos``, ``np.arccos``, ``np.pi``, ``np.int64``, and
+indexing 1-D float arrays passed as parameters. No ``np.where``, no Python
+``if``/``while`` on array values, no calls to other Python functions.
 """
 
 from __future__ import annotations
 
+import difflib
 import inspect
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 
 import numpy as np
@@ -20,12 +42,14 @@ from ..params import Material, Surface
 from . import seed
 
 Law = Callable[..., np.ndarray]
+BRANCHES = ("approach", "retract")
 
 
-def contact_parameters(surface: Surface, material: Material) -> dict[str, float]:
-    """The named parameters a law may take after δ, in SI units.
+def contact_parameters(surface: Surface, material: Material) -> dict[str, float | None]:
+    """The named parameters a law may take after δ (and δ_max), in SI units.
 
-    ``R`` (m), ``K``, ``G``, ``E_star`` (Pa) and ``gamma`` (J/m²).
+    ``R`` (m), ``K``, ``G``, ``E_star`` (Pa), ``gamma`` (the work of adhesion w,
+    J/m²), ``nu`` (softer solid), and the optional ``H`` (Pa), ``z0`` (m), ``tau`` (Pa).
     """
     return {
         "R": surface.R,
@@ -33,12 +57,99 @@ def contact_parameters(surface: Surface, material: Material) -> dict[str, float]
         "G": material.G,
         "E_star": material.E_star,
         "gamma": material.gamma,
+        "nu": material.nu,
+        "H": material.H,
+        "z0": material.z0,
+        "tau": material.tau,
     }
 
 
 @dataclass(frozen=True)
+class Output:
+    """One per-summit quantity of a law set.
+
+    Attributes
+    ----------
+    name : str
+        Column name (``P``, ``load``, ``area``, ...).
+    unit : str
+        SI unit of one summit's value (``N``, ``m^2``).
+    law : callable
+        The per-summit function (see the module docstring for its signature).
+    description : str
+        One line for help texts and run files.
+    """
+
+    name: str
+    unit: str
+    law: Law
+    description: str = ""
+
+    @property
+    def stateful(self) -> bool:
+        """Whether the function takes ``delta_max`` (a contact model with branches)."""
+        params = list(inspect.signature(self.law).parameters)
+        return len(params) > 1 and params[1] == "delta_max"
+
+    @property
+    def parameter_names(self) -> tuple[str, ...]:
+        """Names of the parameters after δ (and δ_max)."""
+        return tuple(list(inspect.signature(self.law).parameters)[2 if self.stateful else 1 :])
+
+
+@dataclass(frozen=True)
+class Edges:
+    """Interferences bounding where a summit carries force, m.
+
+    Attributes
+    ----------
+    reach : float
+        Most negative δ at which a summit out of contact still feels a force
+        (non-contact attraction); no force for δ ≤ reach. ``reach <= jump_in``.
+    jump_in : float
+        On approach a summit is in contact for δ > jump_in.
+    break_off : float
+        On retraction a summit that was in contact (δ_max > jump_in) stays in
+        contact for δ > break_off (``break_off <= jump_in``; JKR: δ_c < 0).
+    breakpoints : tuple of float
+        Interferences where an output is not smooth (kinks, jumps, table ends), for
+        the quadrature's panel edges. The edges above need not be repeated.
+    """
+
+    reach: float = 0.0
+    jump_in: float = 0.0
+    break_off: float = 0.0
+    breakpoints: tuple[float, ...] = ()
+
+    def __post_init__(self) -> None:
+        if not (self.reach <= self.jump_in and self.break_off <= self.jump_in):
+            raise ValueError(f"inconsistent edges {self}")
+
+    def threshold(self, d, d_turn):
+        """Lowest summit height z that can carry force at separation ``d`` after the
+        closest approach ``d_turn`` (``d_turn = d`` on approach), m.
+
+        A pair carries force if δ > reach, or if it is in contact on retraction:
+        z − d_turn > jump_in and z − d > break_off. The union is z > threshold.
+        """
+        return np.minimum(d + self.reach, np.maximum(d_turn + self.jump_in, d + self.break_off))
+
+    def in_contact(self, delta, delta_max):
+        """Whether a summit at ``delta`` with history ``delta_max`` is in contact."""
+        return (delta_max > self.jump_in) & (delta > self.break_off)
+
+
+def _no_constants(surface: Surface, material: Material) -> dict:
+    return {}
+
+
+def _touching(params: Mapping) -> Edges:
+    return Edges()
+
+
+@dataclass(frozen=True)
 class LawSet:
-    """Three per-summit laws of δ that together define a contact model.
+    """A contact model: per-summit outputs, their parameters and their edges.
 
     Attributes
     ----------
@@ -46,44 +157,131 @@ class LawSet:
         Registry name (``--law``).
     description : str
         One line for help texts and run files.
-    load, adhesion, friction : callable
-        ``f(delta, **params) -> force`` in N, zero for δ ≤ 0, vectorised.
+    outputs : tuple of Output
+        The per-summit quantities, in column order.
+    edges : callable
+        ``edges(params) -> Edges`` from the merged parameter mapping (SI).
+    constants : callable
+        ``constants(surface, material) -> dict`` of derived parameters (floats or 1-D
+        float arrays, e.g. a tabulated dimensionless curve), merged into the
+        parameters the output functions take by name.
+    requires : tuple of str
+        Material fields that must be given (``"z0"``, ``"H"``, ...).
+    retract : bool
+        Whether the retraction branch is implemented (elastic-plastic: no).
+    friction : bool
+        Whether friction is τ·area (Bowden–Tabor) when the material gives τ.
     """
 
     name: str
     description: str
-    load: Law
-    adhesion: Law
-    friction: Law
+    outputs: tuple[Output, ...]
+    edges: Callable[[Mapping], Edges] = _touching
+    constants: Callable[[Surface, Material], dict] = _no_constants
+    requires: tuple[str, ...] = ()
+    retract: bool = True
+    friction: bool = False
 
     @property
-    def laws(self) -> tuple[Law, Law, Law]:
-        return (self.load, self.adhesion, self.friction)
+    def names(self) -> tuple[str, ...]:
+        return tuple(o.name for o in self.outputs)
 
-    def arguments(self, surface: Surface, material: Material) -> tuple[tuple[float, ...], ...]:
-        """Positional parameters after δ for each of the three laws."""
-        params = contact_parameters(surface, material)
-        return tuple(
-            tuple(params[p] for p in list(inspect.signature(law).parameters)[1:])
-            for law in self.laws
-        )
+    @property
+    def laws(self) -> tuple[Law, ...]:
+        return tuple(o.law for o in self.outputs)
+
+    @property
+    def stateful(self) -> bool:
+        """Whether the outputs take ``delta_max`` (approach and retraction differ)."""
+        return any(o.stateful for o in self.outputs)
+
+    def parameters(self, surface: Surface, material: Material) -> dict:
+        """All named parameters (SI), after checking the required material fields."""
+        for req in self.requires:
+            if getattr(material, req) is None:
+                raise ParameterError(
+                    f"law set {self.name!r} needs material field {req!r}, which is not given"
+                )
+        return {**contact_parameters(surface, material), **self.constants(surface, material)}
+
+    def arguments(self, surface: Surface, material: Material) -> tuple[tuple, ...]:
+        """Positional parameters after δ (and δ_max) for each output function."""
+        params = self.parameters(surface, material)
+        return tuple(tuple(params[p] for p in o.parameter_names) for o in self.outputs)
+
+    def edges_for(self, surface: Surface, material: Material) -> Edges:
+        """The :class:`Edges` of this law set for a surface and material, m."""
+        return self.edges(self.parameters(surface, material))
+
+    def check_branch(self, branch: str) -> None:
+        if branch not in BRANCHES:
+            raise ParameterError(f"branch = {branch!r} is not one of {', '.join(BRANCHES)}")
+        if branch == "retract" and not self.retract:
+            raise ParameterError(
+                f"law set {self.name!r} has no retraction branch (history-dependent "
+                "unloading is not implemented); use --law jkr, dmt or maugis-dugdale"
+            )
+
+    def evaluate(
+        self,
+        delta,
+        surface: Surface,
+        material: Material,
+        branch: str = "approach",
+        delta_max=None,
+    ) -> dict[str, np.ndarray]:
+        """Per-summit outputs at interference ``delta`` (m), vectorised.
+
+        Parameters
+        ----------
+        delta : array_like
+            Interference δ = z − d, m.
+        surface, material : Surface, Material
+            The contact.
+        branch : {"approach", "retract"}
+            On approach δ_max = δ. On retraction δ_max defaults to +inf (the summit
+            was pressed in at the turn), or give it.
+        delta_max : array_like, optional
+            Largest interference reached, m (retraction only).
+
+        Returns
+        -------
+        dict
+            Output name → value per summit in its unit (see :attr:`outputs`).
+        """
+        self.check_branch(branch)
+        delta = np.asarray(delta, dtype=float)
+        if branch == "approach" or delta_max is None:
+            delta_max = delta if branch == "approach" else np.full_like(delta, np.inf)
+        delta_max = np.broadcast_to(np.asarray(delta_max, dtype=float), delta.shape)
+        out = {}
+        for o, args in zip(self.outputs, self.arguments(surface, material)):
+            value = o.law(delta, delta_max, *args) if o.stateful else o.law(delta, *args)
+            out[o.name] = np.asarray(value, dtype=float)
+        return out
 
     def forces(self, delta, surface: Surface, material: Material) -> np.ndarray:
-        """Load, adhesion and friction of summits pressed by ``delta`` (m), shape ``(3, ...)``, N."""
-        return np.stack(
-            [law(delta, *args) for law, args in zip(self.laws, self.arguments(surface, material))]
-        )
+        """All outputs on approach, stacked: shape ``(len(outputs), ...)``."""
+        return np.stack(list(self.evaluate(delta, surface, material).values()))
 
 
 SEED = LawSet(
     name="seed",
     description="the paper as written: Hertz (Eq. 2), Johnson (Eq. 4), Savkoor-Briggs (Eq. 6)",
-    load=seed.hertz_load,
-    adhesion=seed.johnson_adhesion,
-    friction=seed.savkoor_briggs_friction,
+    outputs=(
+        Output("P", "N", seed.hertz_load, "Hertz load (Eq. 2)"),
+        Output("F", "N", seed.johnson_adhesion, "JKR adhesion term P1 - P (Eq. 4)"),
+        Output("T", "N", seed.savkoor_briggs_friction, "Savkoor-Briggs friction (Eq. 6)"),
+    ),
 )
 
 LAW_SETS: dict[str, LawSet] = {SEED.name: SEED}
+
+
+def register(law: LawSet) -> LawSet:
+    """Add a law set to the registry (``--law NAME``)."""
+    LAW_SETS[law.name] = law
+    return law
 
 
 def get_law_set(law: str | LawSet) -> LawSet:
@@ -92,7 +290,9 @@ def get_law_set(law: str | LawSet) -> LawSet:
         return law
     try:
         return LAW_SETS[law]
-    except KeyError:
+    except (KeyError, TypeError):
+        close = difflib.get_close_matches(str(law), LAW_SETS, n=1)
+        hint = f"; did you mean {close[0]!r}?" if close else ""
         raise ParameterError(
-            f"unknown law set {law!r} (allowed: {', '.join(sorted(LAW_SETS))})"
+            f"unknown law set {law!r} (allowed: {', '.join(sorted(LAW_SETS))}){hint}"
         ) from None
