@@ -12,7 +12,7 @@ $(BIN)/.installed: pyproject.toml
 	touch $@
 
 run: $(BIN)/.installed
-	$(BIN)/mcsim paper
+	$(BIN)/mcsim paper --overwrite
 
 test: $(BIN)/.installed
 	$(BIN)/python -m pytest -q

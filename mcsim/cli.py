@@ -136,10 +136,16 @@ def cmd_analytic(args) -> int:
 
 
 def cmd_paper(args) -> int:
-    from .paper import paper_monte_carlo, reproduce_paper
+    from .outputs import check_output
+    from .paper import paper_monte_carlo, paper_outputs, reproduce_paper
 
-    mc = None if args.no_mc else paper_monte_carlo(args.out, seed=args.seed)
-    result = reproduce_paper(out_dir=args.out, mc=mc)
+    if Path(args.out).is_dir():  # refuse before the Monte Carlo work, not after it
+        for path in paper_outputs(args.out, monte_carlo=not args.no_mc):
+            check_output(path, overwrite=args.overwrite)
+    mc = None
+    if not args.no_mc:
+        mc = paper_monte_carlo(args.out, seed=args.seed, overwrite=args.overwrite)
+    result = reproduce_paper(out_dir=args.out, mc=mc, overwrite=args.overwrite)
     print(
         f"wrote {len(result['figures'])} figures, {result['curves_csv'].name} and {result['mu_table_csv'].name} to {args.out}"
     )
@@ -257,55 +263,73 @@ def cmd_plot(args) -> int:
     import numpy as np
 
     from .distributions import GAUSSIAN
+    from .outputs import check_output
     from .plotting import comparison_figure, run_figure, save
     from .runfile import read_run
 
-    run = read_run(args.run, allow_incomplete=args.partial)
-    out = Path(args.out) if args.out else Path(run.path).with_suffix(".png")
-    save(run_figure(run), out)
+    if len(args.run) > 1 and not args.out:
+        raise ParameterError("--out: name the PNG file when plotting several runs")
+    out = Path(args.out) if args.out else Path(args.run[0]).with_suffix(".png")
+    if out.suffix.lower() != ".png":
+        raise ParameterError(f"--out: {out}: the figure is a PNG file, its name must end in .png")
+    runs = [read_run(path, allow_incomplete=args.partial) for path in args.run]
+    run, surface = runs[0], runs[0].spec.surface
+    other = None  # measured heights: also against the Gaussian GW curves
+    if len(runs) == 1 and surface.heights != GAUSSIAN:
+        other = out.with_name(f"{out.stem}-vs-gaussian.png")
+    for path in (out, other) if other else (out,):  # both refused before either is written
+        check_output(path, inputs=args.run, overwrite=args.overwrite)
+    figure = run_figure(runs if len(runs) > 1 else run)
+    save(figure, out, overwrite=args.overwrite, inputs=args.run)
     print(f"wrote {out}")
-    surface = run.spec.surface
-    if surface.heights != GAUSSIAN:  # measured heights: also against the Gaussian GW curves
+    if other:
         gaussian = dataclasses.replace(surface, heights=GAUSSIAN, name=f"{surface.name} (Gaussian)")
         h = np.linspace(run.h.max(), run.h.min(), 200)
-        other = out.with_name(f"{out.stem}-vs-gaussian.png")
-        save(comparison_figure(surface, gaussian, run.spec.material, h, run=run), other)
+        save(comparison_figure(surface, gaussian, run.spec.material, h, run=run), other,
+             overwrite=args.overwrite, inputs=args.run)  # fmt: skip
         print(f"wrote {other} (measured heights against the Gaussian of the same sigma, R, eta)")
     return 0
 
 
 def cmd_ingest(args) -> int:
-    from .ingest import check_new_files, ingest_file
+    from .ingest import IngestResult, ingest_file
+    from .outputs import check_output
     from .simulation import cli_command
     from .units import parse_quantity
 
     def length(value, option):
         return None if value is None else parse_quantity(value, "length", option)
 
+    out = Path(args.out) if args.out else Path(f"{Path(args.file).stem}.toml")
+    extra = IngestResult.companion_paths(out)
+    figures = [extra["histogram_figure"]] + ([extra["comparison_figure"]] if args.plot else [])
+    for path in [out, extra["histogram"], *figures]:  # all refused before any work or writing
+        check_output(path, inputs=[args.file], overwrite=args.overwrite)
+    material = None
+    if args.plot:
+        from .config import load_material
+
+        material = load_material(args.material)
+    elif args.material != "silicon":
+        raise ParameterError("--material: used only by the --plot figure; add --plot")
     result = ingest_file(
         args.file, unit=args.unit, pixel_size=length(args.pixel_size, "--pixel-size"),
         route=args.route, level=args.level, heights=args.heights, R=length(args.R, "--R"),
         eta=None if args.eta is None else parse_quantity(args.eta, "density", "--eta"),
+        channel=args.channel,
     )  # fmt: skip
-    out = Path(args.out) if args.out else Path(f"{Path(args.file).stem}.toml")
-    extra = result.companion_paths(out)
-    figures = [extra["histogram_figure"]] + ([extra["comparison_figure"]] if args.plot else [])
-    check_new_files([out, extra["histogram"], *figures], args.overwrite)
     for line in result.summary_lines():
         print(line)
     written = result.write_surface(out, overwrite=args.overwrite, command=cli_command())
     from .plotting import comparison_figure, histogram_figure, save
 
     title = f"{result.heights_from}: {Path(args.file).name}"
-    save(histogram_figure(result.distribution, result.distribution.sigma, title=title), figures[0])
+    save(histogram_figure(result.distribution, result.distribution.sigma, title=title), figures[0],
+         overwrite=args.overwrite, inputs=[args.file])  # fmt: skip
     if args.plot:
-        from .presets import MATERIALS
-
         s = result.surface
-        fig = comparison_figure(
-            s, result.gaussian_surface, MATERIALS["silicon"], parse_h("4:-1:51")
-        )
-        save(fig, figures[1])
+        fig = comparison_figure(s, result.gaussian_surface, material, parse_h("4:-1:51"))
+        save(fig, figures[1], overwrite=args.overwrite, inputs=[args.file])
     print(f"wrote {', '.join(str(p) for p in [*written, *figures])}")
     print(f"next: mcsim analytic --surface {out} --h=4:-1:11")
     return 0
@@ -354,6 +378,8 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument(
         "--seed", type=int, default=2026, help="seed of the Monte Carlo patches (default: 2026)"
     )
+    p.add_argument("--overwrite", action="store_true",
+                   help="replace the files of an earlier reproduction in --out")  # fmt: skip
     p.set_defaults(func=cmd_paper)
 
     p = sub.add_parser("simulate", help="Monte Carlo run on finite patches, stored as HDF5",
@@ -425,8 +451,9 @@ def build_parser() -> argparse.ArgumentParser:
 
     p = sub.add_parser("plot", help="Monte Carlo points over the analytic curves",
                        description="Plot a run: Monte Carlo means with error bars over the analytic curves.")  # fmt: skip
-    p.add_argument("run", help="run file (.h5)")
-    p.add_argument("--out", help="PNG file (default: next to the run file)")
+    p.add_argument("run", nargs="+", help="run file(s) (.h5); several are overlaid")
+    p.add_argument("--out", help="PNG file (default: next to the run file; required for several)")
+    p.add_argument("--overwrite", action="store_true", help="replace an existing PNG file")
     p.add_argument(
         "--partial",
         action="store_true",
@@ -439,6 +466,8 @@ def build_parser() -> argparse.ArgumentParser:
                        "histogram; print its height and summit statistics (direct and spectral routes); write a "
                        "surface TOML file with the measured summit-height histogram beside it.")  # fmt: skip
     p.add_argument("file", help="height map or text histogram")
+    p.add_argument("--channel", help="channel of a multi-channel file (.gwy .ibw .nid; default: the "
+                   "height channel); an unknown name lists the file's channels")  # fmt: skip
     p.add_argument("--unit", help="height unit if the file stores none (e.g. nm)")
     p.add_argument("--pixel-size", help="pixel size if the file stores none (e.g. 10nm)")
     p.add_argument("--out", help="surface file (default: <file stem>.toml here)")
@@ -452,7 +481,9 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--R", help="summit radius for a histogram input (e.g. 1.7um)")
     p.add_argument("--eta", help="summit density for a histogram input (e.g. 17um^-2)")
     p.add_argument("--plot", action="store_true",
-                   help="also plot the analytic curves against the Gaussian GW curves (silicon)")  # fmt: skip
+                   help="also plot the analytic curves against the Gaussian GW curves")  # fmt: skip
+    p.add_argument("--material", default="silicon",
+                   help="material of the --plot curves: preset or FILE.toml (default: silicon)")  # fmt: skip
     p.set_defaults(func=cmd_ingest)
     return parser
 

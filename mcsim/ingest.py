@@ -37,6 +37,7 @@ from __future__ import annotations
 import datetime as dt
 import json
 import math
+import os
 import re
 import warnings
 from dataclasses import dataclass
@@ -47,6 +48,7 @@ import numpy as np
 from ._version import __version__
 from .empirical import Empirical
 from .errors import MCSimError, ParameterError
+from .outputs import check_output, write_atomic
 from .params import Surface
 from .readers import ReaderError, read_height_map, read_histogram
 from .readers import histogram as _histogram_format
@@ -59,6 +61,12 @@ ROUTES = ("direct", "spectral")
 HEIGHTS = ("summits", "map")
 #: Largest number of bins of a written histogram (Freedman–Diaconis otherwise).
 MAX_BINS = 256
+#: Bins wider than this many σ (forced by the :data:`MAX_BINS` cap) are warned about.
+COARSE_BIN = 0.25
+#: Direct and spectral summit statistics further apart than this factor are warned about.
+ROUTE_DISAGREEMENT = 3.0
+#: Peak memory of the analysis per map pixel, bytes (measured: float64 copies, FFT, masks).
+BYTES_PER_PIXEL = 96
 _FORMAT_NAMES = {
     ".gwy": "Gwyddion .gwy",
     ".ibw": "Igor binary wave .ibw",
@@ -238,7 +246,8 @@ class IngestResult:
     def _channel(self) -> str:
         return f", channel {self.channel!r}" if self.channel else ""
 
-    def companion_paths(self, path: str | Path) -> dict[str, Path]:
+    @staticmethod
+    def companion_paths(path: str | Path) -> dict[str, Path]:
         """Files written next to the surface file ``path``: histogram CSV and figures."""
         path = Path(path)
         return {
@@ -269,17 +278,23 @@ class IngestResult:
         Raises
         ------
         MCSimError
-            Not a ``.toml`` path, a missing folder, or an existing file without
-            ``overwrite``.
+            Not a ``.toml`` path, a missing folder, an existing file without
+            ``overwrite``, the input file itself, or not a regular file
+            (:mod:`mcsim.outputs`).
         """
         path = Path(path)
         if path.suffix != ".toml":
             raise ParameterError(f"{path}: the surface file must end in .toml")
         csv = self.companion_paths(path)["histogram"]
-        check_new_files([path, csv], overwrite)
+        for p in (path, csv):  # both refused before either is written
+            check_output(p, inputs=[self.source], overwrite=overwrite)
         header = self._provenance(command)
-        csv.write_text(self._histogram_text(header), encoding="utf-8")
-        path.write_text(self._toml_text(header, csv.name), encoding="utf-8")
+        for p, text in (
+            (csv, self._histogram_text(header)),
+            (path, self._toml_text(header, csv.name)),
+        ):
+            write_atomic(p, lambda tmp, text=text: tmp.write_text(text, encoding="utf-8"),
+                         inputs=[self.source], overwrite=overwrite)  # fmt: skip
         return [path, csv]
 
     def _provenance(self, command: str | None) -> list[str]:
@@ -348,16 +363,6 @@ def _number(w: float) -> str:
     return str(int(w)) if float(w).is_integer() else repr(float(w))
 
 
-def check_new_files(paths, overwrite: bool) -> None:
-    """Refuse to replace existing files (unless ``overwrite``) or write into a missing folder."""
-    for p in paths:
-        p = Path(p)
-        if p.exists() and not overwrite:
-            raise MCSimError(f"{p}: file exists (pass --overwrite to replace it)")
-        if not p.parent.is_dir():
-            raise MCSimError(f"{p}: folder {p.parent} does not exist")
-
-
 def _is_histogram_file(path: Path) -> bool:
     """A text histogram: ``.hist``/``.tsv``, or a text file with at most 3 numeric columns."""
     suffix = path.suffix.lower()
@@ -385,9 +390,20 @@ _HISTOGRAM_OR_MATRIX = tuple(set(_histogram_format.EXTENSIONS) - {".hist", ".tsv
 
 
 def _histogram_bins(z: np.ndarray) -> np.ndarray:
+    """Freedman–Diaconis bins, at most :data:`MAX_BINS`; warns when outliers make them coarse."""
     edges = np.histogram_bin_edges(z, bins="fd")
     if edges.size - 1 > MAX_BINS or edges.size < 3:
+        capped = edges.size - 1 > MAX_BINS
         edges = np.histogram_bin_edges(z, bins=min(MAX_BINS, max(2, int(np.sqrt(z.size)))))
+        width, sigma = edges[1] - edges[0], float(np.std(z))
+        if capped and width > COARSE_BIN * sigma:
+            warnings.warn(
+                f"histogram bins are {width * 1e9:.3g} nm wide ({width / sigma:.2g} sigma): the "
+                f"heights span {z.min() * 1e9:.4g} .. {z.max() * 1e9:.4g} nm "
+                f"({(z.max() - z.min()) / sigma:.0f} sigma), so outliers (spikes?) force coarse "
+                "bins and blur the distribution's shape; remove them from the map first",
+                stacklevel=2,
+            )
     return edges
 
 
@@ -407,6 +423,7 @@ def ingest_file(
     R: float | None = None,
     eta: float | None = None,
     name: str | None = None,
+    channel: str | None = None,
 ) -> IngestResult:
     """Read a height map or a height histogram and derive a GW surface from it.
 
@@ -431,38 +448,61 @@ def ingest_file(
         Summit density, m⁻²: required for a histogram input, refused for a map.
     name : str, optional
         Surface name; the file's stem by default.
+    channel : str, optional
+        Channel of a multi-channel map (see :func:`mcsim.readers.read_height_map`).
 
     Returns
     -------
     IngestResult
+        Its ``warnings`` include non-square pixels, direct and spectral routes more
+        than :data:`ROUTE_DISAGREEMENT` apart, and bins made coarse by outliers.
 
     Raises
     ------
     MCSimError
-        Every problem, as one message that starts with the file name.
+        Every problem, as one message that starts with the file name; a map too
+        large for the available memory is refused before its analysis, naming the
+        size that fits.
     """
     _check_choice("route", route, ROUTES)
     _check_choice("level", level, tuple(LEVELS))
     _check_choice("heights", heights, HEIGHTS)
     path = Path(path)
+    if not path.exists():
+        raise ReaderError(f"{path}: no such file")
+    if not path.is_file():
+        raise ReaderError(f"{path}: not a file")
     name = path.stem if name is None else name
     if _is_histogram_file(path):
+        if channel is not None:
+            raise ParameterError(
+                f"{path}: a text histogram has no channels: --channel does not apply"
+            )
         return _ingest_histogram(path, unit, R, eta, name)
     if R is not None or eta is not None:
         raise ParameterError(
             f"{path}: R and eta come from the map's summits: give them only with a histogram file"
         )
-    hmap = read_height_map(path, unit=unit, pixel_size=pixel_size)
+    hmap = read_height_map(path, unit=unit, pixel_size=pixel_size, channel=channel)
+    _check_memory(path, hmap.heights.shape)
     try:
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always")
+            if not math.isclose(hmap.dx, hmap.dy, rel_tol=1e-3):
+                warnings.warn(
+                    f"pixels are not square ({hmap.dx * 1e9:.4g} nm x {hmap.dy * 1e9:.4g} nm): the "
+                    "8-neighbour summits and curvatures mix both pitches; resample to square "
+                    "pixels for summit statistics you can compare",
+                    stacklevel=2,
+                )
             topo = summit_statistics(hmap.heights, hmap.dx, hmap.dy, order=LEVELS[level])
-        levelled = level_heights(hmap.heights, LEVELS[level])
-        peaks = summit_heights(levelled)
-        if peaks.size < 2:
-            raise ParameterError(f"found {peaks.size} summit(s): too few for a distribution")
-        sample = peaks if heights == "summits" else levelled[np.isfinite(levelled)]
-        edges = _histogram_bins(sample)
+            _warn_route_disagreement(topo)
+            levelled = level_heights(hmap.heights, LEVELS[level])
+            peaks = summit_heights(levelled)
+            if peaks.size < 2:
+                raise ParameterError(f"found {peaks.size} summit(s): too few for a distribution")
+            sample = peaks if heights == "summits" else levelled[np.isfinite(levelled)]
+            edges = _histogram_bins(sample)
         counts, _ = np.histogram(sample, bins=edges)
         shape = Empirical.from_histogram(edges, counts, source=f"{path} ({heights})")
         stats = getattr(topo, route)
@@ -501,6 +541,51 @@ def ingest_file(
         topography=topo,
         warnings=tuple(str(w.message) for w in caught),
     )
+
+
+def _warn_route_disagreement(topo: TopographyResult) -> None:
+    """Warn where the direct and spectral routes differ by more than :data:`ROUTE_DISAGREEMENT`."""
+    far = []
+    for key, label, unit, scale in (("eta", "eta", "um^-2", 1e-12), ("R", "R", "um", 1e6),
+                                    ("sigma_s", "sigma_s", "nm", 1e9)):  # fmt: skip
+        a, b = getattr(topo.direct, key), getattr(topo.spectral, key)
+        if a > 0 and b > 0 and max(a / b, b / a) > ROUTE_DISAGREEMENT:
+            far.append(f"{label} {a * scale:.3g} vs {b * scale:.3g} {unit}")
+    if far:
+        warnings.warn(
+            f"the direct and spectral routes disagree by more than a factor "
+            f"{ROUTE_DISAGREEMENT:g} ({'; '.join(far)}): the map is not a Gaussian "
+            "random surface at this sampling (features, noise or a coarse pixel size); "
+            "the --route choice matters here",
+            stacklevel=2,
+        )
+
+
+def available_memory() -> int:
+    """Bytes of memory available to a new allocation (``MemAvailable``; else free pages)."""
+    try:
+        with open("/proc/meminfo", encoding="ascii") as f:
+            for line in f:
+                if line.startswith("MemAvailable:"):
+                    return int(line.split()[1]) * 1024
+    except (OSError, ValueError, IndexError):
+        pass
+    try:
+        return os.sysconf("SC_AVPHYS_PAGES") * os.sysconf("SC_PAGE_SIZE")
+    except (ValueError, OSError, AttributeError):
+        return 1 << 62  # unknown: do not refuse
+
+
+def _check_memory(path: Path, shape: tuple[int, int]) -> None:
+    """Refuse a map whose analysis needs more memory than is available, naming what fits."""
+    need, have = shape[0] * shape[1] * BYTES_PER_PIXEL, available_memory()
+    if need > have:
+        side = math.isqrt(have // BYTES_PER_PIXEL)
+        raise ParameterError(
+            f"{path}: a {shape[1]} x {shape[0]} map needs about {need / 1e9:.3g} GB to analyse, "
+            f"{have / 1e9:.3g} GB are available: crop or downsample it to at most about "
+            f"{side} x {side} pixels"
+        )
 
 
 def _histogram_summary(edges, weights, density: bool, sigma: float) -> HeightSummary:

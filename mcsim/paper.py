@@ -18,6 +18,7 @@ import numpy as np
 from ._version import __version__
 from .analytic import QUANTITIES, gw_curves
 from .errors import MCSimError
+from .outputs import check_output, write_atomic
 from .params import plasticity_index
 from .presets import MATERIALS, PAPER_SURFACES, SURFACES
 
@@ -48,6 +49,7 @@ def reproduce_paper(
     h=None,
     mc: Mapping[str, Mapping] | None = None,
     log: Callable[[str], object] | None = print,
+    overwrite: bool = False,
 ) -> dict:
     """Compute and plot the paper's Figs. 2-6 for its four surfaces on silicon.
 
@@ -72,10 +74,14 @@ def reproduce_paper(
         (the paper's range) by default.
     mc : mapping, optional
         Monte Carlo results by surface name, overlaid on every figure; see
-        :func:`mcsim.plotting.curve_figure` for the layout.
+        :func:`mcsim.plotting.curve_figure` for the layout (``few`` flags points
+        with too few expected contacts for a z-score: drawn as crosses).
     log : callable or None
         Receives the μ table and the plasticity report line by line; ``None`` is
         silent.
+    overwrite : bool
+        Replace files left by an earlier reproduction; without it an existing output
+        is an error, raised before anything is written (:mod:`mcsim.outputs`).
 
     Returns
     -------
@@ -88,7 +94,8 @@ def reproduce_paper(
     Raises
     ------
     MCSimError
-        If ``out_dir`` cannot be created or a file in it cannot be written.
+        If ``out_dir`` cannot be created, an output exists (without ``overwrite``) or
+        is not a regular file, or a file in it cannot be written.
     """
     from .plotting import curve_figure, save
 
@@ -96,6 +103,8 @@ def reproduce_paper(
     if h.ndim != 1 or h.size == 0 or not np.all(np.isfinite(h)):
         raise MCSimError("`h` must be a non-empty one-dimensional array of finite numbers.")
     out = _output_folder(out_dir)
+    for path in paper_outputs(out, monte_carlo=False):
+        check_output(path, overwrite=overwrite)
     material = MATERIALS["silicon"]
     surfaces = {name: SURFACES[name] for name in PAPER_SURFACES}
 
@@ -106,11 +115,14 @@ def reproduce_paper(
 
     figures = {}
     for filename, quantity in FIGURE_FILES.items():
-        figures[quantity] = save(curve_figure(quantity, curves, mc), out / filename)
+        figures[quantity] = save(
+            curve_figure(quantity, curves, mc), out / filename, overwrite=overwrite
+        )
 
     header = _provenance(material, surfaces, h)
     curves_csv = _write_csv(
         out / "paper_curves.csv",
+        overwrite,
         header,
         CURVE_COLUMNS,
         (
@@ -121,6 +133,7 @@ def reproduce_paper(
     )
     mu_table_csv = _write_csv(
         out / "mu_table.csv",
+        overwrite,
         header,
         ("surface", *(f"mu_h={x:g}" for x in MU_TABLE_H)),
         ([name, *(repr(mu) for mu in row.values())] for name, row in mu_table.items()),
@@ -152,16 +165,24 @@ def _output_folder(out_dir) -> Path:
     return out
 
 
-def _write_csv(path: Path, header: list[str], columns, rows) -> Path:
-    try:
-        with path.open("w", newline="", encoding="utf-8") as f:
+def _write_csv(path: Path, overwrite: bool, header: list[str], columns, rows) -> Path:
+    def write(tmp: Path) -> None:
+        with tmp.open("w", newline="", encoding="utf-8") as f:
             f.writelines(f"# {line}\n" for line in header)
             writer = csv.writer(f)
             writer.writerow(columns)
             writer.writerows(rows)
-    except OSError as error:
-        raise MCSimError(f"cannot write {str(path)!r}: {error.strerror or error}") from None
-    return path
+
+    return write_atomic(path, write, overwrite=overwrite)
+
+
+def paper_outputs(out_dir, monte_carlo: bool = True) -> list[Path]:
+    """Every file ``mcsim paper`` writes into ``out_dir`` (with or without Monte Carlo)."""
+    out = Path(out_dir)
+    files = [out / name for name in (*FIGURE_FILES, "paper_curves.csv", "mu_table.csv")]
+    if monte_carlo:
+        files += [out / f"mc_{name}.h5" for name in PAPER_SURFACES]
+    return files
 
 
 def _provenance(material, surfaces: Mapping, h: np.ndarray) -> list[str]:
@@ -223,13 +244,17 @@ MC_AREA = 1e-7
 
 
 def paper_monte_carlo(
-    out_dir, seed: int = 2026, log: Callable[[str], object] | None = print
+    out_dir,
+    seed: int = 2026,
+    log: Callable[[str], object] | None = print,
+    overwrite: bool = False,
 ) -> dict:
     """One Monte Carlo patch per paper surface, stored as HDF5 runs, as an ``mc`` overlay.
 
     Each surface gets a patch of :data:`MC_AREA` at the separations :data:`MC_H`,
-    written to ``out_dir/mc_<surface>.h5`` (replaced if present: they belong to the
-    figures). Surface i is seeded with ``SeedSequence(seed).spawn(4)[i].generate_state(1)[0]``.
+    written to ``out_dir/mc_<surface>.h5``; existing runs are replaced only with
+    ``overwrite`` (checked for all four before the first is computed). Surface i is
+    seeded with ``SeedSequence(seed).spawn(4)[i].generate_state(1)[0]``.
 
     Returns
     -------
@@ -238,20 +263,24 @@ def paper_monte_carlo(
         total force P̄ + F̄ with its standard error.
     """
     from .simulation import cli_command, simulate
-    from .statistics import force_estimate
+    from .statistics import MIN_CONTACTS, force_estimate
 
     out = _output_folder(out_dir)
+    runs = [out / f"mc_{name}.h5" for name in PAPER_SURFACES]
+    for path in runs:
+        check_output(path, overwrite=overwrite)
     material = MATERIALS["silicon"]
     seeds = np.random.SeedSequence(seed).spawn(len(PAPER_SURFACES))
     mc = {}
-    for name, child in zip(PAPER_SURFACES, seeds):
+    for name, child, path in zip(PAPER_SURFACES, seeds, runs):
         run = simulate(SURFACES[name], material, MC_H, MC_AREA, seed=int(child.generate_state(1)[0]), workers=2,
-                       out=out / f"mc_{name}.h5", overwrite=True, command=cli_command())  # fmt: skip
+                       out=path, overwrite=overwrite, command=cli_command())  # fmt: skip
         if log is not None:
             log(
                 f"Monte Carlo {name}: N = {run.n_summits[0]} summits on {MC_AREA * 1e12:g} um^2 -> {run.path}"
             )
         mean, se = dict(run.summary.mean), dict(run.summary.se)
         mean["total"], se["total"] = force_estimate(run.spec, run.n_summits, run.sums, (1, 1, 0))
-        mc[name] = {"h": run.h, "mean": mean, "se": se}
+        few = run.summary.expected_contacts < MIN_CONTACTS  # z withheld: drawn apart
+        mc[name] = {"h": run.h, "mean": mean, "se": se, "few": few}
     return mc

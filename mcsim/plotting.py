@@ -26,12 +26,13 @@ import numpy as np
 from .analytic import AnalyticCurves
 from .errors import MCSimError
 from .presets import PAPER_SURFACES
+from .statistics import MIN_CONTACTS
 
 #: Axis label of each plottable quantity; forces are divided by A_n K (Eqs. 3, 5, 7).
 LABELS = {
     "P": r"External force $\bar P = P/(A_n K)$",
-    "F": r"Adhesive term $\bar F = F/(A_n K)$ (Eq. 5)",
-    "total": r"Total force $(\bar P + \bar F)$",
+    "F": r"Adhesion term $\bar F = F/(A_n K)$ (Eq. 5)",
+    "total": r"Total force $\bar P + \bar F = (P + F)/(A_n K)$",
     "T": r"Friction force $\bar T = T/(A_n K)$",
     "mu": r"Friction coefficient $\mu = \bar T/(\bar P + \bar F)$",
     "contact_fraction": r"Contact fraction $N_c/N$",
@@ -43,7 +44,7 @@ X_LABEL = r"Dimensionless mean separation $h = d/\sigma$"
 #: The paper's figure number and caption for each quantity it plots.
 PAPER_FIGURES = {
     "P": (2, "External force vs. mean separation"),
-    "F": (3, "Adhesive force vs. mean separation"),
+    "F": (3, 'Adhesion term (paper: "adhesive force") vs. mean separation'),
     "total": (4, "Total force vs. mean separation"),
     "T": (5, "Friction force vs. mean separation"),
     "mu": (6, "Coefficient of friction vs. mean separation"),
@@ -123,7 +124,9 @@ def curve_figure(
         error bars of ±2 standard errors. A surface whose ``mean`` lacks
         ``quantity`` is not overlaid in this figure; one whose ``se`` lacks it gets
         markers without error bars. On a log axis non-positive means (e.g. no
-        summit in contact) are left out.
+        summit in contact) are left out. An optional boolean array ``"few"``
+        flags points with fewer than :data:`~mcsim.statistics.MIN_CONTACTS`
+        expected contacts (no z-score): drawn as crosses, named in the legend.
 
     Returns
     -------
@@ -132,7 +135,6 @@ def curve_figure(
         figure where the paper has one.
     """
     from matplotlib.figure import Figure
-    from matplotlib.lines import Line2D
 
     _check_quantity(quantity)
     if not curves:
@@ -158,17 +160,7 @@ def curve_figure(
         if name in mc:
             h_all.append(_overlay(ax, mc[name], quantity, style["color"], log))
     if mc:
-        handles.append(
-            Line2D(
-                [],
-                [],
-                color="0.3",
-                marker="o",
-                linestyle="none",
-                markerfacecolor="none",
-                label="Monte Carlo mean ± 2 SE",
-            )
-        )
+        handles += _mc_legend(any(np.any(r.get("few", False)) for r in mc.values()))
 
     h_all = np.concatenate([np.ravel(x) for x in h_all])
     # h decreasing, left to right: the surfaces approach; a margin keeps end markers whole
@@ -183,18 +175,9 @@ def curve_figure(
         ax.set_ylim(bottom=0)
     if quantity == "mu":
         limit = _single_summit_mu_limit(curves)
-        if limit is not None:
-            ax.axhline(limit, color="0.45", lw=0.8, zorder=1)
-            ax.annotate(
-                f"single-summit limit $(2/\\sqrt{{3}})\\sqrt{{G/K}}$ = {limit:.3f}",
-                xy=(0.02, limit),
-                xycoords=("axes fraction", "data"),
-                xytext=(0, 3),
-                textcoords="offset points",
-                fontsize=8,
-                color="0.35",
-                bbox={"facecolor": "white", "edgecolor": "none", "alpha": 0.8, "pad": 1},
-            )
+        if limit is not None:  # beneath the curves, named in the legend: it hides nothing
+            handles.append(ax.axhline(limit, color="0.6", lw=0.8, linestyle=(0, (6, 3)), zorder=0.5,
+                                      label=f"single-summit limit $(2/\\sqrt{{3}})\\sqrt{{G/K}}$ = {limit:.3f}"))  # fmt: skip
             ax.set_ylim(0, max(ax.get_ylim()[1], 1.15 * limit))
     ax.set_xlabel(X_LABEL)
     ax.set_ylabel(LABELS[quantity])
@@ -214,8 +197,11 @@ def curve_figure(
     return fig
 
 
-def save(fig, path) -> Path:
+def save(fig, path, *, overwrite: bool = False, inputs=()) -> Path:
     """Write ``fig`` as a PNG at 150 dpi, with the mcsim version in its metadata.
+
+    Written atomically under the rule of :mod:`mcsim.outputs`: an existing file is
+    replaced only with ``overwrite``, an input never, a non-regular file never.
 
     Parameters
     ----------
@@ -223,6 +209,10 @@ def save(fig, path) -> Path:
         The figure.
     path : str or Path
         Output file; its folder must exist.
+    overwrite : bool
+        Replace an existing regular file.
+    inputs : iterable of path-like
+        Files the figure was made from: never written.
 
     Returns
     -------
@@ -230,13 +220,12 @@ def save(fig, path) -> Path:
         The path written.
     """
     from ._version import __version__
+    from .outputs import write_atomic
 
-    path = Path(path)
-    try:
-        fig.savefig(path, dpi=150, format="png", metadata={"Software": f"mcsim {__version__}"})
-    except OSError as error:
-        raise MCSimError(f"cannot write figure {str(path)!r}: {error.strerror or error}") from None
-    return path
+    def write(tmp: Path) -> None:
+        fig.savefig(tmp, dpi=150, format="png", metadata={"Software": f"mcsim {__version__}"})
+
+    return write_atomic(path, write, inputs=inputs, overwrite=overwrite)
 
 
 def _check_quantity(quantity: str) -> None:
@@ -256,51 +245,95 @@ def _overlay(ax, result: Mapping, quantity: str, colour: str, log: bool) -> np.n
             f"Monte Carlo {quantity!r}: `h`, `mean` and `se` must have one shape, "
             f"got {h.shape}, {mean.shape} and {np.shape(se)}."
         )
-    _errorbars(ax, h, mean, se, log, colour)
+    _errorbars(ax, h, mean, se, log, colour, few=result.get("few"))
     return h
 
 
-def _errorbars(ax, h, mean, se, log: bool, colour: str, label: str | None = None) -> None:
+#: Legend text of Monte Carlo points, and of those with too few contacts for a z-score.
+MC_LABEL = "Monte Carlo mean ± 2 SE"
+FEW_LABEL = f"Monte Carlo, < {MIN_CONTACTS} contacts expected: no z-score"
+
+
+def _mc_legend(few: bool) -> list:
+    from matplotlib.lines import Line2D
+
+    style = {"color": "0.3", "linestyle": "none", "markerfacecolor": "none"}
+    handles = [Line2D([], [], marker="o", label=MC_LABEL, **style)]
+    if few:
+        handles.append(Line2D([], [], marker="x", label=FEW_LABEL, **style))
+    return handles
+
+
+def _errorbars(ax, h, mean, se, log: bool, colour: str, label: str | None = None, few=None) -> None:
     """Monte Carlo means as open markers with ±2 SE bars; undefined (and, on a log
-    axis, zero) means are left out, and bars are clipped above zero on a log axis."""
-    mean = np.asarray(mean, dtype=float)
-    keep = np.isfinite(mean) & (mean > 0 if log else True)
-    yerr = None if se is None else 2 * np.asarray(se, dtype=float)[keep]
-    if yerr is not None and log:
-        yerr = np.vstack([np.minimum(yerr, 0.999 * mean[keep]), yerr])
-    ax.errorbar(np.asarray(h)[keep], mean[keep], yerr=yerr, color=colour, marker="o", markersize=4,
-                markerfacecolor="none", linestyle="none", capsize=2, elinewidth=0.9, label=label)  # fmt: skip
+    axis, zero) means are left out, and bars are clipped above zero on a log axis.
+    Points flagged in ``few`` (too few expected contacts for a normal z-score) are
+    drawn as crosses with faint bars."""
+    h, mean = np.asarray(h, dtype=float), np.asarray(mean, dtype=float)
+    few = (
+        np.zeros(h.shape, bool) if few is None else np.broadcast_to(np.asarray(few, bool), h.shape)
+    )
+    for group, marker, alpha in ((~few, "o", 1.0), (few, "x", 0.5)):
+        keep = group & np.isfinite(mean) & (mean > 0 if log else True)
+        if not np.any(keep):
+            continue
+        yerr = None if se is None else 2 * np.asarray(se, dtype=float)[keep]
+        if yerr is not None and log:
+            yerr = np.vstack([np.minimum(yerr, 0.999 * mean[keep]), yerr])
+        bars = ax.errorbar(h[keep], mean[keep], yerr=yerr, color=colour, marker=marker, markersize=4,
+                           markerfacecolor="none", linestyle="none", capsize=2, elinewidth=0.9,
+                           label=label if marker == "o" else None)  # fmt: skip
+        for artist in bars.lines[2]:
+            artist.set_alpha(alpha)
 
 
 #: Quantities of the multi-panel figures, in panel order.
 PANELS = ("contact_fraction", "P", "F", "T", "mu")
 
 
-def _panel_figure(lines, run, info: list[str]):
+def _panel_figure(lines, runs, info: list[str]):
     """Five panels (N_c/N, P̄, F̄, T̄, μ versus h, h decreasing to the right) with the
-    curves ``lines`` = [(h, {quantity: values}, style, label)], the Monte Carlo means of
-    ``run`` (if any) and a panel of ``info`` text."""
+    curves ``lines`` = [(h, {quantity: values}, style, label)], the Monte Carlo means
+    of ``runs`` = [(run, colour, label)] and a panel of ``info`` text.
+
+    A curve at a single h is drawn as a marker (a line would be invisible); μ and
+    N_c/N axes start at zero, so that a small difference looks small."""
     from matplotlib.figure import Figure
 
     fig = Figure(figsize=(12, 7), layout="constrained")
     axes = fig.subplots(2, 3).ravel()
-    h_all = np.concatenate([h for h, *_ in lines] + ([run.h] if run is not None else []))
+    h_all = np.concatenate([h for h, *_ in lines] + [run.h for run, *_ in runs])
     lo, hi = float(h_all.min()), float(h_all.max())
     pad = 0.03 * (hi - lo) if hi > lo else 0.5
+    few_any = False
     for ax, q in zip(axes, PANELS):
         log = q in LOG_QUANTITIES
         for h, values, style, label in lines:
             y = np.asarray(values[q], dtype=float)
-            ax.plot(h, np.where(y > 0, y, np.nan) if log else y, lw=1.6, label=label, **style)
-        if run is not None:
-            _errorbars(ax, run.h, run.summary.mean[q], run.summary.se[q], log, _COLOURS[0],
-                       label="Monte Carlo mean ± 2 SE")  # fmt: skip
+            y = np.where(y > 0, y, np.nan) if log else y
+            if np.unique(h).size == 1:
+                ax.plot(h[:1], y[:1], marker="_", markersize=22, markeredgewidth=2.2, linestyle="none",
+                        label=label, **style)  # fmt: skip
+            else:
+                ax.plot(h, y, label=label, **{"lw": 1.6, **style})
+        for run, colour, label in runs:
+            few = run.summary.expected_contacts < MIN_CONTACTS
+            few_any |= bool(np.any(few))
+            _errorbars(
+                ax, run.h, run.summary.mean[q], run.summary.se[q], log, colour, label=label, few=few
+            )
         ax.set_xlim(hi + pad, lo - pad)
         ax.set_yscale("log" if log else "linear")
+        if not log:  # from zero, with headroom above the highest point or bar
+            top = ax.dataLim.y1
+            ax.set_ylim(0, 1.08 * top if np.isfinite(top) and top > 0 else 1.0)
         ax.set_xlabel(X_LABEL, fontsize=8)
         ax.set_ylabel(LABELS[q], fontsize=8)
         ax.grid(True, alpha=0.4)
-    axes[0].legend(fontsize=8)
+    handles, _ = axes[0].get_legend_handles_labels()
+    if few_any:
+        handles += _mc_legend(True)[1:]
+    axes[0].legend(handles=handles, fontsize=7)
     axes[5].axis("off")
     axes[5].text(0, 1, "\n".join(info), va="top", fontsize=9, transform=axes[5].transAxes)
     return fig
@@ -332,6 +365,8 @@ def _title(quantity: str, curves: Mapping[str, AnalyticCurves]) -> str:
     if quantity in PAPER_FIGURES:
         number, caption = PAPER_FIGURES[quantity]
         first = f"Fig. {number} of the paper: {caption}"
+        if quantity in LOG_QUANTITIES:
+            first += ", divided by $A_n K$"
     else:
         first = f"{LABELS[quantity].split(' $')[0]} vs. mean separation"
     materials = {c.material for c in curves.values()}
@@ -351,8 +386,9 @@ def run_figure(run):
 
     Parameters
     ----------
-    run : mcsim.results.Run
-        A run, fresh or read from a file.
+    run : mcsim.results.Run or sequence of Run
+        A run, fresh or read from a file; several are overlaid, each in its own
+        colour with its own analytic curve.
 
     Returns
     -------
@@ -361,17 +397,58 @@ def run_figure(run):
     from .analytic import gw_curves
     from .statistics import expected_values
 
-    spec = run.spec
-    fine = np.linspace(spec.h.max(), spec.h.min(), 200)
-    curves = expected_values(spec, gw_curves(spec.surface, spec.material, fine, spec.law))
-    info = [
-        f"run: {run.path.name if run.path else '(not saved)'}",
-        *_inputs_text(spec.surface, spec.material, spec.law),
-        f"patch $A$ = {spec.area * 1e12:.4g} µm$^2$, N ~ {spec.count}, E[N] = {spec.expected_summits:.4g}",
-        f"{spec.realizations} realization(s), seed entropy {spec.entropy}",
-        "forces divided by $A K$ (Eqs. 3, 5, 7)",
-    ]
-    return _panel_figure([(fine, curves, {"color": "0.2"}, "analytic GW")], run, info)
+    runs = [run] if hasattr(run, "spec") else list(run)
+    lines, overlays, info = [], [], []
+    for i, r in enumerate(runs):
+        spec = r.spec
+        name = r.path.name if r.path else "(not saved)"
+        fine = np.linspace(spec.h.max(), spec.h.min(), 200)
+        curves = expected_values(spec, gw_curves(spec.surface, spec.material, fine, spec.law))
+        colour = _COLOURS[i % len(_COLOURS)]
+        if len(runs) == 1:
+            lines.append((fine, curves, {"color": "0.2"}, "analytic GW"))
+            overlays.append((r, colour, MC_LABEL))
+            info += [
+                f"run: {name}",
+                *_inputs_text(spec.surface, spec.material, spec.law),
+                f"patch $A_n$ = {spec.area * 1e12:.4g} µm$^2$, N ~ {spec.count}, E[N] = {spec.expected_summits:.4g}",
+                f"{spec.realizations} realization(s), seed entropy {spec.entropy}",
+            ]
+        else:
+            lines.append((fine, curves, {"color": colour, "lw": 1.0}, f"{name}: analytic GW"))
+            overlays.append((r, colour, f"{name}: Monte Carlo ± 2 SE"))
+            info += [
+                f"{name}: {spec.surface.name or '(file)'} on {spec.material.name or '(file)'}, "
+                f"$A_n$ = {spec.area * 1e12:.4g} µm$^2$, {spec.realizations} real., law '{spec.law}'"
+            ]
+    info.append("forces divided by $A_n K$ (Eqs. 3, 5, 7)")
+    return _panel_figure(lines, overlays, info)
+
+
+#: Most bars a histogram figure draws; finer histograms are drawn merged (same probability).
+MAX_DRAWN_BINS = 1000
+
+
+def drawn_bins(edges, densities, limit: int = MAX_DRAWN_BINS):
+    """Merge runs of adjacent bins so that at most ``limit`` bars remain.
+
+    Each merged bar keeps the probability of its bins (density = Σ density·width / Σ width),
+    so the drawing stays a faithful, coarser view of the same distribution.
+
+    Returns
+    -------
+    (ndarray, ndarray)
+        Edges and densities of the bars (unchanged if there are at most ``limit``).
+    """
+    edges, densities = np.asarray(edges, dtype=float), np.asarray(densities, dtype=float)
+    n = densities.size
+    if n <= limit:
+        return edges, densities
+    k = -(-n // limit)  # bins per bar
+    starts = np.arange(0, n, k)
+    mass = np.add.reduceat(densities * np.diff(edges), starts)
+    new_edges = np.append(edges[starts], edges[-1])
+    return new_edges, mass / np.diff(new_edges)
 
 
 def histogram_figure(empirical, gaussian_sigma: float, *, title: str | None = None):
@@ -398,8 +475,10 @@ def histogram_figure(empirical, gaussian_sigma: float, *, title: str | None = No
 
     if not (math.isfinite(gaussian_sigma) and gaussian_sigma > 0):
         raise MCSimError(f"`gaussian_sigma` must be positive, got {gaussian_sigma!r} m.")
-    edges_nm = (empirical.mean + empirical.edges * empirical.sigma) * 1e9
-    density_nm = empirical.densities / (empirical.sigma * 1e9)
+    edges, densities = drawn_bins(empirical.edges, empirical.densities)
+    edges_nm = (empirical.mean + edges * empirical.sigma) * 1e9
+    density_nm = densities / (empirical.sigma * 1e9)
+    shown = "" if densities.size == empirical.densities.size else f", drawn as {densities.size}"
     z = np.linspace(
         min(edges_nm[0], empirical.mean * 1e9 - 4 * gaussian_sigma * 1e9),
         max(edges_nm[-1], empirical.mean * 1e9 + 4 * gaussian_sigma * 1e9),
@@ -412,7 +491,7 @@ def histogram_figure(empirical, gaussian_sigma: float, *, title: str | None = No
     fig = Figure(figsize=(10, 4), layout="constrained")
     for ax, log in zip(fig.subplots(1, 2), (False, True)):
         ax.stairs(density_nm, edges_nm, fill=True, color=_COLOURS[0], alpha=0.45,
-                  label=f"measured ({empirical.densities.size} bins, $\\sigma$ = "
+                  label=f"measured ({empirical.densities.size} bins{shown}, $\\sigma$ = "
                   f"{empirical.sigma * 1e9:.3g} nm)")  # fmt: skip
         ax.plot(z, gauss, color=_COLOURS[4], lw=1.5, label=f"Gaussian, $\\sigma$ = {s_nm:.3g} nm")
         ax.set_xlabel("Height above the mean plane $z$ (nm)")
@@ -465,4 +544,5 @@ def comparison_figure(surface_measured, surface_gaussian, material, h, run=None)
         "forces divided by $A_n K$ (Eqs. 3, 5, 7)",
         "h = d/$\\sigma$, d from the mean summit height",
     ]
-    return _panel_figure(lines, run, info)
+    overlay = [] if run is None else [(run, _COLOURS[0], MC_LABEL)]
+    return _panel_figure(lines, overlay, info)

@@ -255,3 +255,139 @@ def test_non_gaussian_surface_differs_from_gw_and_monte_carlo_agrees(real_maps):
     gaussian = gw_curves(result.gaussian_surface, MATERIALS["silicon"], h)
     distance = np.abs(run.analytic["P"] - gaussian.P) / run.summary.se["P"]
     assert distance.max() > 10, distance
+
+
+# -- usability (issue 9): channels, material, warnings, missing files, memory ------------
+
+
+def one_line(code: int, err: str, *needles: str) -> None:
+    assert code == 2 and err.startswith("mcsim: error: ") and err.count("\n") == 1, err
+    for needle in needles:
+        assert needle in err, (needle, err)
+
+
+def test_channel_option_picks_a_channel_of_a_multi_channel_file(nid_files, tmp_path):
+    from NSFopen.read import read
+
+    from mcsim.readers import read_height_map
+
+    path = nid_files["spectroscopy"]
+    backward = read_height_map(path, channel="Scan backward/Z-Axis")
+    reference = read(str(path)).data["Image"]["Backward"]["Z-Axis"]
+    np.testing.assert_array_equal(backward.heights, reference)
+    assert ingest_file(path, channel="Scan backward/Z-Axis").channel == "Scan backward/Z-Axis"
+    code, out, err = run_cli("ingest", path, "--channel", "Scan backward/Z-Axis",
+                             "--out", tmp_path / "s.toml")  # fmt: skip
+    assert code == 0, err
+    assert "channel 'Scan backward/Z-Axis'" in out
+
+
+def test_a_file_without_a_height_image_says_so_and_names_its_channels(nid_files, tmp_path):
+    path = nid_files["thermal"]
+    code, _, err = run_cli("ingest", path, "--out", tmp_path / "s.toml")
+    one_line(code, err, "holds no image, only spectra", "Spectrum FFT/Amplitude Spectral Density")
+    code, _, err = run_cli("ingest", path, "--channel", "Spectrum FFT/Amplitude Spectral Density",
+                           "--out", tmp_path / "s.toml")  # fmt: skip
+    one_line(code, err, "is not a height image", "'Hz'")
+    code, _, err = run_cli("ingest", nid_files["spectroscopy"], "--channel", "nope",
+                           "--out", tmp_path / "s.toml")  # fmt: skip
+    one_line(code, err, "no channel Scan forward/nope", "'Scan backward/Z-Axis'")
+
+
+def test_channel_on_a_single_channel_format_is_refused(tmp_path):
+    np.save(tmp_path / "m.npy", np.random.default_rng(1).normal(size=(16, 16)))
+    code, _, err = run_cli("ingest", tmp_path / "m.npy", "--unit", "nm", "--pixel-size", "1nm",
+                           "--channel", "Height", "--out", tmp_path / "s.toml")  # fmt: skip
+    one_line(code, err, "holds one channel")
+
+
+def test_material_option_sets_the_material_of_the_plot(real_maps, tmp_path, monkeypatch):
+    import mcsim.plotting
+
+    seen = []
+    original = mcsim.plotting.comparison_figure
+    monkeypatch.setattr(mcsim.plotting, "comparison_figure",
+                        lambda s, g, material, h, **kw: seen.append(material) or original(s, g, material, h, **kw))  # fmt: skip
+    gold = tmp_path / "gold.toml"
+    gold.write_text('[material]\nE = "79 GPa"\nnu = 0.42\ngamma = "1.2 J/m^2"\n')
+    code, _, err = run_cli("ingest", real_maps["nid"], "--out", tmp_path / "s.toml", "--plot",
+                           "--material", gold)  # fmt: skip
+    assert code == 0, err
+    assert [m.gamma for m in seen] == [1.2] and seen[0].E1 == pytest.approx(79e9)
+    code, _, err = run_cli("ingest", real_maps["nid"], "--out", tmp_path / "t.toml",
+                           "--material", gold)  # fmt: skip
+    one_line(code, err, "--material", "--plot")
+
+
+def test_non_square_pixels_are_warned_about(nid_files):
+    result = ingest_file(nid_files["MoS2"])
+    assert result.dx != result.dy
+    assert any("pixels are not square" in w for w in result.warnings)
+    assert not any("not square" in w for w in ingest_file(nid_files["SBS-PMMA"]).warnings)
+
+
+def test_a_large_disagreement_between_the_summit_routes_is_warned_about(nid_files):
+    result = ingest_file(nid_files["circles"])
+    ratio = result.topography.direct.R / result.topography.spectral.R
+    assert ratio > 3
+    assert any("direct and spectral routes disagree" in w for w in result.warnings)
+    assert any("--route" in line for line in result.summary_lines() if "warning" in line)
+
+
+def test_outliers_that_force_coarse_bins_are_warned_about(tmp_path):
+    z = np.random.default_rng(2).normal(size=(200, 200))
+    np.save(tmp_path / "clean.npy", z)
+    z[100, 100] = 1000.0  # one spike of 1000 sigma
+    np.save(tmp_path / "spike.npy", z)
+    kw = {"unit": "nm", "pixel_size": 1e-8, "heights": "map"}
+    assert not any("coarse" in w for w in ingest_file(tmp_path / "clean.npy", **kw).warnings)
+    spiked = ingest_file(tmp_path / "spike.npy", **kw)
+    assert any("outliers" in w and "coarse" in w for w in spiked.warnings), spiked.warnings
+
+
+def test_a_missing_input_says_no_such_file(tmp_path):
+    for argv in (["nope.csv", "--R", "1um", "--eta", "1um^-2"], ["nope.gwy"], ["nope.txt"]):
+        path = tmp_path / argv[0]
+        code, _, err = run_cli("ingest", path, *argv[1:], "--out", tmp_path / "s.toml")
+        assert err == f"mcsim: error: {path}: no such file\n" and code == 2
+    code, _, err = run_cli("ingest", tmp_path, "--out", tmp_path / "s.toml")
+    one_line(code, err, "not a file")
+
+
+def test_a_map_too_large_for_the_memory_is_refused_naming_the_size_that_fits(tmp_path, monkeypatch):
+    import mcsim.ingest
+
+    np.save(tmp_path / "m.npy", np.random.default_rng(1).normal(size=(256, 256)))
+    monkeypatch.setattr(mcsim.ingest, "available_memory", lambda: 1_000_000)
+    code, _, err = run_cli("ingest", tmp_path / "m.npy", "--unit", "nm", "--pixel-size", "1nm",
+                           "--out", tmp_path / "s.toml")  # fmt: skip
+    side = int(np.sqrt(1_000_000 // mcsim.ingest.BYTES_PER_PIXEL))
+    one_line(code, err, "a 256 x 256 map needs about", f"at most about {side} x {side} pixels")
+
+
+def test_the_memory_estimate_bounds_the_measured_peak(tmp_path):
+    import tracemalloc
+
+    from mcsim.ingest import BYTES_PER_PIXEL
+
+    np.save(tmp_path / "m.npy", np.random.default_rng(1).normal(size=(512, 512)))
+    tracemalloc.start()
+    try:
+        ingest_file(tmp_path / "m.npy", unit="nm", pixel_size=1e-8)
+        peak = tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+    assert peak <= BYTES_PER_PIXEL * 512 * 512, peak / 512**2
+
+
+def test_a_histogram_of_many_bins_is_drawn_binned_with_its_probability():
+    from mcsim.empirical import Empirical
+    from mcsim.plotting import MAX_DRAWN_BINS, histogram_figure
+
+    edges = np.linspace(-5e-9, 5e-9, 200_001)
+    centres = (edges[:-1] + edges[1:]) / 2
+    emp = Empirical.from_histogram(edges, np.exp(-0.5 * (centres / 1e-9) ** 2))
+    stairs = histogram_figure(emp, emp.sigma).axes[0].patches[0]
+    values, drawn_edges, _ = stairs.get_data()
+    assert values.size <= MAX_DRAWN_BINS
+    assert np.sum(values * np.diff(drawn_edges)) == pytest.approx(1.0, rel=1e-9)

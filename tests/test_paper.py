@@ -9,6 +9,7 @@ from mcsim.errors import MCSimError
 from mcsim.paper import CURVE_COLUMNS, FIGURE_FILES, MU_TABLE_H, reproduce_paper
 from mcsim.plotting import LABELS, curve_figure, save
 from mcsim.presets import MATERIALS, PAPER_SURFACES, SURFACES
+from mcsim.runfile import read_run
 
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
 H = np.linspace(4, -1, 6)  # coarse grid: the tests check files, not curve accuracy
@@ -173,5 +174,98 @@ def test_monte_carlo_for_a_surface_without_curve_is_refused():
 
 def test_save_into_a_missing_folder_raises_mcsim_error(tmp_path):
     curves = {"smooth": gw_curves(SURFACES["smooth"], MATERIALS["silicon"], H)}
-    with pytest.raises(MCSimError, match="cannot write figure"):
+    with pytest.raises(MCSimError, match="missing does not exist"):
         save(curve_figure("P", curves), tmp_path / "missing" / "fig.png")
+
+
+# -- figure fixes (issue 9) -----------------------------------------------------------------
+
+
+def _curves(names=PAPER_SURFACES):
+    return {n: gw_curves(SURFACES[n], MATERIALS["silicon"], H) for n in names}
+
+
+def test_single_summit_limit_lies_beneath_the_curves_and_is_named_in_the_legend():
+    ax = curve_figure("mu", _curves()).axes[0]
+    assert len(ax.texts) == 0  # no label over the data (it hid the super-smooth curve)
+    limit = next(line for line in ax.lines if "single-summit limit" in line.get_label())
+    curves = [line for line in ax.lines if line is not limit]
+    assert limit.get_zorder() < min(line.get_zorder() for line in curves)
+    texts = [t.get_text() for t in ax.get_legend().get_texts()]
+    assert any(t.startswith("single-summit limit") and t.endswith("0.468") for t in texts)
+
+
+def test_few_contact_monte_carlo_points_get_their_own_marker_and_legend_entry():
+    from mcsim.plotting import FEW_LABEL
+
+    mc = fake_mc()
+    for result in mc.values():
+        result["few"] = result["h"] > 2  # the first of three points
+    ax = curve_figure("T", _curves(), mc).axes[0]
+    markers = [bars.lines[0].get_marker() for bars in ax.containers]
+    assert markers.count("x") == len(PAPER_SURFACES) and markers.count("o") == len(PAPER_SURFACES)
+    assert FEW_LABEL in [t.get_text() for t in ax.get_legend().get_texts()]
+    assert "no z-score" in FEW_LABEL
+
+
+def test_paper_monte_carlo_flags_points_with_few_expected_contacts(tmp_path, monkeypatch):
+    import mcsim.paper as paper
+    from mcsim.statistics import MIN_CONTACTS
+
+    monkeypatch.setattr(paper, "MC_AREA", 1e-10)  # 100 um^2: few contacts at large h
+    mc = paper.paper_monte_carlo(tmp_path, log=None)
+    for name, result in mc.items():
+        run = read_run(tmp_path / f"mc_{name}.h5")
+        expected = run.summary.expected_contacts < MIN_CONTACTS
+        assert expected[0] and not expected[-1], name  # h = 4: few; h = -1: many
+        np.testing.assert_array_equal(result["few"], expected, err_msg=name)
+
+
+def test_force_labels_call_F_the_adhesion_term_and_state_the_normalisation():
+    for quantity in ("P", "F", "total", "T"):
+        assert "A_n K" in LABELS[quantity], quantity
+        title = curve_figure(quantity, _curves(["smooth"])).axes[0].get_title()
+        assert "A_n K" in title, title
+    assert LABELS["F"].startswith("Adhesion term")
+    assert "Adhesion term" in curve_figure("F", _curves(["smooth"])).axes[0].get_title()
+    assert not any("adhesive term" in label.lower() for label in LABELS.values())
+
+
+@pytest.fixture(scope="module")
+def single_h_run():
+    from mcsim.simulation import simulate
+
+    return simulate(SURFACES["smooth"], MATERIALS["silicon"], [1.0], "100um^2", seed=1)
+
+
+def test_run_plot_of_a_single_h_shows_the_analytic_value(single_h_run):
+    from mcsim.plotting import PANELS, run_figure
+
+    fig = run_figure(single_h_run)
+    for ax, quantity in zip(fig.axes, PANELS):
+        line = next(line for line in ax.lines if line.get_label() == "analytic GW")
+        assert line.get_marker() not in ("None", "", None), quantity
+        assert line.get_xdata()[0] == 1.0
+        expected = single_h_run.analytic[quantity][0]
+        assert line.get_ydata()[0] == pytest.approx(expected, rel=1e-9), quantity
+
+
+def test_linear_panels_start_at_zero_so_small_differences_look_small(single_h_run):
+    from mcsim.plotting import PANELS, comparison_figure, run_figure
+
+    s = SURFACES["smooth"]
+    for fig in (run_figure(single_h_run), comparison_figure(s, s, MATERIALS["silicon"], H)):
+        for ax, quantity in zip(fig.axes, PANELS):
+            if quantity in ("mu", "contact_fraction"):
+                bottom, top = ax.get_ylim()
+                assert bottom == 0 and top >= ax.dataLim.y1, quantity
+
+
+def test_several_runs_are_overlaid_each_with_its_own_colour(single_h_run):
+    from mcsim.plotting import run_figure
+    from mcsim.simulation import simulate
+
+    other = simulate(SURFACES["rough"], MATERIALS["silicon"], [1.0, 0.0], "100um^2", seed=2)
+    ax = run_figure([single_h_run, other]).axes[1]
+    colours = {bars.lines[0].get_color() for bars in ax.containers}
+    assert len(ax.containers) >= 2 and len(colours) == 2

@@ -45,6 +45,7 @@ def read_height_map(
     path: str | Path,
     unit: str | None = None,
     pixel_size: float | tuple[float, float] | None = None,
+    channel: str | None = None,
 ) -> HeightMap:
     """Read a height map, choosing the reader by extension and magic bytes.
 
@@ -57,6 +58,10 @@ def read_height_map(
         Height unit for formats that do not store one (matrix, XYZ, .npy), e.g. ``"nm"``.
     pixel_size : float or (float, float), optional
         Pixel size, m, for formats that do not store one (matrix, .npy).
+    channel : str, optional
+        Channel of a multi-channel file (.gwy, .ibw, .nid, SurfaceTopography's
+        formats); by default the file's height channel. Single-channel formats
+        refuse it.
 
     Returns
     -------
@@ -65,9 +70,11 @@ def read_height_map(
     """
     path = Path(path)
     if path.suffix.lower() not in _MAP_FORMATS and surfacetopography.available():
-        return surfacetopography.read(path, unit=unit, pixel_size=pixel_size)
+        return surfacetopography.read(path, unit=unit, pixel_size=pixel_size, channel=channel)
     hint = f"; for other formats: {surfacetopography.INSTALL_HINT}"
     suffix = _check_format(path, _MAP_FORMATS, hint)
+    if channel is not None and suffix not in (*gwy.EXTENSIONS, *ibw.EXTENSIONS, *nid.EXTENSIONS):
+        raise ReaderError(f"{path}: a {suffix} file holds one channel: --channel does not apply")
     if suffix in ascii.EXTENSIONS:
         return ascii.read(path, unit=unit, pixel_size=pixel_size)
     if suffix in ascii.XYZ_EXTENSIONS:
@@ -75,10 +82,10 @@ def read_height_map(
     if suffix in npy.EXTENSIONS:
         return npy.read(path, unit=unit, pixel_size=pixel_size)
     if suffix in gwy.EXTENSIONS:
-        return gwy.read(path)
+        return gwy.read(path, channel=channel)
     if suffix in ibw.EXTENSIONS:
-        return ibw.read(path, unit=unit)
-    return nid.read(path)
+        return ibw.read(path, channel=channel, unit=unit)
+    return nid.read(path, channel=channel)
 
 
 def read_histogram(path: str | Path, unit: str | None = None) -> Histogram:

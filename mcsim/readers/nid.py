@@ -53,8 +53,10 @@ def read(path: Path | str, channel: str | None = None, frame: str = "Scan forwar
     path : path-like
         The file.
     channel : str, optional
-        ``Dim2Name`` of the channel; by default ``"Z-Axis"`` or, in files without it,
-        ``"Topography"``.
+        ``Dim2Name`` of the channel, or ``"Frame/Dim2Name"`` (e.g. ``"Scan
+        backward/Z-Axis"``); by default ``"Z-Axis"`` or, in files without it,
+        ``"Topography"``. Spectra and curves (one line, or an x axis in Hz) are
+        refused: they are not height maps.
     frame : str
         ``Frame`` of the channel, ``"Scan forward"`` by default.
     """
@@ -88,16 +90,30 @@ def read(path: Path | str, channel: str | None = None, frame: str = "Scan forwar
                 f"{MAX_PIXELS} (mcsim.readers.base.MAX_PIXELS)"
             )
         sizes.append(pixels * _count(b, "SaveBits", path) // 8)
+    labels = [f"{b.get('Frame')}/{b.get('Dim2Name')}" for b in blocks]
+    images = [label for label, b in zip(labels, blocks) if _is_image(b)]
     if channel is None:
-        stored = {b.get("Dim2Name") for b in blocks}
+        stored = {b.get("Dim2Name") for b in blocks if b.get("Frame") == frame}
         channel = "Z-Axis" if "Z-Axis" in stored else "Topography"
-    found = [
-        k for k, b in enumerate(blocks) if b.get("Dim2Name") == channel and b.get("Frame") == frame
-    ]
+        if f"{frame}/{channel}" not in labels:
+            raise ReaderError(
+                f"{path}: no {frame}/Z-Axis or {frame}/Topography height channel; "
+                + (f"images: {', '.join(map(repr, images))} (choose one with --channel)" if images
+                   else f"the file holds no image, only spectra or curves ({', '.join(map(repr, labels))})")
+            )  # fmt: skip
+    if "/" in channel:
+        frame, channel = channel.rsplit("/", 1)
+    found = [k for k, label in enumerate(labels) if label == f"{frame}/{channel}"]
     if not found:
-        available = sorted({repr(f"{b.get('Frame')}/{b.get('Dim2Name')}") for b in blocks})
         raise ReaderError(
-            f"{path}: no channel {frame}/{channel} (channels: {', '.join(available)})"
+            f"{path}: no channel {frame}/{channel} (channels: {', '.join(map(repr, labels))})"
+        )
+    if not _is_image(blocks[found[0]]):
+        b = blocks[found[0]]
+        raise ReaderError(
+            f"{path}: channel {frame}/{channel} is not a height image ({b.get('Lines')} line(s) "
+            f"of {b.get('Points')} points, axes in {b.get('Dim0Unit', '?')!r} and {b.get('Dim1Unit', '?')!r}); "
+            f"images: {', '.join(map(repr, images)) or 'none'}"
         )
     block = blocks[found[0]]
     if block.get("SaveMode", "Binary") != "Binary" or block.get("SaveOrder", "Intel") != "Intel":
@@ -130,6 +146,18 @@ def read(path: Path | str, channel: str | None = None, frame: str = "Scan forwar
     return HeightMap(
         z, dx, dy, str(path), channel=f"{frame}/{channel}", notes=(f"scan direction {direction}",)
     )
+
+
+def _is_image(block: dict[str, str]) -> bool:
+    """A map: at least 3 lines, both axes lengths (spectra have 1 line or an x axis in Hz)."""
+    try:
+        if int(block.get("Lines", 0)) < 3:
+            return False
+        for key in ("Dim0Unit", "Dim1Unit"):
+            length_factor(block.get(key, "?"), "", key)
+    except (ValueError, ReaderError):
+        return False
+    return True
 
 
 def _count(section: dict[str, str], key: str, path: Path) -> int:
