@@ -122,7 +122,10 @@ def write_atomic(
     """
     path = check_output(path, inputs=inputs, overwrite=overwrite)
     target = Path(os.path.realpath(path)) if path.is_symlink() else path
-    fd, name = tempfile.mkstemp(dir=target.parent, prefix=f".{target.name}.", suffix=".tmp")
+    try:
+        fd, name = tempfile.mkstemp(dir=target.parent, prefix=f".{target.name}.", suffix=".tmp")
+    except OSError as err:
+        raise MCSimError(f"{path}: cannot write it ({err.strerror or err})") from None
     os.close(fd)
     tmp = Path(name)
     try:

@@ -255,3 +255,17 @@ def test_ingest_overwrite_replaces_every_output_and_leaves_no_temporary(capsys, 
     assert run_cli(capsys, *args, "--overwrite")[0] == 0
     names = sorted(p.name for p in tmp_path.iterdir())
     assert names == ["h.csv", "s-heights.csv", "s-heights.png", "s.toml"]
+
+
+def test_an_unwritable_folder_is_a_one_line_error(capsys, run_file, tmp_path):
+    if os.geteuid() == 0:
+        pytest.skip("root writes into read-only folders")
+    folder = tmp_path / "ro"
+    folder.mkdir()
+    folder.chmod(0o500)
+    try:
+        code, _, err = run_cli(capsys, "plot", run_file, "--out", folder / "p.png")
+    finally:
+        folder.chmod(0o700)
+    one_line_error(code, err, "cannot write it")
+    assert list(folder.iterdir()) == []
