@@ -25,6 +25,10 @@ NORMALISED = {
     "mu": "T/(P + F)",
 }
 
+#: Unit of each column of the raw sums (:data:`mcsim.kernels.SUM_COLUMNS`): the count of
+#: contacting summits, the forces P, F, T and their second moments.
+SUM_UNITS = ("1", "N", "N", "N", "N^2", "N^2", "N^2", "N^2", "N^2", "N^2")
+
 #: Ensemble statistics stored per quantity.
 STATS = ("mean", "se", "std", "se_between")
 
@@ -73,7 +77,7 @@ class Run:
 
     @property
     def sums(self) -> np.ndarray:
-        """Raw sums, shape (R, M, 10) (:data:`mcsim.kernels.SUM_COLUMNS`, forces in N)."""
+        """Raw sums, shape (R, M, 10): :data:`mcsim.kernels.SUM_COLUMNS` in :data:`SUM_UNITS`."""
         return self.ensemble.sums
 
     @property

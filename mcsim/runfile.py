@@ -10,7 +10,7 @@ attribute, dimensionless ones ``"1"`` with the normalisation in ``description``)
     /input/material        attrs: E1, E2 [Pa], nu1, nu2, gamma [J/m^2], H [Pa], name
     /h, /d                 separations: d/σ and d [m]
     /realizations/N        summits per patch
-    /realizations/sums     (R, M, 10) raw sums, columns in attrs (forces in N)
+    /realizations/sums     (R, M, 10) raw sums; attrs columns and their units (1, N, N^2)
     /progress/n_blocks, /progress/done_blocks   blocks per patch, and done
     -- complete runs only --
     /realizations/<q>      (R, M) dimensionless curves, q in contact_fraction,P,F,T,mu
@@ -18,6 +18,12 @@ attribute, dimensionless ones ``"1"`` with the normalisation in ``description``)
     /summary/expected_contacts
     /analytic/<q>          (M,) GW curves for the same inputs (expected values)
     /heights/<r>           optional: sampled heights above h_min [m]
+
+Named axes: every group whose datasets have an axis h (M), realization (R) or column
+(the 10 sums columns) holds that axis's coordinate as an HDF5 dimension scale of the same
+name, attached to those datasets, so netCDF readers (xarray with h5netcdf) name the
+dimensions alike in every group and give their values. Files written before the scales
+were added read the same.
 
 Guarantees:
 
@@ -53,7 +59,7 @@ from .errors import MCSimError, RunFileError
 from .kernels import SUM_COLUMNS
 from .montecarlo import BLOCK, EnsembleSums, MonteCarloSpec
 from .params import Material, Surface
-from .results import NORMALISED, STATS, Run, assemble
+from .results import NORMALISED, STATS, SUM_UNITS, Run, assemble
 from .statistics import Summary
 
 SCHEMA_VERSION = 1
@@ -138,11 +144,43 @@ def _heights_from_json(text: str):
     return Empirical.from_dict({k: v for k, v in data.items() if k != "name"})
 
 
-def _dataset(f, name: str, data, unit: str, description: str, **options):
+def _dataset(f, name: str, data, unit: str, description: str, dims=(), **options):
+    """Create dataset ``name`` with its unit; ``dims`` name its axes (see :func:`_axis`)."""
     ds = f.create_dataset(name, data=np.asarray(data), **options)
     ds.attrs["unit"] = unit
     ds.attrs["description"] = description
+    for k, axis in enumerate(dims):
+        ds.dims[k].attach_scale(_axis(ds.parent, axis, ds.shape[k]))
     return ds
+
+
+#: Named axes: unit and meaning of each coordinate.
+AXES = {
+    "h": ("1", "d/sigma"),
+    "realization": ("1", "realization index"),
+    "column": ("1", "column of realizations/sums"),
+}
+
+
+def _axis(group, axis: str, size: int):
+    """The coordinate ``axis`` of ``group``, created on first use.
+
+    Each group that uses an axis holds its own copy as an HDF5 dimension scale named
+    after it, so that netCDF readers (``xarray.open_dataset(path, group=...,
+    engine="h5netcdf")``, ``open_datatree``) name the dimension and give its values,
+    with the same name in every group.
+    """
+    if axis not in group:
+        values = {
+            "h": group.file["h"][()],
+            "realization": np.arange(size),
+            "column": np.array(SUM_COLUMNS, dtype="S"),
+        }[axis]
+        scale = _dataset(group, axis, values, *AXES[axis])
+        if axis == "column":
+            scale.attrs["_Encoding"] = "utf-8"  # netCDF readers decode the names to text
+        scale.make_scale(axis)
+    return group[axis]
 
 
 def _checksum(f) -> str:
@@ -189,19 +227,27 @@ def _write_inputs(f, spec: MonteCarloSpec, command: str, complete: bool) -> dict
     m.attrs["units"] = json.dumps(
         {"E1": "Pa", "E2": "Pa", "nu1": "1", "nu2": "1", "gamma": "J/m^2", "H": "Pa"}
     )
-    _dataset(f, "h", spec.h, "1", "d/sigma")
-    _dataset(f, "d", spec.d, "m", "mean separation")
+    _dataset(f, "h", spec.h, *AXES["h"]).make_scale("h")
+    _dataset(f, "d", spec.d, "m", "mean separation", dims=("h",))
     return attrs
 
 
 def _write_state(f, state: EnsembleSums) -> None:
-    _dataset(f, "realizations/N", state.n_summits, "1", "summits in the patch")
+    per_realization = ("realization",)
+    _dataset(f, "realizations/N", state.n_summits, "1", "summits in the patch", per_realization)
     sums = _dataset(
-        f, "realizations/sums", state.sums, "N", "raw per-separation sums over the blocks done"
+        f,
+        "realizations/sums",
+        state.sums,
+        "per column, see units",
+        "raw per-separation sums over the blocks done",
+        ("realization", "h", "column"),
     )
     sums.attrs["columns"] = list(SUM_COLUMNS)
-    _dataset(f, "progress/n_blocks", state.n_blocks, "1", f"blocks of {BLOCK} summits above h_min")
-    _dataset(f, "progress/done_blocks", state.done_blocks, "1", "blocks summed, from the first")
+    sums.attrs["units"] = list(SUM_UNITS)
+    blocks = f"blocks of {BLOCK} summits above h_min"
+    _dataset(f, "progress/n_blocks", state.n_blocks, "1", blocks, per_realization)
+    _dataset(f, "progress/done_blocks", state.done_blocks, "1", "blocks done", per_realization)
 
 
 def _atomic_write(path: Path, fill) -> None:
@@ -259,14 +305,16 @@ def write_run(path: str | Path, run, *, command: str):
     def fill(f):
         attrs.update(_write_inputs(f, run.spec, command, complete=True))
         _write_state(f, run.ensemble)
+        per_h = ("h",)
         for q in QUANTITIES:
-            _dataset(f, f"realizations/{q}", run.realizations[q], "1", NORMALISED[q])
-            _dataset(f, f"analytic/{q}", run.analytic[q], "1", NORMALISED[q])
+            curves = run.realizations[q]
+            _dataset(f, f"realizations/{q}", curves, "1", NORMALISED[q], ("realization", "h"))
+            _dataset(f, f"analytic/{q}", run.analytic[q], "1", NORMALISED[q], per_h)
             for stat in STATS:
-                _dataset(
-                    f, f"summary/{stat}/{q}", getattr(run.summary, stat)[q], "1", NORMALISED[q]
-                )
-        _dataset(f, "summary/expected_contacts", run.summary.expected_contacts, "1", "R E[N] S(h)")
+                values = getattr(run.summary, stat)[q]
+                _dataset(f, f"summary/{stat}/{q}", values, "1", NORMALISED[q], per_h)
+        expected = run.summary.expected_contacts
+        _dataset(f, "summary/expected_contacts", expected, "1", "R E[N] S(h)", per_h)
         if run.heights is not None:
             for r, z in enumerate(run.heights):
                 _dataset(

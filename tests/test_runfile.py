@@ -1,5 +1,7 @@
 """HDF5 run files: content, provenance, round trip, atomic and non-destructive writes."""
 
+from pathlib import Path
+
 import h5py
 import numpy as np
 import pytest
@@ -202,3 +204,16 @@ def test_an_incomplete_run_is_refused_unless_the_completed_part_is_asked_for(tmp
     run = read_run(tmp_path / "p.h5", allow_incomplete=True)
     assert not run.complete and run.spec.realizations == 2
     np.testing.assert_array_equal(run.sums, full.sums[:2])
+
+
+def test_run_files_written_before_the_named_axes_still_open():
+    """tests/data/run_schema1_before_axes.h5 was written by mcsim 0.1.0 (commit 58787dd),
+    before the dimension scales: 2 realizations, h = [1, 0], smooth on silicon, seed 7."""
+    old = read_run(Path(__file__).parent / "data" / "run_schema1_before_axes.h5")
+    assert old.spec.surface == SURFACES["smooth"] and old.spec.realizations == 2
+    np.testing.assert_array_equal(old.h, [1.0, 0.0])
+    again = simulate(SURFACES["smooth"], MATERIALS["silicon"], [1.0, 0.0], "100 um^2",
+                     realizations=2, seed=7)  # fmt: skip
+    np.testing.assert_array_equal(old.sums, again.sums)
+    for q in QUANTITIES:
+        np.testing.assert_array_equal(old.summary.mean[q], again.summary.mean[q])
