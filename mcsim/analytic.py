@@ -15,6 +15,7 @@ N_c/N = ∫_h^∞ p(s) ds (Eq. 1).
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import ClassVar
 
 import numpy as np
 
@@ -61,6 +62,16 @@ class AnalyticCurves:
     material: Material
     law: str
 
+    #: Column names of :meth:`table`: each quantity with its normalisation.
+    LABELS: ClassVar[dict[str, str]] = {
+        "h": "h = d/σ",
+        "contact_fraction": "N_c/N",
+        "P": "P/(A_n K)",
+        "F": "F/(A_n K)",
+        "T": "T/(A_n K)",
+        "mu": "μ = T/(P + F)",
+    }
+
     def forces(self, area: float) -> dict[str, np.ndarray]:
         """Dimensional totals for a nominal area ``area`` (m²): P, F, T in N and N_c."""
         scale = area * self.material.K
@@ -72,9 +83,35 @@ class AnalyticCurves:
             "T": self.T * scale,
         }
 
-    def table(self) -> dict[str, np.ndarray]:
-        """Columns ``h, contact_fraction, P, F, T, mu`` (dimensionless)."""
+    def columns(self) -> dict[str, np.ndarray]:
+        """Arrays ``h, contact_fraction, P, F, T, mu`` (dimensionless), by short name."""
         return {"h": self.h, **{q: getattr(self, q) for q in QUANTITIES}}
+
+    def table(self):
+        """The curves as a :class:`pandas.DataFrame`, one row per separation.
+
+        Columns, named with their normalisation (all dimensionless): ``h = d/σ``,
+        ``N_c/N`` (Eq. 1), ``P/(A_n K)``, ``F/(A_n K)``, ``T/(A_n K)`` (Eqs. 3, 5, 7) and
+        ``μ = T/(P + F)`` (Eq. 8).
+        """
+        import pandas as pd
+
+        return pd.DataFrame({self.LABELS[c]: v for c, v in self.columns().items()})
+
+    def _summary(self) -> tuple[str, list[tuple[str, str]]]:
+        from . import _display
+
+        return "GW analytic curves", _display.inputs(self.surface, self.material, self.law, self.h)
+
+    def __repr__(self) -> str:
+        from . import _display
+
+        return _display.text(*self._summary())
+
+    def _repr_html_(self) -> str:
+        from . import _display
+
+        return _display.table(*self._summary())
 
 
 def gw_curves(

@@ -124,8 +124,8 @@ def cmd_analytic(args) -> int:
 
     surface, material = _inputs(args)
     curves = gw_curves(surface, material, parse_h(args.h), args.law)
-    columns = list(curves.table())
-    table = curves.table()
+    columns = list(curves.columns())
+    table = curves.columns()
     rows = [{c: float(table[c][i]) for c in columns} for i in range(curves.h.size)]
     header = [
         *_describe(surface, material),

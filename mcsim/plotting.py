@@ -534,9 +534,9 @@ def comparison_figure(surface_measured, surface_gaussian, material, h, run=None)
 
     h = np.sort(np.atleast_1d(np.asarray(h, dtype=float)))[::-1]
     lines = [
-        (h, gw_curves(surface_measured, material, h).table(), {"color": _COLOURS[0], "linestyle": "-"},
+        (h, gw_curves(surface_measured, material, h).columns(), {"color": _COLOURS[0], "linestyle": "-"},
          "measured heights (analytic)"),
-        (h, gw_curves(surface_gaussian, material, h).table(), {"color": _COLOURS[4], "linestyle": "--"},
+        (h, gw_curves(surface_gaussian, material, h).columns(), {"color": _COLOURS[4], "linestyle": "--"},
          "Gaussian GW, same ($\\sigma$, $R$, $\\eta$)"),
     ]  # fmt: skip
     info = [

@@ -88,6 +88,32 @@ class Run:
     def d(self) -> np.ndarray:
         return self.spec.d
 
+    def _summary(self) -> tuple[str, list[tuple[str, str]]]:
+        from . import _display
+
+        spec = self.spec
+        n = self.n_summits
+        rows = _display.inputs(spec.surface, spec.material, spec.law, spec.h)
+        rows.append(
+            ("patch", f"A = {spec.area * 1e12:.4g} µm², N ~ {spec.count} with E[N] = "
+                      f"{spec.expected_summits:.4g} (drawn: {np.min(n)} to {np.max(n)})")
+        )  # fmt: skip
+        done = "complete" if self.complete else "completed part of an unfinished run"
+        rows.append(("realizations", f"{spec.realizations}, {done}; seed entropy {spec.entropy}"))
+        if self.path is not None:
+            rows.append(("file", str(self.path)))
+        return "Monte Carlo run", rows
+
+    def __repr__(self) -> str:
+        from . import _display
+
+        return _display.text(*self._summary())
+
+    def _repr_html_(self) -> str:
+        from . import _display
+
+        return _display.table(*self._summary())
+
     def compare(self):
         """DataFrame ``h, quantity, mc_mean, mc_se, analytic, z, note`` (see :mod:`mcsim.statistics`)."""
         import pandas as pd

@@ -1,12 +1,17 @@
-"""Results in the scientific Python ecosystem: run files in xarray (named, aligned axes)."""
+"""Results in the scientific Python ecosystem: run files in xarray (named, aligned axes),
+short summaries in Jupyter, pandas tables."""
 
+import dataclasses
 import warnings
 
 import h5py
 import numpy as np
+import pandas as pd
 import pytest
 import xarray as xr
 
+from mcsim import gw_curves
+from mcsim.analytic import QUANTITIES
 from mcsim.kernels import SUM_COLUMNS
 from mcsim.presets import MATERIALS, SURFACES
 from mcsim.simulation import simulate
@@ -78,3 +83,44 @@ def test_raw_sums_carry_one_unit_per_column(run):
     assert {units[c] for c in ("PP", "FF", "TT", "PF", "PT", "FT")} == {"N^2"}
     tree = xr.open_datatree(run.path, engine="h5netcdf")
     assert list(tree["realizations/sums"].attrs["units"]) == list(units.values())
+
+
+# --- Jupyter and pandas: short summaries, labelled tables ------------------------------
+
+
+def test_run_repr_is_a_short_summary_of_inputs_and_completeness_not_the_arrays(run):
+    text = repr(run)
+    assert "array(" not in text and len(text.splitlines()) <= 10, text
+    for words in ("smooth", "silicon", "seed", "3 values from 0 to 2", "300 µm²",
+                  "3, complete", str(run.path)):  # fmt: skip
+        assert words in text, words
+    partial = repr(dataclasses.replace(run, complete=False))
+    assert "unfinished" in partial and "3, complete;" not in partial
+
+
+def test_run_html_summary_is_a_table_with_the_same_rows(run):
+    page = run._repr_html_()
+    assert page.startswith("<table") and page.endswith("</table>")
+    assert page.count("<tr>") == len(repr(run).splitlines()) - 1
+    assert "silicon" in page and "array(" not in page
+
+
+def test_curves_repr_stays_short_for_long_sweeps_and_names_the_sweep():
+    curves = gw_curves(SURFACES["rough"], MATERIALS["silicon"], np.linspace(4, -1, 5001))
+    text = repr(curves)
+    assert "array(" not in text and len(text.splitlines()) <= 6, text
+    for words in ("rough", "silicon", "seed", "5001 values from -1 to 4"):
+        assert words in text, words
+    assert curves._repr_html_().count("<tr>") == len(text.splitlines()) - 1
+
+
+def test_curves_table_is_a_dataframe_with_columns_named_by_their_normalisation():
+    h = [2.0, 0.0, -1.0]
+    curves = gw_curves(SURFACES["smooth"], MATERIALS["silicon"], h)
+    table = curves.table()
+    assert isinstance(table, pd.DataFrame)
+    assert list(table.columns) == ["h = d/σ", "N_c/N", "P/(A_n K)", "F/(A_n K)", "T/(A_n K)",
+                                   "μ = T/(P + F)"]  # fmt: skip
+    np.testing.assert_array_equal(table["h = d/σ"], h)
+    for label, q in zip(table.columns[1:], QUANTITIES, strict=True):
+        np.testing.assert_array_equal(table[label], getattr(curves, q))

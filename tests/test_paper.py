@@ -58,7 +58,7 @@ def test_curves_csv_values_equal_gw_curves(paper):
     out, _, _ = paper
     table = pd.read_csv(out / "paper_curves.csv", comment="#")
     for name in PAPER_SURFACES:
-        expected = gw_curves(SURFACES[name], MATERIALS["silicon"], H).table()
+        expected = gw_curves(SURFACES[name], MATERIALS["silicon"], H).columns()
         rows = table[table["surface"] == name]
         for column, values in expected.items():
             # written with repr(float): the round trip is exact
