@@ -1,5 +1,7 @@
 """Analytic GW curves against an independent high-precision implementation of Eqs. 1-8."""
 
+import functools
+
 import mpmath as mp
 import numpy as np
 import pytest
@@ -10,6 +12,7 @@ from mcsim.presets import MATERIALS, SURFACES
 SILICON = MATERIALS["silicon"]
 
 
+@functools.cache  # several tests check the same points; each quadrature takes ~0.5 s
 def reference_curves(surface: Surface, material: Material, h: float) -> dict[str, float]:
     """Eqs. 1, 3, 5, 7, 8 in the paper's dimensionless form (A0, B0, R0), by mpmath quadrature."""
     mp.mp.dps = 30
