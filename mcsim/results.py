@@ -93,10 +93,11 @@ class Run:
 
         spec = self.spec
         n = self.n_summits
+        drawn = f" (drawn: {np.min(n)} to {np.max(n)})" if n.size else ""
         rows = _display.inputs(spec.surface, spec.material, spec.law, spec.h)
         rows.append(
             ("patch", f"A = {spec.area * 1e12:.4g} µm², N ~ {spec.count} with E[N] = "
-                      f"{spec.expected_summits:.4g} (drawn: {np.min(n)} to {np.max(n)})")
+                      f"{spec.expected_summits:.4g}{drawn}")
         )  # fmt: skip
         done = "complete" if self.complete else "completed part of an unfinished run"
         rows.append(("realizations", f"{spec.realizations}, {done}; seed entropy {spec.entropy}"))
