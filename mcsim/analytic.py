@@ -20,7 +20,7 @@ from typing import ClassVar
 import numpy as np
 
 from .laws import LawSet, get_law_set
-from .params import Material, Surface
+from .params import Material, Surface, check_range, check_separations
 
 #: Quantities of a GW curve, in output order, with their meaning.
 QUANTITIES = {
@@ -73,7 +73,8 @@ class AnalyticCurves:
     }
 
     def forces(self, area: float) -> dict[str, np.ndarray]:
-        """Dimensional totals for a nominal area ``area`` (m²): P, F, T in N and N_c."""
+        """Dimensional totals for a nominal area ``area`` (m², > 0): P, F, T in N and N_c."""
+        area = check_range("area", area, "m^2", low=0)
         scale = area * self.material.K
         n = self.surface.eta * area
         return {
@@ -129,7 +130,8 @@ def gw_curves(
     material : Material
         Material pair (K, G, γ).
     h : array_like
-        Dimensionless separations d/σ, any finite values.
+        Dimensionless separations d/σ: finite, |h| <= 1e6
+        (:data:`mcsim.params.MAX_ABS_H`); others raise a ParameterError.
     law : str or LawSet
         Per-summit law set, ``"seed"`` by default (the paper as written).
 
@@ -140,7 +142,7 @@ def gw_curves(
         no summit can touch.
     """
     laws = get_law_set(law)
-    h = np.atleast_1d(np.asarray(h, dtype=float))
+    h = check_separations(h)
     args = laws.arguments(surface, material)
     sigma = surface.sigma
 

@@ -35,7 +35,7 @@ import numpy as np
 from .errors import ParameterError
 from .kernels import SUM_COLUMNS, block_sums
 from .laws import get_law_set
-from .params import Material, Surface, check_range
+from .params import Material, Surface, check_range, check_separations
 
 #: Summits per random stream and per partial sum. Part of the reproducibility contract:
 #: changing it changes the numbers.
@@ -81,12 +81,7 @@ class MonteCarloSpec:
     count: str = "poisson"
 
     def __post_init__(self) -> None:
-        h = np.atleast_1d(np.asarray(self.h, dtype=float))
-        if h.ndim != 1 or h.size == 0:
-            raise ParameterError("h must be a non-empty list of separations")
-        if not np.all(np.isfinite(h)):
-            raise ParameterError(f"h must be finite, got {h[~np.isfinite(h)][0]!r}")
-        object.__setattr__(self, "h", h)
+        object.__setattr__(self, "h", check_separations(self.h))
         object.__setattr__(self, "area", check_range("area", self.area, "m^2", low=0))
         _check_count("realizations", self.realizations)
         if self.count not in COUNT_MODES:

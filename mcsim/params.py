@@ -10,8 +10,28 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
+import numpy as np
+
 from .distributions import GAUSSIAN, HeightDistribution
 from .errors import ParameterError
+
+#: Accepted ranges (closed, SI) of the inputs: wide enough for any real solid and rough
+#: surface (soft gels to diamond; sub-ångström to centimetre roughness), narrow enough
+#: that every analytic and Monte Carlo output is a finite float (tests/test_edges.py
+#: checks the corners). Values outside are refused, not silently turned into inf or NaN.
+RANGES: dict[str, tuple[float, float, str]] = {
+    "E": (1.0, math.inf, "Pa"),  # a huge E2 models a rigid counterface
+    "K": (0.0, 1e14, "Pa"),  # so K and G (at most ~K) stay below this
+    "H": (1.0, 1e13, "Pa"),
+    "gamma": (0.0, 1e3, "J/m^2"),
+    "sigma": (1e-12, 1e-2, "m"),
+    "R": (1e-10, 10.0, "m"),
+    "eta": (1.0, 1e20, "m^-2"),
+}
+#: Largest |h| = |d|/σ accepted: the quadrature of the GW integrals keeps ~1e-11 relative
+#: accuracy up to here (it loses digits as |h| grows; see tests/test_analytic.py), and
+#: no physical separation is a million σ.
+MAX_ABS_H = 1e6
 
 
 def check_range(
@@ -47,6 +67,37 @@ def check_range(
     return value
 
 
+def _in_range(name: str, value: float, kind: str | None = None) -> float:
+    """``value`` checked against :data:`RANGES` (``kind`` names the entry, default ``name``)."""
+    low, high, unit = RANGES[kind or name]
+    high = None if high == math.inf else high
+    return check_range(name, value, unit, low=low, high=high, low_open=False, high_open=False)
+
+
+def check_separations(h) -> np.ndarray:
+    """Separations h = d/σ as a non-empty 1-D float array; raise unless finite with |h| <= 1e6.
+
+    Parameters
+    ----------
+    h : array_like
+        Dimensionless separations d/σ.
+    """
+    if h is None:
+        raise ParameterError("h must be a list of separations d/sigma, got None")
+    try:
+        values = np.atleast_1d(np.asarray(h, dtype=float))
+    except (TypeError, ValueError):
+        raise ParameterError(f"h must be a list of numbers, got {h!r}") from None
+    if values.ndim != 1 or values.size == 0:
+        raise ParameterError(f"h must be a non-empty 1-D list of separations, got {h!r}")
+    bad = values[~(np.abs(values) <= MAX_ABS_H)]
+    if bad.size:
+        raise ParameterError(
+            f"h = {float(bad[0])!r} is out of range (allowed: finite, -{MAX_ABS_H:g} <= h <= {MAX_ABS_H:g})"
+        )
+    return values
+
+
 @dataclass(frozen=True)
 class Material:
     """Elastic and adhesive properties of a pair of contacting solids.
@@ -54,18 +105,19 @@ class Material:
     Parameters
     ----------
     E1, E2 : float
-        Young's moduli of the two solids, Pa.
+        Young's moduli of the two solids, Pa, >= 1 (:data:`RANGES`); the derived K
+        and G must stay <= 1e14 Pa (a huge E2 models a rigid counterface).
     nu1, nu2 : float
         Poisson's ratios, in (-1, 0.5).
     gamma : float
-        Work of adhesion w used by Eqs. 4 and 6, J/m². The paper calls it the work
+        Work of adhesion w used by Eqs. 4 and 6, J/m², in [0, 1e3]. The paper calls it the work
         of adhesion in the introduction and a "surface energy" in the results; its
         formulas use it as the work of adhesion (for two identical clean surfaces
         w = 2 γ_s). mcsim uses it as written.
     H : float or None
-        Indentation hardness of the softer solid, Pa. Given in the paper but unused
-        by its elastic model; used by the ``elastic-plastic`` law set and the
-        plasticity index.
+        Indentation hardness of the softer solid, Pa, in [1, 1e13]. Given in the paper
+        but unused by its elastic model; used by the ``elastic-plastic`` law set and
+        the plasticity index.
     z0 : float or None
         Equilibrium spacing of the surface interaction, m (``dmt``,
         ``maugis-dugdale`` and the Tabor parameter).
@@ -88,16 +140,21 @@ class Material:
 
     def __post_init__(self) -> None:
         for attr in ("E1", "E2"):
-            object.__setattr__(self, attr, check_range(attr, getattr(self, attr), "Pa", low=0))
+            object.__setattr__(self, attr, _in_range(attr, getattr(self, attr), "E"))
         for attr in ("nu1", "nu2"):
             object.__setattr__(
                 self, attr, check_range(attr, getattr(self, attr), "1", low=-1, high=0.5)
             )
-        object.__setattr__(
-            self, "gamma", check_range("gamma", self.gamma, "J/m^2", low=0, low_open=False)
-        )
+        object.__setattr__(self, "gamma", _in_range("gamma", self.gamma))
+        for name, modulus in (("K", self.K), ("G", self.G)):
+            if not modulus <= RANGES["K"][1]:
+                raise ParameterError(
+                    f"{name} = {modulus:.4g} Pa (from E1, E2, nu1, nu2) is out of range "
+                    f"(allowed: <= {RANGES['K'][1]:g} Pa): one solid needs E <= about 1e13 Pa "
+                    "and nu away from -1"
+                )
         if self.H is not None:
-            object.__setattr__(self, "H", check_range("H", self.H, "Pa", low=0))
+            object.__setattr__(self, "H", _in_range("H", self.H))
         if self.z0 is not None:
             object.__setattr__(self, "z0", check_range("z0", self.z0, "m", low=0))
         if self.tau is not None:
@@ -136,11 +193,11 @@ class Surface:
     Parameters
     ----------
     sigma : float
-        Standard deviation of the summit heights σ, m.
+        Standard deviation of the summit heights σ, m, in [1e-12, 1e-2] (:data:`RANGES`).
     R : float
-        Summit radius of curvature, m.
+        Summit radius of curvature, m, in [1e-10, 10].
     eta : float
-        Areal density of summits η, m⁻².
+        Areal density of summits η, m⁻², in [1, 1e20].
     heights : HeightDistribution
         Shape of the summit-height distribution in units of σ (zero mean, unit
         standard deviation). Gaussian by default, as in the paper.
@@ -155,9 +212,8 @@ class Surface:
     name: str = ""
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "sigma", check_range("sigma", self.sigma, "m", low=0))
-        object.__setattr__(self, "R", check_range("R", self.R, "m", low=0))
-        object.__setattr__(self, "eta", check_range("eta", self.eta, "m^-2", low=0))
+        for attr in ("sigma", "R", "eta"):
+            object.__setattr__(self, attr, _in_range(attr, getattr(self, attr)))
 
     @property
     def A0(self) -> float:

@@ -1,12 +1,15 @@
 """Analytic GW curves against an independent high-precision implementation of Eqs. 1-8."""
 
 import functools
+import re
 
 import mpmath as mp
 import numpy as np
 import pytest
 
 from mcsim import Material, Surface, gw_curves, surface_energy_parameter
+from mcsim.errors import ParameterError
+from mcsim.laws import SEED
 from mcsim.presets import MATERIALS, SURFACES
 
 SILICON = MATERIALS["silicon"]
@@ -140,3 +143,48 @@ def test_zero_work_of_adhesion_leaves_only_the_hertz_load():
     curves = gw_curves(SURFACES["smooth"], material, [-1.0, 0.0, 2.0])
     assert np.all(curves.F == 0) and np.all(curves.T == 0)
     assert np.all(curves.mu == 0)
+
+
+# --- inputs outside the range where the integrals are accurate are refused ------------------
+
+
+@pytest.mark.parametrize(
+    ("h", "shown"),
+    [([-1e17], "-1e+17"), ([1e155], "1e+155"), ([0.0, np.nan], "nan"), ([np.inf], "inf"),
+     ([1000001.0], "1000001.0")],
+)  # fmt: skip
+def test_separations_beyond_a_million_sigma_or_not_finite_are_refused(h, shown):
+    with pytest.raises(ParameterError, match=rf"^h = {re.escape(shown)} is out of range "
+                       r"\(allowed: finite, -1e\+06 <= h <= 1e\+06\)$"):  # fmt: skip
+        gw_curves(SURFACES["smooth"], MATERIALS["silicon"], h)
+
+
+@pytest.mark.parametrize("h", [None, [], [[0.0, 1.0]], "abc"])
+def test_missing_or_malformed_separations_are_refused(h):
+    with pytest.raises(ParameterError, match=r"^h must be"):
+        gw_curves(SURFACES["smooth"], MATERIALS["silicon"], h)
+
+
+def test_integrals_stay_accurate_out_to_the_largest_accepted_separation():
+    """At h = -1e6 every summit touches; E[g(S - h)] by Gauss-Hermite in s is then exact
+    to rounding (g is smooth on the weight's support), an independent reference."""
+    s, m = SURFACES["smooth"], MATERIALS["silicon"]
+    x, w = np.polynomial.hermite_e.hermegauss(120)
+    w = w / np.sqrt(2 * np.pi)
+    for h in (-1e6, -1e3):
+        curves = gw_curves(s, m, [h])
+        delta = s.sigma * (x - h)
+        for q, law, args in zip("PFT", SEED.laws, SEED.arguments(s, m)):
+            reference = s.eta / m.K * np.sum(w * law(delta, *args))
+            np.testing.assert_allclose(getattr(curves, q)[0], reference, rtol=1e-10, err_msg=q)
+    far = gw_curves(s, m, [1e6])
+    assert far.contact_fraction[0] == 0 and far.P[0] == 0 and np.isfinite(far.mu[0])
+
+
+@pytest.mark.parametrize("area", [-1.0, 0.0, np.nan, np.inf])
+def test_forces_refuse_an_area_that_is_not_positive_and_finite(area):
+    curves = gw_curves(SURFACES["smooth"], MATERIALS["silicon"], [0.0])
+    with pytest.raises(
+        ParameterError, match=r"^area = .* m\^2 is out of range \(allowed: > 0 m\^2\)$"
+    ):
+        curves.forces(area)

@@ -262,7 +262,7 @@ def test_bad_material_unit_names_file_and_field(tmp_path):
 def test_negative_surface_value_names_file_field_and_allowed_range(tmp_path):
     path = write(tmp_path, SMOOTH_TOML.replace('"1.4 nm"', '"-1.4 nm"'))
     where = re.escape(f"{path} [surface]")
-    message = r"sigma = -1.4e-09 m is out of range \(allowed: > 0 m\)"
+    message = r"sigma = -1.4e-09 m is out of range \(allowed: \[1e-12, 0.01\] m\)"
     with pytest.raises(ParameterError, match=rf"^{where}: {message}$"):
         load_surface(path)
 
@@ -280,11 +280,11 @@ def test_non_finite_toml_number_names_file_and_field(tmp_path, old, new):
     ("old", "new", "message"),
     [
         ("nu = 0.22", "nu = 0.5", r"nu1 = 0.5 is out of range \(allowed: \(-1, 0.5\)\)"),
-        ('"160 GPa"', '"0 GPa"', r"E1 = 0.0 Pa is out of range \(allowed: > 0 Pa\)"),
+        ('"160 GPa"', '"0 GPa"', r"E1 = 0.0 Pa is out of range \(allowed: >= 1 Pa\)"),
         (
             '"500 mJ/m^2"',
             '"-1 mJ/m^2"',
-            r"gamma = -0.001 J/m\^2 is out of range \(allowed: >= 0 J/m\^2\)",
+            r"gamma = -0.001 J/m\^2 is out of range \(allowed: \[0, 1000\] J/m\^2\)",
         ),
     ],
 )

@@ -55,3 +55,35 @@ def test_an_empty_patch_is_reported_not_divided_by_zero():
     assert np.all(run.n_summits == 0)
     table = run.compare()
     assert table["z"].isna().all() and table["note"].str.startswith("few contacts").all()
+
+
+# --- the accepted ranges (mcsim.params.RANGES, MAX_ABS_H) keep every output finite ----------
+
+RANGE_H = np.array([-1e6, -40.0, 0.0, 40.0, 1e6])
+
+
+def range_corners():
+    from mcsim.params import RANGES
+
+    for sigma, R, eta, gamma, E in itertools.product(
+        RANGES["sigma"][:2], RANGES["R"][:2], RANGES["eta"][:2], RANGES["gamma"][:2], (1.0, 1e13)
+    ):
+        yield Surface(sigma, R, eta), Material(E1=E, E2=E, nu1=0.22, nu2=0.22, gamma=gamma)
+
+
+@pytest.mark.parametrize(("surface", "mat"), list(range_corners()))
+def test_every_corner_of_the_accepted_ranges_gives_finite_curves(surface, mat):
+    curves = gw_curves(surface, mat, RANGE_H)
+    for q in ("contact_fraction", "P", "F", "T", "mu"):
+        values = getattr(curves, q)
+        assert np.all(np.isfinite(values)) and np.all(values >= 0), (q, values)
+    for q, values in curves.forces(1.0).items():
+        assert np.all(np.isfinite(values)) and np.all(values >= 0), (q, values)
+
+
+@pytest.mark.parametrize(("surface", "mat"), list(range_corners())[::7])
+def test_every_corner_of_the_accepted_ranges_gives_finite_monte_carlo_sums(surface, mat):
+    run = simulate(surface, mat, [-1e6, 0.0, 3.0], area=50 / surface.eta, realizations=2,
+                   seed=3, workers=1)  # fmt: skip
+    for q in ("contact_fraction", "P", "F", "T"):
+        assert np.all(np.isfinite(run.realizations[q])), q

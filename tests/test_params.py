@@ -194,17 +194,17 @@ NON_FINITE = [math.nan, math.inf, -math.inf]
 POSITIVE = [0.0, -1.0, *NON_FINITE]
 
 INVALID_SURFACE = (
-    [("sigma", v, " m", "> 0 m") for v in POSITIVE]
-    + [("R", v, " m", "> 0 m") for v in POSITIVE]
-    + [("eta", v, " m^-2", "> 0 m^-2") for v in POSITIVE]
+    [("sigma", v, " m", "[1e-12, 0.01] m") for v in [*POSITIVE, 1e-300, 1.0]]
+    + [("R", v, " m", "[1e-10, 10] m") for v in [*POSITIVE, 1e-300, 1e300]]
+    + [("eta", v, " m^-2", "[1, 1e+20] m^-2") for v in [*POSITIVE, 1e-300, 1e300]]
 )
 INVALID_MATERIAL = (
-    [("E1", v, " Pa", "> 0 Pa") for v in POSITIVE]
-    + [("E2", v, " Pa", "> 0 Pa") for v in POSITIVE]
+    [("E1", v, " Pa", ">= 1 Pa") for v in [*POSITIVE, 1e-300]]
+    + [("E2", v, " Pa", ">= 1 Pa") for v in [*POSITIVE, 1e-300]]
     + [("nu1", v, "", "(-1, 0.5)") for v in [-1.0, -1.5, 0.5, 0.7, *NON_FINITE]]
     + [("nu2", v, "", "(-1, 0.5)") for v in [-1.0, -1.5, 0.5, 0.7, *NON_FINITE]]
-    + [("gamma", v, " J/m^2", ">= 0 J/m^2") for v in [-0.1, *NON_FINITE]]
-    + [("H", v, " Pa", "> 0 Pa") for v in POSITIVE]
+    + [("gamma", v, " J/m^2", "[0, 1000] J/m^2") for v in [-0.1, *NON_FINITE, 1e300]]
+    + [("H", v, " Pa", "[1, 1e+13] Pa") for v in [*POSITIVE, 1e-300, 1e300]]
 )
 
 
@@ -223,6 +223,13 @@ def test_invalid_surface_value_names_field_value_and_allowed_range(field, value,
 def test_invalid_material_value_names_field_value_and_allowed_range(field, value, unit, allowed):
     with pytest.raises(ParameterError, match=f"^{out_of_range(field, value, unit, allowed)}$"):
         material(**{field: value})
+
+
+def test_two_near_rigid_solids_are_refused_by_the_bound_on_K():
+    with pytest.raises(
+        ParameterError, match=r"^K = 7\.006e\+299 Pa \(from E1, E2, nu1, nu2\) is out"
+    ):
+        material(E1=1e300, E2=1e300)
 
 
 @pytest.mark.parametrize(
