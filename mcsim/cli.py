@@ -16,10 +16,15 @@ from ._version import __version__
 from .errors import MCSimError, ParameterError
 
 _FORMATS = ("table", "csv", "json")
+#: Most separations one --h spec may ask for (a curve needs tens to hundreds).
+MAX_SEPARATIONS = 10_000
 
 
 def parse_h(spec: str) -> list[float]:
-    """``"-1,0,1.5"`` (a list) or ``"4:-1:51"`` (start:stop:num, inclusive) to a list of floats."""
+    """``"-1,0,1.5"`` (a list) or ``"4:-1:51"`` (start:stop:num, inclusive) to a list of floats.
+
+    At most :data:`MAX_SEPARATIONS` values.
+    """
     import numpy as np
 
     text = spec.strip()
@@ -36,9 +41,15 @@ def parse_h(spec: str) -> list[float]:
             f"--h: cannot read {spec!r} (give a list '-1,0,1.5' or start:stop:num '4:-1:51')"
         ) from None
     if ":" in text:
-        if num < 1:
-            raise ParameterError(f"--h: {spec!r} asks for {num} points (allowed: num >= 1)")
+        if not 1 <= num <= MAX_SEPARATIONS:
+            raise ParameterError(
+                f"--h: {spec!r} asks for {num} points (allowed: 1 <= num <= {MAX_SEPARATIONS})"
+            )
         values = np.linspace(start, stop, num).tolist()
+    if len(values) > MAX_SEPARATIONS:
+        raise ParameterError(
+            f"--h: {len(values)} separations, more than the limit of {MAX_SEPARATIONS}"
+        )
     bad = [v for v in values if not np.isfinite(v)]
     if bad:
         raise ParameterError(f"--h: separations must be finite, got {bad[0]!r}")
@@ -338,6 +349,40 @@ def cmd_ingest(args) -> int:
 # --- parser ------------------------------------------------------------------------------
 
 
+class _Parser(argparse.ArgumentParser):
+    """argparse with the one-line error contract: ``mcsim: error: ...``, exit status 2."""
+
+    def error(self, message: str):
+        text = " ".join(message.split())  # argparse's messages may wrap
+        self.exit(2, f"mcsim: error: {text} (see: {self.prog} --help)\n")
+
+
+def _seed(text: str) -> int:
+    """A root seed: a non-negative integer (numpy's SeedSequence takes no other)."""
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(
+            f"{text!r} is not a whole number (allowed: integer >= 0)"
+        ) from None
+    if value < 0:
+        raise argparse.ArgumentTypeError(f"{value} is negative (allowed: integer >= 0)")
+    return value
+
+
+def _count(text: str) -> int:
+    """A positive whole number, as digits (``1e9`` is refused: write 1000000000)."""
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(
+            f"{text!r} is not a whole number written in digits (allowed: integer >= 1)"
+        ) from None
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"{value} is out of range (allowed: integer >= 1)")
+    return value
+
+
 def _add_inputs(p: argparse.ArgumentParser) -> None:
     p.add_argument(
         "--surface",
@@ -350,11 +395,12 @@ def _add_inputs(p: argparse.ArgumentParser) -> None:
     )
     p.add_argument("--law", default="seed", help="law set (default: seed, the paper as written)")
     p.add_argument("--h", required=True, metavar="SPEC",
-                   help="separations d/sigma: a list '--h=-1,0,1.5' or start:stop:num '--h=4:-1:51'")  # fmt: skip
+                   help="separations d/sigma: a list '--h=-1,0,1.5' or start:stop:num '--h=4:-1:51' "
+                        f"(at most {MAX_SEPARATIONS})")  # fmt: skip
 
 
 def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(
+    parser = _Parser(
         prog="mcsim",
         description="Monte Carlo discrete-asperity simulator for adhesion and adhesional friction of rough surfaces.",
     )
@@ -376,7 +422,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--out", default="runs/paper", help="output folder (default: runs/paper)")
     p.add_argument("--no-mc", action="store_true", help="analytic curves only")
     p.add_argument(
-        "--seed", type=int, default=2026, help="seed of the Monte Carlo patches (default: 2026)"
+        "--seed", type=_seed, default=2026, help="seed of the Monte Carlo patches (default: 2026)"
     )
     p.add_argument("--overwrite", action="store_true",
                    help="replace the files of an earlier reproduction in --out")  # fmt: skip
@@ -388,9 +434,13 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument(
         "--area", required=True, help="patch area: m^2 or with a unit ('100um^2', '0.01mm^2')"
     )
-    p.add_argument("--realizations", type=int, default=1, help="independent patches (default: 1)")
     p.add_argument(
-        "--seed", type=int, help="root seed (default: fresh entropy, recorded in the file)"
+        "--realizations", type=_count, default=1, help="independent patches (default: 1)"
+    )
+    p.add_argument(
+        "--seed",
+        type=_seed,
+        help="root seed, an integer >= 0 (default: fresh entropy, recorded in the file)",
     )
     p.add_argument(
         "--count",
@@ -402,7 +452,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--overwrite", action="store_true", help="replace an existing run file")
     p.add_argument(
         "--workers",
-        type=int,
+        type=_count,
         help="worker threads (default: all cores); results do not depend on it",
     )
     p.add_argument("--scheduler", metavar="ADDRESS",
@@ -414,7 +464,7 @@ def build_parser() -> argparse.ArgumentParser:
     )
     p.add_argument(
         "--chunk-size",
-        type=int,
+        type=_count,
         default=1 << 18,
         help="summits per task (results do not depend on it)",
     )
