@@ -126,6 +126,10 @@ class TopographyResult:
     n_nan: int
 
 
+#: Levelled heights this small relative to the raw ones are rounding noise of the fit.
+_ROUNDING = 1e-12
+
+
 def _check_map(z, dx: float, dy: float) -> np.ndarray:
     z = np.asarray(z, dtype=float)
     if z.ndim != 2 or min(z.shape) < 3:
@@ -258,14 +262,40 @@ def direct_summits(z: np.ndarray, dx: float, dy: float) -> SummitStatistics:
 
 
 def spectral_moments(z: np.ndarray, dx: float, dy: float) -> SpectralMoments:
-    """m0, m2, m4 of a levelled map by finite differences, averaged over x and y (McCool 1986)."""
-    m0 = float(np.nanmean(z**2))
+    """m0, m2, m4 of a levelled map by finite differences, averaged over x and y (McCool 1986).
+
+    Computed on the map divided by its largest |height| (the moments scale as its square),
+    so that tiny or huge heights do not underflow or overflow on the way.
+
+    Raises
+    ------
+    ParameterError
+        If the levelled map is flat (no slope or curvature), or its moments in m are
+        not positive normal floats (heights or pixel sizes far outside physical ones).
+    """
+    peak = float(np.nanmax(np.abs(z)))
+    if not (peak > 0 and math.isfinite(peak)):
+        raise ParameterError("the levelled height map is flat (all heights equal): no roughness")
+    u = z / peak
+    m0 = float(np.nanmean(u**2))
     slopes, curvatures = [], []
     for axis, step in ((1, dx), (0, dy)):
-        slopes.append(np.nanmean((np.diff(z, axis=axis) / step) ** 2))
-        curvatures.append(np.nanmean((np.diff(z, n=2, axis=axis) / step**2) ** 2))
+        slopes.append(np.nanmean((np.diff(u, axis=axis) / step) ** 2))
+        curvatures.append(np.nanmean((np.diff(u, n=2, axis=axis) / step**2) ** 2))
     m2, m4 = float(np.mean(slopes)), float(np.mean(curvatures))
-    return SpectralMoments(m0=m0, m2=m2, m4=m4, alpha=m0 * m4 / m2**2)
+    if not (m2 > 0 and m4 > 0):
+        raise ParameterError(
+            "the levelled height map has no slope or curvature (flat within rounding): no roughness"
+        )
+    alpha = m0 * m4 / m2**2
+    moments = [m0 * peak**2, m2 * peak**2, m4 * peak**2]
+    if not all(np.finfo(float).tiny <= m < math.inf for m in moments) or not math.isfinite(alpha):
+        raise ParameterError(
+            f"the height map's spectral moments m0, m2, m4 = {moments[0]:.3g} m^2, {moments[1]:.3g}, "
+            f"{moments[2]:.3g} m^-2 are outside the floating-point range: heights (largest "
+            f"{peak:.3g} m) or pixel sizes ({dx:.3g} m, {dy:.3g} m) are not physical (wrong unit?)"
+        )
+    return SpectralMoments(m0=moments[0], m2=moments[1], m4=moments[2], alpha=alpha)
 
 
 def spectral_summits(moments: SpectralMoments, area: float) -> SummitStatistics:
@@ -325,6 +355,10 @@ def summit_statistics(
     n_nan = int(np.count_nonzero(~np.isfinite(z)))
     _warn_saturation(z, saturation_fraction)
     levelled = level(z, order)
+    if np.nanmax(np.abs(levelled)) <= _ROUNDING * np.nanmax(np.abs(z)):
+        raise ParameterError(
+            "the height map is flat: after levelling only rounding noise is left (no roughness)"
+        )
     moments = spectral_moments(levelled, dx, dy)
     area = (np.size(z) - n_nan) * dx * dy
     return TopographyResult(

@@ -243,3 +243,66 @@ def test_truncated_real_binary_file_is_refused(afm_resources, tmp_path, name):
     cut.write_bytes(data[: len(data) // 3])
     with pytest.raises(ReaderError, match=f"{name}: not a readable"):
         read_height_map(cut)
+
+
+@pytest.mark.parametrize("layout", ["z [nm], count\n{}", "left [nm], right [nm], count\n{}"])
+def test_histogram_whose_counts_add_up_past_the_largest_float_is_refused(tmp_path, layout):
+    rows = ["0, 1e308\n1, 1.5e308\n2, 1.7e308\n", "0, 1, 1e308\n1, 2, 1.5e308\n2, 3, 1.7e308\n"]
+    path = tmp_path / "h.csv"
+    path.write_text(layout.format(rows[layout.startswith("left")]), encoding="utf-8")
+    with pytest.raises(
+        ReaderError, match=r"h.csv: the counts add up to more than the largest float"
+    ):
+        read_histogram(path)
+
+
+def gwy_file(xres=("i", 3), unit=None) -> bytes:
+    """A minimal Gwyddion file built component by component (gwyfile cannot write bad types)."""
+    import struct
+
+    def comp(key, code, value):
+        head = key.encode() + b"\0" + code.encode()
+        packed = {
+            "d": lambda: struct.pack("<d", value),
+            "i": lambda: struct.pack("<i", value),
+            "s": lambda: value.encode() + b"\0",
+            "o": lambda: value,
+            "D": lambda: struct.pack("<I", len(value)) + np.asarray(value, "<f8").tobytes(),
+        }
+        return head + packed[code]()  # fmt: skip
+
+    def obj(name, comps):
+        body = b"".join(comps)
+        return name.encode() + b"\0" + struct.pack("<I", len(body)) + body
+
+    metre = ("o", obj("GwySIUnit", [comp("unitstr", "s", "m")]))
+    field = obj("GwyDataField", [
+        comp("xres", *xres), comp("yres", "i", 3), comp("xreal", "d", 1e-6),
+        comp("yreal", "d", 1e-6), comp("si_unit_xy", *metre), comp("si_unit_z", *(unit or metre)),
+        comp("data", "D", np.arange(9.0)),
+    ])  # fmt: skip
+    return b"GWYP" + obj(
+        "GwyContainer", [comp("/0/data/title", "s", "Height"), comp("/0/data", "o", field)]
+    )
+
+
+def test_hand_built_gwyddion_file_reads(tmp_path):
+    path = tmp_path / "m.gwy"
+    path.write_bytes(gwy_file())
+    assert read_height_map(path).shape == (3, 3)
+
+
+@pytest.mark.parametrize(
+    ("kw", "message"),
+    [
+        ({"xres": ("d", float("inf"))}, "channel 'Height' is not a complete data field"),
+        ({"xres": ("d", 1e300)}, "channel 'Height' is not a complete data field"),
+        ({"unit": ("i", 3)}, "channel 'Height': unknown unit '?'"),
+        ({"unit": ("s", "m")}, "channel 'Height': unknown unit '?'"),
+    ],
+)
+def test_gwyddion_file_with_crafted_field_types_is_refused_in_one_line(tmp_path, kw, message):
+    path = tmp_path / "m.gwy"
+    path.write_bytes(gwy_file(**kw))
+    with pytest.raises(ReaderError, match=f"m.gwy: {message}"):
+        read_height_map(path)

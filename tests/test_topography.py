@@ -133,3 +133,31 @@ def test_bad_pixel_size_is_refused():
 def test_bad_order_is_refused():
     with pytest.raises(ParameterError, match="`order` must be a non-negative integer"):
         level(np.zeros((5, 5)), order=-1)
+
+
+@pytest.mark.parametrize("value", [0.0, 3.7, -1e-9])
+def test_a_constant_map_is_refused_as_flat(value):
+    with pytest.raises(ParameterError, match=r"^the height map is flat"):
+        summit_statistics(np.full((16, 16), value), 1e-8)
+
+
+def test_a_tilted_plane_is_refused_as_flat():
+    y, x = np.mgrid[0:16, 0:16]
+    with pytest.raises(ParameterError, match=r"^the height map is flat"):
+        summit_statistics(1e-9 * (3 * x - 2 * y + 5.0), 1e-8)
+
+
+@pytest.mark.parametrize("scale", [1e-310, 1e-160])
+def test_heights_too_small_for_floating_point_moments_are_refused(scale):
+    z = np.random.default_rng(0).random((16, 16)) * scale
+    with pytest.raises(
+        ParameterError, match=r"spectral moments .* outside the floating-point range"
+    ):
+        summit_statistics(z, 1e-8)
+
+
+def test_spectral_moments_do_not_depend_on_the_height_scale_used_to_compute_them():
+    z = np.random.default_rng(1).standard_normal((32, 32))
+    one, small = summit_statistics(z * 1e-9, 1e-8), summit_statistics(z * 1e-140, 1e-8)
+    assert small.moments.alpha == pytest.approx(one.moments.alpha, rel=1e-12)
+    assert small.moments.m0 == pytest.approx(one.moments.m0 * 1e-262, rel=1e-12)

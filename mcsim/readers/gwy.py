@@ -28,7 +28,7 @@ def detect(path: Path) -> bool:
 
 def _unit(field, key: str) -> str:
     unit = field.get(key) if isinstance(field, dict) else None
-    return "" if unit is None else str(unit.get("unitstr", ""))
+    return str(unit.get("unitstr", "")) if isinstance(unit, dict) else ""
 
 
 def read(path: Path | str, channel: str | None = None) -> HeightMap:
@@ -80,7 +80,7 @@ def read(path: Path | str, channel: str | None = None) -> HeightMap:
         rows, cols = int(field["yres"]), int(field["xres"])
         data = np.asarray(field["data"], dtype=float).reshape(rows, cols)
         xreal, yreal = float(field["xreal"]), float(field["yreal"])
-    except (KeyError, TypeError, ValueError):
+    except (KeyError, TypeError, ValueError, OverflowError):  # e.g. xres stored as inf
         raise ReaderError(f"{path}: channel {channel!r} is not a complete data field") from None
     z = check_heights(path, data) * z_factor
     dx = xreal * xy_factor / z.shape[1]

@@ -104,7 +104,8 @@ def read(path: Path | str, unit: str | None = None) -> Histogram:
     ------
     ReaderError
         Empty file, fewer than two bins, a non-numeric cell, a wrong number of
-        columns, negative or all-zero weights, bins out of order, or no unit.
+        columns, negative or all-zero weights, weights whose sum overflows, bins out
+        of order, or no unit.
     """
     path = Path(path)
     head(path)  # existence and permission errors, with the file named
@@ -149,6 +150,10 @@ def read(path: Path | str, unit: str | None = None) -> Histogram:
         raise ReaderError(f"{path}: negative count in bin {int(np.argmax(weights < 0)) + 1}")
     if not np.any(weights > 0):
         raise ReaderError(f"{path}: all counts are zero")
+    with np.errstate(over="ignore"):
+        total = np.sum(weights)
+    if not np.isfinite(total):
+        raise ReaderError(f"{path}: the counts add up to more than the largest float (1.8e308)")
     if data.shape[1] == 2:
         centres = data[:, 0]
         with np.errstate(over="ignore", invalid="ignore"):  # huge centres: refused below
