@@ -44,6 +44,7 @@ import contextlib
 import datetime as _dt
 import hashlib
 import json
+import math
 import os
 import re
 import socket
@@ -343,17 +344,60 @@ def _open(path: Path):
         f = h5py.File(path, "r")
     except OSError:
         raise RunFileError(f"{path}: not an HDF5 file, or truncated") from None
-    version = f.attrs.get("schema_version")
-    if version is None:
+    try:
+        with _damaged(path):
+            version = f.attrs.get("schema_version")
+            if version is None:
+                raise RunFileError(f"{path}: not an mcsim run file (no schema_version)")
+            if not (np.ndim(version) == 0 and np.issubdtype(np.asarray(version).dtype, np.integer)):
+                raise RunFileError(
+                    f"{path}: damaged run file: schema_version is {_shown(version)}, not an integer"
+                )
+            if int(version) != SCHEMA_VERSION:
+                raise RunFileError(
+                    f"{path}: run-file schema version {int(version)} is not supported "
+                    f"(this mcsim {__version__} reads version {SCHEMA_VERSION})"
+                )
+            _check_sizes(path, f)
+    except BaseException:
         f.close()
-        raise RunFileError(f"{path}: not an mcsim run file (no schema_version)")
-    if int(version) != SCHEMA_VERSION:
-        f.close()
-        raise RunFileError(
-            f"{path}: run-file schema version {int(version)} is not supported "
-            f"(this mcsim {__version__} reads version {SCHEMA_VERSION})"
-        )
+        raise
     return f
+
+
+def _shown(value) -> str:
+    """A short one-line repr of a value read from a file, for messages."""
+    text = repr(value.tolist() if hasattr(value, "tolist") else value)
+    return text if len(text) <= 40 else text[:40] + "..."
+
+
+#: A run file's datasets hold at most this many times the file's size (gzip on sampled
+#: heights saves ~10 %; nothing in a run file compresses 64-fold).
+_MAX_EXPANSION = 64
+
+
+def _check_sizes(path: Path, f) -> None:
+    """Refuse, before reading any data, datasets that are not numbers or that declare
+    more bytes than the file could hold (a damaged header can declare terabytes)."""
+    import h5py
+
+    budget = _MAX_EXPANSION * path.stat().st_size
+    total = 0
+    found: list[tuple[str, object]] = []
+    f.visititems(lambda name, obj: found.append((name, obj)))
+    for name, obj in found:
+        if not isinstance(obj, h5py.Dataset):
+            continue
+        if obj.dtype.kind not in "biuf":
+            raise RunFileError(
+                f"{path}: damaged run file: dataset {name} holds {obj.dtype}, not numbers"
+            )
+        total += math.prod(obj.shape) * obj.dtype.itemsize
+        if total > budget:
+            raise RunFileError(
+                f"{path}: damaged run file: dataset {name} declares {total} bytes or more, "
+                f"more than this {path.stat().st_size}-byte file can hold"
+            )
 
 
 def _read_state(path: Path, f) -> EnsembleSums:
@@ -410,8 +454,10 @@ def _damaged(path: Path):
         yield
     except MCSimError:
         raise
-    except (KeyError, ValueError, TypeError, OSError) as err:
-        raise RunFileError(f"{path}: damaged run file ({err})") from None
+    except (KeyError, ValueError, TypeError, OSError, RuntimeError, AttributeError, IndexError,
+            OverflowError) as err:  # fmt: skip
+        reason = " ".join(str(err).split())[:200]  # HDF5's messages span lines
+        raise RunFileError(f"{path}: damaged run file ({type(err).__name__}: {reason})") from None
 
 
 def read_state(path: str | Path) -> tuple[EnsembleSums, dict]:

@@ -887,11 +887,16 @@ def test_deeply_nested_toml_is_refused(tmp_path):
         load_surface(path)
 
 
-def test_histogram_whose_counts_overflow_their_sum_is_standardized(tmp_path):
+def test_histogram_whose_counts_overflow_their_sum_is_standardized():
+    emp = Empirical.from_histogram([-0.5e-18, 0.5e-18, 1.5e-18], [1e308, 1e308])
+    assert emp.sigma == pytest.approx(np.sqrt(1 / 3) * 1e-18, rel=1e-12)  # the sum overflows
+
+
+def test_histogram_file_whose_counts_overflow_their_sum_is_refused(tmp_path):
     path = tmp_path / "h.csv"
     path.write_text("z [nm], count\n0.0, 1e308\n1e-09, 1e308\n", encoding="utf-8")
-    emp = read_histogram(path).to_empirical()  # the sum of counts used to overflow
-    assert emp.sigma == pytest.approx(np.sqrt(1 / 3) * 1e-18, rel=1e-12)
+    with pytest.raises(MCSimError, match=r"h.csv: the counts add up to more than the largest"):
+        read_histogram(path)  # `mcsim ingest` raised OverflowError on the total count
 
 
 def test_histogram_whose_edges_underflow_in_metres_is_refused(tmp_path):
@@ -913,3 +918,177 @@ def test_histogram_file_name_with_a_line_break_stays_on_one_line(tmp_path):
     with pytest.raises(MCSimError) as err:
         surface_from_table({"R": "1 um", "eta": "1 um^-2", "heights": "a\rb.csv"}, where="here")
     assert one_line(str(err.value)) and "a\\rb.csv" in str(err.value)
+
+
+# -- run files: byte flips, truncations and crafted headers ------------------------------------
+#
+# A run file carries a SHA-256 checksum over every dataset (name, shape, dtype, bytes) and
+# every attribute, checked on every read; what it does not cover is HDF5's own metadata
+# (superblock, object headers, B-trees, heaps), where a flip either breaks the file's
+# structure (h5py raises) or changes nothing that is read. So every mutated run file
+# must either be refused with a one-line RunFileError naming it, or read back exactly.
+# A campaign: ``MCSIM_FUZZ_EXAMPLES=200 pytest tests/test_fuzz.py -k run_file``.
+
+RUNFILE = settings(max_examples=max(EXAMPLES, 30), **_COMMON)
+
+
+class RunSeeds(dict):
+    def __repr__(self) -> str:
+        return f"<run files {', '.join(self)}>"
+
+
+@pytest.fixture(scope="module")
+def run_files(tmp_path_factory) -> RunSeeds:
+    """A complete run with kept heights and an incomplete checkpoint, as bytes."""
+    from mcsim.montecarlo import EnsembleSums, MonteCarloSpec, run_sums
+    from mcsim.presets import MATERIALS, SURFACES
+    from mcsim.runfile import write_checkpoint
+    from mcsim.simulation import simulate
+
+    folder = tmp_path_factory.mktemp("runs")
+    surface, material = SURFACES["smooth"], MATERIALS["silicon"]
+    simulate(surface, material, [2.0, 0.0, -1.0], "2 um^2", realizations=2, seed=5,
+             out=folder / "complete.h5", keep_heights=True, workers=1)  # fmt: skip
+    spec = MonteCarloSpec(surface, material, np.array([1.0, 0.0]), 2e-12, 3, 9)
+    full = run_sums(spec, workers=1)
+    partial = EnsembleSums.start(spec)
+    partial.sums[:1], partial.done_blocks[:1] = full.sums[:1], full.n_blocks[:1]
+    write_checkpoint(folder / "partial.h5", partial, command="test")
+    return RunSeeds({name: (folder / name).read_bytes() for name in ("complete.h5", "partial.h5")})
+
+
+def run_fingerprint(run) -> dict:
+    """Everything a read returns, as plain values to compare exactly."""
+    out = {"h": run.h, "N": run.n_summits, "sums": run.sums, "attrs": dict(run.attrs)}
+    out |= {f"real/{q}": v for q, v in run.realizations.items()}
+    out |= {f"analytic/{q}": v for q, v in run.analytic.items()}
+    out |= {f"heights/{i}": z for i, z in enumerate(run.heights or [])}
+    out["spec"] = repr(run.spec)
+    return out
+
+
+def assert_same(a: dict, b: dict) -> None:
+    assert a.keys() == b.keys()
+    for key in a:
+        if isinstance(a[key], np.ndarray):
+            np.testing.assert_array_equal(a[key], b[key], err_msg=key)
+        else:
+            assert a[key] == b[key], key
+
+
+def check_run_file(path: Path, original: Path) -> None:
+    """Read ``path`` (a mutation of ``original``): a clean refusal or exactly the original."""
+    from mcsim.errors import RunFileError
+    from mcsim.runfile import read_run, read_state
+
+    expected = run_fingerprint(read_run(original, allow_incomplete=True))
+    try:
+        with bounded_memory():
+            state, _ = read_state(path)
+            run = read_run(path, allow_incomplete=True)
+    except RunFileError as err:
+        assert_refused_cleanly(err, path.name)
+        return
+    got = run_fingerprint(run)
+    got["attrs"].pop("checksum"), expected["attrs"].pop("checksum")
+    assert_same(got, expected)
+    np.testing.assert_array_equal(state.sums, read_state(original)[0].sums)
+
+
+@RUNFILE
+@given(data=st.data())
+def test_mutated_run_files_are_refused_in_one_line_or_read_exactly(
+    run_files, tmp_path_factory, data
+):
+    name = data.draw(st.sampled_from(sorted(run_files)))
+    folder = tmp_path_factory.mktemp("rf")
+    original = folder / f"original-{name}"
+    original.write_bytes(run_files[name])
+    path = folder / name
+    path.write_bytes(data.draw(mutated(run_files[name], focus=4096)))
+    check_run_file(path, original)
+
+
+@pytest.mark.parametrize("name", ["complete.h5", "partial.h5"])
+@pytest.mark.parametrize("keep", [0.0, 0.1, 0.5, 0.9, 0.99])
+def test_truncated_run_files_are_refused_in_one_line(run_files, tmp_path, name, keep):
+    from mcsim.errors import RunFileError
+    from mcsim.runfile import read_run
+
+    path = tmp_path / name
+    path.write_bytes(run_files[name][: int(len(run_files[name]) * keep)])
+    with pytest.raises(RunFileError) as err:
+        read_run(path, allow_incomplete=True)
+    assert_refused_cleanly(err.value, name)
+
+
+@pytest.mark.parametrize(
+    ("value", "shown"), [("1", "'1'"), (1.5, "1.5"), ([1, 1], "[1, 1]"), (b"x" * 99, "b'xxx")]
+)
+def test_schema_version_of_the_wrong_type_is_refused_in_one_line(run_files, tmp_path, value, shown):
+    import h5py
+
+    from mcsim.errors import RunFileError
+    from mcsim.runfile import read_run
+
+    path = tmp_path / "r.h5"
+    path.write_bytes(run_files["complete.h5"])
+    with h5py.File(path, "r+") as f:
+        f.attrs["schema_version"] = np.void(value) if isinstance(value, bytes) else value
+    with pytest.raises(
+        RunFileError, match=rf"r.h5: damaged run file: schema_version is {re.escape(shown)}"
+    ):
+        read_run(path)
+
+
+def test_a_dataset_declaring_a_huge_shape_in_a_tiny_file_is_refused_before_reading(
+    run_files, tmp_path
+):
+    import h5py
+
+    from mcsim.errors import RunFileError
+    from mcsim.runfile import read_run
+
+    path = tmp_path / "r.h5"
+    path.write_bytes(run_files["complete.h5"])
+    with h5py.File(path, "r+") as f:
+        del f["analytic/P"]
+        f.create_dataset("analytic/P", shape=(2 * 10**9,), dtype="f8")  # no storage written
+    assert path.stat().st_size < 10**6
+    with (
+        bounded_memory(),
+        pytest.raises(
+            RunFileError,
+            match=r"r.h5: damaged run file: dataset analytic/P declares 16000000000 bytes",
+        ),
+    ):
+        read_run(path)
+
+
+def test_a_dataset_of_strings_is_refused_before_reading(run_files, tmp_path):
+    import h5py
+
+    from mcsim.errors import RunFileError
+    from mcsim.runfile import read_state
+
+    path = tmp_path / "r.h5"
+    path.write_bytes(run_files["partial.h5"])
+    with h5py.File(path, "r+") as f:
+        f.create_dataset(
+            "extra", data=np.array([b"a", b"b"], dtype=object), dtype=h5py.string_dtype()
+        )
+    with pytest.raises(RunFileError, match=r"r.h5: damaged run file: dataset extra holds object"):
+        read_state(path)
+
+
+def test_show_of_a_byte_flipped_run_is_one_line(run_files, tmp_path, capsys):
+    path = tmp_path / "r.h5"
+    raw = bytearray(run_files["complete.h5"])
+    at = raw.find(np.array([2.0, 0.0, -1.0]).tobytes())  # the dataset h
+    assert at > 0
+    raw[at + 7] ^= 0x10
+    path.write_bytes(bytes(raw))
+    status = cli.main(["show", str(path)])
+    err = capsys.readouterr().err
+    assert status == 2 and err.startswith("mcsim: error: ") and err.count("\n") == 1, err
+    assert "r.h5: damaged run file: checksum mismatch" in err
