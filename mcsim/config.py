@@ -29,21 +29,25 @@ With a measured histogram, ``sigma`` is optional and defaults to the histogram's
 own standard deviation (of its piecewise-uniform density,
 :class:`~mcsim.empirical.Empirical`); a given ``sigma`` rescales its shape.
 
-Plain numbers are SI. Unknown keys, missing keys, unknown units and out-of-range
-values raise a :class:`~mcsim.errors.MCSimError` naming the file and the field.
+Dimensional quantities in a file must carry their unit (``sigma = "1.4 nm"``): a bare
+number is refused, since ``sigma = 1.4`` would otherwise be read as 1.4 m. (The
+dataclasses and the table builders called from Python take bare numbers as SI.)
+Unknown keys, missing keys, unknown units and out-of-range values raise a
+:class:`~mcsim.errors.MCSimError` naming the file and the field as written.
 """
 
 from __future__ import annotations
 
+import difflib
 import tomllib
 from pathlib import Path
 from typing import Any
 
 from .empirical import Empirical
-from .errors import MCSimError, ParameterError
+from .errors import MCSimError, ParameterError, UnitError
 from .params import Material, Surface, combine_surfaces
 from .presets import MATERIALS, SURFACES
-from .units import parse_quantity
+from .units import SI_UNITS, has_unit, parse_quantity
 
 _SURFACE_KEYS = {
     "sigma": ("length", "std of summit heights, e.g. '1.4 nm'"),
@@ -53,7 +57,7 @@ _SURFACE_KEYS = {
 _HEIGHTS_KEYS = {"file", "edges", "counts", "densities", "unit"}
 _MATERIAL_KEYS = {
     "E1": ("pressure", "Young's modulus of solid 1, e.g. '160 GPa'"),
-    "E2": ("pressure", "Young's modulus of solid 2"),
+    "E2": ("pressure", "Young's modulus of solid 2, e.g. '160 GPa'"),
     "nu1": ("dimensionless", "Poisson's ratio of solid 1, e.g. 0.22"),
     "nu2": ("dimensionless", "Poisson's ratio of solid 2"),
     "gamma": ("energy_per_area", "work of adhesion, e.g. '0.5 J/m^2'"),
@@ -77,7 +81,18 @@ def _read_toml(path: Path) -> dict[str, Any]:
         raise MCSimError(f"{path!r}: not a valid file name") from None
 
 
-def _quantities(table: dict[str, Any], keys: dict, where: str, optional=()) -> dict[str, float]:
+def _quantities(
+    table: dict[str, Any],
+    keys: dict,
+    where: str,
+    optional=(),
+    *,
+    units_required: bool = False,
+    written: dict[str, str] | None = None,
+) -> dict[str, float]:
+    """Parse ``keys`` of ``table``; ``written`` maps a key to the name the user wrote
+    (``E1`` came from ``E``), for messages."""
+    written = written or {}
     unknown = set(table) - set(keys) - {"name"}
     if unknown:
         raise ParameterError(
@@ -89,8 +104,30 @@ def _quantities(table: dict[str, Any], keys: dict, where: str, optional=()) -> d
             if key in optional:
                 continue
             raise ParameterError(f"{where}: missing key '{key}' ({meaning})")
-        out[key] = parse_quantity(table[key], dimension, f"{where}: {key}")
+        name = written.get(key, key)
+        value = table[key]
+        if units_required and dimension != "dimensionless" and _is_bare(value):
+            parse_quantity(value, dimension, f"{where}: {name}")  # not finite: says so
+            raise UnitError(
+                f"{where}: {name} = {value!r} has no unit (a bare number in a file is refused); "
+                f"write it with its unit, e.g. {name} = {_with_unit(value, dimension, meaning)}"
+            )
+        out[key] = parse_quantity(value, dimension, f"{where}: {name}")
     return out
+
+
+def _with_unit(value: Any, dimension: str, meaning: str) -> str:
+    """``"1.4 nm"``: the bare ``value`` with the unit of the key's example, or with the SI
+    unit where the number looks like SI already (|value| >= 1e3 or <= 1e-3)."""
+    number = float(value)
+    typical = meaning.split("e.g. '")[-1].rstrip("'").split(" ", 1)[-1]
+    looks_si = number != 0 and not 1e-3 < abs(number) < 1e3
+    return f'"{value} {SI_UNITS[dimension] if looks_si else typical}"'
+
+
+def _is_bare(value: Any) -> bool:
+    """A number, or a string holding only a number: no unit given."""
+    return _is_number(value) or (isinstance(value, str) and not has_unit(value))
 
 
 def _table(data: dict[str, Any], key: str, path: Path) -> dict[str, Any]:
@@ -101,7 +138,9 @@ def _table(data: dict[str, Any], key: str, path: Path) -> dict[str, Any]:
     return data[key]
 
 
-def _heights_from_value(value: Any, where: str, base_dir: Path | None) -> Empirical | None:
+def _heights_from_value(
+    value: Any, where: str, base_dir: Path | None, units_required: bool = False
+) -> Empirical | None:
     """The ``heights`` entry of a surface table: None for Gaussian, else the histogram."""
     from .readers import read_histogram
 
@@ -138,6 +177,8 @@ def _heights_from_value(value: Any, where: str, base_dir: Path | None) -> Empiri
         raise ParameterError(
             f"{where}: heights: give file, or edges with one of counts or densities"
         )
+    if unit is None and units_required:
+        raise UnitError(f'{where}: heights: inline edges need their unit, e.g. unit = "nm"')
     factor = (
         1.0 if unit is None else parse_quantity(f"1 {unit}", "length", f"{where}: heights: unit")
     )
@@ -166,14 +207,17 @@ def surface_from_table(
     base_dir: Path | None = None,
     *,
     including: tuple[Path, ...] = (),
+    units_required: bool = False,
 ) -> Surface:
     """Build a :class:`Surface` from a TOML-like table (see the module docstring).
 
     ``base_dir`` is the folder that relative histogram paths in ``heights`` start
     from (the TOML file's folder); the working directory if None. ``including`` lists
     the surface files being read (for ``combine``), so that files including each
-    other are refused.
+    other are refused. ``units_required``: refuse bare numbers for dimensional
+    quantities (files).
     """
+    strict = {"units_required": units_required}
     name = str(table.get("name", ""))
     try:
         if "combine" in table:
@@ -183,7 +227,7 @@ def surface_from_table(
             ):
                 raise ParameterError(f"{where}: combine must list two surfaces, got {pair!r}")
             rest = {k: v for k, v in table.items() if k not in ("combine", "name")}
-            eta = _quantities(rest, {"eta": _SURFACE_KEYS["eta"]}, where)["eta"]
+            eta = _quantities(rest, {"eta": _SURFACE_KEYS["eta"]}, where, **strict)["eta"]
             try:
                 first, second = (
                     load_surface(_relative_to(p, base_dir), including=including) for p in pair
@@ -192,10 +236,12 @@ def surface_from_table(
                 raise type(err)(f"{where}: combine: {err}") from None
             return combine_surfaces(first, second, eta=eta, name=name)
         table = dict(table)
-        heights = _heights_from_value(table.pop("heights", "gaussian"), where, base_dir)
+        heights = _heights_from_value(
+            table.pop("heights", "gaussian"), where, base_dir, units_required
+        )
         if heights is None:
-            return Surface(**_quantities(table, _SURFACE_KEYS, where), name=name)
-        values = _quantities(table, _SURFACE_KEYS, where, optional=("sigma",))
+            return Surface(**_quantities(table, _SURFACE_KEYS, where, **strict), name=name)
+        values = _quantities(table, _SURFACE_KEYS, where, optional=("sigma",), **strict)
         values.setdefault("sigma", heights.sigma)
         return Surface(**values, heights=heights, name=name)
     except ParameterError as err:
@@ -204,9 +250,15 @@ def surface_from_table(
         raise ParameterError(f"{where}: {err}") from None
 
 
-def material_from_table(table: dict[str, Any], where: str = "material") -> Material:
-    """Build a :class:`Material` from a TOML-like table; ``E``/``nu`` set both solids."""
+def material_from_table(
+    table: dict[str, Any], where: str = "material", *, units_required: bool = False
+) -> Material:
+    """Build a :class:`Material` from a TOML-like table; ``E``/``nu`` set both solids.
+
+    ``units_required``: refuse bare numbers for dimensional quantities (files).
+    """
     table = dict(table)
+    written = {}
     for both, (one, two) in {"E": ("E1", "E2"), "nu": ("nu1", "nu2")}.items():
         if both in table and (one in table or two in table):
             raise ParameterError(f"{where}: give either {both} or {one} and {two}, not both")
@@ -214,7 +266,11 @@ def material_from_table(table: dict[str, Any], where: str = "material") -> Mater
             value = table.pop(both)
             table.setdefault(one, value)
             table.setdefault(two, value)
-    values = _quantities(table, _MATERIAL_KEYS, where, optional=("H",))
+            written |= {one: both, two: both}
+    values = _quantities(
+        table, _MATERIAL_KEYS, where, optional=("H",), units_required=units_required,
+        written=written,
+    )  # fmt: skip
     try:
         return Material(**values, name=str(table.get("name", "")))
     except ParameterError as err:
@@ -231,7 +287,8 @@ def load_surface(spec: str | Path, *, including: tuple[Path, ...] = ()) -> Surfa
     path = Path(spec)
     if path.suffix != ".toml":
         raise ParameterError(
-            f"unknown surface {str(spec)!r}: give a preset ({', '.join(SURFACES)}) or a .toml file"
+            f"unknown surface {str(spec)!r}{_closest(spec, SURFACES)}: give a preset "
+            f"({', '.join(SURFACES)}) or a .toml file"
         )
     table = _table(_read_toml(path), "surface", path)
     if path.resolve() in including:
@@ -241,7 +298,14 @@ def load_surface(spec: str | Path, *, including: tuple[Path, ...] = ()) -> Surfa
         where=f"{path} [surface]",
         base_dir=path.parent,
         including=(*including, path.resolve()),
+        units_required=True,
     )
+
+
+def _closest(spec: str | Path, names) -> str:
+    """' (did you mean 'smooth'?)' for the preset nearest a mistyped name, else ''."""
+    close = difflib.get_close_matches(str(spec).lower(), list(names), n=1, cutoff=0.6)
+    return f" (did you mean {close[0]!r}?)" if close else ""
 
 
 def _relative_to(spec: str, base: Path | None) -> str | Path:
@@ -258,10 +322,11 @@ def load_material(spec: str | Path) -> Material:
     path = Path(spec)
     if path.suffix != ".toml":
         raise ParameterError(
-            f"unknown material {str(spec)!r}: give a preset ({', '.join(MATERIALS)}) or a .toml file"
+            f"unknown material {str(spec)!r}{_closest(spec, MATERIALS)}: give a preset "
+            f"({', '.join(MATERIALS)}) or a .toml file"
         )
     table = _table(_read_toml(path), "material", path)
-    return material_from_table(table, where=f"{path} [material]")
+    return material_from_table(table, where=f"{path} [material]", units_required=True)
 
 
 def material_in_surface_file(spec: str | Path) -> Material | None:
@@ -272,4 +337,6 @@ def material_in_surface_file(spec: str | Path) -> Material | None:
     data = _read_toml(path)
     if "material" not in data:
         return None
-    return material_from_table(_table(data, "material", path), where=f"{path} [material]")
+    return material_from_table(
+        _table(data, "material", path), where=f"{path} [material]", units_required=True
+    )

@@ -4,6 +4,7 @@ One unit table, refusing anything it does not know. Inside mcsim everything is S
 this module sits at the edge (TOML files, CLI options).
 """
 
+import difflib
 import math
 import re
 
@@ -12,6 +13,7 @@ from .errors import UnitError
 # Base units per dimension, as a factor to SI.
 _LENGTH = {
     "m": 1.0,
+    "cm": 1e-2,
     "mm": 1e-3,
     "um": 1e-6,
     "µm": 1e-6,
@@ -21,8 +23,12 @@ _LENGTH = {
     "pm": 1e-12,
     "A": 1e-10,
     "Å": 1e-10,
+    "\u212b": 1e-10,  # the ångström sign (U+212B), which looks the same as Å
+    "angstrom": 1e-10,
 }
-_PRESSURE = {"Pa": 1.0, "kPa": 1e3, "MPa": 1e6, "GPa": 1e9, "N/m^2": 1.0}
+_PRESSURE = {
+    "Pa": 1.0, "kPa": 1e3, "MPa": 1e6, "GPa": 1e9, "TPa": 1e12, "N/m^2": 1.0, "N/mm^2": 1e6,
+}  # fmt: skip
 _ENERGY_PER_AREA = {"J/m^2": 1.0, "mJ/m^2": 1e-3, "N/m": 1.0, "mN/m": 1e-3}
 
 #: SI unit of each dimension, as printed in messages and labels.
@@ -68,7 +74,7 @@ def unit_factor(unit: str, dimension: str) -> float:
     if not isinstance(unit, str) or len(unit) > _MAX_UNIT_LENGTH:
         shown = repr(unit) if len(repr(unit)) <= 40 else repr(unit)[:40] + "..."
         raise UnitError(f"unknown unit {shown} for {_allowed(dimension)}")
-    u = unit.strip().replace("²", "^2").replace("⁻²", "^-2").replace("⁻", "^-")
+    u = unit.strip().replace("⁻²", "^-2").replace("²", "^2").replace("⁻", "^-")
     u = u.replace("^-^2", "^-2").replace(" ", "")
     if dimension == "dimensionless":
         if u in ("", "1"):
@@ -92,7 +98,29 @@ def unit_factor(unit: str, dimension: str) -> float:
                 return _LENGTH[m["base"]] ** -2
     else:
         raise ValueError(f"unknown dimension {dimension!r}")
-    raise UnitError(f"unknown unit {unit!r} for {_allowed(dimension)}")
+    raise UnitError(f"unknown unit {unit!r} for {_allowed(dimension)}{_suggestion(u, dimension)}")
+
+
+def _suggestion(unit: str, dimension: str) -> str:
+    """'; did you mean 'GPa'?' for a near miss (case, a typo), else ''."""
+    power = {"length": "", "area": "^2", "density": "^-2"}.get(dimension)
+    if power is not None:
+        known = [f"{u}{power}" for u in _LENGTH]
+    else:
+        known = list(
+            {"pressure": _PRESSURE, "energy_per_area": _ENERGY_PER_AREA}.get(dimension, ())
+        )
+    same_case = [k for k in known if k.lower() == unit.lower()]
+    close = same_case or difflib.get_close_matches(unit, known, n=1, cutoff=0.75)
+    return f"; did you mean {close[0]!r}?" if close else ""
+
+
+def has_unit(value: object) -> bool:
+    """Whether ``value`` is a string with a unit after its number (``"1.4 nm"``, not ``1.4``)."""
+    if not isinstance(value, str):
+        return False
+    m = _NUMBER.fullmatch(value.strip())
+    return m is None or bool(m["unit"])
 
 
 def _allowed(dimension: str) -> str:
@@ -106,10 +134,10 @@ def _allowed(dimension: str) -> str:
 
 def _examples(dimension: str) -> str:
     return {
-        "length": "m, mm, um, µm, nm, A",
-        "area": "m^2, mm^2, um^2, nm^2",
+        "length": "m, mm, um, µm, nm, A, Å, cm",
+        "area": "m^2, mm^2, um^2, nm^2, µm², cm^2",
         "density": "m^-2, um^-2, µm^-2, 1/um^2",
-        "pressure": "Pa, MPa, GPa",
+        "pressure": "Pa, MPa, GPa, kPa",
         "energy_per_area": "J/m^2, mJ/m^2, N/m",
         "dimensionless": "no unit",
     }[dimension]

@@ -5,7 +5,12 @@ from pathlib import Path
 
 import pytest
 
-from mcsim.config import load_material, load_surface, material_in_surface_file
+from mcsim.config import (
+    load_material,
+    load_surface,
+    material_in_surface_file,
+    surface_from_table,
+)
 from mcsim.errors import MCSimError, ParameterError, UnitError
 from mcsim.params import combine_surfaces
 from mcsim.presets import MATERIALS, SURFACES
@@ -58,13 +63,15 @@ def test_material_preset_name_gives_the_preset():
 
 @pytest.mark.parametrize("name", ["smoth", "smooth.txt", "data.h5"])
 def test_unknown_surface_name_lists_the_presets(name):
-    with pytest.raises(ParameterError, match=rf"^unknown surface '{re.escape(name)}': .*smooth"):
+    with pytest.raises(ParameterError, match=rf"^unknown surface '{re.escape(name)}'.*: .*smooth"):
         load_surface(name)
 
 
 @pytest.mark.parametrize("name", ["steel", "silicon.txt"])
 def test_unknown_material_name_lists_the_presets(name):
-    with pytest.raises(ParameterError, match=rf"^unknown material '{re.escape(name)}': .*silicon"):
+    with pytest.raises(
+        ParameterError, match=rf"^unknown material '{re.escape(name)}'.*: .*silicon"
+    ):
         load_material(name)
 
 
@@ -82,9 +89,69 @@ def test_surface_file_accepts_a_str_path(tmp_path):
     assert s.sigma == pytest.approx(1.4e-9, rel=1e-14)
 
 
-def test_plain_numbers_in_a_file_are_si(tmp_path):
-    path = write(tmp_path, "[surface]\nsigma = 1.4e-9\nR = 1.7e-6\neta = 17e12\n")
-    assert fields(load_surface(path), SURFACE_FIELDS) == [1.4e-9, 1.7e-6, 17e12]
+@pytest.mark.parametrize(
+    ("line", "message"),
+    [
+        (
+            "sigma = 1.4",
+            'sigma = 1.4 has no unit .*; write it with its unit, e.g. sigma = "1.4 nm"',
+        ),
+        ('sigma = "1.4"', "sigma = '1.4' has no unit .*e.g. sigma = \"1.4 nm\""),
+        ("sigma = 1.4e-9", 'sigma = 1.4e-09 has no unit .*e.g. sigma = "1.4e-09 m"'),
+        ("sigma = 2", 'sigma = 2 has no unit .*e.g. sigma = "2 nm"'),
+    ],
+)
+def test_a_bare_number_for_a_length_in_a_file_is_refused_with_a_hint(tmp_path, line, message):
+    path = write(tmp_path, f'[surface]\n{line}\nR = "1.7 um"\neta = "17 um^-2"\n')
+    where = re.escape(f"{path} [surface]")
+    with pytest.raises(UnitError, match=rf"^{where}: {message}$"):
+        load_surface(path)
+
+
+@pytest.mark.parametrize(
+    ("line", "field"),
+    [('E = 160e9\nnu = 0.22\ngamma = "0.5 J/m^2"', "E"),
+     ('E = "160 GPa"\nnu = 0.22\ngamma = 0.5', "gamma"),
+     ('E1 = "160 GPa"\nE2 = 7e10\nnu = 0.22\ngamma = "0.5 J/m^2"', "E2"),
+     ('E = "160 GPa"\nnu = 0.22\ngamma = "0.5 J/m^2"\nH = 12', "H")],
+)  # fmt: skip
+def test_a_bare_number_for_a_material_quantity_in_a_file_is_refused(tmp_path, line, field):
+    path = write(tmp_path, f"[material]\n{line}\n")
+    with pytest.raises(UnitError, match=rf"\[material\]: {field} = \S+ has no unit"):
+        load_material(path)
+
+
+def test_bare_numbers_stay_si_in_python_tables():
+    s = surface_from_table({"sigma": 1.4e-9, "R": 1.7e-6, "eta": 17e12})
+    assert fields(s, SURFACE_FIELDS) == [1.4e-9, 1.7e-6, 17e12]
+
+
+def test_inline_histogram_edges_in_a_file_need_a_unit(tmp_path):
+    path = write(tmp_path, '[surface]\nR = "1.7 um"\neta = "17 um^-2"\n'
+                 "[surface.heights]\nedges = [0, 1, 2]\ncounts = [1, 2]\n")  # fmt: skip
+    with pytest.raises(UnitError, match=r'heights: inline edges need their unit, e.g. unit = "nm"'):
+        load_surface(path)
+
+
+def test_a_unit_error_names_the_field_as_written_E_not_E1(tmp_path):
+    path = write(tmp_path, '[material]\nE = "79 GPA"\nnu = 0.2\ngamma = "0.5 J/m^2"\n')
+    where = re.escape(f"{path} [material]")
+    with pytest.raises(
+        UnitError, match=rf"^{where}: E: unknown unit 'GPA' .*; did you mean 'GPa'\?$"
+    ):
+        load_material(path)
+
+
+@pytest.mark.parametrize(
+    ("load", "name", "closest"),
+    [(load_surface, "smoth", "smooth"), (load_surface, "Rough", "rough"),
+     (load_surface, "super_smooth", "super-smooth"), (load_material, "silcon", "silicon")],
+)  # fmt: skip
+def test_a_mistyped_preset_name_suggests_the_closest(load, name, closest):
+    with pytest.raises(
+        ParameterError, match=rf"^unknown \w+ '{name}' \(did you mean '{closest}'\?\)"
+    ):
+        load(name)
 
 
 def test_material_file_E_and_nu_set_both_solids(tmp_path):

@@ -1,6 +1,7 @@
 """Quantities as users write them become SI floats; anything else is refused by name."""
 
 import math
+import re
 
 import pytest
 
@@ -133,3 +134,30 @@ def test_non_number_value_names_field_and_allowed_units(value, shown):
         UnitError, match=rf"^E1: expected a number .* got {shown}; .*{PRESSURE_UNITS}"
     ):
         parse_quantity(value, "pressure", "E1")
+
+
+@pytest.mark.parametrize(
+    ("text", "dimension", "si"),
+    [
+        ("1 cm^2", "area", 1e-4), ("1 cm²", "area", 1e-4), ("1 mm^2", "area", 1e-6),
+        ("1 µm²", "area", 1e-12), ("1 μm²", "area", 1e-12), ("1 um2", "area", 1e-12),
+        ("1 um**2", "area", 1e-12), ("2 cm", "length", 2e-2), ("1 Å", "length", 1e-10),
+        ("1 \u212b", "length", 1e-10), ("1 angstrom", "length", 1e-10), ("3 kPa", "pressure", 3e3),
+        ("1 TPa", "pressure", 1e12), ("1 N/mm^2", "pressure", 1e6),
+        ("1 J/m²", "energy_per_area", 1.0), ("17 µm⁻²", "density", 17e12),
+    ],
+)  # fmt: skip
+def test_common_unit_spellings_are_accepted(text, dimension, si):
+    assert parse_quantity(text, dimension, "field") == pytest.approx(si, rel=1e-14)
+
+
+@pytest.mark.parametrize(
+    ("text", "dimension", "closest"),
+    [("79 GPA", "pressure", "GPa"), ("1 NM", "length", "nm"), ("1 mj/m^2", "energy_per_area", "mJ/m^2"),
+     ("1 UM^2", "area", "um^2")],
+)  # fmt: skip
+def test_a_near_miss_unit_suggests_the_intended_one(text, dimension, closest):
+    with pytest.raises(
+        UnitError, match=rf"^E: unknown unit .*; did you mean {re.escape(repr(closest))}\?$"
+    ):
+        parse_quantity(text, dimension, "E")
