@@ -392,11 +392,12 @@ def _check_sizes(path: Path, f) -> None:
             raise RunFileError(
                 f"{path}: damaged run file: dataset {name} holds {obj.dtype}, not numbers"
             )
-        total += math.prod(obj.shape) * obj.dtype.itemsize
+        size = math.prod(obj.shape) * obj.dtype.itemsize
+        total += size
         if total > budget:
             raise RunFileError(
-                f"{path}: damaged run file: dataset {name} declares {total} bytes or more, "
-                f"more than this {path.stat().st_size}-byte file can hold"
+                f"{path}: damaged run file: dataset {name} declares {size} bytes ({total} with "
+                f"those before it), more than this {path.stat().st_size}-byte file can hold"
             )
 
 

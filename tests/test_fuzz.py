@@ -29,7 +29,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from hypothesis import HealthCheck, given, settings
+from hypothesis import HealthCheck, event, given, settings
 from hypothesis import strategies as st
 
 from mcsim import cli
@@ -927,7 +927,8 @@ def test_histogram_file_name_with_a_line_break_stays_on_one_line(tmp_path):
 # (superblock, object headers, B-trees, heaps), where a flip either breaks the file's
 # structure (h5py raises) or changes nothing that is read. So every mutated run file
 # must either be refused with a one-line RunFileError naming it, or read back exactly.
-# A campaign: ``MCSIM_FUZZ_EXAMPLES=200 pytest tests/test_fuzz.py -k run_file``.
+# A campaign: ``MCSIM_FUZZ_EXAMPLES=300 pytest tests/test_fuzz.py -k run_files
+# --hypothesis-show-statistics`` (the statistics count the outcomes).
 
 RUNFILE = settings(max_examples=max(EXAMPLES, 30), **_COMMON)
 
@@ -988,7 +989,13 @@ def check_run_file(path: Path, original: Path) -> None:
             run = read_run(path, allow_incomplete=True)
     except RunFileError as err:
         assert_refused_cleanly(err, path.name)
+        reason = str(err).split(f"{path}: ", 1)[-1].removeprefix("damaged run file")
+        error = re.search(r"\(([A-Za-z]+Error)", reason)
+        event(
+            f"refused: {error[1] if error else re.split(r'[(:]', reason.lstrip(': '))[0].strip()}"
+        )
         return
+    event("read exactly")
     got = run_fingerprint(run)
     got["attrs"].pop("checksum"), expected["attrs"].pop("checksum")
     assert_same(got, expected)
@@ -1006,6 +1013,33 @@ def test_mutated_run_files_are_refused_in_one_line_or_read_exactly(
     original.write_bytes(run_files[name])
     path = folder / name
     path.write_bytes(data.draw(mutated(run_files[name], focus=4096)))
+    check_run_file(path, original)
+
+
+@st.composite
+def flipped(draw, seed: bytes) -> bytes:
+    """``seed`` with 1–8 bit flips or overwritten bytes, its length kept (HDF5's offsets hold)."""
+    data = bytearray(seed)
+    for _ in range(draw(st.integers(1, 8))):
+        pos = draw(st.integers(0, len(data) - 1))
+        if draw(st.booleans()):
+            data[pos] ^= 1 << draw(st.integers(0, 7))
+        else:
+            data[pos] = draw(st.sampled_from([0, 0x7F, 0x80, 0xFF]))
+    return bytes(data)
+
+
+@RUNFILE
+@given(data=st.data())
+def test_byte_flipped_run_files_are_refused_in_one_line_or_read_exactly(
+    run_files, tmp_path_factory, data
+):
+    name = data.draw(st.sampled_from(sorted(run_files)))
+    folder = tmp_path_factory.mktemp("rf")
+    original = folder / f"original-{name}"
+    original.write_bytes(run_files[name])
+    path = folder / name
+    path.write_bytes(data.draw(flipped(run_files[name])))
     check_run_file(path, original)
 
 
