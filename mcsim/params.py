@@ -89,12 +89,14 @@ def check_separations(h) -> np.ndarray:
     except (TypeError, ValueError):
         raise ParameterError(f"h must be a list of numbers, got {h!r}") from None
     if values.ndim != 1 or values.size == 0:
-        raise ParameterError(f"h must be a non-empty 1-D list of separations, got {h!r}")
+        raise ParameterError(f"h must be a non-empty list of separations (1-D), got {h!r}")
+    allowed = f"-{MAX_ABS_H:g} <= h <= {MAX_ABS_H:g}"
+    if not np.all(np.isfinite(values)):
+        bad = float(values[~np.isfinite(values)][0])
+        raise ParameterError(f"h must be finite, got {bad!r} (allowed: {allowed})")
     bad = values[~(np.abs(values) <= MAX_ABS_H)]
     if bad.size:
-        raise ParameterError(
-            f"h = {float(bad[0])!r} is out of range (allowed: finite, -{MAX_ABS_H:g} <= h <= {MAX_ABS_H:g})"
-        )
+        raise ParameterError(f"h = {float(bad[0])!r} is out of range (allowed: {allowed})")
     return values
 
 

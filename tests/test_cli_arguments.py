@@ -14,10 +14,9 @@ SIMULATE = ["simulate", "--surface", "smooth", "--area", "1um^2", "--h=0", "--qu
 
 
 def one_line_error(capsys, argv) -> str:
-    with pytest.raises(SystemExit) as exit_:
-        main(argv)
+    status = main(argv)
     err = capsys.readouterr().err
-    assert exit_.value.code == 2
+    assert status == 2
     assert err.startswith("mcsim: error: ") and err.count("\n") == 1, err
     return err
 
@@ -51,9 +50,7 @@ def test_missing_or_unknown_arguments_are_one_line_errors(capsys, argv):
 
 
 def test_help_is_still_the_full_usage(capsys):
-    with pytest.raises(SystemExit) as exit_:
-        main(["simulate", "--help"])
-    assert exit_.value.code == 0
+    assert main(["simulate", "--help"]) == 0
     out = capsys.readouterr().out
     assert out.startswith("usage: mcsim simulate") and "--realizations" in out
 
@@ -66,7 +63,7 @@ def test_help_is_still_the_full_usage(capsys):
             ",".join(["0"] * 10_001),
             r"10001 separations, more than the limit of 10000",
         ),
-        ("--h=-1e17", r"h = -1e\+17 is out of range \(allowed: finite, -1e\+06 <= h <= 1e\+06\)"),
+        ("--h=-1e17", r"h = -1e\+17 is out of range \(allowed: -1e\+06 <= h <= 1e\+06\)"),
     ],
 )
 def test_absurd_separation_specs_are_refused_at_once(capsys, spec, message):
