@@ -388,7 +388,7 @@ def _check_sizes(path: Path, f) -> None:
     for name, obj in found:
         if not isinstance(obj, h5py.Dataset):
             continue
-        if obj.dtype.kind not in "biuf":
+        if obj.dtype.kind not in "biufS":  # numbers; fixed-length names (column scale)
             raise RunFileError(
                 f"{path}: damaged run file: dataset {name} holds {obj.dtype}, not numbers"
             )
