@@ -8,6 +8,7 @@ partial output.
 from __future__ import annotations
 
 import argparse
+import contextlib
 import json
 import sys
 from pathlib import Path
@@ -172,37 +173,63 @@ def _default_run_path(surface) -> Path:
     return folder / f"{surface.name or 'surface'}-{stamp}.h5"
 
 
+@contextlib.contextmanager
+def _notes(quiet: bool):
+    """Print the library's log records (notices, estimates) as ``mcsim: ...`` lines on stderr."""
+    import logging
+
+    logger = logging.getLogger("mcsim")
+    handler = logging.StreamHandler(sys.stderr)
+    handler.setFormatter(logging.Formatter("mcsim: %(message)s"))
+    handler.setLevel(logging.WARNING if quiet else logging.INFO)
+    level, propagate = logger.level, logger.propagate
+    logger.addHandler(handler)
+    logger.setLevel(logging.INFO)
+    logger.propagate = False
+    try:
+        yield
+    finally:
+        logger.removeHandler(handler)
+        logger.setLevel(level)
+        logger.propagate = propagate
+
+
 def cmd_simulate(args) -> int:
     import time
 
-    from .simulation import cli_command, simulate
+    from .interrupt import Interrupted, interruptible
 
-    surface, material = _inputs(args)
-    h = parse_h(args.h)
-    out = Path(args.out) if args.out else _default_run_path(surface)
-    show_progress = not args.quiet and sys.stderr.isatty()
-    t0 = time.perf_counter()
-    try:
-        run = simulate(
-            surface, material, h, args.area, realizations=args.realizations, seed=args.seed, law=args.law,
-            count=args.count, workers=args.workers, scheduler=args.scheduler or args.dask,
-            chunk_size=args.chunk_size, keep_heights=args.keep_heights, out=out, overwrite=args.overwrite,
-            resume=args.resume, checkpoint_every=args.checkpoint_every, progress=show_progress,
-            command=cli_command(),
-        )  # fmt: skip
-    except KeyboardInterrupt:
-        if out.exists() and not args.keep_heights:
-            print(f"mcsim: interrupted; progress saved in {out}: run the same command with --resume "
-                  "to finish it", file=sys.stderr)  # fmt: skip
-        else:
-            print("mcsim: interrupted; no output written", file=sys.stderr)
-        return 130
-    elapsed = time.perf_counter() - t0
-    if not args.quiet:
-        n = run.n_summits
-        print(f"wrote {run.path}: {run.spec.realizations} realizations x {len(h)} separations, "
-              f"N = {n.mean():.6g} summits per patch on average, {elapsed:.2f} s")  # fmt: skip
-        print(f"next: mcsim compare {run.path}   |   mcsim plot {run.path}")
+    with interruptible(), _notes(args.quiet):  # SIGINT/SIGTERM owned before heavy imports
+        from .runfile import checkpoint_path
+        from .simulation import cli_command, simulate
+
+        surface, material = _inputs(args)
+        h = parse_h(args.h)
+        out = Path(args.out) if args.out else _default_run_path(surface)
+        show_progress = not args.quiet and sys.stderr.isatty()
+        t0 = time.perf_counter()
+        try:
+            run = simulate(
+                surface, material, h, args.area, realizations=args.realizations, seed=args.seed, law=args.law,
+                count=args.count, workers=args.workers, scheduler=args.scheduler or args.dask,
+                chunk_size=args.chunk_size, keep_heights=args.keep_heights, out=out, overwrite=args.overwrite,
+                resume=args.resume, checkpoint_every=args.checkpoint_every, progress=show_progress,
+                command=cli_command(),
+            )  # fmt: skip
+        except Interrupted as stop:
+            partial = checkpoint_path(out)
+            if partial.exists() and not args.keep_heights:
+                print(f"mcsim: interrupted ({stop}); progress saved in {partial}: run the same "
+                      "command with --resume to finish it", file=sys.stderr)  # fmt: skip
+            else:
+                print(f"mcsim: interrupted ({stop}); no output written", file=sys.stderr)
+            return stop.exit_status
+        elapsed = time.perf_counter() - t0
+        if not args.quiet:
+            n = run.n_summits
+            print(f"wrote {run.path}: {run.spec.realizations} realizations x {len(h)} separations, "
+                  f"N = {n.mean():.6g} summits per patch on average, {elapsed:.2f} s")  # fmt: skip
+            print(f"next: mcsim compare {run.path}   |   mcsim plot {run.path}")
     return 0
 
 
@@ -474,10 +501,11 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument(
         "--resume",
         action="store_true",
-        help="continue the incomplete run in --out (same arguments)",
+        help="continue from the checkpoint beside --out (same arguments); "
+        "without one, start from the beginning",
     )
     p.add_argument("--checkpoint-every", type=float, default=60.0, metavar="SECONDS",
-                   help="save progress to --out this often (default: 60 s)")  # fmt: skip
+                   help="save progress beside --out (RUN.partial.h5) after 10 s, then this often (default: 60 s)")  # fmt: skip
     p.add_argument("--quiet", action="store_true", help="no progress bar or summary")
     p.set_defaults(func=cmd_simulate)
 

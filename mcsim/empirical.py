@@ -268,6 +268,16 @@ class Empirical:
     def __setattr__(self, name: str, value: object) -> None:
         raise AttributeError(f"Empirical is immutable (cannot set {name!r})")
 
+    def __copy__(self) -> Empirical:
+        return self  # an immutable value: a copy is the same value
+
+    def __deepcopy__(self, memo: dict) -> Empirical:
+        return self
+
+    def __reduce__(self):
+        """Pickle (Dask workers) through the constructor: the attributes cannot be set."""
+        return (type(self), (self.edges, self.densities, self.sigma, self.mean, self.source))
+
     def __eq__(self, other: object) -> bool:
         if not isinstance(other, Empirical):
             return NotImplemented

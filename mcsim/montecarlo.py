@@ -19,14 +19,13 @@ from __future__ import annotations
 
 import collections
 import contextlib
-import copy
 import dataclasses
 import functools
 import itertools
 import math
 import os
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Iterable, Iterator
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 
@@ -45,6 +44,16 @@ BLOCK = 1 << 16
 DEFAULT_CHUNK = 1 << 18
 
 COUNT_MODES = ("poisson", "fixed")
+
+#: Most expected summits per patch, E[N] = ηA: NumPy's Poisson sampler stops near 9.2e18,
+#: and 1e18 summits would take decades at ~3e8 summits per second.
+MAX_SUMMITS = 1e18
+
+#: Seconds of work before the first checkpoint (later ones follow ``checkpoint_every``).
+FIRST_CHECKPOINT = 10.0
+
+#: Longest wait (s) for a task's result between two calls of the ``interrupt`` hook.
+POLL = 0.1
 
 
 @dataclass(frozen=True, eq=False)
@@ -83,6 +92,11 @@ class MonteCarloSpec:
     def __post_init__(self) -> None:
         object.__setattr__(self, "h", check_separations(self.h))
         object.__setattr__(self, "area", check_range("area", self.area, "m^2", low=0))
+        if self.surface.eta * self.area > MAX_SUMMITS:
+            raise ParameterError(
+                f"area = {self.area:.6g} m^2 holds E[N] = eta*area = {self.surface.eta * self.area:.3g} "
+                f"summits per patch (allowed: at most {MAX_SUMMITS:.0e})"
+            )
         _check_count("realizations", self.realizations)
         if self.count not in COUNT_MODES:
             raise ParameterError(f"count = {self.count!r} is not one of {', '.join(COUNT_MODES)}")
@@ -232,16 +246,17 @@ class Task:
         return sum(self.plan.block_size(b) for b in range(self.start, self.stop))
 
 
-def make_tasks(plans: list[PatchPlan], chunk_size: int, first_block=None) -> list[Task]:
+def make_tasks(plans: list[PatchPlan], chunk_size: int, first_block=None) -> Iterator[Task]:
     """Split every patch into tasks of about ``chunk_size`` summits (whole blocks),
-    starting at ``first_block[r]`` (0 by default) for realization r."""
+    starting at ``first_block[r]`` (0 by default) for realization r. A generator:
+    memory stays flat however many tasks a patch of any size makes."""
     chunk_blocks = max(1, math.ceil(chunk_size / BLOCK))
     first = [0] * len(plans) if first_block is None else first_block
-    return [
+    return (
         Task(r, start, min(start + chunk_blocks, plan.n_blocks), plan)
         for r, plan in enumerate(plans)
         for start in range(int(first[r]), plan.n_blocks, chunk_blocks)
-    ]
+    )
 
 
 def run_task(spec: MonteCarloSpec, task: Task, keep_heights: bool = False):
@@ -268,10 +283,11 @@ def default_workers() -> int:
         return os.cpu_count() or 1
 
 
-def _in_order(submit: Callable, tasks: list[Task], window: int):
-    """Yield ``(task, result)`` in task order, with at most ``window`` tasks in flight.
+def _in_order(submit: Callable, tasks: Iterable[Task], window: int, interrupt: Callable[[], None]):
+    """Yield ``(task, result)`` in task order, with at most ``window`` tasks in flight,
+    calling ``interrupt()`` at least every :data:`POLL` seconds while waiting.
 
-    Pending tasks are cancelled if the consumer stops (an error, Ctrl-C).
+    Pending tasks are cancelled when the generator is closed (an error, an interruption).
     """
     pending: collections.deque = collections.deque()
     queue = iter(tasks)
@@ -279,8 +295,15 @@ def _in_order(submit: Callable, tasks: list[Task], window: int):
         for task in itertools.islice(queue, window):
             pending.append((task, submit(task)))
         while pending:
-            task, future = pending.popleft()
-            result = future.result()
+            task, future = pending[0]
+            while True:
+                interrupt()
+                try:
+                    result = future.result(timeout=POLL)
+                    break
+                except TimeoutError:
+                    continue
+            pending.popleft()
             for nxt in itertools.islice(queue, 1):
                 pending.append((nxt, submit(nxt)))
             yield task, result
@@ -305,6 +328,7 @@ def run_sums(
     resume: EnsembleSums | None = None,
     checkpoint: Callable[[EnsembleSums], None] | None = None,
     checkpoint_every: float = 60.0,
+    interrupt: Callable[[], None] | None = None,
 ) -> EnsembleSums:
     """Sample every patch of ``spec`` and sum the per-summit laws at every separation.
 
@@ -325,12 +349,16 @@ def run_sums(
     client : dask.distributed.Client, optional
         Run the tasks on this Dask cluster instead.
     resume : EnsembleSums, optional
-        An unfinished run of the same ``spec`` to continue.
+        An unfinished run of the same ``spec`` to continue (not modified).
     checkpoint : callable, optional
-        Called with the state so far at most every ``checkpoint_every`` seconds, and
-        once more if the run is interrupted (then the interruption propagates).
+        Called with the state so far after :data:`FIRST_CHECKPOINT` seconds, then at
+        most every ``checkpoint_every`` seconds, and once more if the run is
+        interrupted with progress not yet saved (then the interruption propagates).
     checkpoint_every : float
         Seconds between checkpoints.
+    interrupt : callable, optional
+        Called between tasks and at least every :data:`POLL` seconds while waiting
+        for one; whatever it raises stops the run (see :func:`mcsim.interrupt.check`).
 
     Returns
     -------
@@ -348,15 +376,22 @@ def run_sums(
         )
     if resume is not None and keep_heights:
         raise ParameterError("keep_heights cannot be combined with resuming a run")
-    state = EnsembleSums.start(spec) if resume is None else copy.deepcopy(resume)
+    if resume is None:
+        state = EnsembleSums.start(spec)
+    else:  # the inputs are immutable values; only the progress is copied
+        state = dataclasses.replace(
+            resume, sums=resume.sums.copy(), done_blocks=resume.done_blocks.copy()
+        )
     plans = state.plans()
     tasks = make_tasks(plans, chunk_size, state.done_blocks)
     order = np.argsort(-spec.d, kind="stable")  # kernel rows are in descending d
     kept: list[list[np.ndarray]] = [[] for _ in plans]
-    last = time.monotonic()
+    next_checkpoint = time.monotonic() + min(FIRST_CHECKPOINT, checkpoint_every)
     with contextlib.ExitStack() as stack:
         if client is None:
-            pool = stack.enter_context(ThreadPoolExecutor(max_workers=workers))
+            pool = ThreadPoolExecutor(max_workers=workers)
+            # Queued tasks are dropped, running ones (short) finished, on any exit.
+            stack.callback(pool.shutdown, wait=True, cancel_futures=True)
             submit = functools.partial(pool.submit, run_task, spec, keep_heights=keep_heights)
             window = 2 * workers
         else:
@@ -370,27 +405,34 @@ def run_sums(
         committed = {
             r: (state.sums[r], int(state.done_blocks[r])) for r in range(spec.realizations)
         }
+        unsaved = False
 
         def settle() -> EnsembleSums:
             for r, (sums, done) in committed.items():
                 state.sums[r], state.done_blocks[r] = sums, done
             return state
 
+        results = stack.enter_context(
+            contextlib.closing(_in_order(submit, tasks, window, interrupt or (lambda: None)))
+        )
         try:
-            for task, (partials, blocks) in _in_order(submit, tasks, window):
+            for task, (partials, blocks) in results:
                 sums = committed[task.realization][0].copy()
                 for part in partials:  # in block order
                     sums[order] += part
                 committed[task.realization] = (sums, task.stop)
+                unsaved = True
                 if blocks is not None:
                     kept[task.realization].extend(blocks)
                 if progress is not None:
                     progress(task.n_summits)
-                if checkpoint is not None and time.monotonic() - last > checkpoint_every:
+                if checkpoint is not None and time.monotonic() > next_checkpoint:
                     checkpoint(settle())
-                    last = time.monotonic()
+                    unsaved = False
+                    next_checkpoint = time.monotonic() + checkpoint_every
         except BaseException:
-            if checkpoint is not None:
+            results.close()  # cancel the queued tasks before saving
+            if checkpoint is not None and unsaved:
                 checkpoint(settle())
             raise
     settle()

@@ -42,11 +42,11 @@ from __future__ import annotations
 
 import contextlib
 import datetime as _dt
+import glob
 import hashlib
 import json
 import math
 import os
-import re
 import socket
 import tempfile
 from pathlib import Path
@@ -66,19 +66,38 @@ from .statistics import Summary
 SCHEMA_VERSION = 1
 
 
+def checkpoint_path(path: str | Path) -> Path:
+    """Where a run writing ``path`` keeps its checkpoints: ``<stem>.partial<suffix>`` beside it."""
+    path = Path(path)
+    return path.with_name(f"{path.stem}.partial{path.suffix}")
+
+
 def check_output_path(path: str | Path, overwrite: bool = False, resume: bool = False) -> Path:
-    """Fail early (before any work) if ``path`` cannot receive this run."""
+    """Fail early (before any work) if ``path`` cannot receive this run.
+
+    An existing run at ``path``, or an unfinished run's checkpoint beside it (unless
+    ``resume`` continues it), is replaced only with ``overwrite``.
+    """
     path = Path(path)
     folder = path.parent
     if not folder.is_dir():
         raise RunFileError(f"{path}: output folder {folder} does not exist")
     if not os.access(folder, os.W_OK):
         raise RunFileError(f"{path}: output folder {folder} is not writable")
-    if resume:
-        if not path.exists():
-            raise RunFileError(f"{path}: nothing to resume (no such file)")
-    elif path.exists() and not overwrite:
+    if overwrite:
+        return path
+    if path.exists() and resume and not checkpoint_path(path).exists():
+        raise RunFileError(
+            f"{path}: file exists and no checkpoint {checkpoint_path(path).name} is beside it: "
+            "nothing to resume (pass --overwrite to run again)"
+        )
+    if path.exists():
         raise RunFileError(f"{path}: file exists (pass --overwrite / overwrite=True to replace it)")
+    if checkpoint_path(path).exists() and not resume:
+        raise RunFileError(
+            f"{path}: an unfinished run's checkpoint {checkpoint_path(path).name} is beside it "
+            "(pass --resume to continue it, or --overwrite to start again)"
+        )
     return path
 
 
@@ -87,43 +106,44 @@ def check_output_path(path: str | Path, overwrite: bool = False, resume: bool = 
 
 @contextlib.contextmanager
 def lock(path: str | Path):
-    """Hold ``<path>.lock`` while writing ``path``; refuse if another live process does.
+    """Hold ``<path>.lock`` while writing ``path``; refuse if another process holds it.
 
-    A lock left by a process that no longer runs (killed) on this host is taken over.
+    The lock is an ``flock`` on that file, which the system releases when its process
+    ends, however it ends: a lock file left by a killed process is simply free. The
+    holder removes the file before releasing it; a process that locked the file just
+    as it was removed sees that the path no longer names its file, and tries again.
     """
+    import fcntl
+
     lock_path = Path(f"{path}.lock")
-    me = f"{socket.gethostname()} {os.getpid()}"
-    for _ in range(2):
+    while True:
+        fd = os.open(lock_path, os.O_RDWR | os.O_CREAT, 0o644)
         try:
-            fd = os.open(lock_path, os.O_CREAT | os.O_EXCL | os.O_WRONLY, 0o644)
-        except FileExistsError:
-            owner = lock_path.read_text(errors="replace").split()
-            if len(owner) == 2 and owner[0] == socket.gethostname() and not _alive(int(owner[1])):
-                lock_path.unlink(missing_ok=True)  # stale: its writer was killed
-                continue
+            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            owner = os.read(fd, 200).decode(errors="replace").split()
+            os.close(fd)
             raise RunFileError(
-                f"{path}: another mcsim process ({' pid '.join(owner) or 'unknown'}) is writing it "
+                f"{path}: another mcsim process ({' pid '.join(owner) or 'starting'}) is writing it "
                 f"(lock file {lock_path.name})"
             ) from None
-        with os.fdopen(fd, "w") as f:
-            f.write(me)
-        break
-    for stale in Path(path).parent.glob(f".{Path(path).name}.*.tmp"):
-        stale.unlink(missing_ok=True)  # left by a writer that was killed; we hold the lock now
+        try:
+            same = os.path.samestat(os.fstat(fd), os.stat(lock_path))
+        except FileNotFoundError:
+            same = False
+        if same:
+            break
+        os.close(fd)  # removed by its previous holder while we waited: take the new one
     try:
+        os.ftruncate(fd, 0)
+        os.write(fd, f"{socket.gethostname()} {os.getpid()}".encode())
+        for name in (Path(path).name, checkpoint_path(path).name):
+            for stale in Path(path).parent.glob(f".{glob.escape(name)}.*.tmp"):
+                stale.unlink(missing_ok=True)  # left by a killed writer; we hold the lock
         yield
     finally:
-        lock_path.unlink(missing_ok=True)
-
-
-def _alive(pid: int) -> bool:
-    try:
-        os.kill(pid, 0)
-    except ProcessLookupError:
-        return False
-    except PermissionError:
-        return True
-    return True
+        lock_path.unlink(missing_ok=True)  # ours: we hold its flock
+        os.close(fd)
 
 
 # --- writing --------------------------------------------------------------------------
@@ -252,35 +272,44 @@ def _write_state(f, state: EnsembleSums) -> None:
 
 
 def _atomic_write(path: Path, fill) -> None:
-    """Write through ``fill(h5file)`` into a temporary file, then rename it onto ``path``."""
+    """Build the file through ``fill(h5file)`` in memory, then write it to a temporary
+    file and rename that onto ``path``.
+
+    HDF5 never writes to disk: a full disk or a size limit fails in a plain ``write``
+    (one clean error, the temporary removed), never inside the HDF5 library.
+    """
     import h5py
 
     fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
-    os.close(fd)
     try:
-        umask = os.umask(0)
-        os.umask(umask)
-        os.chmod(tmp, 0o666 & ~umask)  # mkstemp makes 0600; give the usual permissions
-        with h5py.File(tmp, "w") as f:
+        with h5py.File(tmp, "w", driver="core", backing_store=False) as f:
             fill(f)
             f.attrs["checksum"] = _checksum(f)
-        with open(tmp, "rb") as f:
-            os.fsync(f.fileno())
+            f.flush()
+            image = memoryview(f.id.get_file_image())
+        umask = os.umask(0)
+        os.umask(umask)
+        os.fchmod(fd, 0o666 & ~umask)  # mkstemp makes 0600; give the usual permissions
+        while image:
+            image = image[os.write(fd, image) :]
+        os.fsync(fd)
+        os.close(fd)
+        fd = -1
         os.replace(tmp, path)
-    except (OSError, RuntimeError) as err:  # h5py reports a failed flush as RuntimeError
+    except OSError as err:
         Path(tmp).unlink(missing_ok=True)
         raise RunFileError(f"{path}: cannot write the run file ({_reason(err)})") from None
     except BaseException:
         Path(tmp).unlink(missing_ok=True)
         raise
+    finally:
+        if fd >= 0:
+            os.close(fd)
 
 
 def _reason(err: Exception) -> str:
-    """The system's words for a failed write, from an OSError or HDF5's error text."""
-    if getattr(err, "strerror", None):
-        return err.strerror
-    found = re.search(r"error message = '([^']*)'", str(err))
-    return found[1] if found else str(err).splitlines()[0]
+    """The system's words for a failed write, on one line."""
+    return " ".join((getattr(err, "strerror", None) or str(err)).split())
 
 
 def write_checkpoint(path: str | Path, state: EnsembleSums, *, command: str) -> None:

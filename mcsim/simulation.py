@@ -11,19 +11,50 @@ from __future__ import annotations
 
 import contextlib
 import functools
+import logging
 import shlex
 import sys
 from pathlib import Path
 
 import numpy as np
 
-from . import runfile
+from . import interrupt, runfile
 from ._version import __version__
 from .errors import ParameterError, RunFileError
-from .montecarlo import DEFAULT_CHUNK, MonteCarloSpec, run_sums
+from .montecarlo import DEFAULT_CHUNK, MonteCarloSpec, default_workers, run_sums
 from .params import Material, Surface
 from .results import Run, assemble
 from .units import parse_quantity
+
+log = logging.getLogger(__name__)
+
+#: Assumed speed of one worker, for the up-front estimate of a long run: contacting
+#: (summit, separation) pairs per second, and summits above h_min sampled per second
+#: (README, Performance: 1.7e8 and more than 2e7 measured on one core).
+PAIRS_PER_SECOND = 1.5e8
+SAMPLES_PER_SECOND = 2e7
+
+#: Runs expected to take longer (s) get an up-front estimate.
+ESTIMATE_ABOVE = 60.0
+
+
+def _duration(seconds: float) -> str:
+    for unit, size in (("days", 86400), ("h", 3600), ("min", 60)):
+        if seconds >= size:
+            return f"{seconds / size:.3g} {unit}"
+    return f"{seconds:.3g} s"
+
+
+def estimate(spec: MonteCarloSpec, workers: int) -> tuple[float, float, float]:
+    """Expected summits, contacting (summit, separation) pairs and seconds of a run.
+
+    The time assumes :data:`PAIRS_PER_SECOND` and :data:`SAMPLES_PER_SECOND` per worker.
+    """
+    heights = spec.surface.heights
+    summits = spec.realizations * spec.expected_summits
+    above = summits * float(heights.sf(spec.h.min()))
+    pairs = summits * float(np.sum(heights.sf(spec.h)))
+    return summits, pairs, (pairs / PAIRS_PER_SECOND + above / SAMPLES_PER_SECOND) / workers
 
 
 def _api_command(**kwargs) -> str:
@@ -82,13 +113,18 @@ def simulate(
     keep_heights : bool
         Keep the sampled heights (above h_min) in the result and file (no checkpoints).
     out : path, optional
-        Write the run to this HDF5 file. While it runs, the file holds an incomplete,
-        resumable run, rewritten atomically every ``checkpoint_every`` seconds and on
-        interruption; at the end, the complete run. An existing file is refused
-        unless ``overwrite`` (or ``resume``, for an incomplete run of the same inputs).
+        Write the complete run to this HDF5 file, atomically, when it ends. While it
+        runs, its checkpoint (an incomplete, resumable run) is
+        :func:`mcsim.runfile.checkpoint_path` (``<stem>.partial<suffix>`` beside
+        ``out``), written atomically after about 10 s of work, then every
+        ``checkpoint_every`` seconds, and on interruption; it is removed once the
+        complete run is in place. So ``out`` always holds nothing, the earlier file
+        or the new complete run. An existing file, or another run's checkpoint, is
+        refused unless ``overwrite``.
     resume : bool
-        Continue the incomplete run in ``out``; the result is bit-identical to an
-        uninterrupted run.
+        Continue from the checkpoint beside ``out``; the result is bit-identical to
+        an uninterrupted run. Without a checkpoint, the run starts from the
+        beginning (and logs a warning saying so).
     checkpoint_every : float
         Seconds between checkpoints.
     progress : bool
@@ -99,24 +135,37 @@ def simulate(
     Returns
     -------
     Run
+
+    Raises
+    ------
+    mcsim.interrupt.Interrupted
+        On SIGINT (Ctrl-C) or SIGTERM, once the progress is saved (a ``KeyboardInterrupt``).
     """
     area_m2 = parse_quantity(area, "area", "area")
     if resume and out is None:
         raise ParameterError("resume needs the run file to continue (out=...)")
-    with contextlib.ExitStack() as stack:
-        previous = None
+    with interrupt.interruptible(), contextlib.ExitStack() as stack:
+        previous = partial = None
         if out is not None:
             out = runfile.check_output_path(out, overwrite=overwrite, resume=resume)
             stack.enter_context(runfile.lock(out))
-            if resume:
-                previous, attrs = runfile.read_state(out)
+            # Again under the lock: another writer may have finished in the meantime.
+            runfile.check_output_path(out, overwrite=overwrite, resume=resume)
+            partial = runfile.checkpoint_path(out)
+            if resume and partial.exists():
+                previous, attrs = runfile.read_state(partial)
                 if previous.complete:
-                    raise RunFileError(f"{out}: the run is already complete; nothing to resume")
+                    raise RunFileError(f"{partial}: damaged checkpoint: it holds a complete run")
                 if attrs.get("mcsim_version") != __version__:
                     raise RunFileError(
-                        f"{out}: written by mcsim {attrs.get('mcsim_version')}; resume it with that version"
+                        f"{partial}: written by mcsim {attrs.get('mcsim_version')}; resume it with that version"
                     )
                 seed = previous.spec.entropy if seed is None else seed
+            elif resume:
+                log.warning("%s: nothing to resume (no checkpoint %s): starting the run from "
+                            "the beginning", out, partial.name)  # fmt: skip
+            else:
+                partial.unlink(missing_ok=True)  # --overwrite: start again
         entropy = np.random.SeedSequence(seed).entropy
         spec = MonteCarloSpec(surface, material, h, area_m2, realizations, entropy, law, count)
         if previous is not None and previous.spec != spec:
@@ -127,9 +176,16 @@ def simulate(
             command = _api_command(surface=surface.name or surface, material=material.name or material,
                                    h=[float(x) for x in spec.h], area=area_m2, realizations=realizations,
                                    seed=seed, law=law, count=count)  # fmt: skip
+        n_workers = workers if isinstance(workers, int) and workers > 0 else default_workers()
+        summits, pairs, seconds = estimate(spec, n_workers)
+        if seconds > ESTIMATE_ABOVE:
+            log.info("long run: %.3g summits, %.3g contacting (summit, h) pairs: about %s on %d "
+                     "worker(s) at an assumed %.2g pairs/s each; Ctrl-C stops it%s", summits, pairs,
+                     _duration(seconds), n_workers, PAIRS_PER_SECOND,
+                     " (progress is saved)" if out is not None and not keep_heights else "")  # fmt: skip
         checkpoint = None
         if out is not None and not keep_heights:
-            checkpoint = functools.partial(runfile.write_checkpoint, out, command=command)
+            checkpoint = functools.partial(runfile.write_checkpoint, partial, command=command)
         if progress:
             from tqdm import tqdm
 
@@ -152,11 +208,14 @@ def simulate(
             client = stack.enter_context(dask_client(scheduler, workers))
         ens = run_sums(spec, workers=workers, chunk_size=chunk_size, keep_heights=keep_heights,
                        progress=bar.update if progress else None, client=client, resume=previous,
-                       checkpoint=checkpoint, checkpoint_every=checkpoint_every)  # fmt: skip
+                       checkpoint=checkpoint, checkpoint_every=checkpoint_every,
+                       interrupt=interrupt.check)  # fmt: skip
         run = assemble(ens)
         if out is None:
             return run
-        return runfile.write_run(out, run, command=command)
+        run = runfile.write_run(out, run, command=command)
+        partial.unlink(missing_ok=True)  # after the complete run is in place
+        return run
 
 
 def cli_command() -> str:

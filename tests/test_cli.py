@@ -160,11 +160,12 @@ def test_installed_entry_point_reports_version_and_fails_cleanly():
 
 
 def test_ctrl_c_leaves_a_resumable_run_that_resumes_to_identical_numbers(tmp_path):
-    """SIGINT during a long simulate: exit 130, an incomplete run at the path (another run
-    in the folder untouched, no temporaries); --resume then gives the uninterrupted datasets."""
+    """SIGINT during a long simulate: exit 130, an incomplete run in the checkpoint beside
+    the path (another run in the folder untouched, no temporaries); --resume then gives the
+    uninterrupted datasets."""
     import h5py
 
-    from mcsim.runfile import read_state
+    from mcsim.runfile import checkpoint_path, read_state
     from mcsim.simulation import simulate
 
     exe = os.path.join(os.path.dirname(sys.executable), "mcsim")
@@ -180,16 +181,16 @@ def test_ctrl_c_leaves_a_resumable_run_that_resumes_to_identical_numbers(tmp_pat
         [exe, *args, "--checkpoint-every", "0.05"], stderr=subprocess.PIPE, text=True, env=env
     )
     deadline = time.monotonic() + 30
-    while not out.exists() and proc.poll() is None and time.monotonic() < deadline:
+    while not checkpoint_path(out).exists() and proc.poll() is None and time.monotonic() < deadline:
         time.sleep(0.01)  # until the run has checkpointed some progress
     assert proc.poll() is None, "the long run finished before it could be interrupted"
     code, err = interrupt(proc)
     assert code == 130, err
     assert "--resume" in err
-    state, _ = read_state(out)
+    state, _ = read_state(checkpoint_path(out))
     assert not state.complete and state.done_blocks.sum() > 0
     assert other.read_bytes() == before
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["other.h5", "t.h5"]
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["other.h5", "t.partial.h5"]
 
     assert main([*args, "--resume", "--quiet"]) == 0
     reference = simulate(SURFACES["smooth"], MATERIALS["silicon"], np.linspace(2, -1, 7), 1e-8,
