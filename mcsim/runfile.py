@@ -30,10 +30,14 @@ Guarantees:
 * every file is written under a temporary name in the target folder and moved into
   place with one atomic rename, so the path holds either nothing, an earlier
   complete file or a new complete file — never half a file;
-* a run in progress checkpoints itself to its path as an *incomplete* run
-  (``complete = False``, sums of the blocks done so far), which ``--resume`` continues;
-* a complete run is never replaced without ``overwrite``; a lock file
-  (``<name>.lock``) keeps two processes from writing the same path;
+* the file is built in memory and written with plain writes, so a full disk fails
+  cleanly (one line, the temporary removed), never inside the HDF5 library;
+* a run in progress checkpoints itself beside its path, in :func:`checkpoint_path`
+  (``<stem>.partial<suffix>``), as an *incomplete* run (``complete = False``, sums of
+  the blocks done so far), which ``--resume`` continues; the path itself only ever
+  receives complete runs;
+* a complete run is never replaced without ``overwrite``; an ``flock`` on
+  ``<name>.lock`` keeps two processes from writing the same path;
 * ``checksum`` (SHA-256 over every dataset and attribute) and the shapes are checked
   on every read: a truncated or edited file is refused.
 """

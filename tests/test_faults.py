@@ -23,10 +23,15 @@ from conftest import interrupt
 
 from mcsim import RunFileError
 from mcsim.cli import main
-from mcsim.interrupt import Interrupted
 from mcsim.presets import MATERIALS, SURFACES
-from mcsim.runfile import checkpoint_path, read_run, read_state
+from mcsim.runfile import read_run, read_state
 from mcsim.simulation import simulate
+
+
+def checkpoint_path(out):
+    """The documented checkpoint beside a run file: ``<stem>.partial<suffix>``."""
+    return out.with_name(f"{out.stem}.partial{out.suffix}")
+
 
 EXE = os.path.join(os.path.dirname(sys.executable), "mcsim")
 H = np.linspace(2, -1, 7)
@@ -175,6 +180,15 @@ def test_a_lock_left_by_a_killed_writer_is_free(tmp_path):
     assert sorted(p.name for p in tmp_path.iterdir()) == ["t.h5"]
 
 
+def test_a_lock_file_naming_a_live_unrelated_process_is_free(tmp_path):
+    """After a kill, the dead writer's pid may be reused by any process: only a held lock
+    counts, not the pid written in the file (which used to block the path forever)."""
+    out = tmp_path / "t.h5"
+    (tmp_path / "t.h5.lock").write_text(f"{os.uname().nodename} {os.getpid()}")
+    assert main([*SMALL, "--out", str(out)]) == 0
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["t.h5"]
+
+
 def test_a_live_writer_keeps_its_lock_and_its_lock_file(tmp_path, capsys):
     out = tmp_path / "t.h5"
     lock_file = tmp_path / "t.h5.lock"
@@ -227,6 +241,7 @@ def test_a_run_file_at_the_path_is_not_resumed_over_without_overwrite(tmp_path, 
 def interrupt_after(monkeypatch, calls: int) -> None:
     """Make the run's interruption check see a Ctrl-C at its ``calls``-th call."""
     import mcsim.interrupt
+    from mcsim.interrupt import Interrupted
 
     count = iter(range(calls, 0, -1))
 

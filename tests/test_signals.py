@@ -22,7 +22,13 @@ import time
 import numpy as np
 import pytest
 
-from mcsim.runfile import checkpoint_path, read_run, read_state
+from mcsim.runfile import read_run, read_state
+
+
+def checkpoint_path(out):
+    """The documented checkpoint beside a run file: ``<stem>.partial<suffix>``."""
+    return out.with_name(f"{out.stem}.partial{out.suffix}")
+
 
 SEQUENCES = int(os.environ.get("MCSIM_SIGNAL_CAMPAIGN", "1"))
 SURFACE_TOML = {
