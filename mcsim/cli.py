@@ -2,7 +2,8 @@
 
 Errors in the input print one line (``mcsim: error: ...``) and exit with status 2;
 ``--debug`` shows the traceback instead. Ctrl-C exits with status 130 and leaves no
-partial output.
+partial output; ``simulate`` (see :mod:`mcsim.interrupt`) also stops on SIGTERM (status
+143) and keeps its progress in the checkpoint beside the run file, for ``--resume``.
 """
 
 from __future__ import annotations
