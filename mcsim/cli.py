@@ -595,5 +595,19 @@ def main(argv: list[str] | None = None) -> int:
         return 2
 
 
+def console() -> None:
+    """Entry point of the ``mcsim`` command and ``python -m mcsim``.
+
+    Once the exit status is decided, SIGINT and SIGTERM are ignored, so that a late
+    signal can neither kill the interpreter while it exits nor print a traceback.
+    """
+    import signal
+
+    code = main()
+    for sig in (signal.SIGINT, signal.SIGTERM):
+        signal.signal(sig, signal.SIG_IGN)
+    raise SystemExit(code)
+
+
 if __name__ == "__main__":
-    sys.exit(main())
+    console()
