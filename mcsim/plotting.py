@@ -333,9 +333,9 @@ def _panel_figure(lines, runs, info: list[str]):
     handles, _ = axes[0].get_legend_handles_labels()
     if few_any:
         handles += _mc_legend(True)[1:]
-    axes[0].legend(handles=handles, fontsize=7)
-    axes[5].axis("off")
+    axes[5].axis("off")  # the spare panel holds the inputs and the legend: no curve hidden
     axes[5].text(0, 1, "\n".join(info), va="top", fontsize=9, transform=axes[5].transAxes)
+    axes[5].legend(handles=handles, fontsize=8, loc="lower left", frameon=False)
     return fig
 
 

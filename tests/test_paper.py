@@ -269,3 +269,12 @@ def test_several_runs_are_overlaid_each_with_its_own_colour(single_h_run):
     ax = run_figure([single_h_run, other]).axes[1]
     colours = {bars.lines[0].get_color() for bars in ax.containers}
     assert len(ax.containers) >= 2 and len(colours) == 2
+
+
+def test_the_run_plot_keeps_its_legend_off_the_data_panels(single_h_run):
+    """The legend of an overlay once covered the contact-fraction curve."""
+    from mcsim.plotting import PANELS, run_figure
+
+    fig = run_figure([single_h_run, single_h_run])
+    assert all(ax.get_legend() is None for ax in fig.axes[: len(PANELS)])
+    assert fig.axes[len(PANELS)].get_legend() is not None
