@@ -13,7 +13,9 @@
     E = "160 GPa"
     nu = 0.22
     gamma = "0.5 J/m^2"       # work of adhesion
-    H = "12.5 GPa"            # optional, for the plasticity index
+    H = "12.5 GPa"            # optional: hardness (plasticity index, elastic-plastic)
+    z0 = "0.3 nm"             # optional: equilibrium spacing (dmt, maugis-dugdale, Tabor)
+    tau = "100 MPa"           # optional: interfacial shear strength (friction tau*A)
 
 The summit-height distribution is Gaussian unless ``heights`` names a measured
 histogram: a text file (read by :mod:`mcsim.readers.histogram`, its path relative
@@ -62,6 +64,8 @@ _MATERIAL_KEYS = {
     "nu2": ("dimensionless", "Poisson's ratio of solid 2"),
     "gamma": ("energy_per_area", "work of adhesion, e.g. '0.5 J/m^2'"),
     "H": ("pressure", "hardness (optional), e.g. '12.5 GPa'"),
+    "z0": ("length", "equilibrium spacing (optional), e.g. '0.3 nm'"),
+    "tau": ("pressure", "interfacial shear strength (optional), e.g. '100 MPa'"),
 }
 
 
@@ -268,7 +272,7 @@ def material_from_table(
             table.setdefault(two, value)
             written |= {one: both, two: both}
     values = _quantities(
-        table, _MATERIAL_KEYS, where, optional=("H",), units_required=units_required,
+        table, _MATERIAL_KEYS, where, optional=("H", "z0", "tau"), units_required=units_required,
         written=written,
     )  # fmt: skip
     try:

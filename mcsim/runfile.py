@@ -7,7 +7,8 @@ attribute, dimensionless ones ``"1"`` with the normalisation in ``description``)
                            seed_entropy, law, count, area [m^2], realizations,
                            block_size, complete, checksum
     /input/surface         attrs: sigma [m], R [m], eta [m^-2], name, heights (JSON)
-    /input/material        attrs: E1, E2 [Pa], nu1, nu2, gamma [J/m^2], H [Pa], name
+    /input/material        attrs: E1, E2 [Pa], nu1, nu2, gamma [J/m^2], H [Pa], name,
+                           z0 [m], tau [Pa] (NaN: not given; absent in older files)
     /h, /d                 separations: d/σ and d [m]
     /realizations/N        summits per patch
     /realizations/sums     (R, M, 10) raw sums; attrs columns and their units (1, N, N^2)
@@ -249,9 +250,9 @@ def _write_inputs(f, spec: MonteCarloSpec, command: str, complete: bool) -> dict
     mat = spec.material
     m.attrs.update(E1=mat.E1, E2=mat.E2, nu1=mat.nu1, nu2=mat.nu2, gamma=mat.gamma,
                    H=np.nan if mat.H is None else mat.H, name=mat.name)  # fmt: skip
-    m.attrs["units"] = json.dumps(
-        {"E1": "Pa", "E2": "Pa", "nu1": "1", "nu2": "1", "gamma": "J/m^2", "H": "Pa"}
-    )
+    m.attrs.update({k: np.nan if getattr(mat, k) is None else getattr(mat, k) for k in ("z0", "tau")})  # fmt: skip
+    m.attrs["units"] = json.dumps({"E1": "Pa", "E2": "Pa", "nu1": "1", "nu2": "1", "gamma": "J/m^2",
+                                   "H": "Pa", "z0": "m", "tau": "Pa"})  # fmt: skip
     _dataset(f, "h", spec.h, *AXES["h"]).make_scale("h")
     _dataset(f, "d", spec.d, "m", "mean separation", dims=("h",))
     return attrs
@@ -439,9 +440,10 @@ def _read_state(path: Path, f) -> EnsembleSums:
     s, m = f["input/surface"].attrs, f["input/material"].attrs
     surface = Surface(sigma=float(s["sigma"]), R=float(s["R"]), eta=float(s["eta"]),
                       heights=_heights_from_json(s["heights"]), name=str(s["name"]))  # fmt: skip
-    H = float(m["H"])
+    H, z0, tau = (float(m.get(k, np.nan)) for k in ("H", "z0", "tau"))
     material = Material(E1=float(m["E1"]), E2=float(m["E2"]), nu1=float(m["nu1"]), nu2=float(m["nu2"]),
-                        gamma=float(m["gamma"]), H=None if np.isnan(H) else H, name=str(m["name"]))  # fmt: skip
+                        gamma=float(m["gamma"]), H=None if np.isnan(H) else H, name=str(m["name"]),
+                        z0=None if np.isnan(z0) else z0, tau=None if np.isnan(tau) else tau)  # fmt: skip
     spec = MonteCarloSpec(surface, material, f["h"][()], float(attrs["area"]), int(attrs["realizations"]),
                           int(attrs["seed_entropy"]), str(attrs["law"]), str(attrs["count"]))  # fmt: skip
     R, M = spec.realizations, spec.h.size
