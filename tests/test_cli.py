@@ -106,7 +106,7 @@ def test_show_and_plot_describe_a_run(capsys, tmp_path):
         (["analytic", "--surface", "smooth", "--h=1:2"], "cannot read '1:2'"),
         (["analytic", "--surface", "smooth", "--h=1,nan"], "separations must be finite"),
         (["analytic", "--surface", "smooth", "--h=1:0:0"], "asks for 0 points"),
-        (["analytic", "--surface", "smooth", "--law", "dmt", "--h=0"], "unknown law set 'dmt'"),
+        (["analytic", "--surface", "smooth", "--law", "dmtx", "--h=0"], "unknown law set 'dmtx'"),
         (
             ["simulate", "--surface", "smooth", "--area", "0", "--h=0"],
             r"area = 0.0 m\^2 is out of range",

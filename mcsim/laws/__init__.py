@@ -296,3 +296,11 @@ def get_law_set(law: str | LawSet) -> LawSet:
         raise ParameterError(
             f"unknown law set {law!r} (allowed: {', '.join(sorted(LAW_SETS))}){hint}"
         ) from None
+
+
+# The contact models beyond the seed register themselves here (``--law NAME``).
+from . import dmt, elastic_plastic, jkr  # noqa: E402
+
+register(jkr.LAW_SET)
+register(dmt.LAW_SET)
+register(elastic_plastic.LAW_SET)

@@ -1,0 +1,137 @@
+"""Elastic–plastic summits on approach (Kogut & Etsion 2002), no adhesion.
+
+Kogut & Etsion (2002, J. Appl. Mech. 69, 657–662, doi:10.1115/1.1490373) fitted
+finite-element results for a deformable sphere pressed by a rigid flat. With the
+critical interference at the onset of yield (Chang, Etsion & Bogy 1987, with Kogut &
+Etsion's hardness coefficient)::
+
+    ω_c = (πkH/(2E*))² R,   k = 0.454 + 0.41ν,   P_c = (2/3)πkHRω_c,   A_c = πRω_c
+
+(P_c and A_c are the Hertz load and area at ω_c, where the Hertz peak pressure is
+kH), and x = δ/ω_c:
+
+========================  ========================  ==========================
+range                     P/P_c                     A/A_c
+========================  ========================  ==========================
+0 < x < 1 (elastic)       x^1.5 (Hertz)             x (Hertz)
+1 ≤ x < 6                 1.03 x^1.425              0.93 x^1.136
+6 ≤ x < 110               1.40 x^1.263              0.94 x^1.146
+x ≥ 110 (fully plastic)   3x/k  (P = HA)            2x  (A = 2πRδ)
+========================  ========================  ==========================
+
+H is the hardness of the softer solid (material ``H``), ν its Poisson's ratio
+(``Material.nu``), E* the contact modulus. The load exponents and prefactors (1.03,
+1.425, 1.40, 1.263 and the 3/k of the plastic range) agree with independent
+implementations of the model; the area fits are as quoted in issue 10 from the paper.
+
+The fits are not continuous at the range ends (they are the paper's separate fits):
+going up through x = 1 the load jumps by +3.0 % and the area by −7.0 %, through x = 6
+by +1.7 % and +2.9 %, through x = 110 by +14.4 % (ν = 0.22; the plastic 3x/k depends
+on ν) and +7.1 %. The law set lists ω_c, 6ω_c and 110ω_c as
+breakpoints for the quadrature.
+
+Loading only: unloading leaves a residual deformation that depends on the largest
+interference (Etsion, Kligerman & Kadin 2005), which this law set does not model;
+the retraction branch is refused.
+"""
+
+import numpy as np
+
+from . import Edges, LawSet, Output
+
+
+def elastic_plastic_load(delta, R, E_star, H, nu):
+    """Normal load of one elastic–plastic summit (Kogut & Etsion 2002).
+
+    Parameters
+    ----------
+    delta : float or ndarray
+        Interference δ = z − d, m.
+    R : float
+        Summit radius, m.
+    E_star : float
+        Contact modulus E*, Pa.
+    H : float
+        Hardness of the softer solid, Pa.
+    nu : float
+        Poisson's ratio of the softer solid.
+
+    Returns
+    -------
+    float or ndarray
+        Load, N; zero for δ ≤ 0.
+    """
+    k = 0.454 + 0.41 * nu
+    w_c = (np.pi * k * H / (2.0 * E_star)) ** 2 * R
+    p_c = 2.0 / 3.0 * np.pi * k * H * R * w_c
+    x = np.maximum(delta, 0.0) / w_c
+    x0 = np.minimum(x, 1.0)
+    l1 = np.log(np.minimum(np.maximum(x, 1.0), 6.0))
+    l2 = np.log(np.minimum(np.maximum(x, 6.0), 110.0))
+    ratio = (
+        (x < 1.0) * (x0 * np.sqrt(x0))
+        + (x >= 1.0) * (x < 6.0) * (1.03 * np.exp(1.425 * l1))
+        + (x >= 6.0) * (x < 110.0) * (1.40 * np.exp(1.263 * l2))
+        + (x >= 110.0) * (3.0 / k * x)
+    )
+    return p_c * ratio
+
+
+def elastic_plastic_area(delta, R, E_star, H, nu):
+    """Real contact area of one elastic–plastic summit (Kogut & Etsion 2002).
+
+    Parameters
+    ----------
+    delta : float or ndarray
+        Interference δ = z − d, m.
+    R : float
+        Summit radius, m.
+    E_star : float
+        Contact modulus E*, Pa.
+    H : float
+        Hardness of the softer solid, Pa.
+    nu : float
+        Poisson's ratio of the softer solid.
+
+    Returns
+    -------
+    float or ndarray
+        Area, m²; zero for δ ≤ 0.
+    """
+    k = 0.454 + 0.41 * nu
+    w_c = (np.pi * k * H / (2.0 * E_star)) ** 2 * R
+    a_c = np.pi * R * w_c
+    x = np.maximum(delta, 0.0) / w_c
+    l1 = np.log(np.minimum(np.maximum(x, 1.0), 6.0))
+    l2 = np.log(np.minimum(np.maximum(x, 6.0), 110.0))
+    ratio = (
+        (x < 1.0) * x
+        + (x >= 1.0) * (x < 6.0) * (0.93 * np.exp(1.136 * l1))
+        + (x >= 6.0) * (x < 110.0) * (0.94 * np.exp(1.146 * l2))
+        + (x >= 110.0) * (2.0 * x)
+    )
+    return a_c * ratio
+
+
+def critical_interference(R: float, E_star: float, H: float, nu: float) -> float:
+    """Interference at the onset of yield, ω_c = (πkH/(2E*))² R, k = 0.454 + 0.41ν, m."""
+    return (np.pi * (0.454 + 0.41 * nu) * H / (2.0 * E_star)) ** 2 * R
+
+
+def _edges(params) -> Edges:
+    w_c = critical_interference(params["R"], params["E_star"], params["H"], params["nu"])
+    return Edges(breakpoints=(w_c, 6.0 * w_c, 110.0 * w_c))
+
+
+LAW_SET = LawSet(
+    name="elastic-plastic",
+    description="Kogut & Etsion (2002) elastic-plastic sphere, no adhesion, loading only",
+    outputs=(
+        Output("load", "N", elastic_plastic_load, "normal force"),
+        Output("area", "m^2", elastic_plastic_area, "real contact area"),
+    ),
+    edges=_edges,
+    requires=("H",),
+    retract=False,
+    friction=True,
+)
