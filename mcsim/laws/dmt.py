@@ -8,7 +8,7 @@ One summit at interference δ = z − d (m):
 * out of contact (δ ≤ 0): the Derjaguin force on a sphere at gap D = z0 − δ from a
   flat, F = 2πR W(D) (Derjaguin 1934), for the van der Waals interaction energy per
   unit area W(D) = −w (z0/D)² (non-retarded, W = −A_H/(12πD²) with w = A_H/(12πz0²);
-  Israelachvili, *Intermolecular and Surface Forces*, 3rd ed., §11 and §13):
+  Israelachvili, *Intermolecular and Surface Forces*, 3rd ed. 2011, chs. 11 and 13):
   P = −2πwR (z0/D)², area zero. At δ = 0 (D = z0) it equals the in-contact −2πwR, so
   the load is continuous there. This is the Chang, Etsion & Bogy (1988) picture of
   DMT: Hertz stresses inside the contact, the surface force outside.
@@ -26,6 +26,9 @@ the same truncated law is used by the Monte Carlo kernel and the analytic integr
 The force jumps from −2πwR/cutoff² (−0.02πwR by default) to zero there.
 :func:`truncated_fraction` reports how much of a rough surface's attraction that
 drops.
+
+References: Derjaguin, Muller & Toporov, J. Colloid Interface Sci. 53, 314 (1975);
+Chang, Etsion & Bogy, J. Tribol. 110, 50 (1988).
 """
 
 from __future__ import annotations

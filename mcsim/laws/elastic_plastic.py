@@ -20,15 +20,17 @@ x ≥ 110 (fully plastic)   3x/k  (P = HA)            2x  (A = 2πRδ)
 ========================  ========================  ==========================
 
 H is the hardness of the softer solid (material ``H``), ν its Poisson's ratio
-(``Material.nu``), E* the contact modulus. The load exponents and prefactors (1.03,
-1.425, 1.40, 1.263 and the 3/k of the plastic range) agree with independent
-implementations of the model; the area fits are as quoted in issue 10 from the paper.
+(``Material.nu``), E* the contact modulus. The critical values and the load fits
+(1.03, 1.425; 1.40, 1.263; 3/k in the plastic range) were checked against an
+independent public implementation of the model (a MATLAB GW–KE code); the area fits (0.93, 1.136;
+0.94, 1.146) are those issue 10 quotes from the paper, whose text was not available
+here to check them.
 
 The fits are not continuous at the range ends (they are the paper's separate fits):
 going up through x = 1 the load jumps by +3.0 % and the area by −7.0 %, through x = 6
 by +1.7 % and +2.9 %, through x = 110 by +14.4 % (ν = 0.22; the plastic 3x/k depends
-on ν) and +7.1 %. The law set lists ω_c, 6ω_c and 110ω_c as
-breakpoints for the quadrature.
+on ν) and +7.1 %. The law set lists ω_c, 6ω_c and 110ω_c as breakpoints for the
+quadrature.
 
 Loading only: unloading leaves a residual deformation that depends on the largest
 interference (Etsion, Kligerman & Kadin 2005), which this law set does not model;

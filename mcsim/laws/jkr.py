@@ -1,8 +1,8 @@
 """Exact JKR under fixed penetration, with approach and retraction (Fuller & Tabor 1975).
 
 A summit at interference δ = z − d (m) with contact radius a obeys (Johnson, Kendall
-& Roberts 1971, in the form used by Fuller & Tabor 1975, Eqs. 1-2; Johnson 1985,
-§5.5)::
+& Roberts 1971, in the form used by Fuller & Tabor 1975; Johnson 1985, *Contact
+Mechanics*, §5.5)::
 
     δ = a²/R − √(2πwa/E*),        P = 4E*a³/(3R) − √(8πwE*a³),        A = πa²
 
@@ -14,20 +14,27 @@ the summit follows the stable, larger-a branch of δ(a):
   contact, with a³ = 2πwR²/E* and P = −(4/3)πwR at δ → 0⁺ (Greenwood 1997);
 * **retraction**: a summit that touched at the turn (δ_max > 0) stays on the branch
   down to the fold of δ(a), δ_c = −¾ (π²w²R/E*²)^{1/3}, where a³ = πwR²/(8E*) and
-  P = −(5/6)πwR (the fixed-grips pull-off; Maugis 2000, §5.3), and breaks off there.
+  P = −(5/6)πwR (the pull-off under fixed grips; Maugis 2000, *Contact, Adhesion and
+  Rupture of Elastic Solids*), and breaks off there.
 
 Inverting δ → a: with u = √a the first relation is the quartic u⁴ − cRu − δR = 0,
 c = √(2πw/E*); for δ ≥ δ_c its largest positive root (the stable branch) is found in
 closed form (Ferrari's resolvent cubic m³ + δR m − c²R²/8 = 0, solved by Cardano
 without cancellation; it has one positive root and a non-negative discriminant for
-δ ≥ δ_c), then polished by one Newton step. Relative error ≲ 1e-15 away from the
-fold, growing like the problem's own condition number ∝ 1/(a − a_c) next to it.
+δ ≥ δ_c), then polished by one Newton step. Measured against 50-digit arithmetic
+(R of the smooth and rough surfaces, silicon): load and area within 3e-14 relative
+for a > 1.01 a_c, 5e-12 for a > 1.0001 a_c, 5e-10 for a > 1.000001 a_c, a_c the
+contact radius at δ_c: next to the fold a(δ) is ill-conditioned (da/dδ → ∞).
 δ is clamped to [δ_c, 10⁶⁰ m²/R] before inverting so the values stay finite for
 every finite input; the result is multiplied by the in-contact indicator
 (δ_max > 0)·(δ > δ_c). w = 0 gives Hertz.
 
 Each output function writes the inversion out in full, so that each compiles on its
 own in the Monte Carlo kernel (see :mod:`mcsim.laws`).
+
+References: Johnson, Kendall & Roberts, Proc. R. Soc. Lond. A 324, 301 (1971); Fuller &
+Tabor, Proc. R. Soc. Lond. A 345, 327 (1975); Greenwood, Proc. R. Soc. Lond. A 453,
+1277 (1997).
 """
 
 import numpy as np
