@@ -12,6 +12,7 @@ from scipy import integrate
 
 from mcsim.cli import main
 from mcsim.config import load_material, material_from_table
+from mcsim.empirical import Empirical
 from mcsim.errors import ParameterError
 from mcsim.laws import dmt, elastic_plastic, get_law_set, jkr
 from mcsim.params import Material, Surface
@@ -66,6 +67,10 @@ def test_jkr_jumps_in_at_minus_four_thirds_pi_w_r_and_breaks_off_at_delta_c_at_m
     edges = law.edges_for(SMOOTH, SILICON)
     assert (edges.reach, edges.jump_in) == (0.0, 0.0)
     assert edges.break_off == pytest.approx(DELTA_C, rel=1e-15)
+    # the edge is the law's own: in contact just above it, not at it
+    above = np.nextafter(edges.break_off, 0.0)
+    assert law.evaluate([edges.break_off, above], SMOOTH, SILICON, branch="retract")["load"][1] < 0
+    assert law.evaluate(edges.break_off, SMOOTH, SILICON, branch="retract")["load"] == 0
     # δ_c = −¾ π^{2/3} (Rw²/E*²)^{1/3} (Greenwood's reduced units)
     assert DELTA_C == pytest.approx(-0.75 * np.pi ** (2 / 3) * (R * W**2 / E**2) ** (1 / 3))
     jump = law.evaluate(1e-300, SMOOTH, SILICON)
@@ -134,11 +139,21 @@ def test_dmt_cutoff_out_of_range_is_refused_naming_it(cutoff):
     assert "\n" not in str(err.value)
 
 
+def skewed_rough_surface() -> Surface:
+    edges = np.linspace(-3.0, 4.0, 36)
+    counts = np.exp(-0.5 * ((edges[:-1] + edges[1:]) / 2 + 0.3) ** 2) * (1 + 0.1 * np.arange(35))
+    heights = Empirical.from_histogram(edges * 15.8e-9, counts)
+    rough = SURFACES["rough"]
+    return Surface(sigma=heights.sigma, R=rough.R, eta=rough.eta, heights=heights)
+
+
 @pytest.mark.parametrize("h", [-1.0, 0.0, 2.0])
-def test_dmt_truncated_fraction_is_the_share_of_the_attraction_beyond_the_cutoff(h):
-    # independent route: expectations over the Gaussian heights of the law function
+@pytest.mark.parametrize("heights", ["gaussian", "empirical"])
+def test_dmt_truncated_fraction_is_the_share_of_the_attraction_beyond_the_cutoff(h, heights):
+    # independent route: expectations over the summit heights of the law function
     # itself, (practically) untruncated with a cutoff of 1e6 z0
-    surface = SURFACES["rough"]  # σ = 15.8 nm: the cutoff gap 3 nm is 0.17σ
+    # rough: σ = 15.8 nm, so the cutoff gap 3 nm is 0.17σ
+    surface = SURFACES["rough"] if heights == "gaussian" else skewed_rough_surface()
     sigma, pdf = surface.sigma, surface.heights.pdf
     law = dmt.dmt_law_set(1e6)
     args = law.arguments(surface, SILICON)[0]
@@ -149,9 +164,14 @@ def test_dmt_truncated_fraction_is_the_share_of_the_attraction_beyond_the_cutoff
         return -(dmt.dmt_load(delta, *args) - hertz * max(delta, 0) ** 1.5) * pdf(s)
 
     s_cut = h - 9 * SILICON.z0 / sigma
-    dropped = integrate.quad(attraction, -40, s_cut, limit=500, epsabs=0, epsrel=1e-12)[0]
-    kept = integrate.quad(attraction, s_cut, h, limit=500, epsabs=0, epsrel=1e-12)[0]
-    kept += integrate.quad(attraction, h, 40, limit=500, epsabs=0, epsrel=1e-12)[0]
+    edges = getattr(surface.heights, "edges", np.array([]))
+
+    def quad(a, b):
+        inside = [e for e in edges if a < e < b] or None
+        return integrate.quad(attraction, a, b, points=inside, limit=500, epsabs=0, epsrel=1e-12)[0]
+
+    dropped = quad(-40, s_cut)
+    kept = quad(s_cut, h) + quad(h, 40)
     got = dmt.truncated_fraction(surface, SILICON, [h])
     assert got.shape == (1,) and 0 < got[0] < 1
     assert got[0] == pytest.approx(dropped / (dropped + kept), rel=1e-8)

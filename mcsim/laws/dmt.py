@@ -108,7 +108,10 @@ def dmt_law_set(cutoff: float = DEFAULT_CUTOFF) -> LawSet:
     Returns
     -------
     LawSet
-        Outputs ``load`` (N) and ``area`` (m²); needs the material's ``z0``.
+        Outputs ``load`` (N) and ``area`` (m²); needs the material's ``z0``. Named
+        ``dmt`` whatever the cutoff: the cutoff is in its description and enters the
+        law functions as the parameter ``gap_cut`` (m), so the compiled kernel is
+        the same for every cutoff.
     """
     try:
         cutoff = float(cutoff)
@@ -194,8 +197,8 @@ def truncated_fraction(surface, material, h, cutoff: float = DEFAULT_CUTOFF) -> 
         if b <= a:
             return 0.0
         inside = () if edges is None else [e for e in edges if a < e < b]
-        return integrate.quad(tail, a, b, args=(h,), points=inside or None, limit=500,
-                              epsabs=0.0, epsrel=1e-10)[0]  # fmt: skip
+        return integrate.quad(tail, a, b, args=(h,), points=inside or None,
+                              limit=500 + 2 * len(inside), epsabs=0.0, epsrel=1e-10)[0]  # fmt: skip
 
     out = []
     for hj in np.atleast_1d(np.asarray(h, dtype=float)):

@@ -119,8 +119,12 @@ def jkr_area(delta, delta_max, R, E_star, gamma):
 
 
 def break_off(R: float, E_star: float, gamma: float) -> float:
-    """Fold of δ(a), the break-off interference δ_c = −¾ (π²w²R/E*²)^{1/3}, m."""
-    return -0.75 * float(np.cbrt(np.pi**2 * gamma**2 * R / E_star**2))
+    """Fold of δ(a), the break-off interference δ_c = −¾ (π²w²R/E*²)^{1/3}, m.
+
+    Written exactly as in the law functions, so that the edge and their in-contact
+    test agree to the last bit.
+    """
+    return -0.75 * float(np.cbrt(np.pi * np.pi * gamma * gamma * R / (E_star * E_star)))
 
 
 def _edges(params) -> Edges:
