@@ -68,12 +68,14 @@ def elastic_plastic_load(delta, R, E_star, H, nu):
     p_c = 2.0 / 3.0 * np.pi * k * H * R * w_c
     x = np.maximum(delta, 0.0) / w_c
     x0 = np.minimum(x, 1.0)
-    l1 = np.log(np.minimum(np.maximum(x, 1.0), 6.0))
-    l2 = np.log(np.minimum(np.maximum(x, 6.0), 110.0))
+    low, high = x < 6.0, x >= 6.0
+    # one power for both elastic-plastic ranges: c x^e with x clamped to [1, 110]
+    power = (low * 1.03 + high * 1.40) * np.exp(
+        (low * 1.425 + high * 1.263) * np.log(np.minimum(np.maximum(x, 1.0), 110.0))
+    )
     ratio = (
         (x < 1.0) * (x0 * np.sqrt(x0))
-        + (x >= 1.0) * (x < 6.0) * (1.03 * np.exp(1.425 * l1))
-        + (x >= 6.0) * (x < 110.0) * (1.40 * np.exp(1.263 * l2))
+        + (x >= 1.0) * (x < 110.0) * power
         + (x >= 110.0) * (3.0 / k * x)
     )
     return p_c * ratio
@@ -104,14 +106,12 @@ def elastic_plastic_area(delta, R, E_star, H, nu):
     w_c = (np.pi * k * H / (2.0 * E_star)) ** 2 * R
     a_c = np.pi * R * w_c
     x = np.maximum(delta, 0.0) / w_c
-    l1 = np.log(np.minimum(np.maximum(x, 1.0), 6.0))
-    l2 = np.log(np.minimum(np.maximum(x, 6.0), 110.0))
-    ratio = (
-        (x < 1.0) * x
-        + (x >= 1.0) * (x < 6.0) * (0.93 * np.exp(1.136 * l1))
-        + (x >= 6.0) * (x < 110.0) * (0.94 * np.exp(1.146 * l2))
-        + (x >= 110.0) * (2.0 * x)
+    low, high = x < 6.0, x >= 6.0
+    # one power for both elastic-plastic ranges: c x^e with x clamped to [1, 110]
+    power = (low * 0.93 + high * 0.94) * np.exp(
+        (low * 1.136 + high * 1.146) * np.log(np.minimum(np.maximum(x, 1.0), 110.0))
     )
+    ratio = (x < 1.0) * x + (x >= 1.0) * (x < 110.0) * power + (x >= 110.0) * (2.0 * x)
     return a_c * ratio
 
 

@@ -42,7 +42,7 @@ import numpy as np
 from . import Edges, LawSet, Output
 
 
-def jkr_load(delta, delta_max, R, E_star, gamma):
+def jkr_load(delta, delta_max, R, E_star, gamma, delta_c):
     """Net normal force of one JKR summit, P = 4E*a³/(3R) − √(8πwE*a³) (Fuller & Tabor 1975).
 
     Parameters
@@ -57,6 +57,9 @@ def jkr_load(delta, delta_max, R, E_star, gamma):
         Contact modulus E*, Pa.
     gamma : float
         Work of adhesion w, J/m².
+    delta_c : float
+        Break-off interference δ_c = −¾ (π²w²R/E*²)^{1/3}, m (:func:`break_off`,
+        computed once per contact by the law set's ``constants``).
 
     Returns
     -------
@@ -64,7 +67,6 @@ def jkr_load(delta, delta_max, R, E_star, gamma):
         Load, N, compressive positive; zero out of contact (δ_max ≤ 0 or δ ≤ δ_c).
     """
     cR = np.sqrt(2.0 * np.pi * gamma / E_star) * R
-    delta_c = -0.75 * np.cbrt(np.pi * np.pi * gamma * gamma * R / (E_star * E_star))
     p = np.minimum(np.maximum(delta, delta_c) * R, 1e60)
     q = 0.125 * cR * cR
     disc = np.maximum(0.25 * q * q + p * p * p / 27.0, 0.0)
@@ -81,7 +83,7 @@ def jkr_load(delta, delta_max, R, E_star, gamma):
     return (delta_max > 0) * (delta > delta_c) * load
 
 
-def jkr_area(delta, delta_max, R, E_star, gamma):
+def jkr_area(delta, delta_max, R, E_star, gamma, delta_c):
     """Real contact area of one JKR summit, A = πa² (Fuller & Tabor 1975).
 
     Parameters
@@ -96,6 +98,9 @@ def jkr_area(delta, delta_max, R, E_star, gamma):
         Contact modulus E*, Pa.
     gamma : float
         Work of adhesion w, J/m².
+    delta_c : float
+        Break-off interference δ_c = −¾ (π²w²R/E*²)^{1/3}, m (:func:`break_off`,
+        computed once per contact by the law set's ``constants``).
 
     Returns
     -------
@@ -103,7 +108,6 @@ def jkr_area(delta, delta_max, R, E_star, gamma):
         Area, m²; zero out of contact (δ_max ≤ 0 or δ ≤ δ_c).
     """
     cR = np.sqrt(2.0 * np.pi * gamma / E_star) * R
-    delta_c = -0.75 * np.cbrt(np.pi * np.pi * gamma * gamma * R / (E_star * E_star))
     p = np.minimum(np.maximum(delta, delta_c) * R, 1e60)
     q = 0.125 * cR * cR
     disc = np.maximum(0.25 * q * q + p * p * p / 27.0, 0.0)
@@ -121,18 +125,18 @@ def jkr_area(delta, delta_max, R, E_star, gamma):
 def break_off(R: float, E_star: float, gamma: float) -> float:
     """Fold of δ(a), the break-off interference δ_c = −¾ (π²w²R/E*²)^{1/3}, m.
 
-    Written exactly as in the law functions, so that the edge and their in-contact
-    test agree to the last bit.
+    The law functions take it as a parameter (its cube root is not recomputed per
+    summit), and the edges use the same number, so both agree to the last bit.
     """
     return -0.75 * float(np.cbrt(np.pi * np.pi * gamma * gamma * R / (E_star * E_star)))
 
 
+def _constants(surface, material) -> dict:
+    return {"delta_c": break_off(surface.R, material.E_star, material.gamma)}
+
+
 def _edges(params) -> Edges:
-    return Edges(
-        reach=0.0,
-        jump_in=0.0,
-        break_off=break_off(params["R"], params["E_star"], params["gamma"]),
-    )
+    return Edges(reach=0.0, jump_in=0.0, break_off=params["delta_c"])
 
 
 LAW_SET = LawSet(
@@ -143,5 +147,6 @@ LAW_SET = LawSet(
         Output("area", "m^2", jkr_area, "real contact area pi a^2"),
     ),
     edges=_edges,
+    constants=_constants,
     friction=True,
 )
