@@ -72,7 +72,9 @@ def jkr_load(delta, delta_max, R, E_star, gamma, delta_c):
     disc = np.maximum(0.25 * q * q + p * p * p / 27.0, 0.0)
     A = np.cbrt(0.5 * q + np.sqrt(disc))
     B = p / (3.0 * np.maximum(A, 1e-300))
+    # resolvent root m = A − B = q/Q with Q = A² + AB + B² (no cancellation)
     Q = np.maximum(A * A + p / 3.0 + B * B, 1e-300)
+    # s = √(2m); largest root u = (s + √(2cR/s − s²))/2, and 2cR/s = 4√Q
     s = cR / (2.0 * np.sqrt(Q))
     u = 0.5 * (s + np.sqrt(np.maximum(4.0 * np.sqrt(Q) - s * s, 0.0)))
     g = u * u * u * u - cR * u - p
@@ -113,7 +115,9 @@ def jkr_area(delta, delta_max, R, E_star, gamma, delta_c):
     disc = np.maximum(0.25 * q * q + p * p * p / 27.0, 0.0)
     A = np.cbrt(0.5 * q + np.sqrt(disc))
     B = p / (3.0 * np.maximum(A, 1e-300))
+    # resolvent root m = A − B = q/Q with Q = A² + AB + B² (no cancellation)
     Q = np.maximum(A * A + p / 3.0 + B * B, 1e-300)
+    # s = √(2m); largest root u = (s + √(2cR/s − s²))/2, and 2cR/s = 4√Q
     s = cR / (2.0 * np.sqrt(Q))
     u = 0.5 * (s + np.sqrt(np.maximum(4.0 * np.sqrt(Q) - s * s, 0.0)))
     g = u * u * u * u - cR * u - p
