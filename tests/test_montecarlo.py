@@ -118,7 +118,7 @@ def test_truncated_gaussian_sampler_has_the_truncated_mean_and_variance(s_min):
         ({"realizations": 2.5}, "realizations = 2.5"),
         ({"h": []}, "h must be a non-empty list"),
         ({"h": [0.0, np.inf]}, "h must be finite"),
-        ({"law": "dmt"}, r"unknown law set 'dmt' \(allowed: seed\)"),
+        ({"law": "dmtx"}, r"unknown law set 'dmtx' \(allowed: .*seed\); did you mean 'dmt'\?"),
         ({"count": "exact"}, "count = 'exact' is not one of poisson, fixed"),
         ({"count": "fixed", "area": 1e-15}, r"round\(eta\*area\) must be >= 1"),
     ],
