@@ -299,8 +299,9 @@ def get_law_set(law: str | LawSet) -> LawSet:
 
 
 # The contact models beyond the seed register themselves here (``--law NAME``).
-from . import dmt, elastic_plastic, jkr  # noqa: E402
+from . import dmt, elastic_plastic, jkr, maugis_dugdale  # noqa: E402
 
 register(jkr.LAW_SET)
 register(dmt.LAW_SET)
+register(maugis_dugdale.LAW_SET)
 register(elastic_plastic.LAW_SET)
