@@ -194,6 +194,17 @@ def test_break_off_is_the_turning_point_of_the_curve_under_fixed_penetration(lam
     assert tab.delta_break == pytest.approx(expected, abs=1e-10)
 
 
+@pytest.mark.parametrize("lam", np.geomspace(1e-3, 1e3, 13))
+def test_the_contact_curve_has_one_turning_point_beyond_which_it_is_single_valued(lam):
+    # the table solves Δ(ψ) = Δ on (0, ψ_lo] by bisection: Δ must fall monotonically there
+    psi = np.linspace(1e-4, np.pi / 2, 20001)
+    delta = md.contact_curve(psi, lam)[2]
+    turns = np.count_nonzero(np.diff(np.sign(np.diff(delta))))
+    assert turns == (1 if lam > md.LAMBDA_C else 0)
+    stable = delta[psi <= md.table(lam).psi_lo]
+    assert np.all(np.diff(stable) < 0)
+
+
 def test_maugis_lambda_is_about_1_16_tabor():
     R, w, z0, E_star = SURFACES["smooth"].R, SILICON.gamma, SILICON.z0, SILICON.E_star
     tabor = np.cbrt(R * w * w / (E_star**2 * z0**3))
