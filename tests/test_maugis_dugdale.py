@@ -144,7 +144,9 @@ def test_the_zone_force_tends_to_the_rigid_sphere_dugdale_force_as_lambda_vanish
     gap = np.linspace(0.1, 0.9, 9) * tab.h0  # g = −Δ, out of contact (touch-down: g = 0.05)
     P = table_values(-gap, lam)[0]
     rigid = -2.0 * (1.0 - gap / tab.h0)  # −2πRσ0(h0 − g) in units of πwR
-    # the difference is πλbC with b = 8λ/(3π) and C < 36 here: O(λ^{3/2}) = 1e-4
+    # the elastic zone adds −πλbC (b = 8λ/(3π), C the zone radius): O(λ^{3/2}) → 0
+    C = tab.b + np.sqrt(tab.b**2 + 2 * (tab.h0 - gap))
+    np.testing.assert_allclose(P - rigid, -np.pi * lam * tab.b * C, rtol=1e-9)
     assert np.abs(P - rigid).max() < 1e-4
 
 
