@@ -1,14 +1,17 @@
-"""Per-block partial sums of the per-summit laws over a grid of separations.
+"""Per-block partial sums of a law set's outputs over rows of separations.
 
-A block is a set of summit heights; the result is, for each separation d_j, the
-number of contacting summits and the sums of the three forces, their squares and
-their pairwise products (the moments the standard errors need). Two
-implementations with one contract:
+A block is a set of summit heights; a *row* is a separation d_j with the closest
+approach d_turn_j before it (d_turn_j = d_j on approach, the turn on retraction).
+The result is, for each row, the number of summits in contact and the sums of the
+law set's outputs, their squares and their pairwise products (the moments the
+standard errors need; columns :func:`sum_columns`). Two implementations with one
+contract:
 
-* :func:`block_sums_numpy`: the reference, a plain NumPy loop over separations
-  calling the law set's vectorised functions;
+* :func:`block_sums_numpy`: the reference, a plain NumPy loop over rows calling the
+  law set's vectorised functions;
 * :func:`block_sums`: the fused kernel, the *same* law functions compiled by numba
-  and evaluated only on contacting (summit, separation) pairs.
+  and evaluated only on (summit, row) pairs that can carry force: z above the row's
+  threshold :meth:`mcsim.laws.Edges.threshold`.
 
 Tests check the two against each other on random populations.
 """
@@ -27,62 +30,103 @@ from pathlib import Path
 
 import numpy as np
 
-from .laws import LawSet
+from .laws import Edges, LawSet
 
-#: Columns of a block-sum array, in order (forces in N).
+#: Columns of a block-sum array of the seed law set, in order (forces in N).
 SUM_COLUMNS = ("n_contact", "P", "F", "T", "PP", "FF", "TT", "PF", "PT", "FT")
 
-
-def _moments(p: np.ndarray, f: np.ndarray, t: np.ndarray) -> list[float]:
-    return [p.size, p.sum(), f.sum(), t.sum(), p @ p, f @ f, t @ t, p @ f, p @ t, f @ t]
+_TOUCHING = Edges()
 
 
-def block_sums_numpy(z: np.ndarray, d: np.ndarray, law: LawSet, args) -> np.ndarray:
-    """Reference partial sums: for each separation, mask the contacting summits and sum.
+def sum_columns(law: LawSet) -> tuple[str, ...]:
+    """Columns of a block-sum array: ``n_contact``, Σ of each output, Σ of each output
+    squared, then the cross products of outputs i < j in lexicographic order of (i, j).
+
+    For the seed law set this is :data:`SUM_COLUMNS`.
+    """
+    names = law.names
+    pairs = [(a, b) for i, a in enumerate(names) for b in names[i + 1 :]]
+    return ("n_contact", *names, *(n + n for n in names), *(a + b for a, b in pairs))
+
+
+def _moments(values: list[np.ndarray], n_contact: int) -> list[float]:
+    k = len(values)
+    pairs = [(i, j) for i in range(k) for j in range(i + 1, k)]
+    return [n_contact, *(v.sum() for v in values), *(v @ v for v in values),
+            *(values[i] @ values[j] for i, j in pairs)]  # fmt: skip
+
+
+def _rows(d, d_turn) -> tuple[np.ndarray, np.ndarray]:
+    d = np.ascontiguousarray(d, dtype=float)
+    d_turn = d if d_turn is None else np.ascontiguousarray(d_turn, dtype=float)
+    if d_turn.shape != d.shape or d.ndim != 1:
+        raise ValueError("d and d_turn must be 1-D arrays of the same length")
+    if np.any(d_turn > d):
+        raise ValueError("d_turn must not exceed d (the turn is the closest approach)")
+    return d, d_turn
+
+
+def block_sums_numpy(
+    z: np.ndarray, d: np.ndarray, law: LawSet, args, *, d_turn=None, edges: Edges | None = None
+) -> np.ndarray:
+    """Reference partial sums: for each row, mask the summits that can carry force and sum.
 
     Parameters
     ----------
     z : ndarray
         Summit heights above the mean summit plane, m.
     d : ndarray
-        Separations, m, any order.
+        Separations of the rows, m, any order.
     law : LawSet
         The per-summit laws.
     args : tuple of tuple
         ``law.arguments(surface, material)``.
+    d_turn : ndarray, optional
+        Closest approach before each row, m (``d_turn <= d``); ``d`` (approach) by default.
+    edges : Edges, optional
+        ``law.edges_for(surface, material)``; all zero (the seed's) by default.
 
     Returns
     -------
-    ndarray, shape (len(d), 10)
-        Columns :data:`SUM_COLUMNS`.
+    ndarray, shape (len(d), len(sum_columns(law)))
+        Columns :func:`sum_columns`: summits in contact, then sums of the outputs in
+        their units (N, m², ...), their squares and pairwise products.
     """
-    out = np.empty((d.size, len(SUM_COLUMNS)))
-    for j, dj in enumerate(d):
-        delta = z[z > dj] - dj
-        p, f, t = (fn(delta, *a) for fn, a in zip(law.laws, args))
-        out[j] = _moments(p, f, t)
+    d, d_turn = _rows(d, d_turn)
+    edges = _TOUCHING if edges is None else edges
+    out = np.empty((d.size, len(sum_columns(law))))
+    for j, (dj, tj) in enumerate(zip(d, d_turn)):
+        zj = z[z > edges.threshold(dj, tj)]
+        delta, delta_max = zj - dj, zj - tj
+        values = [
+            np.asarray(o.law(delta, delta_max, *a) if o.stateful else o.law(delta, *a), float)
+            for o, a in zip(law.outputs, args)
+        ]
+        n_contact = int(np.count_nonzero(edges.in_contact(delta, delta_max)))
+        out[j] = _moments(values, n_contact)
     return out
 
 
-def _sweep(z, d_desc, out, a_load, a_adh, a_fric):  # pragma: no cover - compiled by numba
-    """Template of the fused kernel: ``load``, ``adhesion`` and ``friction`` are the law
-    set's functions, bound as globals of the module generated by :func:`_compiled`.
+_SWEEP_HEAD = '''\
+def _sweep(z, d, d_turn, thr_desc, order, out, jump_in, break_off, {args}):
+    """Fused kernel of law set {name!r}, generated by mcsim.kernels (see _sweep_source).
 
-    Summits are first bucketed by the first separation they touch (a counting sort
-    against the descending grid), so that at separation j the contacting summits are
-    a prefix of the bucketed array. The loop over that prefix evaluates the three
-    laws and accumulates the nine moments in registers; LLVM vectorises it (the
-    ``reassoc`` flag lets it reorder the sums, in a fixed way for a given block, so
-    the result stays bit-reproducible). Non-contacting pairs are never evaluated.
+    Summits are first bucketed by the first row (in descending order of the rows'
+    thresholds) at which they can carry force (a counting sort), so that for the k-th
+    row the summits to evaluate are a prefix of the bucketed array. The loop over
+    that prefix evaluates the laws and accumulates the moments in registers; LLVM
+    vectorises it (the ``reassoc`` flag lets it reorder the sums, in a fixed way for
+    a given block, so the result stays bit-reproducible). Pairs that cannot carry
+    force are never evaluated. Results go to the rows' original positions.
     """
-    n, m = z.size, d_desc.size
-    first = np.empty(n, np.int64)  # index of the first separation the summit touches
+    n, m = z.size, thr_desc.size
+    first = np.empty(n, np.int64)  # index of the first row at which the summit counts
     offsets = np.zeros(m + 2, np.int64)
     for i in range(n):
         lo, hi = 0, m
-        while lo < hi:  # first j with d_j < z_i
+        while lo < hi:  # first k with thr_k < z_i
             mid = (lo + hi) >> 1
-            if d_desc[mid] < z[i]:
+            if thr_desc[mid] < z[i]:
                 hi = mid
             else:
                 lo = mid + 1
@@ -95,29 +139,52 @@ def _sweep(z, d_desc, out, a_load, a_adh, a_fric):  # pragma: no cover - compile
         k = first[i] + 1
         bucketed[offsets[k]] = z[i]
         offsets[k] += 1
-    for j in range(m):
-        n_contact = offsets[j + 1]  # summits with first <= j
-        dj = d_desc[j]
-        sp = sf = st = spp = sff = stt = spf = spt = sft = 0.0
-        for i in range(n_contact):
-            delta = bucketed[i] - dj
-            p = load(delta, *a_load)  # noqa: F821
-            f = adhesion(delta, *a_adh)  # noqa: F821
-            t = friction(delta, *a_fric)  # noqa: F821
-            sp += p
-            sf += f
-            st += t
-            spp += p * p
-            sff += f * f
-            stt += t * t
-            spf += p * f
-            spt += p * t
-            sft += f * t
-        row = out[j]
-        row[0] = n_contact
-        row[1], row[2], row[3] = sp, sf, st
-        row[4], row[5], row[6] = spp, sff, stt
-        row[7], row[8], row[9] = spf, spt, sft
+    for k in range(m):
+        n_eval = offsets[k + 1]  # summits with first <= k
+        j = order[k]
+        dj = d[j]
+        dtj = d_turn[j]
+'''
+
+
+def _sweep_source(law: LawSet, counting: bool) -> str:
+    """Source of the fused kernel of ``law``: the loop body follows its outputs.
+
+    ``counting`` False (a stateless law set whose edges are all zero, such as the
+    seed): every evaluated pair is in contact, n_contact is the prefix length and the
+    loop body is exactly mcsim 0.1's (the seed's sums stay bit-identical). Otherwise
+    the body also computes δ_max = z − d_turn for stateful outputs and counts the
+    pairs in contact (δ_max > jump_in and δ > break_off).
+    """
+    k = len(law.outputs)
+    s = [f"s{i}" for i in range(k)]
+    ss = [f"s{i}{i}" for i in range(k)]
+    pairs = [(i, j) for i in range(k) for j in range(i + 1, k)]
+    sx = [f"s{i}{j}" for i, j in pairs]
+    accumulators = [*s, *ss, *sx]
+    lines = [_SWEEP_HEAD.format(args=", ".join(f"a{i}" for i in range(k)), name=law.name)]
+    body = " " * 12
+    lines.append(f"        nc = {'0' if counting else 'n_eval'}")
+    lines.append(f"        {' = '.join(accumulators)} = 0.0")
+    lines.append("        for i in range(n_eval):")
+    if counting:
+        lines.append(f"{body}zi = bucketed[i]")
+        lines.append(f"{body}delta = zi - dj")
+        lines.append(f"{body}delta_max = zi - dtj")
+    else:
+        lines.append(f"{body}delta = bucketed[i] - dj")
+    for i, o in enumerate(law.outputs):
+        state = "delta_max, " if o.stateful else ""
+        lines.append(f"{body}o{i} = law{i}(delta, {state}*a{i})  # noqa: F821")
+    if counting:
+        lines.append(f"{body}nc += (delta_max > jump_in) * (delta > break_off)")
+    lines += [f"{body}s{i} += o{i}" for i in range(k)]
+    lines += [f"{body}s{i}{i} += o{i} * o{i}" for i in range(k)]
+    lines += [f"{body}s{i}{j} += o{i} * o{j}" for i, j in pairs]
+    lines.append("        row = out[j]")
+    lines.append("        row[0] = nc")
+    lines += [f"        row[{c + 1}] = {a}" for c, a in enumerate(accumulators)]
+    return "\n".join(lines) + "\n"
 
 
 def cache_dir() -> Path:
@@ -131,26 +198,32 @@ def cache_dir() -> Path:
 _COMPILE_LOCK = threading.Lock()
 
 
-def _compiled(law: LawSet):
+def _counting(law: LawSet, edges: Edges) -> bool:
+    """Whether the kernel must track δ_max and count contacts (see :func:`_sweep_source`)."""
+    return law.stateful or (edges.reach, edges.jump_in, edges.break_off) != (0.0, 0.0, 0.0)
+
+
+def _compiled(law: LawSet, counting: bool = False):
     """The fused kernel of a law set (see :func:`_generate`), built once per process.
 
     The lock makes worker threads that start together wait for one build rather than
     race to write the same module.
     """
     with _COMPILE_LOCK:
-        return _generate(law)
+        return _generate(law, counting)
 
 
 @functools.cache
-def _generate(law: LawSet):
+def _generate(law: LawSet, counting: bool = False):
     """The fused kernel of a law set, compiled by numba from the law set's own functions.
 
-    A small module is generated that imports the three law functions and holds the
-    source of :func:`_sweep`; its name carries a hash of all four sources, so numba's
-    on-disk cache (``cache=True``) is reused across processes and never goes stale
-    when a law changes.
+    A small module is generated that imports the law functions and holds the source
+    of the sweep (:func:`_sweep_source`); its name carries a hash of all the sources,
+    so numba's on-disk cache (``cache=True``) is reused across processes and never
+    goes stale when a law changes.
     """
-    sources = [inspect.getsource(_sweep), *(inspect.getsource(f) for f in law.laws)]
+    sweep = _sweep_source(law, counting)
+    sources = [sweep, *(inspect.getsource(f) for f in law.laws)]
     digest = hashlib.sha256("\n".join([numba_version(), *sources]).encode()).hexdigest()[:16]
     name = f"mcsim_kernel_{law.name.replace('-', '_')}_{digest}"
     folder = cache_dir() / "kernels"
@@ -158,16 +231,13 @@ def _generate(law: LawSet):
     if not path.exists():
         folder.mkdir(parents=True, exist_ok=True)
         imports = "\n".join(
-            f"from {f.__module__} import {f.__name__} as _{role}"
-            for role, f in zip(("load", "adhesion", "friction"), law.laws)
+            f"from {f.__module__} import {f.__name__} as _law{i}" for i, f in enumerate(law.laws)
         )
+        compiled = "\n".join(f"law{i} = numba.njit(_law{i})" for i in range(len(law.laws)))
         text = (
             f'"""Generated by mcsim.kernels for law set {law.name!r}; do not edit."""\n\n'
-            f"import numba\nimport numpy as np\n\n{imports}\n\n"
-            "load = numba.njit(_load)\n"
-            "adhesion = numba.njit(_adhesion)\n"
-            "friction = numba.njit(_friction)\n\n\n"
-            f"{sources[0]}\n\n"
+            f"import numba\nimport numpy as np\n\n{imports}\n\n{compiled}\n\n\n"
+            f"{sweep}\n\n"
             'kernel = numba.njit(nogil=True, cache=True, fastmath={"reassoc", "contract", "nsz"})(_sweep)\n'
         )
         fd, tmp = tempfile.mkstemp(dir=folder, prefix=f".{name}.", suffix=".tmp")
@@ -187,16 +257,24 @@ def numba_version() -> str:
     return numba.__version__
 
 
-def block_sums(z: np.ndarray, d_desc: np.ndarray, law: LawSet, args) -> np.ndarray:
-    """Fused partial sums (same contract as :func:`block_sums_numpy`, ``d`` descending).
+def block_sums(
+    z: np.ndarray, d: np.ndarray, law: LawSet, args, *, d_turn=None, edges: Edges | None = None
+) -> np.ndarray:
+    """Fused partial sums (same contract as :func:`block_sums_numpy`).
 
-    The work is the number of contacting (summit, separation) pairs, and the
+    The work is the number of (summit, row) pairs that can carry force, and the
     summation order is fixed by the order of ``z``: the result is bit-reproducible.
+    Array parameters (tabulated curves) in ``args`` are passed to the kernel as
+    arguments, never frozen into the compiled code.
     """
-    if d_desc.size > 1 and np.any(np.diff(d_desc) > 0):
-        raise ValueError("d_desc must be sorted in descending order")
-    out = np.zeros((d_desc.size, len(SUM_COLUMNS)))
-    _compiled(law)(
-        np.ascontiguousarray(z, dtype=float), np.ascontiguousarray(d_desc, dtype=float), out, *args
-    )
+    d, d_turn = _rows(d, d_turn)
+    edges = _TOUCHING if edges is None else edges
+    threshold = np.asarray(edges.threshold(d, d_turn), dtype=float)
+    order = np.argsort(-threshold, kind="stable")
+    out = np.zeros((d.size, len(sum_columns(law))))
+    counting = _counting(law, edges)
+    _compiled(law, counting)(
+        np.ascontiguousarray(z, dtype=float), d, d_turn, np.ascontiguousarray(threshold[order]),
+        order, out, float(edges.jump_in), float(edges.break_off), *args,
+    )  # fmt: skip
     return out

@@ -1,0 +1,54 @@
+"""A test-only law set exercising everything the engine must follow beyond the seed.
+
+Stateful outputs (``delta_max``), a non-contact attraction (reach < 0), a break-off
+below the jump-in (hysteresis), a stateless output beside stateful ones, and a 1-D
+array constant (a table, as Maugis–Dugdale passes one). No physics: only the kernel
+contract. Importable by the generated kernel module (``tests`` is on ``sys.path``).
+"""
+
+import numpy as np
+
+from mcsim.laws import Edges, LawSet, Output
+
+
+def toy_load(delta, delta_max, R, K, c, table):
+    """Signed load, N: compressive in contact, tensile within ``2c`` outside it."""
+    contact = (delta_max > 0.0) * (delta > -c)
+    x = np.maximum(delta + c, 0.0)
+    i = np.int64(np.floor(np.minimum(x / c, 3.0)))
+    near = (delta > -2.0 * c) * (1.0 - contact)
+    return K * np.sqrt(R) * (contact * (x * np.sqrt(x) * table[i] - c * np.sqrt(c))
+                             - near * (delta + 2.0 * c) * np.sqrt(c))  # fmt: skip
+
+
+def toy_area(delta, delta_max, R, c):
+    """Contact area, m²: only in contact."""
+    contact = (delta_max > 0.0) * (delta > -c)
+    return contact * np.pi * R * (delta + c)
+
+
+def toy_grip(delta, R, gamma):
+    """A stateless output, N."""
+    return np.maximum(delta, 0.0) * np.pi * R * gamma / (1.0 + np.abs(delta) / R)
+
+
+def toy_constants(surface, material):
+    return {"c": 0.3 * surface.sigma, "table": np.array([1.0, 1.5, 2.0, 2.5])}
+
+
+def toy_edges(params):
+    c = params["c"]
+    return Edges(reach=-2.0 * c, jump_in=0.0, break_off=-c, breakpoints=(-c,))
+
+
+TOY = LawSet(
+    name="toy",
+    description="test-only: stateful, attraction, hysteresis, array constant",
+    outputs=(
+        Output("load", "N", toy_load),
+        Output("area", "m^2", toy_area),
+        Output("grip", "N", toy_grip),
+    ),
+    edges=toy_edges,
+    constants=toy_constants,
+)
