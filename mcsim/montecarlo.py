@@ -2,10 +2,16 @@
 
 A run is ``realizations`` independent patches of nominal area A. Each patch holds N
 summits (N ~ Poisson(ηA), or N = round(ηA) fixed). Only summits above the lowest
-separation h_min can touch at any separation of the sweep, so the engine draws their
-number exactly (Binomial(N, S(h_min)), or Poisson thinning) and their heights from
-the distribution truncated to s > h_min: the same law as sampling all N, far less
-work at high h_min.
+threshold s_min of the sweep (:attr:`MonteCarloSpec.s_min`: the lowest separation
+h_min for the seed, lower for a law set with non-contact attraction or a break-off
+below zero) can carry force at any row of the sweep, so the engine draws their
+number exactly (Binomial(N, S(s_min)), or Poisson thinning) and their heights from
+the distribution truncated to s > s_min: the same law as sampling all N, far less
+work at high s_min.
+
+The rows of a run are the separations of ``h`` on approach and, with ``cycle``,
+again on retraction after the closest approach min(h) (:meth:`MonteCarloSpec.rows`);
+every block is summed over all rows in one pass.
 
 Reproducibility: heights are drawn and summed in fixed blocks of :data:`BLOCK`
 summits. Block b of realization r draws from its own stream
@@ -32,8 +38,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .errors import ParameterError
-from .kernels import SUM_COLUMNS, block_sums
-from .laws import get_law_set
+from .kernels import block_sums, sum_columns
+from .laws import BRANCHES, LawSet, get_law_set
 from .params import Material, Surface, check_range, check_separations
 
 #: Summits per random stream and per partial sum. Part of the reproducibility contract:
@@ -78,6 +84,9 @@ class MonteCarloSpec:
         Law-set name.
     count : {"poisson", "fixed"}
         N ~ Poisson(ηA) or N = round(ηA).
+    cycle : bool
+        Approach over ``h`` and then retraction back over the same ``h`` after the
+        closest approach min(h) (both branches stored); approach only by default.
     """
 
     surface: Surface
@@ -88,6 +97,7 @@ class MonteCarloSpec:
     entropy: int
     law: str = "seed"
     count: str = "poisson"
+    cycle: bool = False
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "h", check_separations(self.h))
@@ -105,7 +115,13 @@ class MonteCarloSpec:
                 f"area = {self.area!r} m^2 holds {self.surface.eta * self.area:.3g} summits: "
                 "round(eta*area) must be >= 1 for count='fixed'"
             )
-        get_law_set(self.law)
+        law = get_law_set(self.law)
+        if not isinstance(self.cycle, bool | np.bool_):
+            raise ParameterError(f"cycle = {self.cycle!r} must be True or False")
+        object.__setattr__(self, "cycle", bool(self.cycle))
+        if self.cycle:
+            law.check_branch("retract")
+        law.parameters(self.surface, self.material)  # required material fields
 
     def fields(self) -> dict:
         """The defining inputs, comparable with ``==`` (h as a tuple)."""
@@ -127,6 +143,52 @@ class MonteCarloSpec:
     def d(self) -> np.ndarray:
         """Separations in m."""
         return self.h * self.surface.sigma
+
+    @property
+    def law_set(self) -> LawSet:
+        return get_law_set(self.law)
+
+    @property
+    def branches(self) -> tuple[str, ...]:
+        """``("approach",)``, or ``("approach", "retract")`` for a cycle."""
+        return BRANCHES if self.cycle else BRANCHES[:1]
+
+    @property
+    def turn(self) -> float:
+        """Closest approach of a cycle, min(h) (dimensionless, d/σ)."""
+        return float(self.h.min())
+
+    def rows(self) -> tuple[np.ndarray, np.ndarray]:
+        """Separation d and closest approach d_turn (m) of every row of the sums: the
+        approach rows (d_turn = d) in the order of ``h``, then with ``cycle`` the
+        retraction rows (d_turn = σ·min(h)) in the same order."""
+        d = self.d
+        if not self.cycle:
+            return d, d
+        return np.concatenate([d, d]), np.concatenate([d, np.full_like(d, d.min())])
+
+    @property
+    def row_branch(self) -> np.ndarray:
+        """Branch name of every row (see :meth:`rows`)."""
+        return np.repeat(np.array(self.branches), self.h.size)
+
+    @property
+    def row_h(self) -> np.ndarray:
+        """d/σ of every row (see :meth:`rows`)."""
+        return np.tile(self.h, len(self.branches))
+
+    @property
+    def row_s(self) -> np.ndarray:
+        """Lowest standardized summit height that can carry force at each row (for the
+        seed, h itself): h + (threshold − d)/σ (:meth:`mcsim.laws.Edges.threshold`)."""
+        d, d_turn = self.rows()
+        edges = self.law_set.edges_for(self.surface, self.material)
+        return self.row_h + (edges.threshold(d, d_turn) - d) / self.surface.sigma
+
+    @property
+    def s_min(self) -> float:
+        """Lowest standardized height sampled: below it no summit carries force at any row."""
+        return float(self.row_s.min())
 
     @property
     def expected_summits(self) -> float:
@@ -155,9 +217,9 @@ def _stream(entropy: int, *key: int) -> np.random.Generator:
 
 
 def plan_patch(spec: MonteCarloSpec, r: int) -> PatchPlan:
-    """Draw N and the number of summits above h_min for realization ``r``."""
+    """Draw N and the number of summits above s_min for realization ``r``."""
     rng = _stream(spec.entropy, r, 0)
-    p = float(spec.surface.heights.sf(spec.h.min()))
+    p = float(spec.surface.heights.sf(spec.s_min))
     lam = spec.surface.eta * spec.area
     if spec.count == "fixed":
         n = round(lam)
@@ -168,9 +230,9 @@ def plan_patch(spec: MonteCarloSpec, r: int) -> PatchPlan:
 
 
 def sample_block(spec: MonteCarloSpec, plan: PatchPlan, r: int, b: int) -> np.ndarray:
-    """Heights (m) of block ``b`` of realization ``r``: summits above h_min only."""
+    """Heights (m) of block ``b`` of realization ``r``: summits above s_min only."""
     rng = _stream(spec.entropy, r, 1 + b)
-    s = spec.surface.heights.sample_above(plan.block_size(b), float(spec.h.min()), rng)
+    s = spec.surface.heights.sample_above(plan.block_size(b), spec.s_min, rng)
     return s * spec.surface.sigma
 
 
@@ -184,14 +246,16 @@ class EnsembleSums:
         The run definition.
     n_summits : ndarray, shape (R,)
         N of each patch.
-    sums : ndarray, shape (R, M, 10)
-        Per realization and separation (in the order of ``spec.h``): the columns of
-        :data:`mcsim.kernels.SUM_COLUMNS`, forces in N, summed over the blocks done.
+    sums : ndarray, shape (R, rows, C)
+        Per realization and row (:meth:`MonteCarloSpec.rows`: the separations of
+        ``spec.h`` in order, on approach, then on retraction for a cycle): the columns
+        :func:`mcsim.kernels.sum_columns` of the law set (for the seed
+        :data:`mcsim.kernels.SUM_COLUMNS`, forces in N), summed over the blocks done.
     n_blocks, done_blocks : ndarray, shape (R,)
         Blocks of each patch, and how many of them (from the first, in order) are in
         ``sums``.
     heights : list of ndarray or None
-        Sampled heights above h_min (m) per realization, when kept.
+        Sampled heights above s_min (m) per realization, when kept.
     """
 
     spec: MonteCarloSpec
@@ -213,7 +277,7 @@ class EnsembleSums:
         return cls(
             spec=spec,
             n_summits=np.array([p.n_summits for p in plans], dtype=np.int64),
-            sums=np.zeros((R, spec.h.size, len(SUM_COLUMNS))),
+            sums=np.zeros((R, spec.rows()[0].size, len(sum_columns(spec.law_set)))),
             n_blocks=np.array([p.n_blocks for p in plans], dtype=np.int64),
             done_blocks=np.zeros(R, dtype=np.int64),
         )
@@ -262,16 +326,17 @@ def make_tasks(plans: list[PatchPlan], chunk_size: int, first_block=None) -> Ite
 def run_task(spec: MonteCarloSpec, task: Task, keep_heights: bool = False):
     """Sample and sum the blocks of one task; runs in a thread, a process or on Dask.
 
-    Returns the per-block partial sums (each ``(M, 10)``, separations in descending
-    order of d) and, if asked, the sampled heights.
+    Returns the per-block partial sums (each ``(rows, C)``, rows as in
+    :meth:`MonteCarloSpec.rows`) and, if asked, the sampled heights.
     """
-    law = get_law_set(spec.law)
+    law = spec.law_set
     args = law.arguments(spec.surface, spec.material)
-    d_desc = np.sort(spec.d)[::-1]
+    edges = law.edges_for(spec.surface, spec.material)
+    d, d_turn = spec.rows()
     blocks = [
         sample_block(spec, task.plan, task.realization, b) for b in range(task.start, task.stop)
     ]
-    partials = [block_sums(z, d_desc, law, args) for z in blocks]
+    partials = [block_sums(z, d, law, args, d_turn=d_turn, edges=edges) for z in blocks]
     return partials, (blocks if keep_heights else None)
 
 
@@ -384,7 +449,6 @@ def run_sums(
         )
     plans = state.plans()
     tasks = make_tasks(plans, chunk_size, state.done_blocks)
-    order = np.argsort(-spec.d, kind="stable")  # kernel rows are in descending d
     kept: list[list[np.ndarray]] = [[] for _ in plans]
     next_checkpoint = time.monotonic() + min(FIRST_CHECKPOINT, checkpoint_every)
     with contextlib.ExitStack() as stack:
@@ -419,7 +483,7 @@ def run_sums(
             for task, (partials, blocks) in results:
                 sums = committed[task.realization][0].copy()
                 for part in partials:  # in block order
-                    sums[order] += part
+                    sums += part
                 committed[task.realization] = (sums, task.stop)
                 unsaved = True
                 if blocks is not None:

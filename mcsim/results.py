@@ -7,14 +7,25 @@ and the analytic integrals, and below storage (:mod:`mcsim.runfile`) and
 
 from __future__ import annotations
 
+import inspect
+import types
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
-from .analytic import QUANTITIES, gw_curves
+from .analytic import gw_curves
+from .errors import ParameterError
+from .kernels import sum_columns
 from .montecarlo import EnsembleSums, MonteCarloSpec
-from .statistics import Summary, compare_table, expected_values, per_realization, summarize
+from .statistics import (
+    Summary,
+    compare_table,
+    expected_values,
+    per_realization,
+    quantities,
+    summarize,
+)
 
 #: Normalisation of each dimensionless quantity, spelled out (the ``unit`` of tables and files).
 NORMALISED = {
@@ -31,6 +42,30 @@ SUM_UNITS = ("1", "N", "N", "N", "N^2", "N^2", "N^2", "N^2", "N^2", "N^2")
 
 #: Ensemble statistics stored per quantity.
 STATS = ("mean", "se", "std", "se_between")
+
+
+@dataclass(frozen=True)
+class PullOff:
+    """Per-patch pull-off force of a cycle run: the most tensile load on retraction.
+
+    Attributes
+    ----------
+    force : ndarray, shape (R,)
+        Magnitude of the most tensile total load of each patch over the retraction
+        rows, N (0 where no row is tensile).
+    normalised : ndarray, shape (R,)
+        The same divided by A K (the ``load`` normalisation).
+    h : ndarray, shape (R,)
+        d/σ of the row where it occurs.
+    resolution : float
+        Largest spacing of the swept grid in d/σ: the pull-off is the minimum over the
+        grid, so it is located to within this and underestimates the true one.
+    """
+
+    force: np.ndarray
+    normalised: np.ndarray
+    h: np.ndarray
+    resolution: float
 
 
 @dataclass(frozen=True)
@@ -115,29 +150,64 @@ class Run:
 
         return _display.table(*self._summary())
 
+    @property
+    def quantities(self) -> tuple[str, ...]:
+        """Names of the estimated curves (see :func:`mcsim.statistics.quantities`)."""
+        return tuple(self.summary.mean)
+
+    def normalisation(self, quantity: str) -> str:
+        """How ``quantity`` is made dimensionless (``"P/(A K)"``, ``"area/A"``, ...)."""
+        return quantities(self.spec.law_set, self.spec.material)[quantity].normalisation
+
     def compare(self):
-        """DataFrame ``h, quantity, mc_mean, mc_se, analytic, z, note`` (see :mod:`mcsim.statistics`)."""
+        """DataFrame ``h, branch, quantity, mc_mean, mc_se, analytic, z, note``, one row
+        per separation, branch and quantity (see :mod:`mcsim.statistics`)."""
         import pandas as pd
 
-        return pd.DataFrame(compare_table(self.summary, self.analytic, self.h))
+        return pd.DataFrame(
+            compare_table(self.summary, self.analytic, self.spec.row_h, self.spec.row_branch)
+        )
+
+    def pull_off(self) -> PullOff:
+        """Per-patch pull-off of a cycle run (the law set must have a signed ``load``)."""
+        spec = self.spec
+        if not spec.cycle or "load" not in spec.law_set.names:
+            raise ParameterError(
+                f"pull-off needs a cycle run (--cycle) of a law set with a signed load; "
+                f"this run has law = {spec.law!r}, cycle = {spec.cycle}"
+            )
+        M = spec.h.size
+        load = self.sums[:, M:, sum_columns(spec.law_set).index("load")]
+        j = np.argmin(load, axis=1)
+        force = np.maximum(-load[np.arange(load.shape[0]), j], 0.0)
+        grid = np.unique(spec.h)
+        return PullOff(force=force, normalised=force / (spec.area * spec.material.K), h=spec.h[j],
+                       resolution=float(np.max(np.diff(grid))) if grid.size > 1 else np.inf)  # fmt: skip
 
     def to_dataframe(self):
         """Tidy table: one row per (source, realization, h, quantity).
 
         Columns: ``source`` (``realization``, ``mean``, ``se``, ``std``, ``se_between``
         or ``analytic``), ``realization`` (index, -1 for the others), ``h`` (d/σ), ``d``
-        (m), ``quantity``, ``value``, ``unit``. Values are dimensionless: N_c/N (Eq. 1),
-        force/(A·K) for P, F, T (Eqs. 3, 5, 7) and T/(P+F) for μ (Eq. 8); ``unit``
-        spells out the normalisation.
+        (m), for a cycle run ``branch`` (``approach``/``retract``), ``quantity``,
+        ``value``, ``unit``. Values are dimensionless: N_c/N (Eq. 1), force/(A·K) for
+        P, F, T (Eqs. 3, 5, 7) and T/(P+F) for μ (Eq. 8); for the other law sets
+        load/(A K), area/A, friction/(A K) and friction/load; ``unit`` spells out the
+        normalisation.
         """
         import pandas as pd
 
+        spec = self.spec
+        rows = {"h": spec.row_h, "d": np.tile(self.d, len(spec.branches))}
+        if spec.cycle:
+            rows["branch"] = spec.row_branch
+
         def frame(source, realization, q, values):
-            return pd.DataFrame({"source": source, "realization": realization, "h": self.h, "d": self.d,
-                                 "quantity": q, "value": values, "unit": NORMALISED[q]})  # fmt: skip
+            return pd.DataFrame({"source": source, "realization": realization, **rows,
+                                 "quantity": q, "value": values, "unit": self.normalisation(q)})  # fmt: skip
 
         frames = []
-        for q in QUANTITIES:
+        for q in self.quantities:
             frames += [
                 frame("realization", r, q, row) for r, row in enumerate(self.realizations[q])
             ]
@@ -153,7 +223,28 @@ def assemble(ens: EnsembleSums, **kwargs) -> Run:
         ensemble=ens,
         realizations=per_realization(ens),
         summary=summarize(ens),
-        analytic=expected_values(spec, gw_curves(spec.surface, spec.material, spec.h, spec.law)),
+        analytic=expected_values(spec, analytic_curves(spec)),
         heights=ens.heights,
         **kwargs,
     )
+
+
+def analytic_curves(spec: MonteCarloSpec, h=None) -> list:
+    """GW curves of each branch of ``spec`` (at ``h``, by default the run's), with
+    retraction after the closest approach min(spec.h).
+
+    Where :func:`mcsim.analytic.gw_curves` cannot give a law set's curves (no
+    branches), the values are NaN (no comparison; the table says so).
+    """
+    h = spec.h if h is None else np.asarray(h, dtype=float)
+    if "branch" in inspect.signature(gw_curves).parameters:
+        return [
+            gw_curves(spec.surface, spec.material, h, law=spec.law, branch=b,
+                      **({"turn": spec.turn} if b == "retract" else {}))  # fmt: skip
+            for b in spec.branches
+        ]
+    if spec.law_set.stateful or not {"P", "F", "T"} <= set(spec.law_set.names):
+        nan = np.full(h.shape, np.nan)
+        names = quantities(spec.law_set, spec.material)
+        return [types.SimpleNamespace(**dict.fromkeys(names, nan)) for _ in spec.branches]
+    return [gw_curves(spec.surface, spec.material, h, spec.law)] * len(spec.branches)
