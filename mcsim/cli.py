@@ -212,7 +212,7 @@ def cmd_simulate(args) -> int:
         try:
             run = simulate(
                 surface, material, h, args.area, realizations=args.realizations, seed=args.seed, law=args.law,
-                count=args.count, workers=args.workers, scheduler=args.scheduler or args.dask,
+                count=args.count, cycle=args.cycle, workers=args.workers, scheduler=args.scheduler or args.dask,
                 chunk_size=args.chunk_size, keep_heights=args.keep_heights, out=out, overwrite=args.overwrite,
                 resume=args.resume, checkpoint_every=args.checkpoint_every, progress=show_progress,
                 command=cli_command(),
@@ -239,7 +239,7 @@ def cmd_compare(args) -> int:
 
     run = read_run(args.run, allow_incomplete=args.partial)
     rows = run.compare().to_dict("records")
-    columns = ["h", "quantity", "mc_mean", "mc_se", "analytic", "z"]
+    columns = ["h", "branch", "quantity", "mc_mean", "mc_se", "analytic", "z"]
     notes = sorted({(r["h"], r["note"]) for r in rows if r["note"]}, key=lambda t: -t[0])
     if args.format == "table":
         columns.append("note")
@@ -278,7 +278,8 @@ def cmd_show(args) -> int:
     print(f"seed entropy  {spec.entropy}")
     for line in _describe(spec.surface, spec.material):
         print(f"input         {line}")
-    print(f"law set       {spec.law}")
+    print(f"law set       {spec.law}" + (f" (cycle: approach, then retraction from h = {spec.turn:g})"
+                                          if spec.cycle else ""))  # fmt: skip
     print(
         f"patch         A = {spec.area * 1e12:.6g} um^2, N ~ {spec.count}, E[N] = {spec.expected_summits:.6g}"
     )
@@ -475,6 +476,12 @@ def build_parser() -> argparse.ArgumentParser:
         choices=("poisson", "fixed"),
         default="poisson",
         help="N ~ Poisson(eta A) or round(eta A)",
+    )
+    p.add_argument(
+        "--cycle",
+        action="store_true",
+        help="approach over the --h grid (descending), then retraction back over the same grid "
+        "from its lowest value; both branches stored",
     )
     p.add_argument("--out", help="run file (default: runs/<surface>-<time>.h5)")
     p.add_argument("--overwrite", action="store_true", help="replace an existing run file")

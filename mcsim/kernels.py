@@ -49,6 +49,23 @@ def sum_columns(law: LawSet) -> tuple[str, ...]:
     return ("n_contact", *names, *(n + n for n in names), *(a + b for a, b in pairs))
 
 
+def _power(unit: str, k: int) -> str:
+    """``unit`` to the power ``k`` (``N`` → ``N^2``, ``m^2`` → ``m^4``)."""
+    if unit == "1":
+        return unit
+    base, _, exponent = unit.partition("^")
+    return f"{base}^{int(exponent or 1) * k}"
+
+
+def sum_units(law: LawSet) -> tuple[str, ...]:
+    """Unit of each of :func:`sum_columns`: ``1`` for the count, the outputs' units, their
+    squares and products (the seed: ``1``, ``N`` ×3, ``N^2`` ×6)."""
+    units = [o.unit for o in law.outputs]
+    pairs = [(a, b) for i, a in enumerate(units) for b in units[i + 1 :]]
+    return ("1", *units, *(_power(u, 2) for u in units),
+            *(_power(a, 2) if a == b else f"{a} {b}" for a, b in pairs))  # fmt: skip
+
+
 def _moments(values: list[np.ndarray], n_contact: int) -> list[float]:
     k = len(values)
     pairs = [(i, j) for i in range(k) for j in range(i + 1, k)]

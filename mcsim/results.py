@@ -36,8 +36,9 @@ NORMALISED = {
     "mu": "T/(P + F)",
 }
 
-#: Unit of each column of the raw sums (:data:`mcsim.kernels.SUM_COLUMNS`): the count of
-#: contacting summits, the forces P, F, T and their second moments.
+#: Unit of each column of the seed's raw sums (:data:`mcsim.kernels.SUM_COLUMNS`): the
+#: count of contacting summits, the forces P, F, T and their second moments (any law set:
+#: :func:`mcsim.kernels.sum_units`).
 SUM_UNITS = ("1", "N", "N", "N", "N^2", "N^2", "N^2", "N^2", "N^2", "N^2")
 
 #: Ensemble statistics stored per quantity.
@@ -239,8 +240,14 @@ def analytic_curves(spec: MonteCarloSpec, h=None) -> list:
     h = spec.h if h is None else np.asarray(h, dtype=float)
     if "branch" in inspect.signature(gw_curves).parameters:
         return [
-            gw_curves(spec.surface, spec.material, h, law=spec.law, branch=b,
-                      **({"turn": spec.turn} if b == "retract" else {}))  # fmt: skip
+            gw_curves(
+                spec.surface,
+                spec.material,
+                h,
+                law=spec.law,
+                branch=b,
+                **({"turn": spec.turn} if b == "retract" else {}),
+            )
             for b in spec.branches
         ]
     if spec.law_set.stateful or not {"P", "F", "T"} <= set(spec.law_set.names):

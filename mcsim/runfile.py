@@ -4,21 +4,30 @@ Layout (schema version :data:`SCHEMA_VERSION`; every dataset carries a ``unit``
 attribute, dimensionless ones ``"1"`` with the normalisation in ``description``):
 
     /                      attrs: schema_version, mcsim_version, created, command,
-                           seed_entropy, law, count, area [m^2], realizations,
+                           seed_entropy, law, law_outputs (JSON: name -> unit),
+                           quantities (JSON: name -> normalisation), count,
+                           area [m^2], realizations, cycle, branches (JSON), turn
+                           (d/σ of the closest approach; NaN without cycle),
                            block_size, complete, checksum
     /input/surface         attrs: sigma [m], R [m], eta [m^-2], name, heights (JSON)
     /input/material        attrs: E1, E2 [Pa], nu1, nu2, gamma [J/m^2], H [Pa], name,
                            z0 [m], tau [Pa] (NaN: not given; absent in older files)
-    /h, /d                 separations: d/σ and d [m]
+    /h, /d                 separations: d/σ and d [m] (M each)
+    /branch                (rows,) branch of each row: the M separations on approach,
+                           then with ``cycle`` the same M on retraction
     /realizations/N        summits per patch
-    /realizations/sums     (R, M, 10) raw sums; attrs columns and their units (1, N, N^2)
+    /realizations/sums     (R, rows, C) raw sums; attrs columns (sum_columns of the law
+                           set) and their units (1, the outputs', their squares, products)
     /progress/n_blocks, /progress/done_blocks   blocks per patch, and done
     -- complete runs only --
-    /realizations/<q>      (R, M) dimensionless curves, q in contact_fraction,P,F,T,mu
-    /summary/<stat>/<q>    (M,) stat in mean, se, std, se_between
+    /realizations/<q>      (R, rows) dimensionless curves, q in ``quantities``
+    /summary/<stat>/<q>    (rows,) stat in mean, se, std, se_between
     /summary/expected_contacts
-    /analytic/<q>          (M,) GW curves for the same inputs (expected values)
-    /heights/<r>           optional: sampled heights above h_min [m]
+    /analytic/<q>          (rows,) GW curves for the same inputs (expected values)
+    /heights/<r>           optional: sampled heights above s_min [m]
+
+Schema 1 (mcsim 0.1: the seed law set, approach only, no law_outputs, quantities,
+cycle, branches, turn, z0, tau or /branch) is still read, with identical results.
 
 Named axes: every group whose datasets have an axis h (M), realization (R) or column
 (the 10 sums columns) holds that axis's coordinate as an HDF5 dimension scale of the same
@@ -59,16 +68,19 @@ from pathlib import Path
 import numpy as np
 
 from ._version import __version__
-from .analytic import QUANTITIES
 from .distributions import GAUSSIAN
 from .errors import MCSimError, RunFileError
-from .kernels import SUM_COLUMNS
+from .kernels import sum_columns, sum_units
+from .laws import get_law_set
 from .montecarlo import BLOCK, EnsembleSums, MonteCarloSpec
 from .params import Material, Surface
-from .results import NORMALISED, STATS, SUM_UNITS, Run, assemble
-from .statistics import Summary
+from .results import STATS, Run, assemble
+from .statistics import Summary, quantities
 
-SCHEMA_VERSION = 1
+SCHEMA_VERSION = 2
+
+#: Schema versions this mcsim reads.
+READABLE = (1, 2)
 
 
 def checkpoint_path(path: str | Path) -> Path:
@@ -183,6 +195,7 @@ def _dataset(f, name: str, data, unit: str, description: str, dims=(), **options
 #: Named axes: unit and meaning of each coordinate.
 AXES = {
     "h": ("1", "d/sigma"),
+    "row": ("1", "d/sigma of each row of a cycle: approach, then retraction (see branch)"),
     "realization": ("1", "realization index"),
     "column": ("1", "column of realizations/sums"),
 }
@@ -198,15 +211,22 @@ def _axis(group, axis: str, size: int):
     """
     if axis not in group:
         values = {
-            "h": group.file["h"][()],
-            "realization": np.arange(size),
-            "column": np.array(SUM_COLUMNS, dtype="S"),
-        }[axis]
+            "h": lambda: group.file["h"][()],
+            "row": lambda: group.file["row"][()],
+            "realization": lambda: np.arange(size),
+            "column": lambda: np.array(sum_columns(get_law_set(group.file.attrs["law"])), "S"),
+        }[axis]()
         scale = _dataset(group, axis, values, *AXES[axis])
         if axis == "column":
             scale.attrs["_Encoding"] = "utf-8"  # netCDF readers decode the names to text
         scale.make_scale(axis)
     return group[axis]
+
+
+def _row_axis(spec: MonteCarloSpec) -> str:
+    """Name of the row axis of the sums and curves: ``h`` (approach only), or ``row``
+    (a cycle: the M approach rows, then the M retraction rows)."""
+    return "row" if spec.cycle else "h"
 
 
 def _checksum(f) -> str:
@@ -234,10 +254,17 @@ def _write_inputs(f, spec: MonteCarloSpec, command: str, complete: bool) -> dict
         "command": command,
         "seed_entropy": str(spec.entropy),
         "law": spec.law,
+        "law_outputs": json.dumps({o.name: o.unit for o in spec.law_set.outputs}),
+        "quantities": json.dumps(
+            {q: v.normalisation for q, v in quantities(spec.law_set, spec.material).items()}
+        ),
         "count": spec.count,
         "area": spec.area,
         "area_unit": "m^2",
         "realizations": spec.realizations,
+        "cycle": spec.cycle,
+        "branches": json.dumps(list(spec.branches)),
+        "turn": spec.turn if spec.cycle else np.nan,
         "block_size": BLOCK,
         "complete": complete,
     }
@@ -255,6 +282,10 @@ def _write_inputs(f, spec: MonteCarloSpec, command: str, complete: bool) -> dict
                                    "H": "Pa", "z0": "m", "tau": "Pa"})  # fmt: skip
     _dataset(f, "h", spec.h, *AXES["h"]).make_scale("h")
     _dataset(f, "d", spec.d, "m", "mean separation", dims=("h",))
+    if spec.cycle:
+        _dataset(f, "row", spec.row_h, *AXES["row"]).make_scale("row")
+    _dataset(f, "branch", spec.row_branch.astype("S"), "1", "branch of each row of the sums",
+             dims=(_row_axis(spec),))  # fmt: skip
     return attrs
 
 
@@ -266,12 +297,12 @@ def _write_state(f, state: EnsembleSums) -> None:
         "realizations/sums",
         state.sums,
         "per column, see units",
-        "raw per-separation sums over the blocks done",
-        ("realization", "h", "column"),
+        "raw per-row sums over the blocks done",
+        ("realization", _row_axis(state.spec), "column"),
     )
-    sums.attrs["columns"] = list(SUM_COLUMNS)
-    sums.attrs["units"] = list(SUM_UNITS)
-    blocks = f"blocks of {BLOCK} summits above h_min"
+    sums.attrs["columns"] = list(sum_columns(state.spec.law_set))
+    sums.attrs["units"] = list(sum_units(state.spec.law_set))
+    blocks = f"blocks of {BLOCK} summits above s_min"
     _dataset(f, "progress/n_blocks", state.n_blocks, "1", blocks, per_realization)
     _dataset(f, "progress/done_blocks", state.done_blocks, "1", "blocks done", per_realization)
 
@@ -340,16 +371,17 @@ def write_run(path: str | Path, run, *, command: str):
     def fill(f):
         attrs.update(_write_inputs(f, run.spec, command, complete=True))
         _write_state(f, run.ensemble)
-        per_h = ("h",)
-        for q in QUANTITIES:
+        per_row = (_row_axis(run.spec),)
+        for q in run.quantities:
+            norm = run.normalisation(q)
             curves = run.realizations[q]
-            _dataset(f, f"realizations/{q}", curves, "1", NORMALISED[q], ("realization", "h"))
-            _dataset(f, f"analytic/{q}", run.analytic[q], "1", NORMALISED[q], per_h)
+            _dataset(f, f"realizations/{q}", curves, "1", norm, ("realization", per_row[0]))
+            _dataset(f, f"analytic/{q}", run.analytic[q], "1", norm, per_row)
             for stat in STATS:
                 values = getattr(run.summary, stat)[q]
-                _dataset(f, f"summary/{stat}/{q}", values, "1", NORMALISED[q], per_h)
+                _dataset(f, f"summary/{stat}/{q}", values, "1", norm, per_row)
         expected = run.summary.expected_contacts
-        _dataset(f, "summary/expected_contacts", expected, "1", "R E[N] S(h)", per_h)
+        _dataset(f, "summary/expected_contacts", expected, "1", "R E[N] S(s)", per_row)
         if run.heights is not None:
             for r, z in enumerate(run.heights):
                 _dataset(
@@ -357,7 +389,7 @@ def write_run(path: str | Path, run, *, command: str):
                     f"heights/{r}",
                     z,
                     "m",
-                    "sampled heights above h_min",
+                    "sampled heights above s_min",
                     compression="gzip",
                     shuffle=True,
                 )
@@ -387,10 +419,10 @@ def _open(path: Path):
                 raise RunFileError(
                     f"{path}: damaged run file: schema_version is {_shown(version)}, not an integer"
                 )
-            if int(version) != SCHEMA_VERSION:
+            if int(version) not in READABLE:
                 raise RunFileError(
                     f"{path}: run-file schema version {int(version)} is not supported "
-                    f"(this mcsim {__version__} reads version {SCHEMA_VERSION})"
+                    f"(this mcsim {__version__} reads versions {', '.join(map(str, READABLE))})"
                 )
             _check_sizes(path, f)
     except BaseException:
@@ -445,20 +477,30 @@ def _read_state(path: Path, f) -> EnsembleSums:
                         gamma=float(m["gamma"]), H=None if np.isnan(H) else H, name=str(m["name"]),
                         z0=None if np.isnan(z0) else z0, tau=None if np.isnan(tau) else tau)  # fmt: skip
     spec = MonteCarloSpec(surface, material, f["h"][()], float(attrs["area"]), int(attrs["realizations"]),
-                          int(attrs["seed_entropy"]), str(attrs["law"]), str(attrs["count"]))  # fmt: skip
-    R, M = spec.realizations, spec.h.size
+                          int(attrs["seed_entropy"]), str(attrs["law"]), str(attrs["count"]),
+                          bool(attrs.get("cycle", False)))  # fmt: skip
+    R, M, rows = spec.realizations, spec.h.size, spec.row_h.size
+    columns = sum_columns(spec.law_set)
     expected = {
         "d": (M,),
         "realizations/N": (R,),
-        "realizations/sums": (R, M, len(SUM_COLUMNS)),
+        "realizations/sums": (R, rows, len(columns)),
         "progress/n_blocks": (R,),
         "progress/done_blocks": (R,),
     }
+    if int(attrs["schema_version"]) >= 2:
+        expected["branch"] = (rows,)
+        stored = [str(c) for c in f["realizations/sums"].attrs["columns"]]
+        if stored != list(columns):
+            raise RunFileError(
+                f"{path}: sums columns {stored} differ from law set {spec.law!r}'s {list(columns)}"
+            )
     if bool(attrs["complete"]):
-        expected |= {f"realizations/{q}": (R, M) for q in QUANTITIES}
-        expected |= {f"analytic/{q}": (M,) for q in QUANTITIES}
-        expected |= {f"summary/{stat}/{q}": (M,) for stat in STATS for q in QUANTITIES}
-        expected["summary/expected_contacts"] = (M,)
+        names = _quantities(spec)
+        expected |= {f"realizations/{q}": (R, rows) for q in names}
+        expected |= {f"analytic/{q}": (rows,) for q in names}
+        expected |= {f"summary/{stat}/{q}": (rows,) for stat in STATS for q in names}
+        expected["summary/expected_contacts"] = (rows,)
     for name, shape in expected.items():
         if name not in f:
             raise RunFileError(f"{path}: damaged run file: dataset {name} is missing")
@@ -475,6 +517,11 @@ def _read_state(path: Path, f) -> EnsembleSums:
     if state.complete != bool(attrs["complete"]):
         raise RunFileError(f"{path}: damaged run file: progress disagrees with the 'complete' flag")
     return state
+
+
+def _quantities(spec: MonteCarloSpec) -> tuple[str, ...]:
+    """Names of the stored curves of a run (schema 1: the seed's)."""
+    return tuple(quantities(spec.law_set, spec.material))
 
 
 def _verified(path: Path, f) -> None:
@@ -525,7 +572,8 @@ def read_run(path: str | Path, *, allow_incomplete: bool = False):
                     "resume it with `mcsim simulate ... --resume`, or use the completed part (--partial)"
                 )
             return assemble(state.completed(), attrs=attrs, path=path, complete=False)
-        stats = {stat: {q: f[f"summary/{stat}/{q}"][()] for q in QUANTITIES} for stat in STATS}
+        names = _quantities(state.spec)
+        stats = {stat: {q: f[f"summary/{stat}/{q}"][()] for q in names} for stat in STATS}
         heights = (
             [f[f"heights/{r}"][()] for r in sorted(f["heights"], key=int)]
             if "heights" in f
@@ -533,9 +581,9 @@ def read_run(path: str | Path, *, allow_incomplete: bool = False):
         )
         return Run(
             ensemble=state,
-            realizations={q: f[f"realizations/{q}"][()] for q in QUANTITIES},
+            realizations={q: f[f"realizations/{q}"][()] for q in names},
             summary=Summary(**stats, expected_contacts=f["summary/expected_contacts"][()]),
-            analytic={q: f[f"analytic/{q}"][()] for q in QUANTITIES},
+            analytic={q: f[f"analytic/{q}"][()] for q in names},
             attrs=attrs,
             path=path,
             heights=heights,

@@ -47,14 +47,14 @@ def _duration(seconds: float) -> str:
 
 
 def estimate(spec: MonteCarloSpec, workers: int) -> tuple[float, float, float]:
-    """Expected summits, contacting (summit, separation) pairs and seconds of a run.
+    """Expected summits, evaluated (summit, row) pairs and seconds of a run.
 
     The time assumes :data:`PAIRS_PER_SECOND` and :data:`SAMPLES_PER_SECOND` per worker.
     """
     heights = spec.surface.heights
     summits = spec.realizations * spec.expected_summits
-    above = summits * float(heights.sf(spec.h.min()))
-    pairs = summits * float(np.sum(heights.sf(spec.h)))
+    above = summits * float(heights.sf(spec.s_min))
+    pairs = summits * float(np.sum(heights.sf(spec.row_s)))
     return summits, pairs, (pairs / PAIRS_PER_SECOND + above / SAMPLES_PER_SECOND) / workers
 
 
@@ -73,6 +73,7 @@ def simulate(
     seed: int | None = None,
     law: str = "seed",
     count: str = "poisson",
+    cycle: bool = False,
     workers: int | None = None,
     scheduler=None,
     chunk_size: int = DEFAULT_CHUNK,
@@ -100,9 +101,12 @@ def simulate(
         Root seed; None draws fresh entropy (recorded in the result), or, with
         ``resume``, takes the one recorded in the file.
     law : str
-        Law set (``"seed"``: the paper as written).
+        Law set (``"seed"``: the paper as written; see :data:`mcsim.laws.LAW_SETS`).
     count : {"poisson", "fixed"}
         N ~ Poisson(ηA) or N = round(ηA).
+    cycle : bool
+        Approach over ``h`` (descending), then retraction back over the same ``h``
+        after the closest approach min(h); both branches are stored.
     workers : int, optional
         Local worker threads, all cores by default; or worker processes of a local
         Dask cluster. The numbers do not depend on it.
@@ -168,7 +172,9 @@ def simulate(
             else:
                 partial.unlink(missing_ok=True)  # --overwrite: start again
         entropy = np.random.SeedSequence(seed).entropy
-        spec = MonteCarloSpec(surface, material, h, area_m2, realizations, entropy, law, count)
+        spec = MonteCarloSpec(
+            surface, material, h, area_m2, realizations, entropy, law, count, cycle
+        )
         if previous is not None and previous.spec != spec:
             raise ParameterError(
                 f"cannot resume {out}: {', '.join(previous.spec.differences(spec))} differ(s) from the recorded run"
@@ -176,7 +182,8 @@ def simulate(
         if command is None:
             command = _api_command(surface=surface.name or surface, material=material.name or material,
                                    h=[float(x) for x in spec.h], area=area_m2, realizations=realizations,
-                                   seed=seed, law=law, count=count)  # fmt: skip
+                                   seed=seed, law=law, count=count,
+                                   **({"cycle": True} if cycle else {}))  # fmt: skip
         n_workers = workers if isinstance(workers, int) and workers > 0 else default_workers()
         summits, pairs, seconds = estimate(spec, n_workers)
         if seconds > ESTIMATE_ABOVE:
@@ -191,7 +198,7 @@ def simulate(
             from tqdm import tqdm
 
             total = (
-                spec.realizations * spec.expected_summits * float(surface.heights.sf(spec.h.min()))
+                spec.realizations * spec.expected_summits * float(surface.heights.sf(spec.s_min))
             )
             bar = stack.enter_context(
                 tqdm(

@@ -118,7 +118,9 @@ def _columns(law: LawSet, sums: np.ndarray):
     names = law.names
     at = {c: sums[..., i] for i, c in enumerate(cols)}
     first = [at[n] for n in names]
-    second = {(i, j): at[names[i] + names[j]] for i in range(len(names)) for j in range(i, len(names))}
+    second = {
+        (i, j): at[names[i] + names[j]] for i in range(len(names)) for j in range(i, len(names))
+    }
     return at["n_contact"], first, second
 
 

@@ -18,7 +18,7 @@ def toy_load(delta, delta_max, R, K, c, table):
     i = np.int64(np.floor(np.minimum(x / c, 3.0)))
     near = (delta > -2.0 * c) * (1.0 - contact)
     return K * np.sqrt(R) * (contact * (x * np.sqrt(x) * table[i] - c * np.sqrt(c))
-                             - near * (delta + 2.0 * c) * np.sqrt(c))  # fmt: skip
+                             - 30.0 * near * (delta + 2.0 * c) * np.sqrt(c))  # fmt: skip
 
 
 def toy_area(delta, delta_max, R, c):
@@ -41,6 +41,13 @@ def toy_edges(params):
     return Edges(reach=-2.0 * c, jump_in=0.0, break_off=-c, breakpoints=(-c,))
 
 
+#: The same without a retraction branch (as elastic-plastic).
+def _approach_only():
+    import dataclasses
+
+    return dataclasses.replace(TOY, name="toy-approach", retract=False)
+
+
 TOY = LawSet(
     name="toy",
     description="test-only: stateful, attraction, hysteresis, array constant",
@@ -51,4 +58,7 @@ TOY = LawSet(
     ),
     edges=toy_edges,
     constants=toy_constants,
+    friction=True,
 )
+
+TOY_APPROACH_ONLY = _approach_only()

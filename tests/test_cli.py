@@ -63,7 +63,8 @@ def test_simulate_then_compare_csv_rows_have_small_z(capsys, tmp_path):
     assert code == 0 and out.exists() and "wrote" in text
     code, text, _ = run_cli(capsys, "compare", str(out), "--format", "csv")
     rows = list(csv.DictReader(io.StringIO(text)))
-    assert list(rows[0]) == ["h", "quantity", "mc_mean", "mc_se", "analytic", "z"]
+    assert list(rows[0]) == ["h", "branch", "quantity", "mc_mean", "mc_se", "analytic", "z"]
+    assert {r["branch"] for r in rows} == {"approach"}
     assert len(rows) == 9 * 5
     assert {r["quantity"] for r in rows} == {"contact_fraction", "P", "F", "T", "mu"}
     z = np.array([float(r["z"]) for r in rows if r["z"]])
@@ -273,3 +274,54 @@ def test_json_output_is_strict_json_with_null_for_undefined_values(capsys, tmp_p
     rows = json.loads(text, parse_constant=lambda c: pytest.fail(f"non-standard JSON constant {c}"))
     few = [r for r in rows if r["h"] == 4.0]
     assert all(r["z"] is None for r in few) and all(r["note"] for r in few)
+
+
+@pytest.fixture
+def toy_material(monkeypatch, tmp_path):
+    """The test-only toy law set registered, and a material file giving tau."""
+    from lawset_toy import TOY, TOY_APPROACH_ONLY
+
+    from mcsim.laws import LAW_SETS
+
+    monkeypatch.setenv("MCSIM_CACHE_DIR", str(tmp_path / "cache"))
+    monkeypatch.setitem(LAW_SETS, TOY.name, TOY)
+    monkeypatch.setitem(LAW_SETS, TOY_APPROACH_ONLY.name, TOY_APPROACH_ONLY)
+    path = tmp_path / "m.toml"
+    path.write_text('[material]\nE = "160 GPa"\nnu = 0.22\ngamma = "0.5 J/m^2"\ntau = "100 MPa"\n')
+    return str(path)
+
+
+def test_simulate_cycle_with_a_law_set_then_compare_lists_both_branches(
+    capsys, tmp_path, toy_material
+):
+    out = tmp_path / "t.h5"
+    code, _, _ = run_cli(capsys, "simulate", "--surface", "smooth", "--material", toy_material,
+                         "--law", "toy", "--cycle", "--area", "1e-10", "--h=2:0:3", "--seed", "1",
+                         "--out", str(out), "--quiet")  # fmt: skip
+    assert code == 0
+    code, text, _ = run_cli(capsys, "compare", str(out), "--format", "csv")
+    rows = list(csv.DictReader(io.StringIO(text)))
+    assert list(rows[0]) == ["h", "branch", "quantity", "mc_mean", "mc_se", "analytic", "z"]
+    assert [(r["h"], r["branch"]) for r in rows[:: len(rows) // 6]] == [
+        ("2.0", "approach"), ("1.0", "approach"), ("0.0", "approach"),
+        ("2.0", "retract"), ("1.0", "retract"), ("0.0", "retract")]  # fmt: skip
+    assert {r["quantity"] for r in rows} == {
+        "contact_fraction",
+        "load",
+        "area",
+        "grip",
+        "friction",
+        "mu",
+    }
+    _, text, _ = run_cli(capsys, "show", str(out))
+    assert "cycle: approach, then retraction from h = 0" in text
+
+
+def test_cycle_with_a_law_set_without_retraction_is_a_one_line_error(
+    capsys, tmp_path, toy_material
+):
+    code, _, err = run_cli(capsys, "simulate", "--surface", "smooth", "--material", toy_material,
+                           "--law", "toy-approach", "--cycle", "--area", "1e-10", "--h=1,0",
+                           "--out", str(tmp_path / "t.h5"))  # fmt: skip
+    assert code != 0 and len(err.strip().splitlines()) == 1
+    assert "law set 'toy-approach' has no retraction branch" in err

@@ -433,3 +433,16 @@ def test_every_example_file_loads(path):
         if table in path.read_text(encoding="utf-8")
     ]
     assert loaded
+
+
+def test_material_file_accepts_the_equilibrium_spacing_and_shear_strength(tmp_path):
+    m = load_material(write(tmp_path, SILICON_TOML + 'z0 = "0.3 nm"\ntau = "100 MPa"\n'))
+    assert (m.z0, m.tau, m.H) == pytest.approx((0.3e-9, 100e6, 12.5e9), rel=1e-14)
+    assert load_material(write(tmp_path, SILICON_TOML, "b.toml")).z0 is None
+
+
+@pytest.mark.parametrize(("line", "match"), [('z0 = "-1 nm"', "z0"), ('tau = "0 MPa"', "tau"),
+                                             ('tau = "3 nm"', "tau")])  # fmt: skip
+def test_material_file_refuses_a_bad_equilibrium_spacing_or_shear_strength(tmp_path, line, match):
+    with pytest.raises((ParameterError, UnitError), match=match):
+        load_material(write(tmp_path, SILICON_TOML + line + "\n"))

@@ -297,3 +297,169 @@ def test_threads_starting_together_on_a_cold_cache_build_the_kernel_once(monkeyp
         kernels._generate.cache_clear()
     assert all(k is built[0] for k in built)
     assert not list((tmp_path / "cache" / "kernels").glob(".*.tmp"))
+
+
+# --- law sets beyond the seed: cycles, attraction, hysteresis (test-local toy law set) ---
+
+
+@pytest.fixture
+def toy(monkeypatch, tmp_path):
+    """The toy law set registered, compiled into a throw-away cache."""
+    import dataclasses
+
+    from lawset_toy import TOY, TOY_APPROACH_ONLY
+
+    from mcsim.laws import LAW_SETS
+
+    monkeypatch.setenv("MCSIM_CACHE_DIR", str(tmp_path / "cache"))
+    monkeypatch.setitem(LAW_SETS, TOY.name, TOY)
+    monkeypatch.setitem(LAW_SETS, TOY_APPROACH_ONLY.name, TOY_APPROACH_ONLY)
+    return dataclasses.replace(SILICON, tau=1e8)
+
+
+def test_a_cycle_has_approach_rows_then_retraction_rows_from_the_lowest_separation(toy):
+    s = spec(h=[2.0, 0.5, 1.0], law="toy", cycle=True, material=toy)
+    d, d_turn = s.rows()
+    sigma = SMOOTH.sigma
+    np.testing.assert_array_equal(d, np.array([2.0, 0.5, 1.0, 2.0, 0.5, 1.0]) * sigma)
+    np.testing.assert_array_equal(d_turn, np.array([2.0, 0.5, 1.0, 0.5, 0.5, 0.5]) * sigma)
+    assert list(s.row_branch) == ["approach"] * 3 + ["retract"] * 3
+    assert s.branches == ("approach", "retract")
+
+
+def test_sampling_reaches_down_to_the_lowest_threshold_of_the_law_set(toy):
+    """Summits down to d_min + reach carry force (attraction): they must be sampled;
+    the seed keeps sampling above min(h) exactly."""
+    s = spec(h=[2.0, 0.5], law="toy", material=toy)
+    reach = -2 * 0.3 * SMOOTH.sigma  # the toy's reach, -2c
+    assert s.s_min == pytest.approx(0.5 + reach / SMOOTH.sigma, rel=1e-12)
+    assert spec(h=[2.0, 0.5]).s_min == 0.5
+    ens = run_sums(s, keep_heights=True)
+    for z in ens.heights:
+        assert z.min() < 0.5 * SMOOTH.sigma - 0.5 * abs(reach)  # attracted, not touching
+
+
+def test_a_cycle_run_sums_every_row_of_every_sampled_summit(toy):
+    from lawset_toy import TOY
+
+    from mcsim.kernels import block_sums_numpy
+
+    s = spec(h=[1.5, 0.5, 0.0], law="toy", cycle=True, material=toy, realizations=2)
+    ens = run_sums(s, keep_heights=True)
+    d, d_turn = s.rows()
+    args, edges = TOY.arguments(SMOOTH, toy), TOY.edges_for(SMOOTH, toy)
+    for r, z in enumerate(ens.heights):
+        ref = block_sums_numpy(z, d, TOY, args, d_turn=d_turn, edges=edges)
+        np.testing.assert_array_equal(ens.sums[r, :, 0], ref[:, 0])
+        np.testing.assert_allclose(ens.sums[r], ref, rtol=1e-11, atol=0)
+
+
+def test_retraction_is_refused_for_a_law_set_without_a_retraction_branch(toy):
+    with pytest.raises(ParameterError, match="law set 'toy-approach' has no retraction branch"):
+        spec(law="toy-approach", cycle=True, material=toy)
+    spec(law="toy-approach", material=toy)  # approach only is fine
+
+
+def test_a_law_set_needing_a_material_field_refuses_a_material_without_it(toy, monkeypatch):
+    import dataclasses
+
+    from lawset_toy import TOY
+
+    from mcsim.laws import LAW_SETS
+
+    monkeypatch.setitem(
+        LAW_SETS, "toy-z0", dataclasses.replace(TOY, name="toy-z0", requires=("z0",))
+    )
+    with pytest.raises(ParameterError, match="needs material field 'z0'"):
+        spec(law="toy-z0", material=toy)
+
+
+def _gw_mean(o, args, sigma, d, dt, lo, pts):
+    """∫ o(σx − d, σx − d_turn) φ(x) dx from ``lo`` (quadrature, test-only)."""
+    from scipy import integrate
+
+    def f(x):
+        delta, dmax = np.array([sigma * x - d]), np.array([sigma * x - dt])
+        v = o.law(delta, dmax, *args) if o.stateful else o.law(delta, *args)
+        return float(v[0]) * stats.norm.pdf(x)
+
+    return integrate.quad(f, lo, 9, points=pts, limit=200, epsabs=0, epsrel=1e-11)[0]
+
+
+def toy_expected(s, material):
+    """GW expectation of every toy quantity at every row, by adaptive quadrature over
+    the Gaussian heights (test-only, independent of the engine's sampling and sums)."""
+    from lawset_toy import TOY
+
+    sigma, eta, K = s.surface.sigma, s.surface.eta, material.K
+    args = TOY.arguments(s.surface, material)
+    c = 0.3 * sigma
+    d_rows, turn_rows = s.rows()
+    out = {q: [] for q in ("contact_fraction", "load", "area", "grip", "friction", "mu")}
+    for d, dt in zip(d_rows, turn_rows):
+        lo = (d - 2 * c) / sigma
+        kinks = sorted({(d + k * c) / sigma for k in (-2, -1, 0, 1, 2, 3)} | {dt / sigma})
+        pts = [k for k in kinks if lo < k < 9]
+        load, area, grip = (
+            _gw_mean(TOY.outputs[i], args[i], sigma, d, dt, lo, pts) for i in range(3)
+        )
+        out["contact_fraction"].append(stats.norm.sf(max(dt / sigma, (d - c) / sigma)))
+        out["load"].append(eta * load / K)
+        out["area"].append(eta * area)
+        out["grip"].append(eta * grip / K)
+        out["friction"].append(eta * material.tau * area / K)
+        out["mu"].append(material.tau * area / load if load > 0 else np.nan)
+    return {q: np.array(v) for q, v in out.items()}
+
+
+def test_monte_carlo_agrees_with_gw_quadrature_on_both_branches_for_a_law_set_with_hysteresis(toy):
+    """|z| < 5 for every quantity and row with plentiful contacts, approach and retraction."""
+    s = spec(h=[2.0, 1.0, 0.3, -0.2], law="toy", cycle=True, material=toy, area=2e-9,
+             realizations=4, entropy=20261123)  # fmt: skip
+    from mcsim.results import assemble
+
+    run = assemble(run_sums(s))
+    expected = toy_expected(s, toy)
+    assert set(run.summary.mean) == set(expected)
+    checked = 0
+    for q, value in expected.items():
+        ok = (run.summary.expected_contacts >= 100) & np.isfinite(value)
+        z = (run.summary.mean[q][ok] - value[ok]) / run.summary.se[q][ok]
+        assert np.all(np.abs(z) < 5), (q, z)
+        checked += ok.sum()
+    assert checked > 30
+    # the retraction branch differs from the approach (hysteresis): both were checked
+    M = s.h.size
+    assert not np.allclose(expected["load"][:M], expected["load"][M:])
+
+
+def test_pull_off_of_each_patch_is_its_most_tensile_retraction_load(toy):
+    from lawset_toy import TOY
+
+    from mcsim.kernels import sum_columns
+    from mcsim.results import assemble
+
+    s = spec(h=[3.0, 0.0, -0.5, 2.0], law="toy", cycle=True, material=toy)
+    run = assemble(run_sums(s))
+    po = run.pull_off()
+    load = run.sums[:, 4:, sum_columns(TOY).index("load")]
+    np.testing.assert_array_equal(po.force, np.maximum(-load.min(axis=1), 0))
+    assert np.all(po.force > 0)
+    np.testing.assert_allclose(po.normalised, po.force / (s.area * toy.K), rtol=1e-15)
+    assert po.resolution == 2.0  # the widest step of the grid -0.5, 0, 2, 3
+    np.testing.assert_array_equal(po.h, s.h[load.argmin(axis=1)])
+    with pytest.raises(ParameterError, match="pull-off needs a cycle run"):
+        assemble(run_sums(spec(h=[1.0, 0.0]))).pull_off()
+
+
+def test_mu_of_bowden_tabor_friction_is_undefined_where_the_load_is_tensile(toy):
+    from mcsim.results import assemble
+
+    s = spec(h=[1.2, -0.5], law="toy", material=toy, area=2e-9)
+    run = assemble(run_sums(s))
+    load, mu = run.summary.mean["load"], run.summary.mean["mu"]
+    assert load[0] < 0 and np.isnan(mu[0])  # attraction dominates far out
+    assert load[1] > 0 and mu[1] > 0
+    table = run.compare()
+    row = table[(table.quantity == "mu") & (table.h == 1.2)].iloc[0]
+    assert "undefined" in row.note and np.isnan(row.z)

@@ -217,3 +217,88 @@ def test_run_files_written_before_the_named_axes_still_open():
     np.testing.assert_array_equal(old.sums, again.sums)
     for q in QUANTITIES:
         np.testing.assert_array_equal(old.summary.mean[q], again.summary.mean[q])
+
+
+# --- schema 2: any law set, cycles; schema 1 still read ----------------------------------
+
+SCHEMA1 = Path(__file__).parent / "data" / "run_schema1.h5"
+
+
+def test_a_schema_1_run_file_still_opens_with_identical_results():
+    """tests/data/run_schema1.h5 was written by mcsim before schema 2 (commit 58787dd);
+    it opens, and its stored numbers equal a fresh run of the same inputs."""
+    old = read_run(SCHEMA1)
+    assert old.attrs["schema_version"] == 1
+    assert old.spec.law == "seed" and not old.spec.cycle
+    fresh = simulate(SURFACES["smooth"], MATERIALS["silicon"], [2.0, 1.0, 0.0, -0.5], 1e-10,
+                     realizations=2, seed=5)  # fmt: skip
+    np.testing.assert_array_equal(old.sums, fresh.sums)
+    for q in QUANTITIES:
+        for stat in ("mean", "se", "std", "se_between"):
+            np.testing.assert_array_equal(
+                getattr(old.summary, stat)[q], getattr(fresh.summary, stat)[q]
+            )
+        np.testing.assert_array_equal(old.analytic[q], fresh.analytic[q])
+        np.testing.assert_array_equal(old.realizations[q], fresh.realizations[q])
+    assert old.compare().equals(fresh.compare())
+
+
+@pytest.fixture
+def toy(monkeypatch, tmp_path):
+    import dataclasses
+
+    from lawset_toy import TOY
+
+    from mcsim.laws import LAW_SETS
+
+    monkeypatch.setenv("MCSIM_CACHE_DIR", str(tmp_path / "cache"))
+    monkeypatch.setitem(LAW_SETS, TOY.name, TOY)
+    return dataclasses.replace(MATERIALS["silicon"], tau=1e8, z0=0.3e-9)
+
+
+def test_schema_2_records_the_law_set_outputs_columns_branches_and_turn(tmp_path, toy):
+    import json
+
+    simulate(SURFACES["smooth"], toy, H, "300 um^2", realizations=2, seed=4, law="toy", cycle=True,
+             out=tmp_path / "a.h5")  # fmt: skip
+    with h5py.File(tmp_path / "a.h5") as f:
+        assert f.attrs["schema_version"] == 2
+        assert f.attrs["law"] == "toy" and bool(f.attrs["cycle"])
+        assert json.loads(f.attrs["law_outputs"]) == {"load": "N", "area": "m^2", "grip": "N"}
+        assert json.loads(f.attrs["branches"]) == ["approach", "retract"]
+        assert f.attrs["turn"] == 0.0
+        assert list(json.loads(f.attrs["quantities"])) == [
+            "contact_fraction", "load", "area", "grip", "friction", "mu"]  # fmt: skip
+        assert [b.decode() for b in f["branch"][()]] == ["approach"] * 3 + ["retract"] * 3
+        assert f["realizations/sums"].shape == (2, 6, 10)
+        assert list(f["realizations/sums"].attrs["columns"])[:4] == [
+            "n_contact",
+            "load",
+            "area",
+            "grip",
+        ]
+        assert f["summary/mean/area"].attrs["description"] == "area/A"
+        assert f["input/material"].attrs["tau"] == 1e8
+        assert f["input/material"].attrs["z0"] == 0.3e-9
+
+
+def test_a_cycle_run_of_another_law_set_reads_back_as_written(tmp_path, toy):
+    run = simulate(SURFACES["smooth"], toy, H, "300 um^2", realizations=2, seed=4, law="toy",
+                   cycle=True, out=tmp_path / "a.h5")  # fmt: skip
+    back = read_run(tmp_path / "a.h5")
+    assert back.spec == run.spec and back.spec.cycle and back.spec.material.tau == 1e8
+    np.testing.assert_array_equal(back.sums, run.sums)
+    for q in run.quantities:
+        np.testing.assert_array_equal(back.summary.mean[q], run.summary.mean[q])
+        np.testing.assert_array_equal(back.realizations[q], run.realizations[q])
+    np.testing.assert_array_equal(back.pull_off().force, run.pull_off().force)
+    table = back.compare()
+    assert list(table.columns[:3]) == ["h", "branch", "quantity"]
+    assert list(table.branch.unique()) == ["approach", "retract"]
+    df = back.to_dataframe()
+    assert "branch" in df.columns and set(df.quantity) == set(run.quantities)
+
+
+def test_the_seed_dataframe_columns_are_unchanged(tmp_path):
+    df = make_run(tmp_path / "a.h5").to_dataframe()
+    assert list(df.columns) == ["source", "realization", "h", "d", "quantity", "value", "unit"]
