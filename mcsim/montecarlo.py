@@ -39,7 +39,7 @@ import numpy as np
 
 from .errors import ParameterError
 from .kernels import block_sums, sum_columns
-from .laws import BRANCHES, LawSet, get_law_set
+from .laws import BRANCHES, Edges, LawSet, get_law_set
 from .params import Material, Surface, check_range, check_separations
 
 #: Summits per random stream and per partial sum. Part of the reproducibility contract:
@@ -148,6 +148,17 @@ class MonteCarloSpec:
     def law_set(self) -> LawSet:
         return get_law_set(self.law)
 
+    @functools.cached_property
+    def arguments(self) -> tuple[tuple, ...]:
+        """The law functions' parameters (``law.arguments``), computed once per spec
+        (a law set's constants may be a tabulated curve)."""
+        return self.law_set.arguments(self.surface, self.material)
+
+    @functools.cached_property
+    def edges(self) -> Edges:
+        """The law set's :class:`~mcsim.laws.Edges` for these inputs, m."""
+        return self.law_set.edges_for(self.surface, self.material)
+
     @property
     def branches(self) -> tuple[str, ...]:
         """``("approach",)``, or ``("approach", "retract")`` for a cycle."""
@@ -182,10 +193,9 @@ class MonteCarloSpec:
         """Lowest standardized summit height that can carry force at each row (for the
         seed, h itself): h + (threshold − d)/σ (:meth:`mcsim.laws.Edges.threshold`)."""
         d, d_turn = self.rows()
-        edges = self.law_set.edges_for(self.surface, self.material)
-        return self.row_h + (edges.threshold(d, d_turn) - d) / self.surface.sigma
+        return self.row_h + (self.edges.threshold(d, d_turn) - d) / self.surface.sigma
 
-    @property
+    @functools.cached_property
     def s_min(self) -> float:
         """Lowest standardized height sampled: below it no summit carries force at any row."""
         return float(self.row_s.min())
@@ -329,9 +339,7 @@ def run_task(spec: MonteCarloSpec, task: Task, keep_heights: bool = False):
     Returns the per-block partial sums (each ``(rows, C)``, rows as in
     :meth:`MonteCarloSpec.rows`) and, if asked, the sampled heights.
     """
-    law = spec.law_set
-    args = law.arguments(spec.surface, spec.material)
-    edges = law.edges_for(spec.surface, spec.material)
+    law, args, edges = spec.law_set, spec.arguments, spec.edges
     d, d_turn = spec.rows()
     blocks = [
         sample_block(spec, task.plan, task.realization, b) for b in range(task.start, task.stop)
