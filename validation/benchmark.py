@@ -16,7 +16,10 @@ Also the analytic curves (``gw_curves``: P, F, T, μ, N_c/N) at 1000 separations
 numba compile (cold, into an empty ``MCSIM_CACHE_DIR``) and the cached start-up, the
 split of mcsim's time between sampling (``sample_block``) and the kernel
 (``block_sums``), and the arithmetic bound: the kernel takes 3 square roots per
-contacting pair, so ``np.sqrt`` throughput / 3 bounds the pairs per second.
+contacting pair, so ``np.sqrt`` throughput / 3 bounds the pairs per second. Finally the
+kernel's cost per contacting pair for every registered law set (``mcsim.laws.LAW_SETS``,
+silicon with z0 = 0.3 nm and τ = 100 MPa), on approach and over a cycle (approach, then
+retraction from h = −1), against the seed's.
 
 Every case runs in its own Python process (``--case``), so that its peak resident
 memory (``ru_maxrss`` at its end) is its own; timings are the best of a few repeats,
@@ -214,6 +217,8 @@ def run_case(case: str, n: float, sweep_name: str, repeats: int, seed: int) -> d
             "n_above": plan.n_above,
             "pairs": float(sum(p[:, 0].sum() for p in partials)),
         }
+    elif case == "laws":
+        result["laws"] = law_costs(n, h, repeats, seed)
     elif case == "analytic":
         from mcsim.analytic import gw_curves
 
@@ -229,6 +234,50 @@ def run_case(case: str, n: float, sweep_name: str, repeats: int, seed: int) -> d
     result["rss"] = peak_rss()
     result["load"] = os.getloadavg()[0]
     return result
+
+
+def law_costs(n: float, h: np.ndarray, repeats: int, seed: int) -> dict:
+    """Kernel time per contacting and per evaluated (summit, row) pair of every law set.
+
+    Each law set samples its own summits (down to its own lowest threshold) for one patch
+    of ``n`` summits; the kernel is timed on those blocks (best of ``repeats``, compile
+    excluded). Evaluated pairs are those above the rows' thresholds (attraction
+    included); contacting pairs are those in contact.
+    """
+    import dataclasses
+
+    from mcsim.kernels import block_sums
+    from mcsim.laws import LAW_SETS
+    from mcsim.montecarlo import plan_patch, sample_block
+
+    material = dataclasses.replace(MATERIAL, z0=0.3e-9, tau=100e6)
+    out = {}
+    for name, law in LAW_SETS.items():
+        for cycle in (False, True) if law.retract else (False,):
+            spec = MonteCarloSpec(SURFACE, material, h, area=n / SURFACE.eta, realizations=1,
+                                  entropy=seed, law=name, count="fixed", cycle=cycle)  # fmt: skip
+            plan = plan_patch(spec, 0)
+            blocks = [sample_block(spec, plan, 0, b) for b in range(plan.n_blocks)]
+            d, d_turn = spec.rows()
+            thresholds = spec.edges.threshold(d, d_turn)
+
+            def kernel(spec=spec, blocks=blocks, d=d, d_turn=d_turn, law=law):
+                return [block_sums(z, d, law, spec.arguments, d_turn=d_turn, edges=spec.edges)
+                        for z in blocks]  # fmt: skip
+
+            kernel()  # compile or load
+            t, partials = best_of(repeats, kernel)
+            evaluated = sum(
+                float(np.sum(z.size - np.searchsorted(np.sort(z), thresholds, side="right")))
+                for z in blocks
+            )
+            out[f"{name}, {'cycle' if cycle else 'approach'}"] = {
+                "t": t,
+                "contacts": float(sum(p[:, 0].sum() for p in partials)),
+                "evaluated": evaluated,
+                "rows": int(d.size),
+            }
+    return out
 
 
 def spawn(case: str, n: float, sweep_name: str, repeats: int, seed: int, cache: str) -> dict:
@@ -376,6 +425,27 @@ def report(res: dict, info: dict, args: argparse.Namespace, n: float, n_big: flo
             f"- check, {SWEEP_LABEL[sw]}: baseline and mcsim sums of P, F, T agree within "
             f"their sampling error, max |z| = {zmax:.2f} over {count} comparisons"
         )
+    laws = res["laws"]["laws"]
+    seed_cost = {
+        kind: laws[f"seed, {kind}"]["t"] / laws[f"seed, {kind}"]["contacts"]
+        for kind in ("approach", "cycle")
+    }
+    lines += [
+        "",
+        f"Kernel cost per contacting pair of each registered law set (`block_sums`, one patch "
+        f"of N = {n:.0e}, {SWEEP_LABEL['full']}; a cycle adds the retraction rows; best of "
+        f"{args.repeats}). Target (issue 10, not a test): within 2× of the seed's.",
+        "",
+        "| law set, rows | contacting pairs | evaluated pairs | ns per contacting pair | × seed |",
+        "|---|---:|---:|---:|---:|",
+    ]
+    for key, v in laws.items():
+        cost = v["t"] / v["contacts"]
+        ratio = cost / seed_cost[key.split(", ")[1]]
+        lines.append(
+            f"| {key} | {v['contacts']:.3e} | {v['evaluated']:.3e} | {cost * 1e9:.2f} | "
+            f"{ratio:.2f} {verdict(ratio <= 2.0) if not key.startswith('seed') else ''} |"
+        )
     cold, cached = res["startup-cold"], res["startup-cached"]
     lines += [
         "",
@@ -423,6 +493,7 @@ def main() -> None:
             for case in ("baseline", "mcsim1", "mcsimall"):
                 res[f"{case}-{sw}"] = spawn(case, n, sw, r, seed, cache)
         res["parts"] = spawn("parts", n, "full", r, seed, cache)
+        res["laws"] = spawn("laws", n, "full", r, seed, cache)
         if args.full:
             res["baseline-big"] = spawn("baseline", n_big, "full", 1, seed_big, cache)
         for case in ("mcsim1", "mcsimall"):
