@@ -463,3 +463,11 @@ def test_mu_of_bowden_tabor_friction_is_undefined_where_the_load_is_tensile(toy)
     table = run.compare()
     row = table[(table.quantity == "mu") & (table.h == 1.2)].iloc[0]
     assert "undefined" in row.note and np.isnan(row.z)
+
+
+def test_the_seed_has_no_hysteresis_its_retraction_rows_equal_its_approach_rows_bit_for_bit():
+    cycle = run_sums(spec(cycle=True))
+    approach = run_sums(spec())
+    M = approach.sums.shape[1]
+    np.testing.assert_array_equal(cycle.sums[:, :M], approach.sums)
+    np.testing.assert_array_equal(cycle.sums[:, M:], approach.sums)
