@@ -9,7 +9,7 @@ from scipy import stats
 from mcsim import ParameterError
 from mcsim.distributions import GAUSSIAN
 from mcsim.kernels import block_sums, block_sums_numpy
-from mcsim.laws import SEED
+from mcsim.laws import LAW_SETS, SEED
 from mcsim.montecarlo import BLOCK, MonteCarloSpec, run_sums
 from mcsim.presets import MATERIALS, SURFACES
 from mcsim.simulation import simulate
@@ -471,3 +471,20 @@ def test_the_seed_has_no_hysteresis_its_retraction_rows_equal_its_approach_rows_
     M = approach.sums.shape[1]
     np.testing.assert_array_equal(cycle.sums[:, :M], approach.sums)
     np.testing.assert_array_equal(cycle.sums[:, M:], approach.sums)
+
+
+@pytest.mark.parametrize("name", sorted(LAW_SETS))
+def test_monte_carlo_agrees_with_the_analytic_curves_on_both_branches_for_every_law_set(name):
+    """|z| < 5 against mcsim.gw_curves(branch=..., turn=...) for every quantity and row with
+    plentiful contacts; a cycle for every law set with a retraction branch."""
+    import dataclasses
+
+    law = LAW_SETS[name]
+    material = dataclasses.replace(SILICON, z0=0.3e-9, tau=1e8)
+    run = simulate(SMOOTH, material, [2.5, 1.5, 0.5, 0.0, -0.5], 2e-9, realizations=4, seed=11,
+                   law=name, cycle=law.retract)  # fmt: skip
+    table = run.compare()
+    finite = table[np.isfinite(table.z)]
+    assert len(finite) >= 20
+    assert np.all(np.abs(finite.z) < 5), finite[np.abs(finite.z) >= 5]
+    assert set(finite.branch) == set(run.spec.branches)
