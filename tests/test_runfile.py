@@ -225,8 +225,10 @@ SCHEMA1 = Path(__file__).parent / "data" / "run_schema1.h5"
 
 
 def test_a_schema_1_run_file_still_opens_with_identical_results():
-    """tests/data/run_schema1.h5 was written by mcsim before schema 2 (commit 58787dd);
-    it opens, and its stored numbers equal a fresh run of the same inputs."""
+    """tests/data/run_schema1.h5 was written by mcsim before schema 2 (commit 58787dd):
+    ``simulate(SURFACES["smooth"], MATERIALS["silicon"], [2.0, 1.0, 0.0, -0.5], 1e-10,
+    realizations=2, seed=5, out=...)``. It opens, and its stored numbers equal a fresh run
+    of the same inputs."""
     old = read_run(SCHEMA1)
     assert old.attrs["schema_version"] == 1
     assert old.spec.law == "seed" and not old.spec.cycle
