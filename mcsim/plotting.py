@@ -398,6 +398,14 @@ def run_figure(run):
     from .statistics import expected_values
 
     runs = [run] if hasattr(run, "spec") else list(run)
+    branched = [r for r in runs if r.spec.cycle or tuple(r.quantities) != PANELS]
+    if branched and len(runs) == 1:
+        return _branch_run_figure(run if hasattr(run, "spec") else runs[0])
+    if branched:
+        raise MCSimError(
+            "overlaying runs needs the seed law set without --cycle; "
+            f"plot {branched[0].path or 'that run'} on its own"
+        )
     lines, overlays, info = [], [], []
     for i, r in enumerate(runs):
         spec = r.spec
@@ -449,6 +457,51 @@ def drawn_bins(edges, densities, limit: int = MAX_DRAWN_BINS):
     mass = np.add.reduceat(densities * np.diff(edges), starts)
     new_edges = np.append(edges[starts], edges[-1])
     return new_edges, mass / np.diff(new_edges)
+
+
+def _branch_run_figure(run):
+    """:func:`run_figure` of a run of any law set, approach and (for a cycle) retraction:
+    one panel per quantity on linear axes (the load is signed), analytic curves where
+    :func:`mcsim.gw_curves` gives them."""
+    from matplotlib.figure import Figure
+
+    from .results import analytic_curves
+    from .statistics import MIN_CONTACTS, expected_values
+
+    spec = run.spec
+    fine = np.linspace(spec.h.max(), spec.h.min(), 200)
+    curves = analytic_curves(spec, fine)
+    few = run.summary.expected_contacts < MIN_CONTACTS
+    names = run.quantities
+    fig = Figure(figsize=(12, 7), layout="constrained")
+    axes = fig.subplots(2, math.ceil((len(names) + 1) / 2)).ravel()
+    pad = 0.03 * (fine[0] - fine[-1]) if fine[0] > fine[-1] else 0.5
+    M = spec.h.size
+    for k, branch in enumerate(spec.branches):
+        colour = _COLOURS[k]
+        analytic = expected_values(spec, curves[k])
+        rows = slice(k * M, (k + 1) * M)
+        for ax, q in zip(axes, names):
+            ax.plot(fine, analytic[q], lw=1.6, color=colour, label=f"analytic GW, {branch}")
+            _errorbars(ax, spec.h, run.summary.mean[q][rows], run.summary.se[q][rows], False,
+                       colour, label=f"Monte Carlo mean ± 2 SE, {branch}", few=few[rows])  # fmt: skip
+    for ax, q in zip(axes, names):
+        ax.set_xlim(fine[0] + pad, fine[-1] - pad)
+        ax.set_xlabel(X_LABEL, fontsize=8)
+        ax.set_ylabel(f"{q} = {run.normalisation(q)}", fontsize=8)
+        ax.grid(True, alpha=0.4)
+    axes[0].legend(fontsize=7)
+    for ax in axes[len(names) :]:
+        ax.axis("off")
+    info = [
+        f"run: {run.path.name if run.path else '(not saved)'}",
+        *_inputs_text(spec.surface, spec.material, spec.law),
+        f"patch $A$ = {spec.area * 1e12:.4g} µm$^2$, N ~ {spec.count}, E[N] = {spec.expected_summits:.4g}",
+        f"{spec.realizations} realization(s), seed entropy {spec.entropy}",
+        *([f"cycle: approach, then retraction from h = {spec.turn:g}"] if spec.cycle else []),
+    ]
+    axes[-1].text(0, 1, "\n".join(info), va="top", fontsize=9, transform=axes[-1].transAxes)
+    return fig
 
 
 def histogram_figure(empirical, gaussian_sigma: float, *, title: str | None = None):

@@ -315,6 +315,8 @@ def test_simulate_cycle_with_a_law_set_then_compare_lists_both_branches(
     }
     _, text, _ = run_cli(capsys, "show", str(out))
     assert "cycle: approach, then retraction from h = 0" in text
+    code, text, _ = run_cli(capsys, "plot", str(out), "--out", str(tmp_path / "c.png"))
+    assert code == 0 and (tmp_path / "c.png").stat().st_size > 10_000
 
 
 def test_cycle_with_a_law_set_without_retraction_is_a_one_line_error(
