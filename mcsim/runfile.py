@@ -7,7 +7,7 @@ attribute, dimensionless ones ``"1"`` with the normalisation in ``description``)
                            seed_entropy, law, law_outputs (JSON: name -> unit),
                            quantities (JSON: name -> normalisation), count,
                            area [m^2], realizations, cycle, branches (JSON), turn
-                           (d/σ of the closest approach; NaN without cycle),
+                           (d/σ of the closest approach; cycle only),
                            block_size, complete, checksum
     /input/surface         attrs: sigma [m], R [m], eta [m^-2], name, heights (JSON)
     /input/material        attrs: E1, E2 [Pa], nu1, nu2, gamma [J/m^2], H [Pa], name,
@@ -264,7 +264,7 @@ def _write_inputs(f, spec: MonteCarloSpec, command: str, complete: bool) -> dict
         "realizations": spec.realizations,
         "cycle": spec.cycle,
         "branches": json.dumps(list(spec.branches)),
-        "turn": spec.turn if spec.cycle else np.nan,
+        **({"turn": spec.turn} if spec.cycle else {}),
         "block_size": BLOCK,
         "complete": complete,
     }
