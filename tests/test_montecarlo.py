@@ -1,6 +1,7 @@
 """The Monte Carlo engine: kernel correctness, reproducibility, sampling and statistics."""
 
 import copy
+import dataclasses
 
 import numpy as np
 import pytest
@@ -488,3 +489,28 @@ def test_monte_carlo_agrees_with_the_analytic_curves_on_both_branches_for_every_
     assert len(finite) >= 20
     assert np.all(np.abs(finite.z) < 5), finite[np.abs(finite.z) >= 5]
     assert set(finite.branch) == set(run.spec.branches)
+
+
+@pytest.mark.parametrize(
+    ("quantity", "row"),
+    [("load", 0), ("load", 2), ("area", 2), ("contact_fraction", 2), ("friction", 0)],
+)
+def test_z_scores_of_a_law_set_with_hysteresis_over_independent_seeds_are_standard_normal(
+    toy, quantity, row
+):
+    """As for the seed, on both branches (rows: h = 1 on approach, 0; retraction h = 1, 0,
+    after the turn at 0): one z per seed against the quadrature, n = 150:
+    |mean| < 5/√n and |var − 1| < 5·√(2/(n−1))."""
+    from mcsim.results import assemble
+
+    n = 150
+    base = spec(h=[1.0, 0.0], law="toy", cycle=True, material=toy, area=2e-10, realizations=2)
+    expected = toy_expected(base, toy)[quantity][row]
+    zs = []
+    for seed in range(n):
+        summary = assemble(run_sums(dataclasses.replace(base, entropy=seed), workers=1)).summary
+        zs.append((summary.mean[quantity][row] - expected) / summary.se[quantity][row])
+    zs = np.array(zs)
+    assert np.all(np.isfinite(zs))
+    assert abs(zs.mean()) < 5 / np.sqrt(n)
+    assert abs(zs.var(ddof=1) - 1) < 5 * np.sqrt(2 / (n - 1))
