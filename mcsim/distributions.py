@@ -37,13 +37,21 @@ class HeightDistribution(Protocol):
     def sample_above(self, n: int, s_min: float, rng: np.random.Generator) -> np.ndarray:
         """``n`` draws from the distribution truncated to s > s_min (s_min may be -inf)."""
 
-    def gw_integrals(self, g: LawIntegrand, h: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    def gw_integrals(
+        self, g: LawIntegrand, h: np.ndarray, breaks: np.ndarray | None = None
+    ) -> tuple[np.ndarray, np.ndarray]:
         """Partial expectations E[g(S − h); S > h] = scale · integral, for each h.
 
         ``g`` maps an array of Δ = s − h ≥ 0 to an array with one leading axis per
         quantity, shape ``(q, *Δ.shape)``. Returns ``scale`` of shape ``(len(h),)`` and
         ``integral`` of shape ``(q, len(h))``. The split keeps ratios such as μ
         finite where the expectations themselves underflow (far tails).
+
+        With ``breaks`` (shape ``(len(h), m)``, in units of Δ): E[g(S − h); S − h >
+        breaks[:, 0]], integrated piecewise between the (sorted) breakpoints in
+        ``breaks[:, 1:]`` that lie above ``breaks[:, 0]``, each panel [Δ_k, Δ_k+1] in
+        u = √(Δ − Δ_k); ``g`` is then called as ``g(delta, rows)`` with ``rows`` the
+        index into ``h`` of each row of ``delta``.
         """
 
 
@@ -99,7 +107,9 @@ class Gaussian:
 
         return truncated_standard_normal(rng, float(s_min), np.empty(n))
 
-    def gw_integrals(self, g: LawIntegrand, h: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    def gw_integrals(
+        self, g: LawIntegrand, h: np.ndarray, breaks: np.ndarray | None = None
+    ) -> tuple[np.ndarray, np.ndarray]:
         """Gaussian partial expectations by Gauss–Legendre quadrature in u = √Δ.
 
         E[g(S−h); S>h] = ∫_0^∞ g(Δ) φ(h+Δ) dΔ. For h > 0 the factor φ(h) is taken out
@@ -107,7 +117,15 @@ class Gaussian:
         weight is φ(h+Δ) itself. Δ runs over the range where the weight exceeds
         e^-41 of its peak, on 8 panels of 24 nodes in u. Accurate to ~1e-13 relative
         for smooth laws growing at most polynomially (tested against mpmath).
+
+        With ``breaks`` the same rule runs on each panel between breakpoints, in
+        u = √(Δ − Δ_k) from the panel's lower edge Δ_k (removing a square-root
+        branch point there, such as JKR's at break-off), over the s range where
+        the weight exceeds e^-41 of its peak above the lower limit
+        (:func:`_piecewise_gaussian`).
         """
+        if breaks is not None:
+            return _piecewise_gaussian(g, np.atleast_1d(np.asarray(h, dtype=float)), breaks)
         h = np.atleast_1d(np.asarray(h, dtype=float))
         hp = np.maximum(h, 0.0)
         d_lo = np.maximum(-h - np.sqrt(2 * _TAIL), 0.0)
@@ -123,6 +141,41 @@ class Gaussian:
         integral = np.sum(values * weight, axis=-1)
         scale = np.exp(-0.5 * hp**2)
         return scale, integral
+
+
+def _panels(breaks: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
+    """Panel edges per row: ``lo``, the breakpoints strictly inside (lo, hi), ``hi``.
+
+    Breakpoints outside the range are clipped onto its ends (empty panels), so every
+    row has ``breaks.shape[1] + 1`` panels; shape ``(rows, m + 2)``.
+    """
+    inner = np.clip(breaks[:, 1:], lo[:, None], hi[:, None])
+    return np.sort(np.concatenate([lo[:, None], inner, hi[:, None]], axis=1), axis=1)
+
+
+def _piecewise_gaussian(g: LawIntegrand, h: np.ndarray, breaks) -> tuple[np.ndarray, np.ndarray]:
+    """E[g(S − h); S − h > breaks[:, 0]] for a standard normal S, panel by panel.
+
+    The peak of the weight above the lower limit s_lo = h + Δ_lo lies at
+    p = max(s_lo, 0); φ(p)√(2π) is returned as ``scale`` and the s range runs from
+    max(s_lo, −√82) to √(p² + 82) (the weight above e^-41 of its peak, as for the
+    seed's rule). Each panel gets the composite 8 × 24-point rule in u = √(Δ − Δ_k).
+    """
+    breaks = np.asarray(breaks, dtype=float).reshape(h.size, -1)
+    s_lo = h + breaks[:, 0]
+    peak = np.maximum(s_lo, 0.0)
+    lo = np.maximum(s_lo, -np.sqrt(2 * _TAIL)) - h
+    hi = np.sqrt(peak**2 + 2 * _TAIL) - h
+    edges = _panels(breaks, lo, hi)
+    a = edges[:, :-1, None]
+    span = np.sqrt(edges[:, 1:] - edges[:, :-1])[..., None]
+    u = span * _U_NODES
+    delta = (a + u * u).reshape(h.size, -1)
+    log_w = -0.5 * (h[:, None] + delta) ** 2 + 0.5 * peak[:, None] ** 2
+    jac = (2 * u * span * _U_WEIGHTS).reshape(h.size, -1)
+    weight = np.exp(log_w) * jac / np.sqrt(2 * np.pi)
+    values = np.asarray(g(delta, np.arange(h.size)))
+    return np.exp(-0.5 * peak**2), np.sum(values * weight, axis=-1)
 
 
 GAUSSIAN = Gaussian()

@@ -28,7 +28,7 @@ from typing import Any
 
 import numpy as np
 
-from .distributions import LawIntegrand
+from .distributions import LawIntegrand, _panels
 from .errors import MCSimError, ParameterError
 
 #: Schema of :meth:`Empirical.to_dict`; bump when the stored keys change.
@@ -340,15 +340,22 @@ class Empirical:
         # 1 − U lies in (0, 1]: draws in (lo, hi], strictly above s_min.
         return hi[k] - (hi[k] - lo[k]) * rng.random(n)
 
-    def gw_integrals(self, g: LawIntegrand, h) -> tuple[np.ndarray, np.ndarray]:
+    def gw_integrals(self, g: LawIntegrand, h, breaks=None) -> tuple[np.ndarray, np.ndarray]:
         """Partial expectations E[g(S − h); S > h] = Σ_k f_k ∫_{max(a_k, h)}^{b_k} g(s − h) ds.
 
         Each bin [a_k, b_k] with b_k > h is clipped to s > h and integrated in
         u = √(s − h) (ds = 2u du) with a composite Gauss–Legendre rule, so the
         δ^{3/2} branch point of the Hertz law at s = h is removed. ``scale`` is 1: the
         support is bounded and nothing underflows.
+
+        With ``breaks`` (see :meth:`mcsim.distributions.HeightDistribution.gw_integrals`)
+        the integral starts at Δ = breaks[:, 0] and every bin is further split at the
+        breakpoints; each piece [Δ_k, Δ_k+1] is integrated in u = √(Δ − Δ_k) with the
+        same rule, and ``g`` is called as ``g(delta, rows)``.
         """
         h = np.atleast_1d(np.asarray(h, dtype=float))
+        if breaks is not None:
+            return self._piecewise(g, h, np.asarray(breaks, dtype=float).reshape(h.size, -1))
         a, b = self.edges[:-1], self.edges[1:]
         # Active (h, bin) pairs: the bin reaches above h and has probability.
         ih, ik = np.nonzero((b[None, :] > h[:, None]) & (self.densities[None, :] > 0))
@@ -369,4 +376,35 @@ class Empirical:
             contributions = np.concatenate(per_pair, axis=-1)
             for i in range(q):
                 integral[i] = np.bincount(ih, weights=contributions[i], minlength=h.size)
+        return np.ones(h.size), integral
+
+    def _piecewise(self, g: LawIntegrand, h: np.ndarray, breaks: np.ndarray):
+        """:meth:`gw_integrals` with breakpoints: panels are bins ∩ break intervals."""
+        a, b = self.edges[:-1], self.edges[1:]
+        lo = breaks[:, 0]
+        hi = np.maximum(b[-1] - h, lo)
+        cuts = _panels(breaks, lo, hi)  # (h, m + 2), in Δ
+        # Active (h, bin, break interval) triples, each clipped to the bin and interval.
+        ih, ik = np.nonzero((b[None, :] - h[:, None] > lo[:, None]) & (self.densities > 0))
+        p_lo = np.maximum((a[ik] - h[ih])[:, None], cuts[ih, :-1])
+        p_hi = np.minimum((b[ik] - h[ih])[:, None], cuts[ih, 1:])
+        keep = p_hi > p_lo
+        rows = np.broadcast_to(ih[:, None], keep.shape)[keep]
+        density = np.broadcast_to(self.densities[ik][:, None], keep.shape)[keep]
+        p_lo, p_hi = p_lo[keep], p_hi[keep]
+        per_panel = []
+        step = max(1, _CHUNK // _NODES.size)
+        for start in range(0, rows.size, step):
+            sl = slice(start, start + step)
+            span = np.sqrt(p_hi[sl] - p_lo[sl])[:, None]
+            u = span * _NODES
+            weight = 2 * u * span * _WEIGHTS * density[sl][:, None]
+            values = np.asarray(g(p_lo[sl][:, None] + u * u, rows[sl]))
+            per_panel.append(np.sum(values * weight, axis=-1))
+        q = np.asarray(g(np.zeros((1, 1)), np.zeros(1, dtype=np.int64))).shape[0]
+        integral = np.zeros((q, h.size))
+        if per_panel:
+            contributions = np.concatenate(per_panel, axis=-1)
+            for i in range(q):
+                integral[i] = np.bincount(rows, weights=contributions[i], minlength=h.size)
         return np.ones(h.size), integral
