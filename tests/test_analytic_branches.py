@@ -182,7 +182,7 @@ def test_friction_is_not_reported_without_tau():
     curves = gw_curves(SURFACES["smooth"], material, [0.0], TOY)
     assert list(curves.columns()) == ["h", "contact_fraction", "load", "area"]
     with pytest.raises(AttributeError, match="friction"):
-        curves.friction
+        _ = curves.friction
 
 
 def test_mu_is_undefined_where_the_load_is_tensile():
