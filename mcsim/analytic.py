@@ -311,8 +311,8 @@ def _breaks(edges: Edges, sigma: float, lag: np.ndarray) -> np.ndarray:
     in δ_max (= δ + σ·lag).
     """
     lower = np.minimum(edges.reach, np.maximum(edges.jump_in - sigma * lag, edges.break_off))
-    in_delta = [0.0, edges.reach, edges.break_off, edges.jump_in, *edges.breakpoints]
-    in_max = [edges.jump_in, *edges.breakpoints]
+    in_delta = sorted({0.0, edges.reach, edges.break_off, edges.jump_in, *edges.breakpoints})
+    in_max = sorted({edges.jump_in, *edges.breakpoints}) if np.any(lag != 0) else []
     columns = [lower / sigma]
     columns += [np.full_like(lag, b / sigma) for b in in_delta]
     columns += [b / sigma - lag for b in in_max]

@@ -11,6 +11,7 @@ from __future__ import annotations
 import argparse
 import contextlib
 import json
+import math
 import sys
 from pathlib import Path
 
@@ -132,19 +133,103 @@ def _print_rows(
 # --- commands ----------------------------------------------------------------------------
 
 
+def _parse_turn(text: str | None) -> float | None:
+    if text is None:
+        return None
+    try:
+        return float(text)
+    except ValueError:
+        raise ParameterError(
+            f"--turn: cannot read {text!r} (give a separation d/sigma, e.g. --turn=-0.5)"
+        ) from None
+
+
+def _law(args, surface, material) -> tuple[str, list[str]]:
+    """The law set (``auto`` resolved on the adhesion map) and the stderr lines to print."""
+    from .adhesion import choose_law, regime_warnings
+
+    lines = []
+    law = args.law
+    if law == "auto":
+        law, reason = choose_law(surface, material)
+        lines.append(reason)
+    lines += [f"warning: {w}" for w in regime_warnings(surface, material, law)]
+    return law, lines
+
+
+def _notes(lines: list[str]) -> None:
+    for line in lines:
+        print(f"mcsim: {line}", file=sys.stderr)
+
+
 def cmd_analytic(args) -> int:
     from .analytic import gw_curves
 
     surface, material = _inputs(args)
-    curves = gw_curves(surface, material, parse_h(args.h), args.law)
-    columns = list(curves.columns())
+    law, notes = _law(args, surface, material)
+    curves = gw_curves(surface, material, parse_h(args.h), law, branch=args.branch,
+                       turn=_parse_turn(args.turn))  # fmt: skip
     table = curves.columns()
+    columns = list(table)
     rows = [{c: float(table[c][i]) for c in columns} for i in range(curves.h.size)]
-    header = [
-        *_describe(surface, material),
-        "dimensionless: P, F, T = force/(A_n K) (Eqs. 3, 5, 7); mu = T/(P+F) (Eq. 8)",
-    ]
+    if curves.law == "seed":
+        meaning = "dimensionless: P, F, T = force/(A_n K) (Eqs. 3, 5, 7); mu = T/(P+F) (Eq. 8)"
+    else:
+        meaning = ("dimensionless: load = net force/(A_n K), > 0 compressive; area = A_r/A_n; "
+                   "friction = tau A_r/(A_n K); mu = friction/load, undefined where load <= 0")  # fmt: skip
+    header = _describe(surface, material)
+    if curves.law != "seed":
+        turn = (
+            "" if curves.turn is None else f" after the closest approach h_turn = {curves.turn:g}"
+        )
+        header.append(f"law set {curves.law}, branch {curves.branch}{turn}")
+    header.append(meaning)
+    _notes(notes)
     _print_rows(rows, columns, args.format, header)
+    return 0
+
+
+#: Keys of ``mcsim adhesion``, in order, with unit and meaning.
+ADHESION_KEYS = {
+    "pull_off": ("1", "pull-off force/(A_n K): most tensile load on retraction (magnitude)"),
+    "h_pull_off": ("1", "separation d/sigma of the pull-off"),
+    "pull_off_pressure": ("Pa", "pull-off force per nominal area"),
+    "work_of_separation": ("J/m^2", "integral of the tensile load over d on retraction"),
+    "hysteresis": ("J/m^2", "integral of (approach - retraction load) over d"),
+    "tabor": ("1", "Tabor mu_T = (R w^2/(E*^2 z0^3))^(1/3)"),
+    "maugis_lambda": ("1", "Maugis lambda = 2 sigma0 (R/(pi w K^2))^(1/3), sigma0 = w/(0.97 z0)"),
+    "adhesion_parameter": ("1", "Fuller-Tabor theta = E* sigma^(3/2)/(R^(1/2) w)"),
+    "plasticity_index": ("1", "psi = (E*/H) sqrt(sigma/R)"),
+    "turn": ("1", "closest approach h_turn = d_turn/sigma before retraction"),
+}
+
+
+def cmd_adhesion(args) -> int:
+    import warnings
+
+    from .adhesion import RegimeWarning, adhesion_summary
+
+    surface, material = _inputs(args)
+    law, notes = _law(args, surface, material)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RegimeWarning)  # printed once below
+        summary = adhesion_summary(surface, material, law, turn=_parse_turn(args.turn))
+    values = summary.to_dict()
+    turn_from = "given by --turn" if summary.turn_from == "given" else "zero approach load"
+    _notes(notes)
+    if args.format == "json":
+        out = {k: values[k] for k in ADHESION_KEYS}
+        out |= {"turn_from": turn_from, "law": summary.law}
+        clean = {k: (None if isinstance(v, float) and not math.isfinite(v) else v)
+                 for k, v in out.items()}  # fmt: skip
+        print(json.dumps(clean, indent=1, allow_nan=False))
+        return 0
+    rows = [{"quantity": k, "value": values[k], "unit": u, "meaning": m}
+            for k, (u, m) in ADHESION_KEYS.items()]  # fmt: skip
+    rows = [{**r, "value": math.nan if r["value"] is None else float(r["value"])} for r in rows]
+    header = [*_describe(surface, material), f"law set {summary.law}; turn h_turn = "
+              f"{summary.turn:.6g} ({turn_from})"]  # fmt: skip
+    _print_rows(rows, ["quantity", "value", "unit", "meaning"], args.format, header)
     return 0
 
 
@@ -412,7 +497,7 @@ def _count(text: str) -> int:
     return value
 
 
-def _add_inputs(p: argparse.ArgumentParser) -> None:
+def _add_inputs(p: argparse.ArgumentParser, separations: bool = True, law: str = "seed") -> None:
     p.add_argument(
         "--surface",
         required=True,
@@ -422,7 +507,13 @@ def _add_inputs(p: argparse.ArgumentParser) -> None:
         "--material",
         help="preset (silicon) or FILE.toml; default: the surface file's [material], else silicon",
     )
-    p.add_argument("--law", default="seed", help="law set (default: seed, the paper as written)")
+    meaning = {
+        "seed": "the paper as written",
+        "auto": "chosen on the Johnson-Greenwood adhesion map",
+    }
+    p.add_argument("--law", default=law, help=f"law set or auto (default: {law}, {meaning[law]})")
+    if not separations:
+        return
     p.add_argument("--h", required=True, metavar="SPEC",
                    help="separations d/sigma: a list '--h=-1,0,1.5' or start:stop:num '--h=4:-1:51' "
                         f"(at most {MAX_SEPARATIONS})")  # fmt: skip
@@ -443,8 +534,22 @@ def build_parser() -> argparse.ArgumentParser:
         description="Analytic GW curves versus h = d/sigma.",
     )
     _add_inputs(p)
+    p.add_argument("--branch", choices=("approach", "retract"), default="approach",
+                   help="approach from far away (default) or retraction after --turn")  # fmt: skip
+    p.add_argument("--turn", metavar="H", help="closest approach d/sigma before retraction "
+                   "(default: the lowest --h)")  # fmt: skip
     p.add_argument("--format", choices=_FORMATS, default="table")
     p.set_defaults(func=cmd_analytic)
+
+    p = sub.add_parser("adhesion", help="pull-off force, work of separation, regime numbers",
+                       description="Adhesion summary from the analytic curves: pull-off force and its separation, "
+                       "work of separation and hysteresis of an approach-retraction cycle, and the Tabor, "
+                       "Maugis, Fuller-Tabor and plasticity numbers.")  # fmt: skip
+    _add_inputs(p, separations=False, law="auto")
+    p.add_argument("--turn", metavar="H", help="closest approach d/sigma before retraction "
+                   "(default: where the approach load is zero, resting under no external load)")  # fmt: skip
+    p.add_argument("--format", choices=("table", "json"), default="table")
+    p.set_defaults(func=cmd_adhesion)
 
     p = sub.add_parser("paper", help="reproduce the paper's Figs. 2-6", description="Reproduce the paper's Figs. 2-6 "
                        "(analytic curves with Monte Carlo points), a CSV of the curves and a table of mu.")  # fmt: skip
