@@ -162,6 +162,14 @@ def _notes(lines: list[str]) -> None:
         print(f"mcsim: {line}", file=sys.stderr)
 
 
+def _contact_inputs(material) -> str:
+    def given(value, scale, unit):
+        return "not given" if value is None else f"{value * scale:.4g} {unit}"
+
+    return (f"z0 = {given(material.z0, 1e9, 'nm')}, tau = {given(material.tau, 1e-6, 'MPa')}, "
+            f"H = {given(material.H, 1e-9, 'GPa')}")  # fmt: skip
+
+
 def cmd_analytic(args) -> int:
     from .analytic import gw_curves
 
@@ -179,6 +187,7 @@ def cmd_analytic(args) -> int:
                    "friction = tau A_r/(A_n K); mu = friction/load, undefined where load <= 0")  # fmt: skip
     header = _describe(surface, material)
     if curves.law != "seed":
+        header.append(_contact_inputs(material))
         turn = (
             "" if curves.turn is None else f" after the closest approach h_turn = {curves.turn:g}"
         )
@@ -227,7 +236,7 @@ def cmd_adhesion(args) -> int:
     rows = [{"quantity": k, "value": values[k], "unit": u, "meaning": m}
             for k, (u, m) in ADHESION_KEYS.items()]  # fmt: skip
     rows = [{**r, "value": math.nan if r["value"] is None else float(r["value"])} for r in rows]
-    header = [*_describe(surface, material), f"law set {summary.law}; turn h_turn = "
+    header = [*_describe(surface, material), _contact_inputs(material), f"law set {summary.law}; turn h_turn = "
               f"{summary.turn:.6g} ({turn_from})"]  # fmt: skip
     _print_rows(rows, ["quantity", "value", "unit", "meaning"], args.format, header)
     return 0
