@@ -246,8 +246,10 @@ def zero_load_separation(surface: Surface, material: Material, law: str | LawSet
     """Separation h where the approach load first turns compressive, coming from far away.
 
     The surfaces rest there under no external load (the stable zero of the load:
-    tensile above, compressive below). Bracketed on a grid, then solved by Brent's
-    method to 1e-12 in h.
+    tensile above, compressive below). Bracketed on a grid from where no summit
+    reaches down to the lowest summit (further down if the load is still tensile
+    there, as for summits much rougher in adhesion than in height), then solved by
+    Brent's method to 1e-12 in h.
 
     Raises
     ------
@@ -256,15 +258,22 @@ def zero_load_separation(surface: Surface, material: Material, law: str | LawSet
         at infinite separation; give a turn instead.
     """
     laws = get_law_set(law)
-    h = np.linspace(_top(surface, laws, material), _bottom(surface), GRID)
-    load = gw_curves(surface, material, h, laws).load
-    tensile = np.flatnonzero(load < 0)
-    if tensile.size == 0:
-        raise ParameterError(
-            f"law set {laws.name!r}: the approach load is never tensile, so there is no "
-            "separation of zero external load; give turn (--turn=H)"
-        )
-    after = np.flatnonzero((load > 0) & (np.arange(h.size) > tensile[0]))
+    top, bottom = _top(surface, laws, material), _bottom(surface)
+    # Below the lowest summit every summit is pressed in: extend the scan downwards
+    # (doubling its span) until the load turns compressive, or up to |h| = 1e6.
+    while True:
+        h = np.linspace(top, bottom, GRID)
+        load = gw_curves(surface, material, h, laws).load
+        tensile = np.flatnonzero(load < 0)
+        if tensile.size == 0:
+            raise ParameterError(
+                f"law set {laws.name!r}: the approach load is never tensile, so there is no "
+                "separation of zero external load; give turn (--turn=H)"
+            )
+        after = np.flatnonzero((load > 0) & (np.arange(h.size) > tensile[0]))
+        if after.size or bottom < -1e6:
+            break
+        bottom = top - 2 * (top - bottom)
     if after.size == 0:
         raise ParameterError(
             f"law set {laws.name!r}: the approach load stays tensile down to h = {h[-1]:g}; "
