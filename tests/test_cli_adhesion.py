@@ -148,3 +148,41 @@ def test_adhesion_json_writes_undefined_values_as_null(capsys):
 def test_adhesion_of_the_seed_is_a_one_line_error(capsys):
     code, _, err = run_cli(capsys, "adhesion", "--surface", "smooth", "--law", "seed")
     assert code == 2 and err.count("\n") == 1 and "no net load" in err
+
+
+# -- with the registered law sets and a material file ----------------------------------------
+
+MATERIAL_FILE = """[material]
+E = "160 GPa"
+nu = 0.22
+gamma = "0.5 J/m^2"
+H = "12.5 GPa"
+z0 = "0.3 nm"
+tau = "100 MPa"
+"""
+
+
+@pytest.mark.skipif("jkr" not in LAW_SETS, reason="jkr not registered yet")
+def test_analytic_jkr_with_a_material_file_giving_z0_and_tau(capsys, tmp_path):
+    from mcsim.config import load_material
+
+    path = tmp_path / "si.toml"
+    path.write_text(MATERIAL_FILE)
+    code, out, _ = run_cli(capsys, "analytic", "--surface", "smooth", "--material", str(path),
+                           "--law", "jkr", "--branch", "retract", "--h=2,1,0.5",
+                           "--format", "csv")  # fmt: skip
+    assert code == 0
+    rows = rows_of(out)
+    assert list(rows[0]) == ["h", "contact_fraction", "load", "area", "friction", "mu"]
+    material = load_material(path)
+    assert (material.z0, material.tau) == (0.3e-9, 1e8)
+    ref = gw_curves(SURFACES["smooth"], material, [2, 1, 0.5], "jkr", branch="retract")
+    np.testing.assert_array_equal([float(r["friction"]) for r in rows], ref.friction)
+
+
+@pytest.mark.skipif("maugis-dugdale" not in LAW_SETS, reason="maugis-dugdale not registered")
+def test_adhesion_law_auto_on_the_silicon_preset_picks_maugis_dugdale(capsys):
+    code, out, err = run_cli(capsys, "adhesion", "--surface", "smooth", "--format", "json")
+    assert code == 0
+    assert err.startswith("mcsim: law auto: maugis-dugdale (Maugis lambda = 1.52")
+    assert json.loads(out)["law"] == "maugis-dugdale"
