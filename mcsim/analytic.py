@@ -280,8 +280,9 @@ def _friction(laws: LawSet, material: Material, values: dict) -> dict[str, np.nd
 def _contact_curves(surface, material, h, laws, args, edges, branch, turn) -> AnalyticCurves:
     """Curves of a law set with edges or branches: piecewise quadrature between breakpoints."""
     sigma = surface.sigma
-    # δ_max − δ = d − d_turn, per h, over σ (0 on approach).
-    lag = np.zeros_like(h) if turn is None else h - turn
+    # δ_max − δ = d − d_turn, per h, over σ (0 on approach; and for a law set
+    # without history, whose retraction is its approach, bit for bit).
+    lag = np.zeros_like(h) if turn is None or not laws.stateful else h - turn
     stateful = [o.stateful for o in laws.outputs]
 
     def integrand(delta: np.ndarray, rows: np.ndarray) -> np.ndarray:

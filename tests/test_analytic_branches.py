@@ -12,10 +12,10 @@ import dataclasses
 import numpy as np
 import pytest
 from scipy import integrate
-from toy_laws import MATERIAL, TOY, Z0, skewed_histogram
+from toy_laws import MATERIAL, TOY, Z0, skewed_histogram, toy_area, toy_edges, toy_load
 
 from mcsim import Empirical, Material, ParameterError, Surface, gw_curves
-from mcsim.laws import LAW_SETS
+from mcsim.laws import LAW_SETS, Output
 from mcsim.presets import SURFACES
 
 # -- the independent reference ------------------------------------------------------------
@@ -158,6 +158,27 @@ def test_retraction_at_the_turn_equals_approach():
     retract = gw_curves(SURFACES["smooth"], MATERIAL, [0.3], TOY, branch="retract")
     np.testing.assert_allclose(retract.load, approach.load, rtol=1e-12)
     assert retract.turn == 0.3
+
+
+def stateless_load(delta, R, E_star, gamma, z0):
+    return toy_load(delta, delta, R, E_star, gamma, z0)
+
+
+def stateless_area(delta, R, z0):
+    return toy_area(delta, delta, R, z0)
+
+
+def test_a_law_set_without_history_retracts_along_its_approach_bit_for_bit():
+    stateless = dataclasses.replace(
+        TOY,
+        outputs=(Output("load", "N", stateless_load), Output("area", "m^2", stateless_area)),
+        edges=lambda p: dataclasses.replace(toy_edges(p), break_off=0.0),
+    )
+    h = [1.0, 0.5, 0.0]
+    a = gw_curves(SURFACES["smooth"], MATERIAL, h, stateless)
+    r = gw_curves(SURFACES["smooth"], MATERIAL, h, stateless, branch="retract", turn=-1.0)
+    for q in ("contact_fraction", "load", "area"):
+        np.testing.assert_array_equal(getattr(a, q), getattr(r, q))
 
 
 def test_seed_curves_are_unchanged_on_retraction():
