@@ -216,3 +216,11 @@ def test_law_set_without_z0_is_refused_naming_z0():
     material = Material(E1=160e9, E2=160e9, nu1=0.22, nu2=0.22, gamma=0.5)
     with pytest.raises(ParameterError, match="'z0'"):
         gw_curves(Surface(sigma=1e-9, R=1e-6, eta=1e13), material, [1.0], TOY)
+
+
+def test_table_of_a_contact_law_set_names_each_column_with_its_normalisation():
+    curves = gw_curves(SURFACES["smooth"], MATERIAL, [1.0, 0.0], TOY, branch="retract")
+    assert list(curves.table().columns) == [
+        "h = d/σ", "N_c/N", "load/(A_n K)", "A_r/A_n", "τ A_r/(A_n K)", "μ = friction/load"
+    ]  # fmt: skip
+    assert "retract after the closest approach h_turn = 0" in repr(curves)
