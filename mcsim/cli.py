@@ -157,7 +157,7 @@ def _law(args, surface, material) -> tuple[str, list[str]]:
     return law, lines
 
 
-def _notes(lines: list[str]) -> None:
+def _print_lines(lines: list[str]) -> None:
     for line in lines:
         print(f"mcsim: {line}", file=sys.stderr)
 
@@ -193,7 +193,7 @@ def cmd_analytic(args) -> int:
         )
         header.append(f"law set {curves.law}, branch {curves.branch}{turn}")
     header.append(meaning)
-    _notes(notes)
+    _print_lines(notes)
     _print_rows(rows, columns, args.format, header)
     return 0
 
@@ -225,7 +225,7 @@ def cmd_adhesion(args) -> int:
         summary = adhesion_summary(surface, material, law, turn=_parse_turn(args.turn))
     values = summary.to_dict()
     turn_from = "given by --turn" if summary.turn_from == "given" else "zero approach load"
-    _notes(notes)
+    _print_lines(notes)
     if args.format == "json":
         out = {k: values[k] for k in ADHESION_KEYS}
         out |= {"turn_from": turn_from, "law": summary.law}

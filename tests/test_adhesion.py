@@ -177,7 +177,7 @@ def test_non_finite_turn_is_refused_naming_turn():
 
 #: Summits all but at one height (σ ≪ the JKR length), all pressed in at the turn (h = −10):
 #: every summit pulls off on its own, at the same separation.
-FLAT = dataclasses.replace(SMOOTH, sigma=1e-13)
+FLAT = dataclasses.replace(SMOOTH, sigma=1e-12)
 
 
 @pytest.mark.skipif("jkr" not in LAW_SETS, reason="jkr not registered yet")
