@@ -7,7 +7,8 @@ on the analytic GW curves (:func:`mcsim.adhesion.adhesion_summary`): the surface
 rest under zero external load (the default turn), or, where the approach load is
 never tensile (no adhesive rest), are pressed to h_turn = 0. Reported: the turn,
 pull-off (force/(A_n K) and MPa) and its separation, work of separation and
-hysteresis (mJ/m²), the regime numbers and the regime flags (Johnson–Greenwood map,
+hysteresis (mJ/m²), the fraction of summits in contact at the turn, the regime
+numbers and the regime flags (Johnson–Greenwood map,
 plasticity index), with what ``--law auto`` picks. Outputs ``adhesion_table.txt``
 (also printed, a Markdown table) and ``adhesion_table.csv``.
 """
@@ -19,7 +20,7 @@ import warnings
 
 from reporting import parser, write_summary
 
-from mcsim import ParameterError
+from mcsim import ParameterError, gw_curves
 from mcsim.adhesion import RegimeWarning, adhesion_summary, choose_law, regime_warnings
 from mcsim.laws import get_law_set
 from mcsim.presets import MATERIALS, PAPER_SURFACES, SURFACES
@@ -41,8 +42,10 @@ def row(surface, material, law: str) -> dict:
         except ParameterError:
             s = adhesion_summary(surface, material, law, turn=FALLBACK_TURN)
             turn = f"{s.turn:.4g} (no adhesive rest)"
+    touching = gw_curves(surface, material, [s.turn], law).contact_fraction[0]
     return out | {
         "turn": turn,
+        "contact_at_turn": f"{touching:.3g}",
         "pull_off": f"{s.pull_off:.4g}",
         "pull_off_MPa": f"{s.pull_off_pressure / 1e6:.4g}",
         "h_pull_off": f"{s.h_pull_off:.4g}",
@@ -60,7 +63,7 @@ def main() -> None:
     material = MATERIALS["silicon"]
     names = PAPER_SURFACES[2:] if args.quick else PAPER_SURFACES
     rows = [row(SURFACES[n], material, law) for n in names for law in LAWS]
-    columns = ["surface", "law", "turn", "pull_off", "pull_off_MPa", "h_pull_off", "work_mJ_m2",
+    columns = ["surface", "law", "turn", "contact_at_turn", "pull_off", "pull_off_MPa", "h_pull_off", "work_mJ_m2",
                "hysteresis_mJ_m2", "maugis_lambda", "theta", "psi", "flags"]  # fmt: skip
     with open(args.out / "adhesion_table.csv", "w", newline="") as f:
         writer = csv.DictWriter(f, fieldnames=columns, restval="")
@@ -70,7 +73,9 @@ def main() -> None:
     lines = [
         f"silicon: E* = {material.E_star / 1e9:.4g} GPa, w = {material.gamma} J/m^2, "
         f"z0 = {material.z0 * 1e9:g} nm, H = {material.H / 1e9:g} GPa",
-        "pull_off = force/(A_n K); turn = closest approach h_turn = d_turn/sigma",
+        "pull_off = force/(A_n K); turn = closest approach h_turn = d_turn/sigma; "
+        "contact_at_turn = N_c/N there (a rest in the far tail, N_c/N ~ 1e-15, means no contact "
+        "in practice)",
         "",
         "| " + " | ".join(columns) + " |",
         "|" + "---|" * len(columns),
