@@ -220,9 +220,25 @@ def cmd_adhesion(args) -> int:
 
     surface, material = _inputs(args)
     law, notes = _law(args, surface, material)
+    if args.plot:
+        from .outputs import check_output
+
+        if not str(args.plot).endswith(".png"):
+            raise ParameterError(
+                f"--plot: {args.plot}: the figure is a PNG file, its name must end in .png"
+            )
+        check_output(args.plot, overwrite=args.overwrite)  # before the work, not after it
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RegimeWarning)  # printed once below
         summary = adhesion_summary(surface, material, law, turn=_parse_turn(args.turn))
+        if args.plot:
+            from .plotting import adhesion_figure, save
+
+            save(
+                adhesion_figure(surface, material, law, summary),
+                args.plot,
+                overwrite=args.overwrite,
+            )
     values = summary.to_dict()
     turn_from = "given by --turn" if summary.turn_from == "given" else "zero approach load"
     _print_lines(notes)
@@ -558,6 +574,9 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--turn", metavar="H", help="closest approach d/sigma before retraction "
                    "(default: where the approach load is zero, resting under no external load)")  # fmt: skip
     p.add_argument("--format", choices=("table", "json"), default="table")
+    p.add_argument("--plot", metavar="FILE.png", help="also draw the approach and retraction load "
+                   "curves with the pull-off marked and the work of separation shaded")  # fmt: skip
+    p.add_argument("--overwrite", action="store_true", help="replace an existing --plot file")
     p.set_defaults(func=cmd_adhesion)
 
     p = sub.add_parser("paper", help="reproduce the paper's Figs. 2-6", description="Reproduce the paper's Figs. 2-6 "

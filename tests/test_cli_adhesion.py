@@ -186,3 +186,21 @@ def test_adhesion_law_auto_on_the_silicon_preset_picks_maugis_dugdale(capsys):
     assert code == 0
     assert err.startswith("mcsim: law auto: maugis-dugdale (Maugis lambda = 1.52")
     assert json.loads(out)["law"] == "maugis-dugdale"
+
+
+def test_adhesion_plot_draws_the_cycle_and_never_replaces_a_file_without_overwrite(
+    capsys, tmp_path
+):
+    figure = tmp_path / "cycle.png"
+    code, _, _ = run_cli(
+        capsys, "adhesion", "--surface", "smooth", "--law", "dmt", "--plot", str(figure)
+    )
+    assert code == 0 and figure.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    code, _, err = run_cli(
+        capsys, "adhesion", "--surface", "smooth", "--law", "dmt", "--plot", str(figure)
+    )
+    assert code == 2 and len(err.strip().splitlines()) == 1 and "--overwrite" in err
+    code, _, err = run_cli(
+        capsys, "adhesion", "--surface", "smooth", "--plot", str(tmp_path / "x.h5")
+    )
+    assert code == 2 and ".png" in err
