@@ -157,6 +157,24 @@ def _law(args, surface, material) -> tuple[str, list[str]]:
     return law, lines
 
 
+def _cutoff_notes(surface, material, law: str, h) -> list[str]:
+    """For ``dmt``: how much of the attraction its tail cutoff drops at separations ``h``."""
+    if law != "dmt":
+        return []
+    import numpy as np
+
+    from .laws import dmt
+
+    h = np.atleast_1d(np.asarray(h, dtype=float))
+    frac = dmt.truncated_fraction(surface, material, h)
+    where = (f"at h = {h[0]:g}" if h.size == 1 else
+             f"from {frac.min():.3g} to {frac.max():.3g} over h = {h.min():g} .. {h.max():g}")  # fmt: skip
+    if h.size == 1:
+        where = f"{frac[0]:.3g} {where}"
+    return [f"note: dmt cuts the van der Waals tail at a gap of {dmt.DEFAULT_CUTOFF:g} z0: "
+            f"it drops {where} of the attraction (mcsim.laws.dmt.truncated_fraction)"]  # fmt: skip
+
+
 def _print_lines(lines: list[str]) -> None:
     for line in lines:
         print(f"mcsim: {line}", file=sys.stderr)
@@ -177,6 +195,7 @@ def cmd_analytic(args) -> int:
     law, notes = _law(args, surface, material)
     curves = gw_curves(surface, material, parse_h(args.h), law, branch=args.branch,
                        turn=_parse_turn(args.turn))  # fmt: skip
+    notes += _cutoff_notes(surface, material, curves.law, curves.h)
     table = curves.columns()
     columns = list(table)
     rows = [{c: float(table[c][i]) for c in columns} for i in range(curves.h.size)]
@@ -240,6 +259,7 @@ def cmd_adhesion(args) -> int:
                 overwrite=args.overwrite,
             )
     values = summary.to_dict()
+    notes += _cutoff_notes(surface, material, summary.law, summary.h_pull_off)
     turn_from = "given by --turn" if summary.turn_from == "given" else "zero approach load"
     _print_lines(notes)
     if args.format == "json":

@@ -204,3 +204,14 @@ def test_adhesion_plot_draws_the_cycle_and_never_replaces_a_file_without_overwri
         capsys, "adhesion", "--surface", "smooth", "--plot", str(tmp_path / "x.h5")
     )
     assert code == 2 and ".png" in err
+
+
+def test_dmt_outputs_report_the_fraction_of_attraction_its_tail_cutoff_drops(capsys):
+    from mcsim.laws.dmt import truncated_fraction
+
+    code, _, err = run_cli(capsys, "analytic", "--surface", "smooth", "--law", "dmt", "--h=3:0:4")
+    expected = truncated_fraction(SURFACES["smooth"], MATERIALS["silicon"], [0.0, 1.0, 2.0, 3.0])
+    note = next(line for line in err.splitlines() if "tail at a gap of 10 z0" in line)
+    assert code == 0 and f"{expected.min():.3g} to {expected.max():.3g}" in note
+    code, _, err = run_cli(capsys, "analytic", "--surface", "smooth", "--law", "jkr", "--h=1")
+    assert "tail" not in err
