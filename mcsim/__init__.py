@@ -29,6 +29,18 @@ _LAZY = {
     "read_run": "runfile",
 }
 
+#: Submodules reachable as attributes after a plain ``import mcsim`` (``mcsim.laws.jkr``).
+_SUBMODULES = {
+    "adhesion",
+    "analytic",
+    "laws",
+    "plotting",
+    "presets",
+    "results",
+    "statistics",
+    "units",
+}
+
 __all__ = [
     "MCSimError",
     "ParameterError",
@@ -44,6 +56,8 @@ def __getattr__(name: str):
         value = getattr(importlib.import_module(f".{_LAZY[name]}", __name__), name)
         globals()[name] = value
         return value
+    if name in _SUBMODULES:
+        return importlib.import_module(f".{name}", __name__)
     raise AttributeError(f"module 'mcsim' has no attribute {name!r}")
 
 

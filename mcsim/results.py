@@ -131,6 +131,8 @@ class Run:
         n = self.n_summits
         drawn = f" (drawn: {np.min(n)} to {np.max(n)})" if n.size else ""
         rows = _display.inputs(spec.surface, spec.material, spec.law, spec.h)
+        if spec.cycle:
+            rows.append(("branches", f"approach, then retraction from h = {np.min(spec.h):g}"))
         rows.append(
             ("patch", f"A = {spec.area * 1e12:.4g} µm², N ~ {spec.count} with E[N] = "
                       f"{spec.expected_summits:.4g}{drawn}")

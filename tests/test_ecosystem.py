@@ -124,3 +124,13 @@ def test_curves_table_is_a_dataframe_with_columns_named_by_their_normalisation()
     np.testing.assert_array_equal(table["h = d/σ"], h)
     for label, q in zip(table.columns[1:], QUANTITIES, strict=True):
         np.testing.assert_array_equal(table[label], getattr(curves, q))
+
+
+def test_a_cycle_run_and_submodules_read_naturally_in_a_notebook():
+    import mcsim
+    from mcsim.presets import MATERIALS, SURFACES
+
+    assert mcsim.laws.get_law_set("jkr").name == "jkr"  # after a plain `import mcsim`
+    run = mcsim.simulate(SURFACES["smooth"], MATERIALS["silicon"], [1.0, 0.0], "10um^2",
+                         seed=1, law="jkr", cycle=True)  # fmt: skip
+    assert "retraction from h = 0" in repr(run) and "retraction" in run._repr_html_()
