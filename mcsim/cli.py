@@ -461,6 +461,69 @@ def cmd_plot(args) -> int:
     return 0
 
 
+def cmd_pads(args) -> int:
+    from .pads import analytic_pad_pull_off, pad_statistics
+    from .runfile import read_run
+    from .units import parse_quantity
+
+    fr = None
+    if args.restoring_force is not None:
+        fr = parse_quantity(args.restoring_force, "force", "--restoring-force")
+        if fr < 0:
+            raise ParameterError(f"--restoring-force: {args.restoring_force!r} is negative "
+                                 "(allowed: a force >= 0, e.g. 2uN)")  # fmt: skip
+    if args.plot:
+        from .outputs import check_output
+
+        if Path(args.plot).suffix.lower() != ".png":
+            raise ParameterError(
+                f"--plot: {args.plot}: the figure is a PNG file, its name must end in .png"
+            )
+        check_output(args.plot, inputs=[args.run], overwrite=args.overwrite)
+    run = read_run(args.run)
+    try:
+        pull_off = run.pull_off()
+    except ParameterError as err:
+        raise ParameterError(f"{args.run}: {err}") from None
+    stats = pad_statistics(pull_off.force, fr)
+    analytic = analytic_pad_pull_off(run.spec)
+    out = stats.to_dict()
+    if args.format == "json":
+        print(f"mcsim: note: analytic mean {analytic:.6g} N (GW pull-off x A K: minimum of the mean "
+              f"curve); per-pad pull-off on the run's grid, spacing {pull_off.resolution:.3g} in h; "
+              "p_stick_ci: Clopper-Pearson 95 %", file=sys.stderr)  # fmt: skip
+        print(json.dumps({k: (None if isinstance(v, float) and not math.isfinite(v) else v)
+                          for k, v in out.items()}, indent=1, allow_nan=False))  # fmt: skip
+    else:
+        ci = out.pop("p_stick_ci", None)
+        rows_fr = [] if fr is None else [{"quantity": "restoring_force", "value": fr, "unit": "N"}]
+        rows = [{"quantity": k, "value": float(v), "unit": "1" if k in ("pads", "p_stick") else "N"}
+                for k, v in out.items()]  # fmt: skip
+        rows[7:7] = rows_fr
+        if ci is not None:
+            rows += [{"quantity": "p_stick_ci_low", "value": ci[0], "unit": "1"},
+                     {"quantity": "p_stick_ci_high", "value": ci[1], "unit": "1"}]  # fmt: skip
+        rows.append({"quantity": "analytic_mean", "value": analytic, "unit": "N"})
+        spec = run.spec
+        header = [f"run {run.path}: law {spec.law}, A = {spec.area * 1e12:.4g} um^2, E[N] = "
+                  f"{spec.expected_summits:.4g} summits per pad, {stats.pads} pads",
+                  "pull-off per pad: most tensile retraction load on the run's grid "
+                  f"(spacing {pull_off.resolution:.3g} in h); p_stick = P(pull-off > restoring force), "
+                  "Clopper-Pearson 95 % interval",
+                  "analytic_mean: GW pull-off x A K (minimum of the mean curve, not the mean of "
+                  "the per-pad minima on the grid)"]  # fmt: skip
+        _print_rows(rows, ["quantity", "value", "unit"], "table", header)
+    if args.plot:
+        from .pads import pads_figure
+        from .plotting import save
+
+        fig = pads_figure(pull_off.force, analytic, restoring_force=fr,
+                          title=f"{Path(args.run).name}: pull-off of {stats.pads} pads")  # fmt: skip
+        save(fig, args.plot, overwrite=args.overwrite, inputs=[args.run])
+        print(f"wrote {args.plot}", file=sys.stderr)
+    return 0
+
+
 def cmd_ingest(args) -> int:
     from .ingest import IngestResult, ingest_file
     from .outputs import check_output
@@ -699,6 +762,25 @@ def build_parser() -> argparse.ArgumentParser:
         help="accept an incomplete run: plot its completed realizations",
     )
     p.set_defaults(func=cmd_plot)
+
+    p = sub.add_parser("pads", help="pull-off statistics of finite pads from a --cycle run",
+                       description="Per-pad pull-off force of a --cycle Monte Carlo run (one pad per realization): "
+                       "mean, standard error, standard deviation, 5/50/95 % quantiles (N) and, with a restoring "
+                       "force, the probability that a pad sticks with its Clopper-Pearson 95 % interval.")  # fmt: skip
+    p.add_argument(
+        "run", help="run file (.h5) of `mcsim simulate ... --cycle` with a contact law set"
+    )
+    p.add_argument("--restoring-force", metavar="F",
+                   help="force pulling the pad off: N or with a unit ('2uN', '500nN'); a pad sticks when "
+                        "its pull-off exceeds it")  # fmt: skip
+    p.add_argument("--format", choices=("table", "json"), default="table")
+    p.add_argument(
+        "--plot",
+        metavar="FILE.png",
+        help="histogram and CDF of the pad pull-off with the analytic mean",
+    )
+    p.add_argument("--overwrite", action="store_true", help="replace an existing --plot file")
+    p.set_defaults(func=cmd_pads)
 
     p = sub.add_parser("ingest", help="height map or histogram to a surface file",
                        description="Read a measured height map (.gwy .ibw .nid .npy .xyz, text matrix) or a text "

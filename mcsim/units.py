@@ -30,6 +30,7 @@ _PRESSURE = {
     "Pa": 1.0, "kPa": 1e3, "MPa": 1e6, "GPa": 1e9, "TPa": 1e12, "N/m^2": 1.0, "N/mm^2": 1e6,
 }  # fmt: skip
 _ENERGY_PER_AREA = {"J/m^2": 1.0, "mJ/m^2": 1e-3, "N/m": 1.0, "mN/m": 1e-3}
+_FORCE = {"N": 1.0, "mN": 1e-3, "uN": 1e-6, "µN": 1e-6, "μN": 1e-6, "nN": 1e-9, "pN": 1e-12}
 
 #: SI unit of each dimension, as printed in messages and labels.
 SI_UNITS = {
@@ -38,6 +39,7 @@ SI_UNITS = {
     "density": "m^-2",
     "pressure": "Pa",
     "energy_per_area": "J/m^2",
+    "force": "N",
     "dimensionless": "1",
 }
 
@@ -58,7 +60,7 @@ def unit_factor(unit: str, dimension: str) -> float:
     ----------
     unit : str
         Unit as written, e.g. ``"nm"``, ``"um^-2"``, ``"µm²"``, ``"GPa"``, ``"J/m^2"``.
-    dimension : {"length", "area", "density", "pressure", "energy_per_area", "dimensionless"}
+    dimension : {"length", "area", "density", "pressure", "energy_per_area", "force", "dimensionless"}
         The dimension the caller expects.
 
     Returns
@@ -85,6 +87,9 @@ def unit_factor(unit: str, dimension: str) -> float:
     elif dimension == "energy_per_area":
         if u in _ENERGY_PER_AREA:
             return _ENERGY_PER_AREA[u]
+    elif dimension == "force":
+        if u in _FORCE:
+            return _FORCE[u]
     elif dimension in ("length", "area", "density"):
         want = {"length": 1, "area": 2, "density": -2}[dimension]
         m = _POWER.match(u)
@@ -108,7 +113,9 @@ def _suggestion(unit: str, dimension: str) -> str:
         known = [f"{u}{power}" for u in _LENGTH]
     else:
         known = list(
-            {"pressure": _PRESSURE, "energy_per_area": _ENERGY_PER_AREA}.get(dimension, ())
+            {"pressure": _PRESSURE, "energy_per_area": _ENERGY_PER_AREA, "force": _FORCE}.get(
+                dimension, ()
+            )
         )
     same_case = [k for k in known if k.lower() == unit.lower()]
     close = same_case or difflib.get_close_matches(unit, known, n=1, cutoff=0.75)
@@ -139,6 +146,7 @@ def _examples(dimension: str) -> str:
         "density": "m^-2, um^-2, µm^-2, 1/um^2",
         "pressure": "Pa, MPa, GPa, kPa",
         "energy_per_area": "J/m^2, mJ/m^2, N/m",
+        "force": "N, mN, uN, µN, nN, pN",
         "dimensionless": "no unit",
     }[dimension]
 
