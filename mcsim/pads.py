@@ -211,3 +211,28 @@ def pads_figure(force, analytic_mean: float | None = None, *, restoring_force: f
     if title:
         fig.suptitle(title)
     return fig
+
+
+def moment_std(run) -> float:
+    """Across-pad standard deviation of pull-off predicted from the summit-level moments, N.
+
+    To first order a pad's pull-off is minus its total load at the row h* of the
+    retraction branch where the ensemble's mean load is most tensile; the variance of a
+    sum over summits is ηA E[x²] for a Poisson count and N Var(x) for a fixed one
+    (:mod:`mcsim.statistics`), estimated by the mean over pads of Σx² (fixed:
+    Σx² − (Σx)²/N). Valid when many summits carry the pull-off (≳ 100); NaN when the
+    mean load is never tensile.
+    """
+    from .kernels import sum_columns
+
+    spec = run.spec
+    if not spec.cycle or "load" not in spec.law_set.names:
+        raise ParameterError(f"moment_std needs a cycle run of a law set with a load; law = "
+                             f"{spec.law!r}, cycle = {spec.cycle}")  # fmt: skip
+    cols = sum_columns(spec.law_set)
+    retract = run.sums[:, spec.h.size :, :]
+    first, second = retract[..., cols.index("load")], retract[..., cols.index("loadload")]
+    if spec.count == "fixed":
+        second = second - first**2 / run.n_summits[:, None]
+    j = int(np.argmin(first.mean(axis=0)))
+    return float(np.sqrt(second[:, j].mean())) if first[:, j].mean() < 0 else math.nan

@@ -223,3 +223,34 @@ def test_an_incomplete_cycle_run_is_a_one_line_error_naming_the_file(tmp_path, c
 def test_a_bad_restoring_force_is_a_one_line_error(cycle_run, capsys, value, match):
     err = one_line_error(capsys, "pads", cycle_run, f"--restoring-force={value}")
     assert "--restoring-force" in err and match in err
+
+
+def test_across_pad_spread_matches_the_prediction_from_summit_moments_for_large_pads():
+    """Acceptance (issue 11 §2): pads with ≥ 100 expected contacts (super-smooth, 10 µm²,
+    ηA = 260), 300 pads: the sample standard deviation of the pull-off agrees with
+    :func:`moment_std` within 5 of its standard errors, SE(s) = s/√(2(n − 1)) (normal
+    approximation: the pull-off is a sum of hundreds of summit terms)."""
+    import warnings
+
+    from mcsim.adhesion import RegimeWarning
+    from mcsim.pads import moment_std
+    from mcsim.presets import MATERIALS, SURFACES
+    from mcsim.simulation import simulate as run_simulate
+
+    h = np.round(np.arange(3.0, -0.05, -0.1), 10)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RegimeWarning)
+        run = run_simulate(SURFACES["super-smooth"], MATERIALS["silicon"], h, 1e-11,
+                           realizations=300, seed=11, law="maugis-dugdale", cycle=True, workers=1)  # fmt: skip
+    assert run.spec.expected_summits >= 100
+    s = pad_statistics(run.pull_off().force)
+    predicted = moment_std(run)
+    assert abs(s.std - predicted) / (s.std / math.sqrt(2 * (s.pads - 1))) < 5
+
+
+def test_moment_std_refuses_a_run_without_a_cycle(tmp_path):
+    from mcsim.pads import moment_std
+    from mcsim.runfile import read_run
+
+    with pytest.raises(ParameterError, match="cycle"):
+        moment_std(read_run(simulate(tmp_path / "a.h5")))
