@@ -100,7 +100,7 @@ def main() -> None:
         c = COLORS[name]
         ax.errorbar(r[:, 0], r[:, 1], r[:, 2], fmt="o", color=c, label=f"{name} ({law})")
         ax.plot(r[:, 0], r[:, 3], "--", color=c, lw=1)
-    ax.plot([], [], "k--", lw=1, label="from one patch's moments ∝ (ηA)^(-1/2)")
+    ax.plot([], [], "k--", lw=1, label="CV_pred: std from the summit moments / mean")
     ax.set(xscale="log", yscale="log", xlabel="expected summits per pad ηA",
            ylabel="CV of pad pull-off (std/mean)", title="Pad-to-pad variation of pull-off")  # fmt: skip
     ax.legend(fontsize="small")
