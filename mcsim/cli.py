@@ -188,15 +188,149 @@ def _contact_inputs(material) -> str:
             f"H = {given(material.H, 1e-9, 'GPa')}")  # fmt: skip
 
 
+def parse_values(spec: str, dimension: str, option: str) -> list[float]:
+    """A list ``"1kPa,10kPa"`` or a range ``"1kPa:10MPa:31[:log]"`` (inclusive) to SI floats.
+
+    Each number may carry a unit of ``dimension`` (:func:`mcsim.units.parse_quantity`);
+    a bare number is SI. At most :data:`MAX_SEPARATIONS` values.
+    """
+    import numpy as np
+
+    from .units import parse_quantity
+
+    text = spec.strip()
+    if not text:
+        raise ParameterError(f"{option}: empty list of values")
+    if ":" not in text:
+        return [parse_quantity(x, dimension, option) for x in text.split(",")]
+    parts = text.split(":")
+    scale = parts.pop() if len(parts) == 4 else "lin"
+    if len(parts) != 3 or scale not in ("lin", "log"):
+        raise ParameterError(
+            f"{option}: cannot read {spec!r} (give a list '1kPa,10kPa' or start:stop:num[:log] "
+            "'1kPa:10MPa:31:log')"
+        )
+    start, stop = (parse_quantity(x, dimension, option) for x in parts[:2])
+    num = _count_of(parts[2], spec, option)
+    if scale == "log":
+        if start <= 0 or stop <= 0:
+            raise ParameterError(f"{option}: {spec!r} is out of range (allowed: a log range "
+                                 "needs start > 0 and stop > 0)")  # fmt: skip
+        return np.geomspace(start, stop, num).tolist()
+    return np.linspace(start, stop, num).tolist()
+
+
+def _count_of(text: str, spec: str, option: str) -> int:
+    try:
+        num = int(text)
+    except ValueError:
+        num = 0
+    if not 1 <= num <= MAX_SEPARATIONS:
+        raise ParameterError(f"{option}: {spec!r} asks for {text!r} points (allowed: a whole "
+                             f"number 1 <= num <= {MAX_SEPARATIONS})")  # fmt: skip
+    return num
+
+
+#: Unit of each load-control column (``mcsim analytic --pressure``).
+LOAD_UNITS = {
+    "pressure": "Pa", "h": "1 (d/sigma)", "contact_fraction": "1 (N_c/N)",
+    "load": "1 (force/(A_n K))", "area": "1 (A_r/A_n)", "friction": "1 (tau A_r/(A_n K))",
+    "P": "1 (P/(A_n K), Eq. 3)", "F": "1 (F/(A_n K), Eq. 5)", "T": "1 (T/(A_n K), Eq. 7)",
+    "mu": "1", "jump": "bool", "equilibrium": "bool", "force_N": "N", "N_c": "1 (count)",
+    "load_N": "N", "area_m2": "m^2", "friction_N": "N", "P_N": "N", "F_N": "N", "T_N": "N",
+}  # fmt: skip
+
+
+def _area(args) -> float | None:
+    from .params import check_range
+    from .units import parse_quantity
+
+    if args.area is None:
+        return None
+    return check_range("--area", parse_quantity(args.area, "area", "--area"), "m^2", low=0)
+
+
+def _dimensional(curves, area: float) -> dict:
+    """Dimensional columns for a nominal area: N_c and forces in N, the area in m^2."""
+    forces = curves.forces(area)
+    return {("area_m2" if k == "area" else k if k == "N_c" else f"{k}_N"): v
+            for k, v in forces.items()}  # fmt: skip
+
+
+def _load_control(args, surface, material, law: str, notes: list[str]) -> int:
+    import numpy as np
+
+    from .loadcontrol import load_control
+
+    area = _area(args)
+    inputs = [x for x in (args.surface, args.material) if x and Path(x).is_file()]
+    if args.plot is not None:
+        from .outputs import check_output
+
+        check_output(args.plot, inputs=inputs, overwrite=args.overwrite)
+    if args.load is not None:
+        if area is None:
+            raise ParameterError("--load needs --area (the nominal area A_n: pressure = load/area)")
+        pressure = np.array(parse_values(args.load, "force", "--load")) / area
+        option = "--load"
+    else:
+        pressure = np.array(parse_values(args.pressure, "pressure", "--pressure"))
+        option = "--pressure"
+    bad = pressure[~(pressure > 0)]
+    if bad.size:
+        raise ParameterError(f"{option}: {bad[0]:g} Pa is out of range (allowed: > 0, compressive)")
+    result = load_control(surface, material, pressure, law)
+    table = result.columns()
+    if area is not None:
+        table["force_N"] = pressure * area
+        table |= _dimensional(result.curves, area)
+    columns = list(table)
+    rows = [{c: (bool(v[i]) if v.dtype == bool else float(v[i])) for c, v in table.items()}
+            for i in range(pressure.size)]  # fmt: skip
+    _print_lines(notes)
+    if result.equilibrium.size and not result.equilibrium.all():
+        _print_lines(["tensile load beyond the pull-off: no equilibrium (h undefined)"])
+    if args.format == "json":
+        clean = [{k: (None if isinstance(v, float) and v != v else v) for k, v in r.items()}
+                 for r in rows]  # fmt: skip
+        out = {"law": result.curves.law, "balanced": result.quantity, "K_Pa": material.K,
+               "area_m2": area, "units": {c: LOAD_UNITS[c] for c in columns}, "rows": clean}  # fmt: skip
+        print(json.dumps(out, indent=1, allow_nan=False))
+    else:
+        header = [*_describe(surface, material), f"law set {result.curves.law}: pressure p (Pa) "
+                  f"balances {result.quantity} = p/K on the approach branch (K = "
+                  f"{material.K / 1e9:.4g} GPa)", "jump: reached through a jump of h; "
+                  "equilibrium false: tensile beyond the pull-off"]  # fmt: skip
+        _print_rows(rows, columns, args.format, header)
+    if args.plot is not None:
+        from .plotting import load_control_figure, save
+
+        save(load_control_figure(result), args.plot, overwrite=args.overwrite, inputs=inputs)
+    return 0
+
+
 def cmd_analytic(args) -> int:
     from .analytic import gw_curves
 
+    modes = [o for o, v in (("--h", args.h), ("--pressure", args.pressure), ("--load", args.load))
+             if v is not None]  # fmt: skip
+    if len(modes) != 1:
+        raise ParameterError(f"give exactly one of --h, --pressure, --load (got {len(modes)})")
     surface, material = _inputs(args)
     law, notes = _law(args, surface, material)
+    if args.h is None:
+        if args.branch != "approach" or args.turn is not None:
+            raise ParameterError("--branch/--turn: load control is on the approach branch only")
+        return _load_control(args, surface, material, law, notes)
+    if args.plot is not None:
+        raise ParameterError("--plot applies to --pressure/--load only")
     curves = gw_curves(surface, material, parse_h(args.h), law, branch=args.branch,
                        turn=_parse_turn(args.turn))  # fmt: skip
     notes += _cutoff_notes(surface, material, curves.law, curves.h)
     table = curves.columns()
+    area = _area(args)
+    if area is not None:
+        table |= _dimensional(curves, area)
     columns = list(table)
     rows = [{c: float(table[c][i]) for c in columns} for i in range(curves.h.size)]
     if curves.law == "seed":
@@ -639,9 +773,28 @@ def build_parser() -> argparse.ArgumentParser:
     p = sub.add_parser(
         "analytic",
         help="analytic GW curves (Eqs. 1-8)",
-        description="Analytic GW curves versus h = d/sigma.",
+        description="Analytic GW curves versus h = d/sigma (--h), or versus load: the separation on "
+        "the approach branch that balances a nominal pressure p (--pressure, or --load with --area), "
+        "p = load K. For the seed the balanced load is the paper's external force P (Eq. 3), "
+        "P/(A_n K) = p/K; for the other law sets it is load = force/(A_n K). Where adhesion makes the "
+        "load non-monotone the stable separation (reached by raising the load from zero) is reported "
+        "and a jump on the way is flagged; a tensile load beyond the pull-off has no equilibrium. "
+        "Units: pressure Pa; h, contact_fraction, load, area, friction, mu dimensionless as with --h; "
+        "with --area also N_c, force_N (applied), load_N, friction_N, P_N, F_N, T_N (N) and area_m2 (m^2).",
     )
-    _add_inputs(p)
+    _add_inputs(p, separations=False)
+    p.add_argument("--h", metavar="SPEC",
+                   help="separations d/sigma: a list '--h=-1,0,1.5' or start:stop:num '--h=4:-1:51' "
+                        f"(at most {MAX_SEPARATIONS})")  # fmt: skip
+    p.add_argument("--pressure", metavar="SPEC", help="nominal pressures (> 0, Pa unless a unit is "
+                   "given): a list '1kPa,1MPa' or start:stop:num[:log] '1kPa:10MPa:31:log'")  # fmt: skip
+    p.add_argument("--load", metavar="SPEC", help="applied forces (> 0, N unless a unit is given), "
+                   "'1uN,10uN' or a range as for --pressure; needs --area")  # fmt: skip
+    p.add_argument("--area", metavar="AREA", help="nominal area A_n, e.g. 1mm^2 (m^2 unless a unit "
+                   "is given): adds dimensional columns (forces in N)")  # fmt: skip
+    p.add_argument("--plot", metavar="FILE.png", help="with --pressure/--load: plot A_r/A_n versus "
+                   "p/E* and friction versus load")  # fmt: skip
+    p.add_argument("--overwrite", action="store_true", help="replace an existing --plot file")
     p.add_argument("--branch", choices=("approach", "retract"), default="approach",
                    help="approach from far away (default) or retraction after --turn")  # fmt: skip
     p.add_argument("--turn", metavar="H", help="closest approach d/sigma before retraction "

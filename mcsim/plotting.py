@@ -737,3 +737,68 @@ def fuller_tabor_figure(theta, pull_off: Mapping[str, np.ndarray], *, title: str
     ax.legend(fontsize=8, title="closest approach", title_fontsize=8)
     ax.set_title(title or "Fuller & Tabor (1975): rough-surface pull-off, JKR summits", fontsize=10)
     return fig
+
+
+def light_load_ratio(surface, h) -> np.ndarray:
+    """GW light-load ratio κ(h) = (A_r/A_n)/(p/E*) of elastic (Hertz) summits.
+
+    With A_r/A_n = π η R σ F_1(h) and p = (4/3) E* η R^½ σ^{3/2} F_{3/2}(h)
+    (Greenwood & Williamson 1966, Eqs. 9-10; F_n(h) = ∫_h^∞ (s − h)^n φ(s) ds),
+    κ = (3π/4) √(R/σ) F_1(h)/F_{3/2}(h). For Gaussian heights F_1/F_{3/2} →
+    √h/Γ(5/2) as h → ∞, so κ grows only as √h: A_r is nearly proportional to the
+    load at light load, the GW result. The integrals use the surface's own heights.
+    """
+    h = np.atleast_1d(np.asarray(h, dtype=float))
+    _, integral = surface.heights.gw_integrals(lambda d: np.stack([d, d**1.5]), h)
+    return 0.75 * math.pi * math.sqrt(surface.R / surface.sigma) * integral[0] / integral[1]
+
+
+def load_control_figure(result):
+    """A_r/A_n versus p/E* (log–log) and friction versus load, with the GW light-load line.
+
+    Parameters
+    ----------
+    result : LoadControl
+        From :func:`mcsim.loadcontrol.load_control`.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        Left: real contact area A_r/A_n against p/E* (seed: N_c/N, the seed has no
+        area), with the GW line A_r/A_n = κ(h₀) p/E* (:func:`light_load_ratio`) at the
+        lightest load's separation h₀ dashed. Right: friction (seed: T, Eq. 7; other
+        sets: τA_r) against the applied force per nominal area, both in MPa; points
+        reached through a jump are ringed.
+    """
+    from matplotlib.figure import Figure
+
+    curves = result.curves
+    material = curves.material
+    ok = result.equilibrium & (result.pressure > 0)
+    x = result.pressure[ok] / material.E_star
+    seed = curves.law == "seed"
+    y = curves.values["contact_fraction" if seed else "area"][ok]
+    fig = Figure(figsize=(10, 4.2), layout="constrained")
+    left, right = fig.subplots(1, 2)
+    left.loglog(x, y, "o-", ms=3, label=curves.law)
+    if x.size and not seed:
+        h0 = result.h[ok][np.argmin(x)]
+        kappa = float(light_load_ratio(curves.surface, [h0])[0])
+        left.loglog(x, kappa * x, "k--", lw=1, label=f"GW light load: A_r/A_n = {kappa:.3g} p/E*")
+    left.set_xlabel("p/E*")
+    left.set_ylabel("N_c/N" if seed else "A_r/A_n")
+    left.legend()
+    name = "T" if seed else "friction"
+    if name in curves.values:
+        friction = curves.values[name][ok] * material.K / 1e6
+        right.plot(result.pressure[ok] / 1e6, friction, "o-", ms=3, label=curves.law)
+        jumped = result.jump[ok]
+        right.plot(result.pressure[ok][jumped] / 1e6, friction[jumped], "o", mfc="none",
+                   ms=8, color="k", label="reached through a jump")  # fmt: skip
+        right.legend()
+    else:
+        right.text(0.5, 0.5, "no friction (give tau)", ha="center", transform=right.transAxes)
+    right.set_xlabel("applied load per nominal area p (MPa)")
+    right.set_ylabel("friction per nominal area (MPa)")
+    fig.suptitle(f"{curves.surface.name or 'surface'}, law set {curves.law}: load control")
+    return fig
