@@ -312,10 +312,6 @@ def _load_control(args, surface, material, law: str, notes: list[str]) -> int:
 def cmd_analytic(args) -> int:
     from .analytic import gw_curves
 
-    modes = [o for o, v in (("--h", args.h), ("--pressure", args.pressure), ("--load", args.load))
-             if v is not None]  # fmt: skip
-    if len(modes) != 1:
-        raise ParameterError(f"give exactly one of --h, --pressure, --load (got {len(modes)})")
     surface, material = _inputs(args)
     law, notes = _law(args, surface, material)
     if args.h is None:
@@ -783,12 +779,13 @@ def build_parser() -> argparse.ArgumentParser:
         "with --area also N_c, force_N (applied), load_N, friction_N, P_N, F_N, T_N (N) and area_m2 (m^2).",
     )
     _add_inputs(p, separations=False)
-    p.add_argument("--h", metavar="SPEC",
+    mode = p.add_mutually_exclusive_group(required=True)
+    mode.add_argument("--h", metavar="SPEC",
                    help="separations d/sigma: a list '--h=-1,0,1.5' or start:stop:num '--h=4:-1:51' "
                         f"(at most {MAX_SEPARATIONS})")  # fmt: skip
-    p.add_argument("--pressure", metavar="SPEC", help="nominal pressures (> 0, Pa unless a unit is "
+    mode.add_argument("--pressure", metavar="SPEC", help="nominal pressures (> 0, Pa unless a unit is "
                    "given): a list '1kPa,1MPa' or start:stop:num[:log] '1kPa:10MPa:31:log'")  # fmt: skip
-    p.add_argument("--load", metavar="SPEC", help="applied forces (> 0, N unless a unit is given), "
+    mode.add_argument("--load", metavar="SPEC", help="applied forces (> 0, N unless a unit is given), "
                    "'1uN,10uN' or a range as for --pressure; needs --area")  # fmt: skip
     p.add_argument("--area", metavar="AREA", help="nominal area A_n, e.g. 1mm^2 (m^2 unless a unit "
                    "is given): adds dimensional columns (forces in N)")  # fmt: skip

@@ -1,0 +1,193 @@
+"""Results versus load (issue 11, §1): load control on the approach branch."""
+
+import csv
+import io
+import json
+import math
+
+import numpy as np
+import pytest
+from scipy import integrate, optimize, stats
+
+from mcsim import gw_curves
+from mcsim.cli import main, parse_values
+from mcsim.errors import ParameterError
+from mcsim.loadcontrol import load_control, solve_targets
+from mcsim.plotting import light_load_ratio
+from mcsim.presets import MATERIALS, SURFACES
+
+SMOOTH, SILICON = SURFACES["smooth"], MATERIALS["silicon"]
+MAT = """[material]
+E = "160 GPa"
+nu = 0.22
+gamma = "0.5 J/m^2"
+H = "12.5 GPa"
+z0 = "0.3 nm"
+tau = "100 MPa"
+"""
+
+
+def run_cli(capsys, *argv):
+    code = main(list(argv))
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def rows_of(out):
+    return list(csv.DictReader(io.StringIO(out)))
+
+
+@pytest.mark.parametrize("law, quantity", [("seed", "P"), ("jkr", "load")])
+def test_the_found_separation_reproduces_the_pressure_to_1e_9(law, quantity):
+    pressure = np.geomspace(1e3, 1e7, 5)
+    result = load_control(SMOOTH, SILICON, pressure, law)
+    assert result.quantity == quantity and result.equilibrium.all()
+    again = gw_curves(SMOOTH, SILICON, result.h, law).values[quantity] * SILICON.K
+    np.testing.assert_allclose(again, pressure, rtol=1e-9, atol=0)
+    # The root lies within 1e-9 in h: the load crosses p between h - 1e-9 and h + 1e-9.
+    below = gw_curves(SMOOTH, SILICON, result.h - 1e-9, law).values[quantity] * SILICON.K
+    above = gw_curves(SMOOTH, SILICON, result.h + 1e-9, law).values[quantity] * SILICON.K
+    assert np.all(below >= pressure) and np.all(above <= pressure)
+
+
+@pytest.mark.parametrize("law", ["seed", "jkr"])
+def test_a_monotone_load_path_has_no_jump_and_h_falls_as_the_pressure_rises(law):
+    result = load_control(SMOOTH, SILICON, np.geomspace(1e3, 1e8, 8), law)
+    assert not result.jump.any()
+    assert np.all(np.diff(result.h) < 0)
+
+
+def _wavy(h):
+    """Toy load: tensile near contact, then a local maximum and minimum below the rest."""
+    x = 5.0 - h
+    return x - 1.5 * np.sin(x)
+
+
+def test_a_non_monotone_load_gives_the_stable_branch_and_flags_the_jump():
+    grid = np.linspace(5.0, -5.0, 2001)
+    targets = np.array([5.0, 6.3, 7.0, -0.1, -0.5])
+    h, jump, found = solve_targets(_wavy, grid, targets)
+    x_max = 2 * math.pi - math.acos(2 / 3)  # local maximum of the load (6.56)
+    x_rest = optimize.brentq(lambda x: x - 1.5 * math.sin(x), 1.0, 2.0)  # zero load, stable
+    x = 5.0 - h
+    assert found.tolist() == [True, True, True, True, False]
+    assert jump.tolist() == [False, False, True, False, False]
+    np.testing.assert_allclose(_wavy(h[:4]), targets[:4], rtol=1e-9)
+    assert x[1] < x_max < x[2]  # 6.3 before the local maximum; 7 beyond the dip
+    assert math.acos(1 / 1.5) < x[3] < x_rest  # tensile: between the pull-off and the rest
+    assert math.isnan(h[4])
+
+
+def test_a_tensile_load_beyond_the_pull_off_has_no_equilibrium():
+    result = load_control(SMOOTH, SILICON, [-1e3, -1e8], "jkr")
+    assert result.equilibrium.tolist() == [True, False]
+    assert math.isnan(result.h[1]) and math.isnan(result.curves.load[1])
+    assert result.curves.load[0] * SILICON.K == pytest.approx(-1e3, rel=1e-9)
+
+
+def test_no_positive_load_without_adhesion_is_refused():
+    with pytest.raises(ParameterError, match="pressure = 0 Pa is out of range"):
+        load_control(SMOOTH, SILICON, [0.0, 1e3], "seed")
+
+
+def test_pressure_csv_columns_are_exact(capsys, tmp_path):
+    material = tmp_path / "mat.toml"
+    material.write_text(MAT)
+    code, out, _ = run_cli(capsys, "analytic", "--surface", "smooth", "--law", "jkr",
+                           "--pressure", "1kPa:10MPa:31:log", "--format", "csv")  # fmt: skip
+    assert code == 0
+    assert out.splitlines()[0] == "pressure,h,contact_fraction,load,area,jump,equilibrium"
+    rows = rows_of(out)
+    assert len(rows) == 31 and float(rows[-1]["pressure"]) == pytest.approx(1e7, rel=1e-12)
+    _, out, _ = run_cli(capsys, "analytic", "--surface", "smooth", "--law", "jkr", "--material",
+                        str(material), "--pressure", "1MPa", "--format", "csv")  # fmt: skip
+    assert out.splitlines()[0].startswith("pressure,h,contact_fraction,load,area,friction,mu,")
+    _, out, _ = run_cli(capsys, "analytic", "--surface", "smooth", "--pressure", "1MPa",
+                        "--format", "csv")  # fmt: skip
+    assert out.splitlines()[0].startswith("pressure,h,contact_fraction,P,F,T,mu,")
+
+
+def test_csv_h_reproduces_the_pressure_through_mcsim_analytic(capsys):
+    _, out, _ = run_cli(capsys, "analytic", "--surface", "smooth", "--law", "jkr",
+                        "--pressure", "20kPa", "--format", "csv")  # fmt: skip
+    h = rows_of(out)[0]["h"]
+    _, out, _ = run_cli(capsys, "analytic", "--surface", "smooth", "--law", "jkr", f"--h={h}",
+                        "--format", "csv")  # fmt: skip
+    load = float(rows_of(out)[0]["load"])
+    assert load * SILICON.K == pytest.approx(2e4, rel=1e-9)
+
+
+def test_load_with_area_is_pressure_times_area_and_forces_come_in_newtons(capsys):
+    _, by_load, _ = run_cli(capsys, "analytic", "--surface", "smooth", "--law", "jkr", "--load",
+                            "1uN,10uN", "--area", "100um^2", "--format", "json")  # fmt: skip
+    _, by_pressure, _ = run_cli(capsys, "analytic", "--surface", "smooth", "--law", "jkr",
+                                "--pressure", "10kPa,100kPa", "--format", "json")  # fmt: skip
+    a, b = json.loads(by_load), json.loads(by_pressure)
+    assert a["units"]["pressure"] == "Pa" and a["units"]["load_N"] == "N"
+    for ra, rb in zip(a["rows"], b["rows"]):
+        assert ra["pressure"] == pytest.approx(rb["pressure"], rel=1e-12)
+        assert ra["h"] == pytest.approx(rb["h"], abs=1e-9)
+        assert ra["load_N"] == pytest.approx(ra["force_N"], rel=1e-9)
+        assert ra["area_m2"] == pytest.approx(ra["area"] * 1e-10, rel=1e-12)
+    assert [r["force_N"] for r in a["rows"]] == pytest.approx([1e-6, 1e-5], rel=1e-12)
+
+
+def test_area_gives_dimensional_columns_on_the_h_grid(capsys):
+    _, out, _ = run_cli(capsys, "analytic", "--surface", "smooth", "--h=1,2", "--area", "1mm^2",
+                        "--format", "csv")  # fmt: skip
+    row = rows_of(out)[0]
+    assert float(row["P_N"]) == pytest.approx(float(row["P"]) * SILICON.K * 1e-6, rel=1e-12)
+    assert float(row["N_c"]) == pytest.approx(float(row["contact_fraction"]) * SMOOTH.eta * 1e-6)
+
+
+def test_pressure_and_load_specs_read_units_lists_and_log_ranges():
+    assert parse_values("1kPa:10MPa:31:log", "pressure", "--pressure") == pytest.approx(
+        np.geomspace(1e3, 1e7, 31).tolist(), rel=1e-12
+    )
+    assert parse_values("1kPa,2 MPa,30", "pressure", "--pressure") == [1e3, 2e6, 30.0]
+    assert parse_values("0:1mN:3", "force", "--load") == pytest.approx([0, 5e-4, 1e-3])
+    assert parse_values("1uN,10uN", "force", "--load") == pytest.approx([1e-6, 1e-5])
+
+
+@pytest.mark.parametrize(
+    "argv, message",
+    [
+        (["--pressure", "0"], "--pressure: 0 Pa is out of range (allowed: > 0"),
+        (["--pressure=-1kPa"], "--pressure: -1000 Pa is out of range (allowed: > 0"),
+        (["--pressure", "1kPa:1MPa:0:log"], "asks for '0' points"),
+        (["--pressure", "0:1MPa:5:log"], "log range needs start > 0"),
+        (["--pressure", "1nm"], "--pressure: unknown unit 'nm' for a pressure"),
+        (["--pressure", "1kPa:2kPa"], "--pressure: cannot read"),
+        (["--load", "1uN"], "--load needs --area"),
+        (["--load", "1nm", "--area", "1mm^2"], "--load: unknown unit 'nm' for a force"),
+        (["--pressure", "1kPa", "--area", "1uN"], "--area: unknown unit 'uN' for an area"),
+        (["--pressure", "1kPa", "--h=1"], "not allowed with argument"),
+        (["--pressure", "1kPa", "--branch", "retract"], "approach branch only"),
+    ],
+)
+def test_bad_load_control_input_is_a_one_line_error(capsys, argv, message):
+    code, out, err = run_cli(capsys, "analytic", "--surface", "smooth", *argv)
+    assert code == 2 and out == ""
+    assert len(err.strip().splitlines()) == 1 and message in err
+
+
+def test_gw_light_load_ratio_is_three_pi_over_four_root_r_over_sigma_times_f1_over_f32():
+    h = np.array([0.5, 2.0, 3.5])
+    kappa = light_load_ratio(SMOOTH, h)
+
+    def f(n, x):
+        return integrate.quad(lambda s: (s - x) ** n * stats.norm.pdf(s), x, np.inf)[0]
+
+    expected = [0.75 * math.pi * math.sqrt(SMOOTH.R / SMOOTH.sigma) * f(1, x) / f(1.5, x)
+                for x in h]  # fmt: skip
+    np.testing.assert_allclose(kappa, expected, rtol=1e-6)
+
+
+def test_plot_is_written_and_an_existing_file_is_kept(capsys, tmp_path):
+    path = tmp_path / "load.png"
+    argv = ["analytic", "--surface", "smooth", "--law", "jkr", "--pressure", "1kPa:1MPa:4:log",
+            "--format", "csv", "--plot", str(path)]  # fmt: skip
+    assert run_cli(capsys, *argv)[0] == 0
+    assert path.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    code, _, err = run_cli(capsys, *argv)
+    assert code == 2 and "--overwrite" in err
