@@ -24,6 +24,8 @@ _LAZY = {
     "combine_surfaces": "params",
     "plasticity_index": "params",
     "surface_energy_parameter": "params",
+    "LoadControl": "loadcontrol",
+    "load_control": "loadcontrol",
     "Run": "results",
     "simulate": "simulation",
     "read_run": "runfile",
