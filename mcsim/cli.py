@@ -267,6 +267,10 @@ def _load_control(args, surface, material, law: str, notes: list[str]) -> int:
     if args.plot is not None:
         from .outputs import check_output
 
+        if not str(args.plot).endswith(".png"):
+            raise ParameterError(
+                f"--plot: {args.plot}: the figure is a PNG file, its name must end in .png"
+            )
         check_output(args.plot, inputs=inputs, overwrite=args.overwrite)
     if args.load is not None:
         if area is None:
@@ -280,6 +284,8 @@ def _load_control(args, surface, material, law: str, notes: list[str]) -> int:
     if bad.size:
         raise ParameterError(f"{option}: {bad[0]:g} Pa is out of range (allowed: > 0, compressive)")
     result = load_control(surface, material, pressure, law)
+    if result.equilibrium.any():
+        notes += _cutoff_notes(surface, material, law, result.h[result.equilibrium])
     table = result.columns()
     if area is not None:
         table["force_N"] = pressure * area

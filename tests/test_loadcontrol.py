@@ -163,6 +163,8 @@ def test_pressure_and_load_specs_read_units_lists_and_log_ranges():
         (["--pressure", "1kPa", "--area", "1uN"], "--area: unknown unit 'uN' for an area"),
         (["--pressure", "1kPa", "--h=1"], "not allowed with argument"),
         (["--pressure", "1kPa", "--branch", "retract"], "approach branch only"),
+        (["--pressure", "1kPa", "--plot", "x.pdf"], "its name must end in .png"),
+        (["--h=1", "--plot", "x.png"], "--plot applies to --pressure/--load only"),
     ],
 )
 def test_bad_load_control_input_is_a_one_line_error(capsys, argv, message):
