@@ -17,7 +17,7 @@ tensile approach load (the pull-off under load control) has no equilibrium
 (h = NaN, flag ``equilibrium`` False).
 
 The roots are as accurate as h can be in floating point: the load at the returned h
-matches p to ~1e-12 relative on the paper's surfaces, but where the load is a small
+matches p to 1e-10 relative or better on the paper's surfaces, but where the load is a small
 difference of large attractive and repulsive terms (pressures of ~100 Pa near the
 zero-load rest of the super-smooth surface) one ulp of h moves it by ~1e-9 relative.
 """

@@ -193,3 +193,15 @@ def test_plot_is_written_and_an_existing_file_is_kept(capsys, tmp_path):
     assert path.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     code, _, err = run_cli(capsys, *argv)
     assert code == 2 and "--overwrite" in err
+
+
+@pytest.mark.parametrize("law, quantity", [("seed", "P"), ("jkr", "load")])
+def test_monte_carlo_load_at_the_found_separation_agrees_with_the_pressure(law, quantity):
+    import mcsim
+
+    result = load_control(SMOOTH, SILICON, [1e5, 1e6], law)
+    run = mcsim.simulate(SMOOTH, SILICON, result.h, "100 um^2", realizations=40, seed=7, law=law)
+    rows = run.compare()
+    rows = rows[rows.quantity == quantity]
+    np.testing.assert_allclose(rows.analytic.to_numpy() * SILICON.K, [1e5, 1e6], rtol=1e-9)
+    assert np.all(np.abs(rows.z.to_numpy()) < 5)
