@@ -34,6 +34,7 @@ from __future__ import annotations
 import ast
 import builtins
 import functools
+import importlib.util
 import inspect
 import math
 import os
@@ -93,10 +94,13 @@ def simulating() -> bool:
 
 
 def _cuda():
-    """numba.cuda, or a ParameterError saying what is missing."""
+    """numba.cuda of numba-cuda (not numba's deprecated built-in target), or a
+    ParameterError saying what is missing."""
     try:
+        if importlib.util.find_spec("numba_cuda") is None:
+            raise ImportError("No module named 'numba_cuda'")
         import numba.cuda as cuda
-    except ImportError as exc:  # numba-cuda not installed
+    except ImportError as exc:
         raise ParameterError(
             f"device = 'cuda' needs numba-cuda ({exc}); install it with pip install 'mcsim[gpu]'"
         ) from None

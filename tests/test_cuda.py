@@ -93,8 +93,13 @@ def test_uniforms_lie_strictly_inside_the_unit_interval():
     assert unit(top, top) == 1 - 2**-53
 
 
-def test_device_cuda_without_numba_cuda_is_a_parameter_error(monkeypatch):
-    monkeypatch.setitem(sys.modules, "numba.cuda", None)
+@pytest.mark.parametrize("missing", ["numba_cuda", "numba.cuda"])
+def test_device_cuda_without_numba_cuda_is_a_parameter_error(monkeypatch, missing):
+    real = importlib.util.find_spec
+    monkeypatch.setattr(
+        importlib.util, "find_spec", lambda n, *a: None if n == missing else real(n, *a)
+    )
+    monkeypatch.setitem(sys.modules, missing, None)
     with pytest.raises(ParameterError, match=r"mcsim\[gpu\]"):
         mc.require_gpu()
 
