@@ -74,7 +74,7 @@ def sampling(sizes: list[int]) -> dict:
     for label, heights in (("gaussian", gauss), ("empirical", hist)):
         a = patch(heights, sizes)
         b = patch(heights, sizes, launch_blocks=1, grid=1)
-        c = patch(heights, sizes, entropy=8)
+        c = patch(heights, sizes[:1], entropy=8)
         n = a[:, :, 0].sum(axis=0)
         total = sum(sizes)
         s_min = -0.5
@@ -82,7 +82,7 @@ def sampling(sizes: list[int]) -> dict:
         z = (n - total * p) / np.sqrt(total * p * (1 - p) + 1e-300)
         out[label] = {
             "identical_across_launches": bool(np.array_equal(a, b)),
-            "other_seed_differs": not np.array_equal(a, c),
+            "other_seed_differs": not np.array_equal(a[:1], c),
             "z_scores": z.tolist(),
             "all_contact_at_s_min": bool(n[0] == total),
         }
@@ -91,7 +91,7 @@ def sampling(sizes: list[int]) -> dict:
 
 def main() -> None:
     n = int(sys.argv[1]) if len(sys.argv) > 1 else 600
-    sizes = [int(s) for s in sys.argv[2].split(",")] if len(sys.argv) > 2 else [700, 700, 300]
+    sizes = [int(s) for s in sys.argv[2].split(",")] if len(sys.argv) > 2 else [500, 200]
     result = {
         "simulator": mc.simulating(),
         "block_sums": block_sums_against_numpy(n),

@@ -215,7 +215,7 @@ def checks(request):
     if request.param == "simulator":
         if not HAVE_NUMBA_CUDA:
             pytest.skip("numba-cuda is not installed")
-        return run_checks(True, "300", "400,400,150")
+        return run_checks(True, "300", "500,200")
     reason = _gpu_reason()
     if reason is not None:
         print(f"GPU checks skipped: {reason}")
