@@ -89,6 +89,29 @@ def sampling(sizes: list[int]) -> dict:
     return out
 
 
+def _equal(x, y) -> bool:
+    x, y = np.asarray(x), np.asarray(y)
+    return np.array_equal(x, y, equal_nan=x.dtype.kind == "f" and y.dtype.kind == "f")
+
+
+def simulated_runs(folder: str) -> dict:
+    """``simulate(device="cuda")`` twice with the same seed (other chunk sizes): the run
+    files' datasets, and the device they record."""
+    import h5py
+
+    from mcsim.simulation import simulate
+
+    kw = dict(realizations=2, seed=3, count="fixed", device="cuda", overwrite=True)
+    area = 900 / SURFACE.eta
+    simulate(SURFACE, MATERIAL, [0.0, 1.0, 2.0], area, out=f"{folder}/a.h5", **kw)
+    simulate(SURFACE, MATERIAL, [0.0, 1.0, 2.0], area, out=f"{folder}/b.h5", chunk_size=1, **kw)
+    with h5py.File(f"{folder}/a.h5") as a, h5py.File(f"{folder}/b.h5") as b:
+        names = []
+        a.visit(lambda n: names.append(n) if isinstance(a[n], h5py.Dataset) else None)
+        same = all(_equal(a[n][()], b[n][()]) for n in names)
+        return {"device": str(a.attrs["device"]), "identical": same, "datasets": len(names)}
+
+
 def main() -> None:
     n = int(sys.argv[1]) if len(sys.argv) > 1 else 600
     sizes = [int(s) for s in sys.argv[2].split(",")] if len(sys.argv) > 2 else [500, 200]
@@ -97,6 +120,8 @@ def main() -> None:
         "block_sums": block_sums_against_numpy(n),
         "sampling": sampling(sizes),
     }
+    if len(sys.argv) > 3:
+        result["simulate"] = simulated_runs(sys.argv[3])
     print(json.dumps(result))
 
 

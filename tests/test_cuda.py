@@ -211,16 +211,17 @@ def _gpu_reason() -> str | None:
 
 
 @pytest.fixture(scope="module", params=["simulator", "gpu"])
-def checks(request):
+def checks(request, tmp_path_factory):
+    folder = str(tmp_path_factory.mktemp(f"cuda-{request.param}"))
     if request.param == "simulator":
         if not HAVE_NUMBA_CUDA:
             pytest.skip("numba-cuda is not installed")
-        return run_checks(True, "300", "500,200")
+        return run_checks(True, "300", "500,200", folder)
     reason = _gpu_reason()
     if reason is not None:
         print(f"GPU checks skipped: {reason}")
         pytest.skip(reason)
-    return run_checks(False, "200000", "65536,65536,65536,1000")
+    return run_checks(False, "200000", "65536,65536,65536,1000", folder)
 
 
 def test_gpu_block_sums_equal_numpy_for_every_law_set_and_branch(checks):
@@ -243,3 +244,43 @@ def test_gpu_heights_follow_the_truncated_distribution(checks):
     for r in checks["sampling"].values():
         assert r["all_contact_at_s_min"]
         assert max(abs(z) for z in r["z_scores"][1:]) < 5
+
+
+def test_same_seed_twice_gives_identical_gpu_run_files_that_record_the_device(checks):
+    run = checks["simulate"]
+    assert run["device"] == "cuda"
+    assert run["datasets"] > 5 and run["identical"]
+
+
+def test_an_unknown_device_is_a_parameter_error():
+    from mcsim.montecarlo import MonteCarloSpec
+
+    with pytest.raises(ParameterError, match="device = 'tpu'"):
+        MonteCarloSpec(SURFACE, MATERIAL, [0.0], 1e-10, 1, 1, device="tpu")
+
+
+def test_device_cuda_on_a_machine_without_a_gpu_is_a_one_line_cli_error(tmp_path):
+    if _gpu_reason() is None:
+        pytest.skip("this machine has a GPU")
+    env = {k: v for k, v in os.environ.items() if k != "NUMBA_ENABLE_CUDASIM"}
+    out = tmp_path / "run.h5"
+    done = subprocess.run(
+        [sys.executable, "-m", "mcsim", "simulate", "--surface", "smooth", "--material",
+         "silicon", "--h", "0,1", "--area", "1e-10", "--seed", "1", "--device", "cuda",
+         "--out", str(out)],
+        env=env, capture_output=True, text=True, timeout=300,
+    )  # fmt: skip
+    assert done.returncode != 0
+    lines = done.stderr.strip().splitlines()
+    assert len(lines) == 1 and "cuda" in lines[0], done.stderr
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_a_cpu_run_file_records_its_device(tmp_path):
+    import h5py
+
+    from mcsim.simulation import simulate
+
+    simulate(SURFACE, MATERIAL, [1.0], 200 / SURFACE.eta, seed=1, out=tmp_path / "r.h5")
+    with h5py.File(tmp_path / "r.h5") as f:
+        assert f.attrs["device"] == "cpu"
