@@ -15,8 +15,8 @@ h = d/σ = 4 … −1 (51 values), heights drawn above h_min = −1. Cases, in o
 * **CPU engine**: ``run_sums`` on all cores at N_cpu summits.
 
 A pair is a (summit, separation) with the summit in contact (Σ n_contact). Run:
-``python validation/benchmark_cuda.py [N] [N_cpu]`` (defaults 1e9 and 2e7); prints a
-markdown table.
+``python validation/benchmark_cuda.py [N] [N_cpu]`` (defaults 1e9 and 2e7) or
+``python validation/benchmark.py --device cuda``; prints a markdown table.
 """
 
 from __future__ import annotations
@@ -155,9 +155,7 @@ def run_bare(bare, spec: MonteCarloSpec, n_above: int):
     return out.copy_to_host(), time.perf_counter() - t
 
 
-def main() -> None:
-    n = int(float(sys.argv[1])) if len(sys.argv) > 1 else 10**9
-    n_cpu = int(float(sys.argv[2])) if len(sys.argv) > 2 else 2 * 10**7
+def main(n: int = 10**9, n_cpu: int = 2 * 10**7) -> None:
     device = cuda.get_current_device()
     print(f"GPU: {device.name.decode() if isinstance(device.name, bytes) else device.name}")
     spec = spec_for(n)
@@ -199,4 +197,4 @@ def main() -> None:
 
 
 if __name__ == "__main__":
-    main()
+    main(*(int(float(a)) for a in sys.argv[1:3]))
