@@ -252,6 +252,13 @@ def test_same_seed_twice_gives_identical_gpu_run_files_that_record_the_device(ch
     assert run["datasets"] > 5 and run["identical"]
 
 
+def test_a_gpu_run_agrees_with_the_analytic_curves(checks):
+    """``Run.compare`` (what ``mcsim compare`` prints): every finite |z| < 5."""
+    z = checks["simulate"]["z"]
+    assert len(z) >= 6
+    assert max(abs(v) for v in z) < 5
+
+
 def test_an_unknown_device_is_a_parameter_error():
     from mcsim.montecarlo import MonteCarloSpec
 
