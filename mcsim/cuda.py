@@ -46,6 +46,7 @@ from collections.abc import Iterator
 import numpy as np
 
 from .errors import ParameterError
+from .kernels import sum_columns
 from .laws import Edges, LawSet
 
 #: Threads per CUDA block (part of the reproducibility contract: the reduction tree).
@@ -74,14 +75,6 @@ VOCABULARY = {
     "pi": "math.pi",
     "int64": "int",
 }
-
-
-def sum_columns(law: LawSet) -> tuple[str, ...]:
-    """Columns of a block-sum array: ``n_contact``, Σ of each output, Σ of each output
-    squared, then the products of outputs i < j in lexicographic order."""
-    names = law.names
-    pairs = [(a, b) for i, a in enumerate(names) for b in names[i + 1 :]]
-    return ("n_contact", *names, *(n + n for n in names), *(a + b for a, b in pairs))
 
 
 #: Stream tag of the heights in the Philox counter.
