@@ -410,6 +410,7 @@ def cmd_show(args) -> int:
         print(f"input         {line}")
     print(f"law set       {spec.law}" + (f" (cycle: approach, then retraction from h = {spec.turn:g})"
                                           if spec.cycle else ""))  # fmt: skip
+    print(f"device        {spec.device}")
     print(
         f"patch         A = {spec.area * 1e12:.6g} um^2, N ~ {spec.count}, E[N] = {spec.expected_summits:.6g}"
     )
