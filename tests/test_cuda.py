@@ -291,3 +291,13 @@ def test_a_cpu_run_file_records_its_device(tmp_path):
     simulate(SURFACE, MATERIAL, [1.0], 200 / SURFACE.eta, seed=1, out=tmp_path / "r.h5")
     with h5py.File(tmp_path / "r.h5") as f:
         assert f.attrs["device"] == "cpu"
+
+
+def test_a_run_cannot_be_resumed_on_another_device():
+    from mcsim.montecarlo import EnsembleSums, MonteCarloSpec, run_sums
+
+    cpu = MonteCarloSpec(SURFACE, MATERIAL, [0.0], 1e-10, 1, 1)
+    gpu = MonteCarloSpec(SURFACE, MATERIAL, [0.0], 1e-10, 1, 1, device="cuda")
+    assert cpu.differences(gpu) == ["device"]
+    with pytest.raises(ParameterError, match="device"):
+        run_sums(gpu, resume=EnsembleSums.start(cpu))
