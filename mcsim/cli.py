@@ -478,7 +478,7 @@ def cmd_simulate(args) -> int:
         try:
             run = simulate(
                 surface, material, h, args.area, realizations=args.realizations, seed=args.seed, law=args.law,
-                count=args.count, cycle=args.cycle, workers=args.workers, scheduler=args.scheduler or args.dask,
+                count=args.count, cycle=args.cycle, device=args.device, workers=args.workers, scheduler=args.scheduler or args.dask,
                 chunk_size=args.chunk_size, keep_heights=args.keep_heights, out=out, overwrite=args.overwrite,
                 resume=args.resume, checkpoint_every=args.checkpoint_every, progress=show_progress,
                 command=cli_command(),
@@ -546,6 +546,7 @@ def cmd_show(args) -> int:
         print(f"input         {line}")
     print(f"law set       {spec.law}" + (f" (cycle: approach, then retraction from h = {spec.turn:g})"
                                           if spec.cycle else ""))  # fmt: skip
+    print(f"device        {spec.device}")
     print(
         f"patch         A = {spec.area * 1e12:.6g} um^2, N ~ {spec.count}, E[N] = {spec.expected_summits:.6g}"
     )
@@ -854,6 +855,13 @@ def build_parser() -> argparse.ArgumentParser:
         action="store_true",
         help="approach over the --h grid (descending), then retraction back over the same grid "
         "from its lowest value; both branches stored",
+    )
+    p.add_argument(
+        "--device",
+        choices=("cpu", "cuda"),
+        default="cpu",
+        help="sample and sum on the CPU or on an NVIDIA GPU (needs mcsim[gpu]; other random "
+        "streams than the CPU's, recorded in the run file)",
     )
     p.add_argument("--out", help="run file (default: runs/<surface>-<time>.h5)")
     p.add_argument("--overwrite", action="store_true", help="replace an existing run file")

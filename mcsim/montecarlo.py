@@ -51,6 +51,10 @@ DEFAULT_CHUNK = 1 << 18
 
 COUNT_MODES = ("poisson", "fixed")
 
+#: Where the blocks are sampled and summed: NumPy + numba on the CPU, or the GPU
+#: (:mod:`mcsim.cuda`, other random streams: the numbers differ from the CPU's).
+DEVICES = ("cpu", "cuda")
+
 #: Most expected summits per patch, E[N] = ηA: NumPy's Poisson sampler stops near 9.2e18,
 #: and 1e18 summits would take decades at ~3e8 summits per second.
 MAX_SUMMITS = 1e18
@@ -87,6 +91,8 @@ class MonteCarloSpec:
     cycle : bool
         Approach over ``h`` and then retraction back over the same ``h`` after the
         closest approach min(h) (both branches stored); approach only by default.
+    device : {"cpu", "cuda"}
+        Where the heights are drawn and the blocks summed (:data:`DEVICES`).
     """
 
     surface: Surface
@@ -98,6 +104,7 @@ class MonteCarloSpec:
     law: str = "seed"
     count: str = "poisson"
     cycle: bool = False
+    device: str = "cpu"
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "h", check_separations(self.h))
@@ -122,6 +129,8 @@ class MonteCarloSpec:
         if self.cycle:
             law.check_branch("retract")
         law.parameters(self.surface, self.material)  # required material fields
+        if self.device not in DEVICES:
+            raise ParameterError(f"device = {self.device!r} is not one of {', '.join(DEVICES)}")
 
     def fields(self) -> dict:
         """The defining inputs, comparable with ``==`` (h as a tuple)."""
@@ -348,6 +357,23 @@ def run_task(spec: MonteCarloSpec, task: Task, keep_heights: bool = False):
     return partials, (blocks if keep_heights else None)
 
 
+def run_task_cuda(spec: MonteCarloSpec, task: Task, keep_heights: bool = False):
+    """:func:`run_task` on the GPU (:func:`mcsim.cuda.patch_block_sums_cuda`): the same
+    blocks and rows, heights drawn on the GPU and never copied back."""
+    from .cuda import patch_block_sums_cuda
+
+    law = spec.law_set
+    d, d_turn = spec.rows()
+    parts = patch_block_sums_cuda(
+        law=law, args=law.arguments(spec.surface, spec.material), heights=spec.surface.heights,
+        sigma=spec.surface.sigma, s_min=spec.s_min, entropy=spec.entropy,
+        realization=task.realization, first_block=task.start, d=d, d_turn=d_turn,
+        block_sizes=[task.plan.block_size(b) for b in range(task.start, task.stop)],
+        edges=law.edges_for(spec.surface, spec.material),
+    )  # fmt: skip
+    return [block for part in parts for block in part], None
+
+
 def default_workers() -> int:
     """All cores available to this process."""
     try:
@@ -449,6 +475,18 @@ def run_sums(
         )
     if resume is not None and keep_heights:
         raise ParameterError("keep_heights cannot be combined with resuming a run")
+    task_fn = run_task
+    if spec.device == "cuda":
+        from .cuda import LAUNCH_BLOCKS, require_gpu
+
+        require_gpu()
+        if keep_heights or client is not None:
+            raise ParameterError(
+                "device = 'cuda' runs on this machine's GPU and keeps no heights: "
+                "drop keep_heights and the Dask scheduler"
+            )
+        task_fn, workers = run_task_cuda, 1  # one GPU; big tasks keep it busy
+        chunk_size = max(chunk_size, LAUNCH_BLOCKS * BLOCK)
     if resume is None:
         state = EnsembleSums.start(spec)
     else:  # the inputs are immutable values; only the progress is copied
@@ -464,7 +502,7 @@ def run_sums(
             pool = ThreadPoolExecutor(max_workers=workers)
             # Queued tasks are dropped, running ones (short) finished, on any exit.
             stack.callback(pool.shutdown, wait=True, cancel_futures=True)
-            submit = functools.partial(pool.submit, run_task, spec, keep_heights=keep_heights)
+            submit = functools.partial(pool.submit, task_fn, spec, keep_heights=keep_heights)
             window = 2 * workers
         else:
             submit = functools.partial(

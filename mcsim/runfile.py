@@ -263,6 +263,7 @@ def _write_inputs(f, spec: MonteCarloSpec, command: str, complete: bool) -> dict
         "area_unit": "m^2",
         "realizations": spec.realizations,
         "cycle": spec.cycle,
+        "device": spec.device,
         "branches": json.dumps(list(spec.branches)),
         **({"turn": spec.turn} if spec.cycle else {}),
         "block_size": BLOCK,
@@ -478,7 +479,7 @@ def _read_state(path: Path, f) -> EnsembleSums:
                         z0=None if np.isnan(z0) else z0, tau=None if np.isnan(tau) else tau)  # fmt: skip
     spec = MonteCarloSpec(surface, material, f["h"][()], float(attrs["area"]), int(attrs["realizations"]),
                           int(attrs["seed_entropy"]), str(attrs["law"]), str(attrs["count"]),
-                          bool(attrs.get("cycle", False)))  # fmt: skip
+                          bool(attrs.get("cycle", False)), str(attrs.get("device", "cpu")))  # fmt: skip
     R, M, rows = spec.realizations, spec.h.size, spec.row_h.size
     columns = sum_columns(spec.law_set)
     expected = {

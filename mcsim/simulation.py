@@ -74,6 +74,7 @@ def simulate(
     law: str = "seed",
     count: str = "poisson",
     cycle: bool = False,
+    device: str = "cpu",
     workers: int | None = None,
     scheduler=None,
     chunk_size: int = DEFAULT_CHUNK,
@@ -107,6 +108,9 @@ def simulate(
     cycle : bool
         Approach over ``h`` (descending), then retraction back over the same ``h``
         after the closest approach min(h); both branches are stored.
+    device : {"cpu", "cuda"}
+        Sample and sum on the CPU or on the GPU (``mcsim[gpu]``; other random streams,
+        so other numbers than the CPU's, equal in distribution); recorded in the run.
     workers : int, optional
         Local worker threads, all cores by default; or worker processes of a local
         Dask cluster. The numbers do not depend on it.
@@ -173,7 +177,7 @@ def simulate(
                 partial.unlink(missing_ok=True)  # --overwrite: start again
         entropy = np.random.SeedSequence(seed).entropy
         spec = MonteCarloSpec(
-            surface, material, h, area_m2, realizations, entropy, law, count, cycle
+            surface, material, h, area_m2, realizations, entropy, law, count, cycle, device
         )
         if previous is not None and previous.spec != spec:
             raise ParameterError(
@@ -183,7 +187,8 @@ def simulate(
             command = _api_command(surface=surface.name or surface, material=material.name or material,
                                    h=[float(x) for x in spec.h], area=area_m2, realizations=realizations,
                                    seed=seed, law=law, count=count,
-                                   **({"cycle": True} if cycle else {}))  # fmt: skip
+                                   **({"cycle": True} if cycle else {}),
+                                   **({"device": device} if device != "cpu" else {}))  # fmt: skip
         n_workers = workers if isinstance(workers, int) and workers > 0 else default_workers()
         summits, pairs, seconds = estimate(spec, n_workers)
         if seconds > ESTIMATE_ABOVE:

@@ -88,7 +88,13 @@ def test_show_and_plot_describe_a_run(capsys, tmp_path):
     )
     code, text, _ = run_cli(capsys, "show", str(out))
     assert code == 0
-    for word in ("seed entropy  2", "sigma = 15.8 nm", "A = 100 um^2", "law set       seed"):
+    for word in (
+        "seed entropy  2",
+        "sigma = 15.8 nm",
+        "A = 100 um^2",
+        "law set       seed",
+        "device        cpu",
+    ):
         assert word in text
     code, text, _ = run_cli(capsys, "plot", str(out), "--out", str(tmp_path / "p.png"))
     assert code == 0 and (tmp_path / "p.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"

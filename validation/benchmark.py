@@ -472,7 +472,14 @@ def main() -> None:
     p.add_argument("--case", help=argparse.SUPPRESS)
     p.add_argument("--n", type=float, default=1e7, help=argparse.SUPPRESS)
     p.add_argument("--sweep", default="full", choices=SWEEPS, help=argparse.SUPPRESS)
+    p.add_argument("--device", choices=("cpu", "cuda"), default="cpu",
+                   help="cuda: the GPU backend against a bare CUDA kernel (benchmark_cuda.py)")  # fmt: skip
     args = p.parse_args()
+    if args.device == "cuda":
+        import benchmark_cuda
+
+        benchmark_cuda.main(*((10**7, 10**6) if args.quick else ()))
+        return
     if args.case:
         print(json.dumps(run_case(args.case, args.n, args.sweep, args.repeats, args.seed)))
         return
