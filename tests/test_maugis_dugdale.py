@@ -282,3 +282,13 @@ def test_lambda_outside_the_tabulated_range_is_refused():
     stiff = Material(E1=1e13, E2=1e13, nu1=0.2, nu2=0.2, gamma=0.01, z0=1e-6)  # λ ≈ 2e-7
     with pytest.raises(ParameterError, match="lambda"):
         get_law_set("maugis-dugdale").evaluate([0.0], Surface(1e-9, 1e-9, 1e12), stiff)
+
+
+def test_importing_the_law_sets_does_not_load_scipy_interpolate_or_optimize():
+    """Every command imports mcsim.laws; the table's SciPy tools cost ~0.35 s at start-up."""
+    import subprocess
+    import sys
+
+    code = "import sys, mcsim.laws; print(sorted(m for m in ('scipy.interpolate', 'scipy.optimize') if m in sys.modules))"
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "[]"

@@ -71,8 +71,6 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.interpolate import CubicSpline
-from scipy.optimize import brentq
 
 from ..errors import ParameterError
 from ..params import Material, Surface
@@ -238,6 +236,8 @@ def _solve_branch(targets: np.ndarray, psi_lo: float, lam: float) -> np.ndarray:
 def _coefficients(x: np.ndarray, f: np.ndarray) -> np.ndarray:
     """Not-a-knot cubic spline through (x, f), as local cubics in s ∈ [0, 1) per interval,
     interleaved [c0, c1, c2, c3] for interval 0, then interval 1, ..."""
+    from scipy.interpolate import CubicSpline  # on first use: keeps `import mcsim.laws` light
+
     c = CubicSpline(x, f).c  # c[3 − j] multiplies (x − x_k)^j
     h = x[1] - x[0]
     local = np.stack([c[3 - j] * h**j for j in range(4)], axis=1)
@@ -261,6 +261,8 @@ def table(lam: float, n: int = N_TABLE) -> Table:
     -------
     Table
     """
+    from scipy.optimize import brentq
+
     h0 = 2.0 / (np.pi * lam)
     b = 8.0 * lam / (3.0 * np.pi)
     half_pi = 0.5 * np.pi
@@ -311,6 +313,8 @@ def pull_off(lam: float) -> tuple[float, float]:
     P, Delta : float
         P̄ (negative; its magnitude is the pull-off force in units of πwR) and Δ.
     """
+    from scipy.optimize import brentq
+
     half_pi = 0.5 * np.pi
     psi = half_pi
     if _slopes(half_pi, lam)[1] > 0.0:  # P̄ still falls as the contact grows from A = 0
