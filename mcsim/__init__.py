@@ -28,6 +28,8 @@ _LAZY = {
     "load_control": "loadcontrol",
     "Run": "results",
     "simulate": "simulation",
+    "Sweep": "sweeps",
+    "sweep": "sweeps",
     "read_run": "runfile",
 }
 
@@ -40,6 +42,7 @@ _SUBMODULES = {
     "presets",
     "results",
     "statistics",
+    "sweeps",
     "units",
 }
 

@@ -1,0 +1,208 @@
+"""``mcsim sweep``: curves, adhesion summaries and regime numbers on a grid of inputs, in one
+netCDF-compatible HDF5 file; bit-identical to ``mcsim analytic``/``mcsim adhesion`` at
+every point, whatever the workers, and after an interruption and resume."""
+
+import csv
+import dataclasses
+import io
+import json
+import warnings
+
+import numpy as np
+import pytest
+
+from mcsim.adhesion import RegimeWarning, adhesion_summary
+from mcsim.analytic import gw_curves
+from mcsim.cli import main
+from mcsim.errors import MCSimError, ParameterError
+from mcsim.presets import MATERIALS, PAPER_SURFACES, SURFACES
+from mcsim.sweeps import SUMMARY, sweep
+
+SMOOTH, SILICON = SURFACES["smooth"], MATERIALS["silicon"]
+#: The four Table-1 surfaces' σ (m).
+TABLE1_SIGMA = [SURFACES[name].sigma for name in PAPER_SURFACES]
+H = [3.0, 1.0, 0.0, -0.5]
+
+
+def run_cli(capsys, *argv):
+    code = main(list(argv))
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+@pytest.fixture(scope="module")
+def sigma_sweep(tmp_path_factory):
+    """A 40-point log σ sweep (dmt, the smooth surface's R and η) through the four
+    Table-1 σ, written to a file."""
+    sigma = np.unique(np.concatenate([np.geomspace(0.3e-9, 20e-9, 36), TABLE1_SIGMA]))
+    assert sigma.size == 40
+    path = tmp_path_factory.mktemp("sweep") / "sigma.h5"
+    result = sweep(SMOOTH, SILICON, {"sigma": sigma}, law="dmt", h=H, out=path, workers=2)
+    return result, path
+
+
+def test_a_40_point_sigma_sweep_reproduces_the_analytic_curves_and_adhesion_summary_at_the_table1_sigma(
+    sigma_sweep,
+):
+    result, _ = sigma_sweep
+    for s in TABLE1_SIGMA:
+        i = int(np.flatnonzero(result.coords["sigma"] == s)[0])
+        surface = dataclasses.replace(SMOOTH, sigma=s)
+        curves = gw_curves(surface, SILICON, H, "dmt")
+        for q, values in curves.values.items():
+            np.testing.assert_array_equal(result.data[q][i], values, err_msg=f"{q} at sigma {s}")
+        try:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", RegimeWarning)
+                summary = adhesion_summary(surface, SILICON, "dmt")
+        except ParameterError as err:  # no zero-load rest: the point fails with the same message
+            assert str(err) in result.data["error"][i]
+            assert np.isnan(result.data["pull_off"][i])
+            continue
+        assert result.data["error"][i] == ""
+        for k in (*SUMMARY, "tabor", "maugis_lambda", "adhesion_parameter", "plasticity_index"):
+            assert result.data[k][i] == getattr(summary, k), k
+        assert result.data["regime_warning"][i] == "; ".join(summary.warnings)
+
+
+def test_the_sweep_file_equals_mcsim_analytic_and_mcsim_adhesion_output_at_the_smooth_surface(
+    sigma_sweep, capsys
+):
+    _, path = sigma_sweep
+    xr = pytest.importorskip("xarray")
+    point = xr.open_dataset(path, engine="h5netcdf").sel(sigma=SMOOTH.sigma)
+    code, out, _ = run_cli(capsys, "analytic", "--surface", "smooth", "--law", "dmt",
+                           "--h=3,1,0,-0.5", "--format", "csv")  # fmt: skip
+    assert code == 0
+    rows = list(csv.DictReader(io.StringIO(out)))
+    for q in ("contact_fraction", "load", "area"):
+        np.testing.assert_array_equal(point[q].values, [float(r[q]) for r in rows], err_msg=q)
+    code, out, _ = run_cli(
+        capsys, "adhesion", "--surface", "smooth", "--law", "dmt", "--format", "json"
+    )
+    assert code == 0
+    cli = json.loads(out)
+    for k in (*SUMMARY, "tabor", "maugis_lambda", "adhesion_parameter", "plasticity_index"):
+        assert float(point[k]) == cli[k], k
+
+
+def test_the_sweep_file_opens_in_xarray_with_sigma_and_h_as_coordinates_and_units(sigma_sweep):
+    result, path = sigma_sweep
+    xr = pytest.importorskip("xarray")
+    with xr.open_dataset(path, engine="h5netcdf") as ds:
+        assert dict(ds.sizes) == {"sigma": 40, "h": len(H)}
+        np.testing.assert_array_equal(ds["sigma"].values, result.coords["sigma"])
+        assert ds["sigma"].attrs["units"] == "m"
+        np.testing.assert_array_equal(ds["h"].values, H)
+        assert ds["load"].dims == ("sigma", "h")
+        assert ds["pull_off"].dims == ("sigma",)
+        assert ds["work_of_separation"].attrs["units"] == "J/m^2"
+        assert ds["pull_off_pressure"].attrs["units"] == "Pa"
+        assert ds["load"].attrs["units"] == "1"
+        assert ds["error"].dtype.kind in "OU"  # text, not bytes
+        assert ds.attrs["mcsim_version"]
+        assert json.loads(ds.attrs["varied"]) == ["sigma"]
+        xr.testing.assert_identical(ds.drop_attrs(), result.to_xarray().drop_attrs())
+
+
+def test_table_is_tidy_one_row_per_point_with_units():
+    result = sweep(SMOOTH, SILICON, {"sigma": "1nm,2nm", "gamma": "0.1:0.5:3"}, law="seed", h=H)
+    df = result.table()
+    assert len(df) == 6
+    assert list(df.columns[:2]) == ["sigma", "gamma"]
+    np.testing.assert_array_equal(df["sigma"], [1e-9] * 3 + [2e-9] * 3)  # C order
+    np.testing.assert_allclose(df["gamma"], [0.1, 0.3, 0.5] * 2)
+    assert df.attrs["units"]["sigma"] == "m"
+    assert df.attrs["units"]["gamma"] == "J/m^2"
+    assert "pull_off" not in df  # the seed has no net load
+    assert {"tabor", "adhesion_parameter", "error"} <= set(df.columns)
+
+
+def test_grid_is_the_outer_product_in_the_order_given():
+    result = sweep(SMOOTH, SILICON, {"gamma": [0.2, 0.4], "E": "100GPa,150GPa,200GPa"}, h=H)
+    assert result.grid == ("gamma", "E")
+    assert result.data["P"].shape == (2, 3, len(H))
+    material = dataclasses.replace(SILICON, gamma=0.4, E1=150e9, E2=150e9)
+    np.testing.assert_array_equal(result.data["F"][1, 1], gw_curves(SMOOTH, material, H).F)
+
+
+def test_law_is_a_string_coordinate_and_each_law_has_its_own_curves(tmp_path):
+    xr = pytest.importorskip("xarray")
+    path = tmp_path / "laws.h5"
+    sweep(SMOOTH, SILICON, {"law": "seed,dmt"}, h=H, out=path)
+    with xr.open_dataset(path, engine="h5netcdf") as ds:
+        assert list(ds["law"].values) == ["seed", "dmt"]
+        np.testing.assert_array_equal(ds["P"].sel(law="seed"), gw_curves(SMOOTH, SILICON, H).P)
+        assert np.all(np.isnan(ds["P"].sel(law="dmt")))
+        assert np.isnan(ds["pull_off"].sel(law="seed"))
+        assert float(ds["pull_off"].sel(law="dmt")) > 0
+
+
+def test_cli_sweep_writes_the_file_and_refuses_to_replace_it_without_overwrite(tmp_path, capsys):
+    path = tmp_path / "s.h5"
+    args = ["sweep", "--surface", "smooth", "--law", "dmt", "--vary", "sigma=1nm,2nm",
+            "--h=2,0", "--out", str(path)]  # fmt: skip
+    code, out, _ = run_cli(capsys, *args)
+    assert code == 0 and path.is_file()
+    assert "2 points" in out
+    code, _, err = run_cli(capsys, *args)
+    assert code == 2
+    assert "file exists" in err and len(err.strip().splitlines()) == 1
+    code, _, _ = run_cli(capsys, *args, "--overwrite")
+    assert code == 0
+
+
+def test_a_failed_point_is_recorded_and_reported_with_its_inputs_and_the_others_kept(
+    tmp_path, capsys
+):
+    path = tmp_path / "fail.h5"
+    # gamma = 0: no adhesion, so no separation of zero load to start the retraction from.
+    code, _, err = run_cli(capsys, "sweep", "--surface", "smooth", "--law", "dmt", "--vary",
+                           "gamma=0,0.5", "--h=2,0", "--out", str(path))  # fmt: skip
+    assert code == 1
+    assert path.is_file()
+    failed = [line for line in err.splitlines() if "failed" in line]
+    assert len(failed) == 1 and "gamma = 0" in failed[0] and "never tensile" in failed[0]
+    xr = pytest.importorskip("xarray")
+    with xr.open_dataset(path, engine="h5netcdf") as ds:
+        assert "never tensile" in str(ds["error"].values[0])
+        assert np.isnan(ds["pull_off"].values[0])  # the step that failed
+        assert np.all(np.isfinite(ds["load"].values[0]))  # the curves before it are kept
+        assert str(ds["error"].values[1]) == "" and float(ds["pull_off"].values[1]) > 0
+
+
+@pytest.mark.parametrize(
+    ("vary", "extra", "message"),
+    [
+        (["foo=1:2:3"], [], "unknown input 'foo'"),
+        (["sigma=1GPa:2GPa:3"], [], "vary sigma: unknown unit 'GPa' for a length"),
+        (["sigma=1nm:2nm:0"], [], "empty range"),
+        (["sigma=2nm:1nm:3:log"], [], "empty range"),
+        (["sigma=1nm", "sigma=2nm"], [], "given twice"),
+        (["E=100GPa,200GPa", "E1=150GPa"], [], "both set E1"),
+        (["area=1um^2,2um^2"], [], "add --mc"),
+        (["sigma=1nm:2nm:1000", "gamma=0.1:1:1001"], [], "more than the limit of 1000000"),
+        (["sigma=-1nm,1nm"], [], "vary sigma: sigma = -1e-09 m is out of range"),
+        (["law=jkr,nope"], [], "unknown law set 'nope'"),
+        (["law=jkr,dmt"], ["--law", "seed"], "given both as --law"),
+        (["sigma"], [], "give NAME=SPEC"),
+    ],
+)
+def test_bad_sweep_input_is_a_one_line_error_naming_the_field(
+    tmp_path, capsys, vary, extra, message
+):
+    argv = ["sweep", "--surface", "smooth", *extra, "--out", str(tmp_path / "x.h5")]
+    for v in vary:
+        argv += ["--vary", v]
+    code, _, err = run_cli(capsys, *argv)
+    assert code == 2
+    assert err.startswith("mcsim: error:") and len(err.strip().splitlines()) == 1
+    assert message in err
+    assert not (tmp_path / "x.h5").exists()
+
+
+def test_api_refuses_an_empty_vary_and_area_without_mc():
+    with pytest.raises(ParameterError, match="at least one input"):
+        sweep(SMOOTH, SILICON, {})
+    with pytest.raises(MCSimError, match="Monte Carlo runs only"):
+        sweep(SMOOTH, SILICON, {"sigma": [1e-9]}, area="1um^2")
