@@ -580,7 +580,18 @@ def cmd_show(args) -> int:
     import numpy as np
 
     from .runfile import read_run, read_state
+    from .sweeps import is_sweep_file, read_sweep
 
+    if is_sweep_file(args.run):
+        result = read_sweep(args.run)
+        print(result)
+        a = result.attrs
+        print(
+            f"  created  {a.get('created')} by mcsim {a.get('mcsim_version')}\n  command  {a.get('command')}"
+        )
+        for inputs, error in result.failed[:5]:
+            print(f"  failed   {inputs}: {error}")
+        return 0
     state, a = read_state(args.run)
     spec = state.spec
     print(f"run file      {args.run}")
@@ -1004,9 +1015,11 @@ def build_parser() -> argparse.ArgumentParser:
     p.set_defaults(func=cmd_compare)
 
     p = sub.add_parser(
-        "show", help="human summary of a run file", description="Summarise a run file."
+        "show",
+        help="human summary of a run or sweep file",
+        description="Summarise a run or sweep file.",
     )
-    p.add_argument("run", help="run file (.h5)")
+    p.add_argument("run", help="run file or sweep file (.h5)")
     p.set_defaults(func=cmd_show)
 
     p = sub.add_parser("plot", help="Monte Carlo points over the analytic curves",

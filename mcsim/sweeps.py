@@ -627,10 +627,11 @@ def sweep(
         checkpoint = None
         if out is not None:
             checkpoint = functools.partial(_write, partial, result, attrs, complete=False)
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore", RegimeWarning)  # recorded per point instead
-            _run(stack, points, config, result, done, workers, scheduler, progress,
-                 checkpoint, checkpoint_every)  # fmt: skip
+        # Recorded per point instead; restored only once the last point has stopped.
+        stack.enter_context(warnings.catch_warnings())
+        warnings.simplefilter("ignore", RegimeWarning)
+        _run(stack, points, config, result, done, workers, scheduler, progress, checkpoint,
+             checkpoint_every)  # fmt: skip
         if out is None:
             return dataclasses.replace(result, attrs=attrs)
         _write(out, result, attrs, complete=True)
@@ -850,26 +851,63 @@ def _variable(f, name: str, values: np.ndarray, unit: str, long_name: str):
     return ds
 
 
+def _read_file(path: Path) -> dict:
+    """Attributes, datasets (strings decoded), units and long names of a sweep file or
+    checkpoint, verified by its checksum."""
+    import h5py
+
+    path = Path(path)
+    if not path.is_file():
+        raise RunFileError(f"{path}: no such file")
+    try:
+        with h5py.File(path, "r") as f:
+            if "sweep_schema_version" not in f.attrs:
+                raise RunFileError(f"{path}: not an mcsim sweep file (no sweep_schema_version)")
+            if int(f.attrs["sweep_schema_version"]) != SCHEMA_VERSION:
+                raise RunFileError(f"{path}: sweep schema version {f.attrs['sweep_schema_version']} "
+                                   f"is not supported (this mcsim reads {SCHEMA_VERSION})")  # fmt: skip
+            if f.attrs.get("checksum") != runfile._checksum(f):
+                raise RunFileError(f"{path}: damaged sweep file: checksum mismatch")
+            attrs = {k: (v.item() if hasattr(v, "item") else v) for k, v in f.attrs.items()}
+            data, units, long_names = {}, {}, {}
+            for k, ds in f.items():
+                values = ds[()]
+                if values.dtype.kind == "S":
+                    values = np.array([v.decode() for v in values.ravel()], dtype=object)
+                    values = values.reshape(ds.shape)
+                data[k] = values
+                units[k], long_names[k] = str(ds.attrs["units"]), str(ds.attrs["long_name"])
+    except (OSError, KeyError) as err:
+        raise RunFileError(f"{path}: cannot read the sweep file ({err})") from None
+    return {"attrs": attrs, "data": data, "units": units, "long_names": long_names}
+
+
 def _read_partial(path: Path) -> dict:
-    """Attributes, ``done`` and data of a sweep checkpoint (verified by its checksum)."""
+    """A sweep checkpoint: attributes, ``done`` and data."""
+    raw = _read_file(path)
+    if "done" not in raw["data"] or raw["attrs"].get("complete"):
+        raise RunFileError(f"{path}: not a sweep checkpoint")
+    return {**raw, "done": raw["data"]["done"].astype(bool)}
+
+
+def is_sweep_file(path: str | Path) -> bool:
+    """Whether ``path`` is an HDF5 file written by :func:`sweep` (complete or not)."""
     import h5py
 
     try:
         with h5py.File(path, "r") as f:
-            if f.attrs.get("checksum") != runfile._checksum(f):
-                raise RunFileError(f"{path}: damaged checkpoint: checksum mismatch")
-            if "sweep_schema_version" not in f.attrs or "done" not in f:
-                raise RunFileError(f"{path}: not a sweep checkpoint")
-            attrs = {k: (v.item() if hasattr(v, "item") else v) for k, v in f.attrs.items()}
-            done = f["done"][()].astype(bool)
-            data = {}
-            for k, ds in f.items():
-                values = ds[()]
-                if values.dtype.kind == "S":
-                    values = np.array([v.decode() for v in values.ravel()], dtype=object).reshape(
-                        values.shape
-                    )
-                data[k] = values
-    except OSError as err:
-        raise RunFileError(f"{path}: cannot read the checkpoint ({err})") from None
-    return {"attrs": attrs, "done": done, "data": data}
+            return "sweep_schema_version" in f.attrs
+    except (OSError, ValueError):
+        return False
+
+
+def read_sweep(path: str | Path) -> Sweep:
+    """Open a sweep file as a :class:`Sweep` (no xarray needed); refuses a damaged file."""
+    path = Path(path)
+    raw = _read_file(path)
+    grid = tuple(json.loads(raw["attrs"]["varied"]))
+    coords = {d: raw["data"].pop(d) for d in (*grid, "h")}
+    coords = {d: v.astype(str) if v.dtype == object else v for d, v in coords.items()}
+    raw["data"].pop("done", None)
+    dims = {k: (*grid, "h") if v.ndim == len(grid) + 1 else grid for k, v in raw["data"].items()}
+    return Sweep(coords, raw["data"], dims, raw["units"], raw["long_names"], raw["attrs"], path)

@@ -105,6 +105,19 @@ def test_the_sweep_file_opens_in_xarray_with_sigma_and_h_as_coordinates_and_unit
         xr.testing.assert_identical(ds.drop_attrs(), result.to_xarray().drop_attrs())
 
 
+def test_read_sweep_and_show_give_back_the_file(sigma_sweep, capsys):
+    from mcsim.sweeps import read_sweep
+
+    result, path = sigma_sweep
+    back = read_sweep(path)
+    assert back.grid == ("sigma",)
+    assert_same_data(back.data, result.data)
+    assert back.units == result.units
+    code, out, _ = run_cli(capsys, "show", str(path))
+    assert code == 0
+    assert "Parameter sweep" in out and "40 values" in out and "failed" in out
+
+
 def test_table_is_tidy_one_row_per_point_with_units():
     result = sweep(SMOOTH, SILICON, {"sigma": "1nm,2nm", "gamma": "0.1:0.5:3"}, law="seed", h=H)
     df = result.table()
@@ -186,6 +199,8 @@ def test_a_failed_point_is_recorded_and_reported_with_its_inputs_and_the_others_
         (["law=jkr,nope"], [], "unknown law set 'nope'"),
         (["law=jkr,dmt"], ["--law", "seed"], "given both as --law"),
         (["sigma"], [], "give NAME=SPEC"),
+        (["sigma=1nm,2nm"], ["--mc"], "needs the patch area"),
+        (["sigma=1nm,2nm"], ["--realizations", "3"], "add --mc"),
     ],
 )
 def test_bad_sweep_input_is_a_one_line_error_naming_the_field(
@@ -206,3 +221,141 @@ def test_api_refuses_an_empty_vary_and_area_without_mc():
         sweep(SMOOTH, SILICON, {})
     with pytest.raises(MCSimError, match="Monte Carlo runs only"):
         sweep(SMOOTH, SILICON, {"sigma": [1e-9]}, area="1um^2")
+
+
+# --- execution: threads, Dask, interruption and resume ------------------------------------
+
+#: A small grid with every kind of output: curves, adhesion summary, regime numbers.
+SMALL = {"sigma": "1nm,2nm", "gamma": "0.3,0.5,0.7"}
+
+
+def assert_same_data(a, b):
+    """Every data variable of two sweeps (results or open files) is equal, bit for bit."""
+    assert set(a) == set(b)
+    for k in a:
+        x, y = np.asarray(a[k]), np.asarray(b[k])
+        if x.dtype.kind in "fc":
+            np.testing.assert_array_equal(x, y, err_msg=k)
+        else:
+            assert x.astype(str).tolist() == y.astype(str).tolist(), k
+
+
+def read_data(path):
+    xr = pytest.importorskip("xarray")
+    with xr.open_dataset(path, engine="h5netcdf") as ds:
+        return {k: v.values for k, v in ds.data_vars.items()}
+
+
+@pytest.fixture(scope="module")
+def serial(tmp_path_factory):
+    path = tmp_path_factory.mktemp("serial") / "serial.h5"
+    return sweep(SMOOTH, SILICON, SMALL, law="dmt", h=H, workers=1, out=path), path
+
+
+def test_two_worker_threads_give_the_serial_sweep_bit_for_bit(serial):
+    threads = sweep(SMOOTH, SILICON, SMALL, law="dmt", h=H, workers=2)
+    assert_same_data(threads.data, serial[0].data)
+
+
+def test_a_two_worker_local_dask_cluster_gives_the_serial_sweep_bit_for_bit(serial):
+    pytest.importorskip("distributed", reason="Dask (extra 'dask') not installed")
+    distributed = sweep(SMOOTH, SILICON, SMALL, law="dmt", h=H, workers=2, scheduler="local")
+    assert_same_data(distributed.data, serial[0].data)
+
+
+def test_an_interrupted_sweep_resumes_without_recomputing_and_equals_the_uninterrupted_one(
+    serial, tmp_path, monkeypatch
+):
+    import mcsim.sweeps as sweeps
+
+    path, evaluate, calls = tmp_path / "resumed.h5", sweeps.evaluate, []
+
+    def stop_at_point_3(point, config):
+        calls.append(point.index)
+        if point.index == 3:
+            raise KeyboardInterrupt
+        return evaluate(point, config)
+
+    monkeypatch.setattr(sweeps, "evaluate", stop_at_point_3)
+    with pytest.raises(KeyboardInterrupt):
+        sweep(SMOOTH, SILICON, SMALL, law="dmt", h=H, workers=1, out=path)
+    partial = tmp_path / "resumed.partial.h5"
+    assert not path.exists() and partial.is_file()
+    assert read_data(partial)["done"].ravel().tolist() == [1, 1, 1, 0, 0, 0]
+    with pytest.raises(MCSimError, match="checkpoint"):  # not replaced by a fresh start
+        sweep(SMOOTH, SILICON, SMALL, law="dmt", h=H, workers=1, out=path)
+    monkeypatch.setattr(sweeps, "evaluate", lambda point, config: calls.append(point.index) or evaluate(point, config))  # fmt: skip
+    calls.clear()
+    sweep(SMOOTH, SILICON, SMALL, law="dmt", h=H, workers=2, out=path, resume=True)
+    assert sorted(calls) == [3, 4, 5]  # the completed points are never recomputed
+    assert not partial.exists()
+    assert_same_data(read_data(path), read_data(serial[1]))
+
+
+def test_resume_refuses_a_checkpoint_of_other_inputs(tmp_path, monkeypatch):
+    import mcsim.sweeps as sweeps
+
+    evaluate = sweeps.evaluate
+
+    def stop_at_point_1(point, config):
+        if point.index == 1:
+            raise KeyboardInterrupt
+        return evaluate(point, config)
+
+    monkeypatch.setattr(sweeps, "evaluate", stop_at_point_1)
+    path = tmp_path / "s.h5"
+    with pytest.raises(KeyboardInterrupt):
+        sweep(SMOOTH, SILICON, {"sigma": "1nm,2nm,3nm"}, h=H, workers=1, out=path)
+    monkeypatch.setattr(sweeps, "evaluate", evaluate)
+    with pytest.raises(ParameterError, match="cannot resume"):
+        sweep(SMOOTH, SILICON, {"sigma": "1nm,2nm,4nm"}, h=H, out=path, resume=True)
+
+
+def test_ctrl_c_during_a_cli_sweep_saves_the_completed_points_and_resume_finishes_it(
+    serial, tmp_path, capsys, monkeypatch
+):
+    import signal
+
+    import mcsim.sweeps as sweeps
+
+    evaluate = sweeps.evaluate
+
+    def ctrl_c_at_point_2(point, config):
+        if point.index == 2:
+            signal.raise_signal(signal.SIGINT)  # recorded by mcsim.interrupt, raised between points
+        return evaluate(point, config)
+
+    monkeypatch.setattr(sweeps, "evaluate", ctrl_c_at_point_2)
+    path = tmp_path / "cli.h5"
+    argv = ["sweep", "--surface", "smooth", "--law", "dmt", "--vary", "sigma=1nm,2nm",
+            "--vary", "gamma=0.3,0.5,0.7", "--h=3,1,0,-0.5", "--workers", "1", "--out", str(path)]  # fmt: skip
+    code, _, err = run_cli(capsys, *argv)
+    assert code == 130
+    assert "--resume" in err and len(err.strip().splitlines()) == 1
+    monkeypatch.setattr(sweeps, "evaluate", evaluate)
+    code, _, _ = run_cli(capsys, *argv, "--resume")
+    assert code == 0
+    assert_same_data(read_data(path), read_data(serial[1]))
+
+
+# --- Monte Carlo per point -----------------------------------------------------------------
+
+
+def test_monte_carlo_per_point_uses_the_points_own_seed_whatever_the_workers():
+    from mcsim.simulation import simulate
+    from mcsim.sweeps import point_seed
+
+    vary = {"sigma": "1nm,2nm", "area": "1um^2,2um^2"}
+    kwargs = dict(law="seed", h=[2.0, 0.5], mc=True, realizations=2, seed=7)
+    one = sweep(SMOOTH, SILICON, vary, workers=1, **kwargs)
+    two = sweep(SMOOTH, SILICON, vary, workers=2, **kwargs)
+    assert_same_data(one.data, two.data)
+    assert one.grid == ("sigma", "pad_area")
+    surface = dataclasses.replace(SMOOTH, sigma=2e-9)
+    run = simulate(surface, SILICON, [2.0, 0.5], 1e-12, realizations=2, seed=point_seed(7, 2))
+    for q in ("contact_fraction", "P", "F", "T", "mu"):
+        np.testing.assert_array_equal(one.data[f"mc_{q}"][1, 0], run.summary.mean[q], err_msg=q)
+        np.testing.assert_array_equal(one.data[f"mc_{q}_se"][1, 0], run.summary.se[q], err_msg=q)
+    assert one.units["pad_area"] == "m^2"
+    other_seed = sweep(SMOOTH, SILICON, vary, workers=1, **{**kwargs, "seed": 8})
+    assert not np.array_equal(other_seed.data["mc_P"], one.data["mc_P"])
