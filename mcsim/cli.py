@@ -500,6 +500,10 @@ def cmd_simulate(args) -> int:
     return 0
 
 
+#: Failed points of a sweep listed one per line on stderr; the rest are counted.
+MAX_FAILED_SHOWN = 20
+
+
 def cmd_sweep(args) -> int:
     from .interrupt import Interrupted, interruptible
 
@@ -528,8 +532,8 @@ def cmd_sweep(args) -> int:
                 surface, material, vary, law=args.law, h=parse_h(args.h), turn=_parse_turn(args.turn),
                 mc=args.mc, area=args.area, realizations=args.realizations or 1, seed=args.seed,
                 workers=args.workers, scheduler=args.scheduler or args.dask, out=out,
-                overwrite=args.overwrite, resume=args.resume, progress=not args.quiet and sys.stderr.isatty(),
-                command=cli_command(),
+                overwrite=args.overwrite, resume=args.resume, checkpoint_every=args.checkpoint_every,
+                progress=not args.quiet and sys.stderr.isatty(), command=cli_command(),
             )  # fmt: skip
         except Interrupted as stop:
             partial = checkpoint_path(out)
@@ -543,10 +547,14 @@ def cmd_sweep(args) -> int:
             first = next(str(w) for w in warned.ravel() if w)
             print(f"mcsim: warning: {n_warned} of {warned.size} points outside their law set's regime "
                   f"(variable regime_warning), e.g.: {first}", file=sys.stderr)  # fmt: skip
-        for inputs, error in result.failed:
+        failed = result.failed
+        for inputs, error in failed[:MAX_FAILED_SHOWN]:
             shown = ", ".join(f"{k} = {v:.6g}" if isinstance(v, float) else f"{k} = {v}"
                               for k, v in inputs.items())  # fmt: skip
             print(f"mcsim: point {shown} failed: {error}", file=sys.stderr)
+        if len(failed) > MAX_FAILED_SHOWN:
+            print(f"mcsim: ... and {len(failed) - MAX_FAILED_SHOWN} more failed points (variable "
+                  f"error of {out})", file=sys.stderr)  # fmt: skip
         if not args.quiet:
             print(f"wrote {result.path}: {warned.size} points ({' x '.join(map(str, result.shape))}), "
                   f"{len(result.failed)} failed")  # fmt: skip
@@ -999,6 +1007,9 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--overwrite", action="store_true", help="replace an existing sweep file")
     p.add_argument("--resume", action="store_true", help="continue from the checkpoint beside --out "
                    "(same arguments): completed points are not recomputed")  # fmt: skip
+    p.add_argument("--checkpoint-every", type=float, default=60.0, metavar="SECONDS",
+                   help="save the completed points beside --out (FILE.partial.h5) after 10 s, then this "
+                   "often (default: 60 s)")  # fmt: skip
     p.add_argument("--quiet", action="store_true", help="no progress bar or summary")
     p.set_defaults(func=cmd_sweep)
 

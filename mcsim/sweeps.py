@@ -317,6 +317,13 @@ def evaluate(point: _Point, config: _Config) -> dict:
     return out
 
 
+def _evaluate_quietly(point: _Point, config: _Config) -> dict:
+    """:func:`evaluate` on a Dask worker, without printing the regime warnings it records."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RegimeWarning)
+        return evaluate(point, config)
+
+
 def _evaluate(point: _Point, config: _Config, out: dict) -> None:
     surface, material = point.surface, point.material
     law = choose_law(surface, material)[0] if point.law == "auto" else point.law
@@ -609,13 +616,13 @@ def sweep(
         key = attrs["definition"]
         done = np.zeros(shape, dtype=bool)
         if previous is not None:
+            if previous["attrs"].get("mcsim_version") != __version__:
+                raise RunFileError(f"{partial}: written by mcsim "
+                                   f"{previous['attrs'].get('mcsim_version')}; resume it with that version")  # fmt: skip
             if previous["attrs"].get("definition") != key:
                 raise ParameterError(f"cannot resume {out}: the inputs differ from the recorded "
                                      "sweep's (same surface, material, law, vary, h, turn, mc "
                                      "options needed)")  # fmt: skip
-            if previous["attrs"].get("mcsim_version") != __version__:
-                raise RunFileError(f"{partial}: written by mcsim "
-                                   f"{previous['attrs'].get('mcsim_version')}; resume it with that version")  # fmt: skip
             done = previous["done"]
             for k in result.data:
                 result.data[k][done] = previous["data"][k][done]
@@ -781,7 +788,7 @@ def _run(stack, points, config, result: Sweep, done, workers, scheduler, progres
         submit = functools.partial(pool.submit, evaluate, config=config)
         window = 2 * n_workers
     else:
-        submit = functools.partial(client.submit, evaluate, config=config, pure=False)
+        submit = functools.partial(client.submit, _evaluate_quietly, config=config, pure=False)
         window = 2 * max(1, sum(client.nthreads().values()))
     next_checkpoint = time.monotonic() + min(FIRST_CHECKPOINT, checkpoint_every)
     unsaved = False

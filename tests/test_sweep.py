@@ -292,6 +292,22 @@ def test_an_interrupted_sweep_resumes_without_recomputing_and_equals_the_uninter
     assert_same_data(read_data(path), read_data(serial[1]))
 
 
+def test_completed_points_are_checkpointed_as_they_finish(tmp_path, monkeypatch):
+    import mcsim.sweeps as sweeps
+
+    write, saved = sweeps._write, []
+
+    def spy(path, result, attrs, *, complete, done=None):
+        if not complete:
+            saved.append(int(done.sum()))
+        return write(path, result, attrs, complete=complete, done=done)
+
+    monkeypatch.setattr(sweeps, "_write", spy)
+    sweep(SMOOTH, SILICON, {"sigma": "1nm,2nm,3nm"}, h=H, out=tmp_path / "s.h5", checkpoint_every=0)
+    assert saved == [1, 2, 3]  # checkpoint_every=0: after every point
+    assert not (tmp_path / "s.partial.h5").exists()  # removed once the sweep is in place
+
+
 def test_resume_refuses_a_checkpoint_of_other_inputs(tmp_path, monkeypatch):
     import mcsim.sweeps as sweeps
 
@@ -339,6 +355,19 @@ def test_ctrl_c_during_a_cli_sweep_saves_the_completed_points_and_resume_finishe
 
 
 # --- Monte Carlo per point -----------------------------------------------------------------
+
+
+def test_cli_monte_carlo_sweep_stores_means_and_standard_errors_over_h(tmp_path, capsys):
+    path = tmp_path / "mc.h5"
+    code, _, _ = run_cli(capsys, "sweep", "--surface", "smooth", "--vary", "sigma=1nm,2nm", "--h=1,0",
+                         "--mc", "--area", "1um^2", "--realizations", "2", "--seed", "3", "--out", str(path))  # fmt: skip
+    assert code == 0
+    data = read_data(path)
+    assert data["mc_P"].shape == data["mc_P_se"].shape == (2, 2)
+    assert np.all(data["mc_contact_fraction"][:, 1] > 0)
+    xr = pytest.importorskip("xarray")
+    with xr.open_dataset(path, engine="h5netcdf") as ds:
+        assert ds.attrs["realizations"] == 2 and ds.attrs["area"] == 1e-12
 
 
 def test_monte_carlo_per_point_uses_the_points_own_seed_whatever_the_workers():
