@@ -884,8 +884,11 @@ def _read_file(path: Path) -> dict:
                     values = values.reshape(ds.shape)
                 data[k] = values
                 units[k], long_names[k] = str(ds.attrs["units"]), str(ds.attrs["long_name"])
-    except (OSError, KeyError) as err:
-        raise RunFileError(f"{path}: cannot read the sweep file ({err})") from None
+    except MCSimError:
+        raise
+    except (OSError, KeyError, ValueError, TypeError, RuntimeError) as err:
+        reason = " ".join(str(err).split())[:200]  # HDF5's messages span lines
+        raise RunFileError(f"{path}: damaged sweep file ({type(err).__name__}: {reason})") from None
     return {"attrs": attrs, "data": data, "units": units, "long_names": long_names}
 
 
@@ -904,7 +907,7 @@ def is_sweep_file(path: str | Path) -> bool:
     try:
         with h5py.File(path, "r") as f:
             return "sweep_schema_version" in f.attrs
-    except (OSError, ValueError):
+    except Exception:  # not HDF5, or damaged: the run-file reader says what is wrong
         return False
 
 

@@ -118,6 +118,23 @@ def test_read_sweep_and_show_give_back_the_file(sigma_sweep, capsys):
     assert "Parameter sweep" in out and "40 values" in out and "failed" in out
 
 
+def test_a_damaged_sweep_file_is_refused_with_one_line(tmp_path, capsys):
+    from mcsim.errors import RunFileError
+    from mcsim.sweeps import read_sweep
+
+    path = tmp_path / "s.h5"
+    sweep(SMOOTH, SILICON, {"sigma": "1nm,2nm"}, h=H, out=path)
+    raw = bytearray(path.read_bytes())
+    at = raw.find(np.array(H).tobytes())  # the coordinate h
+    assert at > 0
+    raw[at + 7] ^= 0x10
+    path.write_bytes(bytes(raw))
+    with pytest.raises(RunFileError, match="checksum mismatch"):
+        read_sweep(path)
+    code, _, err = run_cli(capsys, "show", str(path))
+    assert code == 2 and err.count("\n") == 1 and "s.h5: damaged sweep file" in err
+
+
 def test_table_is_tidy_one_row_per_point_with_units():
     result = sweep(SMOOTH, SILICON, {"sigma": "1nm,2nm", "gamma": "0.1:0.5:3"}, law="seed", h=H)
     df = result.table()
