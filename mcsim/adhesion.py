@@ -61,6 +61,10 @@ H_TOLERANCE = 1e-7
 GAUSSIAN_TOP = math.sqrt(82.0)
 
 
+class NoAdhesiveRest(ParameterError):
+    """The approach load is never tensile: under no external load the surfaces rest apart."""
+
+
 class RegimeWarning(UserWarning):
     """A law set used outside its regime (adhesion map, plasticity index)."""
 
@@ -170,7 +174,8 @@ class AdhesionSummary:
     turn : float
         Closest approach h_turn = d_turn/σ before retraction.
     turn_from : str
-        How ``turn`` was chosen: ``"zero load on approach"`` or ``"given"``.
+        How ``turn`` was chosen: ``"zero load on approach"``, ``"given"``, or (no
+        tensile approach load, so no adhesive rest) ``"none: ..."``.
     pull_off : float
         Magnitude of the most tensile net load on retraction, force/(A_n K); 0 if the
         load never turns tensile.
@@ -253,9 +258,11 @@ def zero_load_separation(surface: Surface, material: Material, law: str | LawSet
 
     Raises
     ------
+    NoAdhesiveRest
+        If the approach load is never tensile where the quadrature sees summits (no
+        adhesion, or too little for the roughness): the surfaces rest out of contact.
     ParameterError
-        If the approach load is never tensile (no adhesion): the surfaces would rest
-        at infinite separation; give a turn instead.
+        If the load is still tensile at h = -1e6.
     """
     laws = get_law_set(law)
     top, bottom = _top(surface, laws, material), _bottom(surface)
@@ -266,7 +273,7 @@ def zero_load_separation(surface: Surface, material: Material, law: str | LawSet
         load = gw_curves(surface, material, h, laws).load
         tensile = np.flatnonzero(load < 0)
         if tensile.size == 0:
-            raise ParameterError(
+            raise NoAdhesiveRest(
                 f"law set {laws.name!r}: the approach load is never tensile, so there is no "
                 "separation of zero external load; give turn (--turn=H)"
             )
@@ -300,7 +307,11 @@ def adhesion_summary(
         A law set with a ``load`` output and a retraction branch.
     turn : float, optional
         Closest approach h_turn = d_turn/σ; default the separation of zero load on
-        approach (:func:`zero_load_separation`).
+        approach (:func:`zero_load_separation`). Where the approach load is never
+        tensile (no adhesion, or too little for the roughness) the surfaces rest apart
+        under no load: the summary then has pull-off, work of separation and
+        hysteresis 0, ``turn`` the top of the summit population and ``turn_from``
+        saying so.
 
     Returns
     -------
@@ -320,7 +331,13 @@ def adhesion_summary(
         )
     laws.check_branch("retract")
     if turn is None:
-        turn, turn_from = zero_load_separation(surface, material, laws), "zero load on approach"
+        try:
+            turn, turn_from = zero_load_separation(surface, material, laws), "zero load on approach"
+        except NoAdhesiveRest:
+            # Under no external load the surfaces never come together: nothing to pull off.
+            return _summary(surface, material, laws, _top(surface, laws, material),
+                            "none: the approach load is never tensile, the surfaces rest apart",
+                            0.0, math.nan, 0.0, 0.0)  # fmt: skip
     else:
         turn, turn_from = check_range("turn", turn, "1"), "given"
     top = max(_top(surface, laws, material), turn)
@@ -363,9 +380,14 @@ def adhesion_summary(
         )  # fmt: skip
         x, value = (best.x, best.fun) if best.fun <= values[i] else (grid[i], values[i])
         pull_off, h_pull_off = -float(value), float(x)
+    return _summary(surface, material, laws, turn, turn_from, pull_off, h_pull_off, work,
+                    hysteresis)  # fmt: skip
+
+
+def _summary(surface, material, laws, turn, turn_from, pull_off, h_pull_off, work, hysteresis):
     notes = tuple(regime_warnings(surface, material, laws))
     for note in notes:
-        warnings.warn(note, RegimeWarning, stacklevel=2)
+        warnings.warn(note, RegimeWarning, stacklevel=3)
     return AdhesionSummary(
         law=laws.name,
         turn=float(turn),

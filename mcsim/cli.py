@@ -396,7 +396,9 @@ def cmd_adhesion(args) -> int:
             )
     values = summary.to_dict()
     notes += _cutoff_notes(surface, material, summary.law, summary.h_pull_off)
-    turn_from = "given by --turn" if summary.turn_from == "given" else "zero approach load"
+    turn_from = {"given": "given by --turn", "zero load on approach": "zero approach load"}.get(
+        summary.turn_from, summary.turn_from
+    )
     _print_lines(notes)
     if args.format == "json":
         out = {k: values[k] for k in ADHESION_KEYS}

@@ -162,9 +162,15 @@ def test_law_set_without_retraction_is_refused():
         adhesion_summary(SMOOTH, MATERIAL, dataclasses.replace(TOY, retract=False), turn=0.0)
 
 
-def test_no_tensile_approach_load_asks_for_a_turn():
+def test_no_tensile_approach_load_has_no_zero_load_separation():
     with pytest.raises(ParameterError, match="give turn"):
         zero_load_separation(SURFACES["rough"], MATERIAL, TOY)
+
+
+def test_surfaces_that_never_attract_on_approach_rest_apart_and_have_nothing_to_pull_off():
+    s = adhesion_summary(SURFACES["rough"], MATERIAL, TOY)
+    assert (s.pull_off, s.work_of_separation, s.hysteresis) == (0.0, 0.0, 0.0)
+    assert math.isnan(s.h_pull_off) and s.turn_from.startswith("none")
 
 
 def test_non_finite_turn_is_refused_naming_turn():

@@ -51,17 +51,12 @@ def test_a_40_point_sigma_sweep_reproduces_the_analytic_curves_and_adhesion_summ
         curves = gw_curves(surface, SILICON, H, "dmt")
         for q, values in curves.values.items():
             np.testing.assert_array_equal(result.data[q][i], values, err_msg=f"{q} at sigma {s}")
-        try:
-            with warnings.catch_warnings():
-                warnings.simplefilter("ignore", RegimeWarning)
-                summary = adhesion_summary(surface, SILICON, "dmt")
-        except ParameterError as err:  # no zero-load rest: the point fails with the same message
-            assert str(err) in result.data["error"][i]
-            assert np.isnan(result.data["pull_off"][i])
-            continue
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", RegimeWarning)
+            summary = adhesion_summary(surface, SILICON, "dmt")
         assert result.data["error"][i] == ""
         for k in (*SUMMARY, "tabor", "maugis_lambda", "adhesion_parameter", "plasticity_index"):
-            assert result.data[k][i] == getattr(summary, k), k
+            np.testing.assert_equal(result.data[k][i], getattr(summary, k), err_msg=k)
         assert result.data["regime_warning"][i] == "; ".join(summary.warnings)
 
 
@@ -183,21 +178,41 @@ def test_cli_sweep_writes_the_file_and_refuses_to_replace_it_without_overwrite(t
 
 
 def test_a_failed_point_is_recorded_and_reported_with_its_inputs_and_the_others_kept(
-    tmp_path, capsys
+    tmp_path, capsys, monkeypatch
 ):
+    import mcsim.sweeps
+
+    def failing_at_gamma_01(surface, material, law, turn=None):
+        if material.gamma == 0.1:
+            raise ParameterError("no root found (injected)")
+        return adhesion_summary(surface, material, law, turn=turn)
+
+    monkeypatch.setattr(mcsim.sweeps, "adhesion_summary", failing_at_gamma_01)
     path = tmp_path / "fail.h5"
-    # gamma = 0: no adhesion, so no separation of zero load to start the retraction from.
     code, _, err = run_cli(capsys, "sweep", "--surface", "smooth", "--law", "dmt", "--vary",
-                           "gamma=0,0.5", "--h=2,0", "--out", str(path))  # fmt: skip
+                           "gamma=0.1,0.5", "--h=2,0", "--out", str(path))  # fmt: skip
     assert code == 1
     assert path.is_file()
     failed = [line for line in err.splitlines() if "failed" in line]
-    assert len(failed) == 1 and "gamma = 0" in failed[0] and "never tensile" in failed[0]
+    assert len(failed) == 1 and "gamma = 0.1" in failed[0] and "injected" in failed[0]
     xr = pytest.importorskip("xarray")
     with xr.open_dataset(path, engine="h5netcdf") as ds:
-        assert "never tensile" in str(ds["error"].values[0])
+        assert "injected" in str(ds["error"].values[0])
         assert np.isnan(ds["pull_off"].values[0])  # the step that failed
         assert np.all(np.isfinite(ds["load"].values[0]))  # the curves before it are kept
+        assert ds["error"].values[1] == "" and ds["pull_off"].values[1] > 0
+
+
+def test_a_point_without_adhesion_has_zero_pull_off_not_a_failure(tmp_path, capsys):
+    # gamma = 0: the approach load is never tensile, the surfaces rest apart under no load.
+    path = tmp_path / "noadh.h5"
+    code, _, err = run_cli(capsys, "sweep", "--surface", "smooth", "--law", "dmt", "--vary",
+                           "gamma=0,0.5", "--h=2,0", "--out", str(path))  # fmt: skip
+    assert code == 0, err
+    xr = pytest.importorskip("xarray")
+    with xr.open_dataset(path, engine="h5netcdf") as ds:
+        assert ds["error"].values[0] == ""
+        assert ds["pull_off"].values[0] == 0 and ds["work_of_separation"].values[0] == 0
         assert str(ds["error"].values[1]) == "" and float(ds["pull_off"].values[1]) > 0
 
 

@@ -20,7 +20,7 @@ import warnings
 
 from reporting import parser, write_summary
 
-from mcsim import ParameterError, gw_curves
+from mcsim import gw_curves
 from mcsim.adhesion import RegimeWarning, adhesion_summary, choose_law, regime_warnings
 from mcsim.laws import get_law_set
 from mcsim.presets import MATERIALS, PAPER_SURFACES, SURFACES
@@ -36,10 +36,9 @@ def row(surface, material, law: str) -> dict:
         return out | {"turn": "n/a: approach only (no unloading law), non-adhesive"}
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RegimeWarning)
-        try:
-            s = adhesion_summary(surface, material, law)
-            turn = f"{s.turn:.4g} (zero load)"
-        except ParameterError:
+        s = adhesion_summary(surface, material, law)
+        turn = f"{s.turn:.4g} (zero load)"
+        if s.turn_from.startswith("none"):  # no adhesive rest: nothing to pull off at rest
             s = adhesion_summary(surface, material, law, turn=FALLBACK_TURN)
             turn = f"{s.turn:.4g} (no adhesive rest)"
     touching = gw_curves(surface, material, [s.turn], law).contact_fraction[0]
