@@ -22,7 +22,7 @@ from . import interrupt, runfile
 from ._version import __version__
 from .errors import ParameterError, RunFileError
 from .montecarlo import DEFAULT_CHUNK, MonteCarloSpec, default_workers, run_sums
-from .params import Material, Surface
+from .params import Material, Surface, check_range
 from .results import Run, assemble
 from .units import parse_quantity
 
@@ -151,6 +151,7 @@ def simulate(
         On SIGINT (Ctrl-C) or SIGTERM, once the progress is saved (a ``KeyboardInterrupt``).
     """
     area_m2 = parse_quantity(area, "area", "area")
+    check_range("checkpoint_every", checkpoint_every, "s", low=0.0, low_open=False)
     if resume and out is None:
         raise ParameterError("resume needs the run file to continue (out=...)")
     with interrupt.interruptible(), contextlib.ExitStack() as stack:

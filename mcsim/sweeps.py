@@ -556,6 +556,7 @@ def sweep(
         On SIGINT or SIGTERM, once the completed points are saved.
     """
     names, grid = _check_vary(vary, law, mc)
+    check_range("checkpoint_every", checkpoint_every, "s", low=0.0, low_open=False)
     law = "seed" if law is None else law
     if law != "auto":
         get_law_set(law)

@@ -32,6 +32,8 @@ def one_line_error(capsys, argv) -> str:
         ("--chunk-size=x", r"argument --chunk-size: 'x' is not a whole number"),
         ("--count=many", r"argument --count: invalid choice: 'many'"),
         ("--bogus", r"unrecognized arguments: --bogus"),
+        ("--checkpoint-every=-1", r"checkpoint_every = -1.0 s is out of range \(allowed: >= 0 s\)"),
+        ("--checkpoint-every=nan", r"checkpoint_every = nan"),
     ],
 )
 def test_bad_simulate_options_are_one_line_errors(capsys, tmp_path, option, message):
