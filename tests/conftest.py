@@ -91,3 +91,14 @@ def interrupt(proc, timeout: float = 60.0) -> tuple[int, str]:
         _, err = proc.communicate(timeout=30)
         pytest.fail(f"no exit {timeout:g} s after SIGINT; stacks:\n{err}")
     return proc.returncode, err or ""
+
+
+@pytest.fixture(scope="session")
+def dask_local_client():
+    """One local Dask cluster of two single-threaded worker processes for the whole session
+    (starting one costs ~10 s on two cores), as ``mcsim.cluster.dask_client("local")`` makes."""
+    pytest.importorskip("distributed", reason="Dask (extra 'dask') not installed")
+    from mcsim.cluster import dask_client
+
+    with dask_client("local", workers=2) as client:
+        yield client

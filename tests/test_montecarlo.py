@@ -192,16 +192,12 @@ def test_mu_is_undefined_not_zero_for_a_patch_without_contact():
     assert np.isnan(run.summary.mean["mu"][0])
 
 
-def test_dask_local_cluster_gives_bit_identical_results():
+def test_dask_local_cluster_gives_bit_identical_results(dask_local_client):
     """Two worker processes on a local Dask cluster reproduce the serial run exactly."""
-    pytest.importorskip("distributed", reason="Dask (extra 'dask') not installed")
-    from mcsim.cluster import dask_client
-
     s = spec(area=2e-8, realizations=2)
     serial = run_sums(s, workers=1)
-    with dask_client("local", workers=2) as client:
-        assert len(client.scheduler_info()["workers"]) == 2
-        distributed = run_sums(s, client=client, chunk_size=BLOCK)
+    assert len(dask_local_client.scheduler_info()["workers"]) == 2
+    distributed = run_sums(s, client=dask_local_client, chunk_size=BLOCK)
     np.testing.assert_array_equal(distributed.sums, serial.sums)
     np.testing.assert_array_equal(distributed.n_summits, serial.n_summits)
 

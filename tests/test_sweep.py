@@ -289,9 +289,11 @@ def test_two_worker_threads_give_the_serial_sweep_bit_for_bit(serial):
     assert_same_data(threads.data, serial[0].data)
 
 
-def test_a_two_worker_local_dask_cluster_gives_the_serial_sweep_bit_for_bit(serial):
-    pytest.importorskip("distributed", reason="Dask (extra 'dask') not installed")
-    distributed = sweep(SMOOTH, SILICON, SMALL, law="dmt", h=H, workers=2, scheduler="local")
+def test_a_two_worker_local_dask_cluster_gives_the_serial_sweep_bit_for_bit(
+    serial, dask_local_client
+):
+    # A Client passed through the API, as one made by dask-jobqueue would be.
+    distributed = sweep(SMOOTH, SILICON, SMALL, law="dmt", h=H, scheduler=dask_local_client)
     assert_same_data(distributed.data, serial[0].data)
 
 
