@@ -205,3 +205,44 @@ def test_monte_carlo_load_at_the_found_separation_agrees_with_the_pressure(law, 
     rows = rows[rows.quantity == quantity]
     np.testing.assert_allclose(rows.analytic.to_numpy() * SILICON.K, [1e5, 1e6], rtol=1e-9)
     assert np.all(np.abs(rows.z.to_numpy()) < 5)
+
+
+def _stand_off_surface():
+    """Super-smooth Table-1 summits (R, η) with 1 % of them on stand-off bumps 9 nm high
+    (a two-level histogram: 99 % in [-1, 1] nm, 1 % in [8, 10] nm), as dimples or
+    particles make them; the rest of the super-smooth surface's inputs, silicon, JKR."""
+    import dataclasses
+
+    from mcsim.empirical import Empirical
+
+    heights = Empirical.from_histogram([-1e-9, 1e-9, 8e-9, 10e-9], [0.99, 0.0, 0.01])
+    return dataclasses.replace(SURFACES["super-smooth"], sigma=heights.sigma, heights=heights,
+                               name="stand-off")  # fmt: skip
+
+
+def test_a_stand_off_surface_jumps_into_contact_and_a_pull_beyond_its_pull_off_has_no_equilibrium():
+    """A real non-monotone approach load (the Gaussian Table-1 surfaces have a single
+    tensile minimum, so no jump under load control): the stand-off summits touch first
+    (tensile, then compressive, up to a local maximum p_max ≈ 36 MPa at h ≈ 1), then the
+    main population jumps in and the load falls to ≈ −5 MPa at h ≈ 0 before it rises.
+    A load above p_max is reached through a jump; a pull beyond the stand-offs' own
+    pull-off (≈ −0.49 MPa, at h ≈ 8.4) has no equilibrium, though the deeper tensile
+    minimum of the main population would carry it. (The Table-1 surfaces' own "no
+    equilibrium" case: test_a_tensile_load_beyond_the_pull_off_has_no_equilibrium.)"""
+    surface = _stand_off_surface()
+    h = np.linspace(10.0, -1.0, 2201)  # spacing 0.005
+    p = gw_curves(surface, SILICON, h, "jkr").load * SILICON.K
+    stand_offs, main = h > 5, (h > -0.5) & (h < 3)
+    k_max = np.flatnonzero(main)[np.argmax(p[main])]  # the stand-offs' maximum
+    p_max, p_off = p[k_max], p[stand_offs].min()  # and their pull-off
+    k_deep = k_max + np.argmin(p[k_max:])  # the main population's tensile minimum
+    p_deep = p[k_deep]
+    assert 0.5 < h[k_max] < 1.5 and p_deep < p_off < 0 < p_max
+    targets = [0.5 * p_max, 1.5 * p_max, 0.5 * p_off, (p_off + p_deep) / 2]
+    result = load_control(surface, SILICON, targets, "jkr")
+    assert result.equilibrium.tolist() == [True, True, True, False]
+    assert result.jump.tolist() == [False, True, False, False]
+    assert result.h[0] > h[k_max] and result.h[1] < h[k_deep]
+    assert result.h[2] > 5  # on the stand-offs
+    again = gw_curves(surface, SILICON, result.h[:3], "jkr").load * SILICON.K
+    np.testing.assert_allclose(again, targets[:3], rtol=1e-9)
