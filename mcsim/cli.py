@@ -672,6 +672,10 @@ def cmd_plot(args) -> int:
     return 0
 
 
+#: Names of the intervals of ``mcsim pads``, as printed.
+_INTERVAL_NAMES = {"clopper-pearson": "Clopper-Pearson", "wilson": "Wilson"}
+
+
 def cmd_pads(args) -> int:
     from .pads import analytic_pad_pull_off, pad_statistics
     from .runfile import read_run
@@ -691,20 +695,31 @@ def cmd_pads(args) -> int:
                 f"--plot: {args.plot}: the figure is a PNG file, its name must end in .png"
             )
         check_output(args.plot, inputs=[args.run], overwrite=args.overwrite)
-    run = read_run(args.run)
+    run = read_run(args.run, allow_incomplete=args.partial)
     try:
         pull_off = run.pull_off()
     except ParameterError as err:
         raise ParameterError(f"{args.run}: {err}") from None
-    stats = pad_statistics(pull_off.force, fr)
+    stats = pad_statistics(pull_off.force, fr, args.interval)
     analytic = analytic_pad_pull_off(run.spec)
+    interval = f"{_INTERVAL_NAMES[args.interval]} 95 %"
+    if not run.complete:
+        print(f"mcsim: note: {run.path} is incomplete: statistics over its {stats.pads} completed "
+              f"pad(s) of {run.attrs.get('realizations')}", file=sys.stderr)  # fmt: skip
     out = stats.to_dict()
-    if args.format == "json":
+    if args.format in ("json", "csv"):
         print(f"mcsim: note: analytic mean {analytic:.6g} N (GW pull-off x A K: minimum of the mean "
-              f"curve); per-pad pull-off on the run's grid, spacing {pull_off.resolution:.3g} in h; "
-              "p_stick_ci: Clopper-Pearson 95 %", file=sys.stderr)  # fmt: skip
+              f"curve); per-pad pull-off on the run's grid, spacing {pull_off.resolution:.3g} in h"
+              + ("; p_stick_ci: " + interval if args.format == "json" else ""), file=sys.stderr)  # fmt: skip
+    if args.format == "json":
         print(json.dumps({k: (None if isinstance(v, float) and not math.isfinite(v) else v)
                           for k, v in out.items()}, indent=1, allow_nan=False))  # fmt: skip
+    elif args.format == "csv":
+        print("mcsim: note: columns: pad (realization index), pull_off_N (most tensile retraction "
+              "load of the pad, a magnitude, N), h_pull_off (its separation d/sigma)", file=sys.stderr)  # fmt: skip
+        rows = [{"pad": i, "pull_off_N": float(f), "h_pull_off": float(h)}
+                for i, (f, h) in enumerate(zip(pull_off.force, pull_off.h))]  # fmt: skip
+        _print_rows(rows, ["pad", "pull_off_N", "h_pull_off"], "csv")
     else:
         ci = out.pop("p_stick_ci", None)
         rows_fr = [] if fr is None else [{"quantity": "restoring_force", "value": fr, "unit": "N"}]
@@ -720,7 +735,7 @@ def cmd_pads(args) -> int:
                   f"{spec.expected_summits:.4g} summits per pad, {stats.pads} pads",
                   "pull-off per pad: most tensile retraction load on the run's grid "
                   f"(spacing {pull_off.resolution:.3g} in h); p_stick = P(pull-off > restoring force), "
-                  "Clopper-Pearson 95 % interval",
+                  f"{interval} interval",
                   "analytic_mean: GW pull-off x A K (minimum of the mean curve, not the mean of "
                   "the per-pad minima on the grid)"]  # fmt: skip
         _print_rows(rows, ["quantity", "value", "unit"], "table", header)
@@ -1050,14 +1065,24 @@ def build_parser() -> argparse.ArgumentParser:
     p = sub.add_parser("pads", help="pull-off statistics of finite pads from a --cycle run",
                        description="Per-pad pull-off force of a --cycle Monte Carlo run (one pad per realization): "
                        "mean, standard error, standard deviation, 5/50/95 % quantiles (N) and, with a restoring "
-                       "force, the probability that a pad sticks with its Clopper-Pearson 95 % interval.")  # fmt: skip
+                       "force, the probability that a pad sticks with its 95 % interval (Clopper-Pearson, or "
+                       "Wilson's score interval). --format csv lists each pad's pull-off force (N) instead.")  # fmt: skip
     p.add_argument(
         "run", help="run file (.h5) of `mcsim simulate ... --cycle` with a contact law set"
     )
     p.add_argument("--restoring-force", metavar="F",
                    help="force pulling the pad off: N or with a unit ('2uN', '500nN'); a pad sticks when "
                         "its pull-off exceeds it")  # fmt: skip
-    p.add_argument("--format", choices=("table", "json"), default="table")
+    p.add_argument("--interval", choices=("clopper-pearson", "wilson"), default="clopper-pearson",
+                   help="95 %% interval of the probability of sticking: Clopper-Pearson exact (default; "
+                        "coverage never below 95 %%) or Wilson's score interval (Wilson 1927; shorter)")  # fmt: skip
+    p.add_argument("--format", choices=_FORMATS, default="table",
+                   help="table or json: the statistics; csv: one row per pad (pull-off in N)")  # fmt: skip
+    p.add_argument(
+        "--partial",
+        action="store_true",
+        help="accept an incomplete run (a checkpoint RUN.partial.h5): its completed pads",
+    )
     p.add_argument(
         "--plot",
         metavar="FILE.png",

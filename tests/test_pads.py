@@ -254,3 +254,89 @@ def test_moment_std_refuses_a_run_without_a_cycle(tmp_path):
 
     with pytest.raises(ParameterError, match="cycle"):
         moment_std(read_run(simulate(tmp_path / "a.h5")))
+
+
+# --- Wilson interval, per-pad CSV, incomplete runs -----------------------------------------
+
+
+def test_wilson_interval_reproduces_the_closed_form_and_a_textbook_value():
+    # k = 0: the upper bound is z²/(n + z²); 5 of 10: (0.2366, 0.7634) (Brown, Cai &
+    # DasGupta 2001; Newcombe 1998, method 3).
+    from scipy.stats import norm
+
+    from mcsim.pads import wilson
+
+    z = norm.ppf(0.975)
+    assert wilson(0, 10) == (0.0, pytest.approx(z * z / (10 + z * z), rel=1e-12))
+    lo, hi = wilson(5, 10)
+    assert (round(lo, 4), round(hi, 4)) == (0.2366, 0.7634)
+    lo, hi = wilson(3, 30)
+    lo2, hi2 = wilson(27, 30)
+    assert lo == pytest.approx(1 - hi2, abs=1e-13) and hi == pytest.approx(1 - lo2, abs=1e-13)
+    with pytest.raises(ParameterError):
+        wilson(6, 5)
+
+
+def test_wilson_is_shorter_than_clopper_pearson_and_both_contain_the_estimate():
+    from mcsim.pads import wilson
+
+    for k, n in [(1, 40), (5, 40), (20, 40), (3, 300)]:
+        w, c = wilson(k, n), clopper_pearson(k, n)
+        assert w[0] <= k / n <= w[1] and c[0] <= k / n <= c[1]
+        assert w[1] - w[0] < c[1] - c[0]
+
+
+def test_pads_interval_wilson_replaces_the_interval_and_names_it(cycle_run, capsys):
+    from mcsim.pads import wilson
+    from mcsim.runfile import read_run
+
+    force = read_run(cycle_run).pull_off().force
+    fr = float(np.median(force))
+    code, out, err = run_cli(capsys, "pads", cycle_run, f"--restoring-force={fr!r}",
+                             "--interval", "wilson", "--format", "json")  # fmt: skip
+    data = json.loads(out)
+    k = int(np.count_nonzero(force > fr))
+    assert code == 0 and data["p_stick_ci"] == pytest.approx(list(wilson(k, 40)), rel=1e-15)
+    assert "Wilson" in err and "Clopper" not in err
+    code, out, _ = run_cli(capsys, "pads", cycle_run, "--restoring-force=1nN", "--interval",
+                           "wilson")  # fmt: skip
+    assert code == 0 and "Wilson 95 % interval" in out
+    err = one_line_error(capsys, "pads", cycle_run, "--interval", "agresti")
+    assert "--interval" in err and "wilson" in err
+
+
+def test_pads_csv_has_one_row_per_pad_with_the_pull_off_in_newtons(cycle_run, capsys):
+    import csv
+    import io
+
+    from mcsim.runfile import read_run
+
+    code, out, err = run_cli(capsys, "pads", cycle_run, "--format", "csv")
+    rows = list(csv.DictReader(io.StringIO(out)))
+    pull_off = read_run(cycle_run).pull_off()
+    assert code == 0 and out.splitlines()[0] == "pad,pull_off_N,h_pull_off"
+    assert [int(r["pad"]) for r in rows] == list(range(40))
+    assert [float(r["pull_off_N"]) for r in rows] == pull_off.force.tolist()
+    assert [float(r["h_pull_off"]) for r in rows] == pull_off.h.tolist()
+    assert "pull_off_N" in err and "N)" in err
+
+
+def test_pads_partial_reads_the_completed_pads_of_a_checkpoint_and_says_how_many(tmp_path, capsys):
+    from mcsim.montecarlo import EnsembleSums, MonteCarloSpec, run_sums
+    from mcsim.presets import MATERIALS, SURFACES
+    from mcsim.results import assemble
+    from mcsim.runfile import write_checkpoint
+
+    spec = MonteCarloSpec(SURFACES["smooth"], MATERIALS["silicon"], np.array([1.0, 0.0]), 1e-12,
+                          4, 9, law="jkr", cycle=True)  # fmt: skip
+    full = run_sums(spec)
+    partial = EnsembleSums.start(spec)
+    partial.sums[:2], partial.done_blocks[:2] = full.sums[:2], full.n_blocks[:2]
+    write_checkpoint(tmp_path / "p.partial.h5", partial, command="test")
+    err = one_line_error(capsys, "pads", tmp_path / "p.partial.h5")
+    assert "--partial" in err and "--resume" in err
+    code, out, err = run_cli(capsys, "pads", tmp_path / "p.partial.h5", "--partial", "--format",
+                             "json")  # fmt: skip
+    expected = pad_statistics(assemble(partial.completed()).pull_off().force).to_dict()
+    assert code == 0 and json.loads(out) == pytest.approx(expected, rel=1e-15, nan_ok=True)
+    assert json.loads(out)["pads"] == 2 and "2 completed pad(s) of 4" in err
