@@ -257,8 +257,25 @@ def _dimensional(curves, area: float) -> dict:
             for k, v in forces.items()}  # fmt: skip
 
 
-def _load_control(args, surface, material, law: str, notes: list[str]) -> int:
+def _pressures(args, area: float | None):
+    """Nominal pressures (Pa, > 0) of ``--pressure``, or of ``--load`` over ``--area``."""
     import numpy as np
+
+    if args.load is not None:
+        if area is None:
+            raise ParameterError("--load needs --area (the nominal area A_n: pressure = load/area)")
+        pressure = np.array(parse_values(args.load, "force", "--load")) / area
+        option = "--load"
+    else:
+        pressure = np.array(parse_values(args.pressure, "pressure", "--pressure"))
+        option = "--pressure"
+    bad = pressure[~(pressure > 0)]
+    if bad.size:
+        raise ParameterError(f"{option}: {bad[0]:g} Pa is out of range (allowed: > 0, compressive)")
+    return pressure
+
+
+def _load_control(args, surface, material, law: str, notes: list[str]) -> int:
 
     from .loadcontrol import load_control
 
@@ -272,17 +289,7 @@ def _load_control(args, surface, material, law: str, notes: list[str]) -> int:
                 f"--plot: {args.plot}: the figure is a PNG file, its name must end in .png"
             )
         check_output(args.plot, inputs=inputs, overwrite=args.overwrite)
-    if args.load is not None:
-        if area is None:
-            raise ParameterError("--load needs --area (the nominal area A_n: pressure = load/area)")
-        pressure = np.array(parse_values(args.load, "force", "--load")) / area
-        option = "--load"
-    else:
-        pressure = np.array(parse_values(args.pressure, "pressure", "--pressure"))
-        option = "--pressure"
-    bad = pressure[~(pressure > 0)]
-    if bad.size:
-        raise ParameterError(f"{option}: {bad[0]:g} Pa is out of range (allowed: > 0, compressive)")
+    pressure = _pressures(args, area)
     result = load_control(surface, material, pressure, law)
     if result.equilibrium.any():
         notes += _cutoff_notes(surface, material, law, result.h[result.equilibrium])
@@ -473,7 +480,11 @@ def cmd_simulate(args) -> int:
         from .simulation import cli_command, simulate
 
         surface, material = _inputs(args)
-        h = parse_h(args.h)
+        pressure = None
+        if args.h is None:
+            h, pressure = _balancing_h(args, surface, material)
+        else:
+            h = parse_h(args.h)
         out = Path(args.out) if args.out else _default_run_path(surface)
         show_progress = not args.quiet and sys.stderr.isatty()
         t0 = time.perf_counter()
@@ -484,6 +495,8 @@ def cmd_simulate(args) -> int:
                 chunk_size=args.chunk_size, keep_heights=args.keep_heights, out=out, overwrite=args.overwrite,
                 resume=args.resume, checkpoint_every=args.checkpoint_every, progress=show_progress,
                 command=cli_command(),
+                extra_attrs=None if pressure is None else {"load_control": json.dumps(
+                    {"pressure": pressure.tolist(), "unit": "Pa"})},
             )  # fmt: skip
         except Interrupted as stop:
             partial = checkpoint_path(out)
@@ -561,6 +574,26 @@ def cmd_sweep(args) -> int:
             print(f"wrote {result.path}: {warned.size} points ({' x '.join(map(str, result.shape))}), "
                   f"{len(result.failed)} failed")  # fmt: skip
         return 1 if result.failed else 0
+
+
+def _balancing_h(args, surface, material):
+    """Separations that balance ``--pressure`` (or ``--load`` over the patch ``--area``)
+    on the analytic approach branch (:func:`mcsim.loadcontrol.load_control`), and the
+    pressures (Pa)."""
+    from .loadcontrol import load_control
+
+    if args.cycle:
+        raise ParameterError("--pressure/--load: load control is on the approach branch only "
+                             "(not with --cycle)")  # fmt: skip
+    pressure = _pressures(args, _area(args))
+    result = load_control(surface, material, pressure, args.law)
+    if not args.quiet:
+        jumped = int(result.jump.sum())
+        print(f"mcsim: load control ({result.quantity} = p/K on the approach branch): "
+              f"{pressure.size} pressure(s) from {pressure.min():.4g} to {pressure.max():.4g} Pa "
+              f"at h = {result.h.max():.6g} .. {result.h.min():.6g}"
+              + (f"; {jumped} reached through a jump" if jumped else ""), file=sys.stderr)  # fmt: skip
+    return [float(x) for x in result.h], pressure
 
 
 def cmd_compare(args) -> int:
@@ -655,6 +688,16 @@ def cmd_plot(args) -> int:
         raise ParameterError(f"--out: {out}: the figure is a PNG file, its name must end in .png")
     runs = [read_run(path, allow_incomplete=args.partial) for path in args.run]
     run, surface = runs[0], runs[0].spec.surface
+    versus = args.versus or ("load" if "load_control" in run.attrs else "h")
+    if versus == "load":
+        from .plotting import load_run_figure
+
+        if len(runs) > 1:
+            raise ParameterError("--versus load: plot one run at a time")
+        check_output(out, inputs=args.run, overwrite=args.overwrite)
+        save(load_run_figure(run), out, overwrite=args.overwrite, inputs=args.run)
+        print(f"wrote {out} (each patch's load and area or friction over the analytic curves)")
+        return 0
     other = None  # measured heights: also against the Gaussian GW curves
     if len(runs) == 1 and surface.heights != GAUSSIAN:
         other = out.with_name(f"{out.stem}-vs-gaussian.png")
@@ -920,8 +963,21 @@ def build_parser() -> argparse.ArgumentParser:
     p.set_defaults(func=cmd_paper)
 
     p = sub.add_parser("simulate", help="Monte Carlo run on finite patches, stored as HDF5",
-                       description="Sample finite patches, sum the per-summit laws, store the run as HDF5.")  # fmt: skip
-    _add_inputs(p)
+                       description="Sample finite patches, sum the per-summit laws, store the run as HDF5. "
+                       "The separations are given (--h), or are those that balance nominal pressures on the "
+                       "analytic approach branch (--pressure, or --load over the patch --area), as "
+                       "`mcsim analytic --pressure` finds them; `mcsim plot` then draws each patch's "
+                       "load and area.")  # fmt: skip
+    _add_inputs(p, separations=False)
+    mode = p.add_mutually_exclusive_group(required=True)
+    mode.add_argument("--h", metavar="SPEC",
+                      help="separations d/sigma: a list '--h=-1,0,1.5' or start:stop:num '--h=4:-1:51' "
+                           f"(at most {MAX_SEPARATIONS})")  # fmt: skip
+    mode.add_argument("--pressure", metavar="SPEC", help="instead of --h: nominal pressures (> 0, Pa "
+                      "unless a unit is given), '1kPa,1MPa' or '1kPa:10MPa:31:log'; the run's separations "
+                      "balance them (seed: P = p/K, Eq. 3; other law sets: load = p/K)")  # fmt: skip
+    mode.add_argument("--load", metavar="SPEC", help="instead of --h: applied forces on the patch (> 0, N "
+                      "unless a unit is given), '1uN,10uN'; pressure = load/--area")  # fmt: skip
     p.add_argument(
         "--area", required=True, help="patch area: m^2 or with a unit ('100um^2', '0.01mm^2')"
     )
@@ -1060,6 +1116,10 @@ def build_parser() -> argparse.ArgumentParser:
         action="store_true",
         help="accept an incomplete run: plot its completed realizations",
     )
+    p.add_argument("--versus", choices=("h", "load"),
+                   help="x axis: the separation h, or the load (each patch's load against its area "
+                        "and friction, both with SEs); default: load for a run made with --pressure "
+                        "or --load, else h")  # fmt: skip
     p.set_defaults(func=cmd_plot)
 
     p = sub.add_parser("pads", help="pull-off statistics of finite pads from a --cycle run",

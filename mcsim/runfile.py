@@ -246,7 +246,7 @@ def _checksum(f) -> str:
     return digest.hexdigest()
 
 
-def _write_inputs(f, spec: MonteCarloSpec, command: str, complete: bool) -> dict:
+def _write_inputs(f, spec: MonteCarloSpec, command: str, complete: bool, extra=None) -> dict:
     attrs = {
         "schema_version": SCHEMA_VERSION,
         "mcsim_version": __version__,
@@ -268,6 +268,7 @@ def _write_inputs(f, spec: MonteCarloSpec, command: str, complete: bool) -> dict
         **({"turn": spec.turn} if spec.cycle else {}),
         "block_size": BLOCK,
         "complete": complete,
+        **(extra or {}),
     }
     f.attrs.update(attrs)
     s = f.create_group("input/surface")
@@ -349,20 +350,28 @@ def _reason(err: Exception) -> str:
     return " ".join((getattr(err, "strerror", None) or str(err)).split())
 
 
-def write_checkpoint(path: str | Path, state: EnsembleSums, *, command: str) -> None:
-    """Write a run in progress (``complete = False``), replacing the previous checkpoint."""
+def write_checkpoint(
+    path: str | Path, state: EnsembleSums, *, command: str, extra: dict | None = None
+) -> None:
+    """Write a run in progress (``complete = False``), replacing the previous checkpoint.
+
+    ``extra``: further root attributes (numbers or strings), as for :func:`write_run`.
+    """
 
     def fill(f):
-        _write_inputs(f, state.spec, command, complete=False)
+        _write_inputs(f, state.spec, command, complete=False, extra=extra)
         _write_state(f, state)
 
     _atomic_write(Path(path), fill)
 
 
-def write_run(path: str | Path, run, *, command: str):
+def write_run(path: str | Path, run, *, command: str, extra: dict | None = None):
     """Write a complete ``run`` (a :class:`mcsim.results.Run`); return it with path and attrs.
 
     The caller holds :func:`lock` and has checked the path with :func:`check_output_path`.
+    ``extra``: further root attributes, numbers or strings (provenance such as
+    ``load_control``, the JSON list of nominal pressures, Pa, that a load-controlled
+    run's separations balance).
     """
     import dataclasses
 
@@ -370,7 +379,7 @@ def write_run(path: str | Path, run, *, command: str):
     attrs: dict = {}
 
     def fill(f):
-        attrs.update(_write_inputs(f, run.spec, command, complete=True))
+        attrs.update(_write_inputs(f, run.spec, command, complete=True, extra=extra))
         _write_state(f, run.ensemble)
         per_row = (_row_axis(run.spec),)
         for q in run.quantities:

@@ -85,6 +85,7 @@ def simulate(
     checkpoint_every: float = 60.0,
     progress: bool = False,
     command: str | None = None,
+    extra_attrs: dict | None = None,
 ) -> Run:
     """Simulate ``realizations`` patches of area ``area`` and compare with the GW curves.
 
@@ -140,6 +141,10 @@ def simulate(
         Show a progress bar on stderr.
     command : str, optional
         Provenance string stored in the file (the CLI passes its command line).
+    extra_attrs : dict, optional
+        Further root attributes of the file and its checkpoints (numbers or strings),
+        e.g. ``{"load_control": '{"pressure": [...], "unit": "Pa"}'}`` (JSON) for the
+        nominal pressures that the separations balance (``mcsim simulate --pressure``).
 
     Returns
     -------
@@ -199,7 +204,9 @@ def simulate(
                      " (progress is saved)" if out is not None and not keep_heights else "")  # fmt: skip
         checkpoint = None
         if out is not None and not keep_heights:
-            checkpoint = functools.partial(runfile.write_checkpoint, partial, command=command)
+            checkpoint = functools.partial(
+                runfile.write_checkpoint, partial, command=command, extra=extra_attrs
+            )
         if progress:
             from tqdm import tqdm
 
@@ -227,7 +234,7 @@ def simulate(
         run = assemble(ens)
         if out is None:
             return run
-        run = runfile.write_run(out, run, command=command)
+        run = runfile.write_run(out, run, command=command, extra=extra_attrs)
         partial.unlink(missing_ok=True)  # after the complete run is in place
         return run
 

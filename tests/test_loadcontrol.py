@@ -107,14 +107,15 @@ def test_pressure_csv_columns_are_exact(capsys, tmp_path):
     assert out.splitlines()[0].startswith("pressure,h,contact_fraction,P,F,T,mu,")
 
 
-def test_csv_h_reproduces_the_pressure_through_mcsim_analytic(capsys):
-    _, out, _ = run_cli(capsys, "analytic", "--surface", "smooth", "--law", "jkr",
-                        "--pressure", "20kPa", "--format", "csv")  # fmt: skip
-    h = rows_of(out)[0]["h"]
-    _, out, _ = run_cli(capsys, "analytic", "--surface", "smooth", "--law", "jkr", f"--h={h}",
-                        "--format", "csv")  # fmt: skip
-    load = float(rows_of(out)[0]["load"])
-    assert load * SILICON.K == pytest.approx(2e4, rel=1e-9)
+@pytest.mark.parametrize("law, quantity", [("seed", "P"), ("jkr", "load")])
+def test_csv_h_reproduces_the_pressure_through_mcsim_analytic(capsys, law, quantity):
+    _, out, _ = run_cli(capsys, "analytic", "--surface", "smooth", "--law", law,
+                        "--pressure", "20kPa,3MPa", "--format", "csv")  # fmt: skip
+    h = [r["h"] for r in rows_of(out)]
+    _, out, _ = run_cli(capsys, "analytic", "--surface", "smooth", "--law", law,
+                        f"--h={','.join(h)}", "--format", "csv")  # fmt: skip
+    load = [float(r[quantity]) * SILICON.K for r in rows_of(out)]
+    assert load == pytest.approx([2e4, 3e6], rel=1e-9)
 
 
 def test_load_with_area_is_pressure_times_area_and_forces_come_in_newtons(capsys):
@@ -246,3 +247,122 @@ def test_a_stand_off_surface_jumps_into_contact_and_a_pull_beyond_its_pull_off_h
     assert result.h[2] > 5  # on the stand-offs
     again = gw_curves(surface, SILICON, result.h[:3], "jkr").load * SILICON.K
     np.testing.assert_allclose(again, targets[:3], rtol=1e-9)
+
+
+def test_simulate_at_pressures_runs_at_the_balancing_separations_and_the_load_agrees(
+    capsys, tmp_path
+):
+    """Acceptance (issue 11 §1), through the command line: ``mcsim simulate --pressure``
+    runs the Monte Carlo at the separations ``mcsim analytic --pressure`` finds (exactly
+    those h), and the patches' mean load balances each pressure within |z| < 5."""
+    out = tmp_path / "lc.h5"
+    code, _, err = run_cli(capsys, "simulate", "--surface", "smooth", "--law", "jkr",
+                           "--pressure", "100kPa,1MPa", "--area", "100um^2", "--realizations",
+                           "40", "--seed", "7", "--workers", "1", "--out", str(out))  # fmt: skip
+    assert code == 0 and "load control" in err
+    _, csv_out, _ = run_cli(capsys, "analytic", "--surface", "smooth", "--law", "jkr",
+                            "--pressure", "100kPa,1MPa", "--format", "csv")  # fmt: skip
+    from mcsim.runfile import read_run
+
+    run = read_run(out)
+    assert run.h.tolist() == [float(r["h"]) for r in rows_of(csv_out)]
+    assert json.loads(run.attrs["load_control"]) == {"pressure": [1e5, 1e6], "unit": "Pa"}
+    rows = run.compare()
+    rows = rows[rows.quantity == "load"]
+    np.testing.assert_allclose(rows.analytic.to_numpy() * SILICON.K, [1e5, 1e6], rtol=1e-9)
+    assert np.all(np.abs(rows.z.to_numpy()) < 5)
+
+
+def test_simulate_with_load_divides_by_the_patch_area(capsys, tmp_path):
+    argv = ["simulate", "--surface", "smooth", "--law", "seed", "--area", "100um^2", "--seed", "1",
+            "--workers", "1", "--quiet"]  # fmt: skip
+    assert run_cli(capsys, *argv, "--load", "1uN", "--out", str(tmp_path / "a.h5"))[0] == 0
+    assert run_cli(capsys, *argv, "--pressure", "10kPa", "--out", str(tmp_path / "b.h5"))[0] == 0
+    from mcsim.runfile import read_run
+
+    assert read_run(tmp_path / "a.h5").h == pytest.approx(read_run(tmp_path / "b.h5").h, abs=1e-9)
+
+
+@pytest.mark.parametrize(
+    "argv, message",
+    [
+        (["--pressure", "0"], "--pressure: 0 Pa is out of range (allowed: > 0"),
+        (["--pressure=-1kPa"], "--pressure: -1000 Pa is out of range (allowed: > 0"),
+        (["--pressure", "1nm"], "--pressure: unknown unit 'nm' for a pressure"),
+        (["--load", "1um"], "--load: unknown unit 'um' for a force"),
+        (["--pressure", "1kPa", "--h=1"], "not allowed with argument"),
+        (["--pressure", "1kPa", "--cycle"], "approach branch only"),
+        ([], "one of the arguments --h --pressure --load is required"),
+    ],
+)
+def test_bad_simulate_load_control_input_is_a_one_line_error(capsys, tmp_path, argv, message):
+    code, out, err = run_cli(capsys, "simulate", "--surface", "smooth", "--law", "jkr", "--area",
+                             "100um^2", "--out", str(tmp_path / "x.h5"), *argv)  # fmt: skip
+    assert code == 2 and out == "" and not (tmp_path / "x.h5").exists()
+    assert len(err.strip().splitlines()) == 1 and message in err
+
+
+def test_plot_of_a_load_controlled_run_shows_each_patch_and_both_standard_errors(capsys, tmp_path):
+    out = tmp_path / "lc.h5"
+    argv = ["simulate", "--surface", "smooth", "--law", "jkr", "--material", str(_material(tmp_path)),
+            "--pressure", "1MPa,10MPa", "--area", "100um^2", "--realizations", "5", "--seed", "2",
+            "--workers", "1", "--quiet", "--out", str(out)]  # fmt: skip
+    assert run_cli(capsys, *argv)[0] == 0
+    code, text, _ = run_cli(capsys, "plot", str(out))
+    assert code == 0 and "each patch" in text
+    assert out.with_suffix(".png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+    from mcsim.plotting import load_run_figure
+    from mcsim.runfile import read_run
+
+    run = read_run(out)
+    fig = load_run_figure(run)
+    area_ax, friction_ax = fig.axes
+    patches = area_ax.get_lines()[0]
+    x, y = patches.get_data()
+    load, area = run.realizations["load"].ravel(), run.realizations["area"].ravel()
+    tensile = int(np.count_nonzero(load <= 0))  # one of the 10 patches at 1 MPa (seed 2)
+    assert f"({tensile} with p ≤ 0 not shown)" in patches.get_label() and tensile == 1
+    expected_x = np.sort(load[load > 0] * SILICON.K / SILICON.E_star)
+    np.testing.assert_allclose(np.sort(x), expected_x, rtol=1e-12)
+    np.testing.assert_allclose(np.sort(y), np.sort(area[load > 0]), rtol=1e-12)
+    bars = area_ax.containers[0]  # the means, with error bars in x and in y
+    assert bars.has_xerr and bars.has_yerr
+    assert any("GW light load" in line.get_label() for line in area_ax.get_lines())
+    assert friction_ax.containers[0].has_xerr and friction_ax.containers[0].has_yerr
+    # An h-grid run plots versus h unless asked
+    code, text, _ = run_cli(capsys, "plot", str(out), "--versus", "h", "--out",
+                            str(tmp_path / "h.png"))  # fmt: skip
+    assert code == 0 and "each patch" not in text
+
+
+def _material(tmp_path):
+    path = tmp_path / "mat.toml"
+    path.write_text(MAT)
+    return path
+
+
+@pytest.mark.parametrize("law", ["seed", "jkr"])
+def test_load_control_figure_marks_the_gw_light_load_line_for_every_law_set(tmp_path, law):
+    from mcsim.config import load_material
+    from mcsim.plotting import hertz_area_fraction, load_control_figure
+
+    material = load_material(_material(tmp_path))
+    result = load_control(SMOOTH, material, np.geomspace(1e3, 1e7, 5), law)
+    area_ax, friction_ax = load_control_figure(result).axes
+    labels = [line.get_label() for line in area_ax.get_lines()]
+    assert any(label.startswith("GW light load") for label in labels)
+    y = area_ax.get_lines()[0].get_data()[1]
+    expected = hertz_area_fraction(SMOOTH, result.h) if law == "seed" else result.curves.area
+    np.testing.assert_allclose(y, expected, rtol=1e-12)
+    if law == "jkr":  # friction = tau A_r: its light-load line tau kappa p/E*
+        assert any("GW light load" in line.get_label() for line in friction_ax.get_lines())
+
+
+def test_hertz_area_fraction_is_pi_eta_r_sigma_f1():
+    from mcsim.plotting import hertz_area_fraction
+
+    h = np.array([0.5, 2.0])
+    f1 = [integrate.quad(lambda s, x=x: (s - x) * stats.norm.pdf(s), x, np.inf)[0] for x in h]
+    expected = math.pi * SMOOTH.eta * SMOOTH.R * SMOOTH.sigma * np.array(f1)
+    np.testing.assert_allclose(hertz_area_fraction(SMOOTH, h), expected, rtol=1e-8)
