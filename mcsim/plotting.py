@@ -859,10 +859,11 @@ def load_run_figure(run):
     mean, se = run.summary.mean, run.summary.se
     fig = Figure(figsize=(10, 4.4), layout="constrained")
     left, right = fig.subplots(1, 2)
-    panels = [(left, area_q, material.E_star, 1.0, "p/E*", "N_c/N" if seed else "A_r/A_n")]
+    panels = [(left, area_q, material.E_star, 1.0, "nominal pressure over contact modulus p/E*",
+               "fraction of summits in contact N_c/N" if seed else "real contact area fraction A_r/A_n")]  # fmt: skip
     if friction_q in run.quantities:
         panels.append((right, friction_q, 1e6, material.K / 1e6,
-                       "applied load per nominal area p (MPa)", "friction per nominal area (MPa)"))  # fmt: skip
+                       "applied load per nominal area p (MPa)", "friction force per nominal area (MPa)"))  # fmt: skip
     else:
         right.text(0.5, 0.5, "no friction (give tau)", ha="center", transform=right.transAxes)
     for ax, q, x_unit, y_scale, x_label, y_label in panels:
@@ -889,7 +890,7 @@ def load_run_figure(run):
                 kappa = float(light_load_ratio(spec.surface, [spec.h.max()])[0])
                 grid = np.geomspace(xa[keep].min(), xa[keep].max(), 50)
                 ax.plot(grid, kappa * grid, "k--", lw=1,
-                        label=f"GW light load: A_r/A_n = {kappa:.3g} p/E*")  # fmt: skip
+                        label=f"GW light load, Hertz without adhesion: A_r/A_n = {kappa:.3g} p/E*")  # fmt: skip
         ax.set_xlabel(x_label)
         ax.set_ylabel(y_label)
         ax.legend(fontsize="small")
