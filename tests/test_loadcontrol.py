@@ -366,3 +366,15 @@ def test_hertz_area_fraction_is_pi_eta_r_sigma_f1():
     f1 = [integrate.quad(lambda s, x=x: (s - x) * stats.norm.pdf(s), x, np.inf)[0] for x in h]
     expected = math.pi * SMOOTH.eta * SMOOTH.R * SMOOTH.sigma * np.array(f1)
     np.testing.assert_allclose(hertz_area_fraction(SMOOTH, h), expected, rtol=1e-8)
+
+
+def test_plot_versus_load_refuses_a_cycle_run_and_several_runs_in_one_line(capsys, tmp_path):
+    argv = ["simulate", "--surface", "smooth", "--law", "jkr", "--area", "1um^2", "--h=1,0",
+            "--seed", "1", "--workers", "1", "--quiet"]  # fmt: skip
+    assert run_cli(capsys, *argv, "--cycle", "--out", str(tmp_path / "c.h5"))[0] == 0
+    assert run_cli(capsys, *argv, "--out", str(tmp_path / "a.h5"))[0] == 0
+    for runs, message in [(["c.h5"], "needs an approach run"), (["a.h5", "a.h5"], "one run")]:
+        code, out, err = run_cli(capsys, "plot", *(str(tmp_path / r) for r in runs), "--versus",
+                                 "load", "--out", str(tmp_path / "x.png"))  # fmt: skip
+        assert code == 2 and out == "" and len(err.strip().splitlines()) == 1 and message in err
+    assert not (tmp_path / "x.png").exists()
