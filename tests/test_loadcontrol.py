@@ -330,10 +330,6 @@ def test_plot_of_a_load_controlled_run_shows_each_patch_and_both_standard_errors
     assert bars.has_xerr and bars.has_yerr
     assert any("GW light load" in line.get_label() for line in area_ax.get_lines())
     assert friction_ax.containers[0].has_xerr and friction_ax.containers[0].has_yerr
-    # An h-grid run plots versus h unless asked
-    code, text, _ = run_cli(capsys, "plot", str(out), "--versus", "h", "--out",
-                            str(tmp_path / "h.png"))  # fmt: skip
-    assert code == 0 and "each patch" not in text
 
 
 def _material(tmp_path):
