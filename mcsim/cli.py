@@ -680,12 +680,16 @@ def cmd_plot(args) -> int:
     from .outputs import check_output
     from .plotting import comparison_figure, run_figure, save
     from .runfile import read_run
+    from .sweeps import is_sweep_file
 
     if len(args.run) > 1 and not args.out:
         raise ParameterError("--out: name the PNG file when plotting several runs")
     out = Path(args.out) if args.out else Path(args.run[0]).with_suffix(".png")
     if out.suffix.lower() != ".png":
         raise ParameterError(f"--out: {out}: the figure is a PNG file, its name must end in .png")
+    sweeps = [path for path in args.run if is_sweep_file(path)]
+    if sweeps:
+        return _plot_sweep(args, sweeps, out)
     runs = [read_run(path, allow_incomplete=args.partial) for path in args.run]
     run, surface = runs[0], runs[0].spec.surface
     versus = args.versus or ("load" if "load_control" in run.attrs else "h")
@@ -712,6 +716,25 @@ def cmd_plot(args) -> int:
         save(comparison_figure(surface, gaussian, run.spec.material, h, run=run), other,
              overwrite=args.overwrite, inputs=args.run)  # fmt: skip
         print(f"wrote {other} (measured heights against the Gaussian of the same sigma, R, eta)")
+    return 0
+
+
+def _plot_sweep(args, sweeps: list[str], out: Path) -> int:
+    """``mcsim plot SWEEP.h5``: design curves or design maps (:mod:`mcsim.sweepplots`)."""
+    from .outputs import check_output
+    from .plotting import save
+    from .sweepplots import sweep_figure
+    from .sweeps import read_sweep
+
+    if len(args.run) > 1:
+        raise ParameterError(f"plot: {sweeps[0]} is a sweep file: plot it on its own (one file)")
+    if args.partial:
+        raise ParameterError("--partial applies to run files; a sweep's checkpoint is completed "
+                             "with mcsim sweep ... --resume")  # fmt: skip
+    check_output(out, inputs=args.run, overwrite=args.overwrite)
+    figure = sweep_figure(read_sweep(sweeps[0]), kind=args.kind)
+    save(figure, out, overwrite=args.overwrite, inputs=args.run)
+    print(f"wrote {out}")
     return 0
 
 
@@ -1106,9 +1129,17 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("run", help="run file or sweep file (.h5)")
     p.set_defaults(func=cmd_show)
 
-    p = sub.add_parser("plot", help="Monte Carlo points over the analytic curves",
-                       description="Plot a run: Monte Carlo means with error bars over the analytic curves.")  # fmt: skip
-    p.add_argument("run", nargs="+", help="run file(s) (.h5); several are overlaid")
+    p = sub.add_parser("plot", help="Monte Carlo points over the analytic curves, or a sweep's design curves/maps",
+                       description="Plot a run: Monte Carlo means with error bars over the analytic curves. "
+                       "Plot a sweep file (mcsim sweep): pull-off pressure, work of separation and mu against "
+                       "one varied input (log axis for a log grid), or maps over two with the adhesion-map "
+                       "regime boundaries.")  # fmt: skip
+    p.add_argument(
+        "run", nargs="+", help="run file(s) (.h5); several are overlaid; or one sweep file"
+    )
+    p.add_argument("--kind", choices=("auto", "lines", "map"), default="auto",
+                   help="sweep files: 'lines' (against the first input, a line per value of the second), "
+                   "'map' (two numeric inputs), 'auto' (default: a map for two numeric inputs)")  # fmt: skip
     p.add_argument("--out", help="PNG file (default: next to the run file; required for several)")
     p.add_argument("--overwrite", action="store_true", help="replace an existing PNG file")
     p.add_argument(
