@@ -61,14 +61,16 @@ DISPLAY = {
 LABELS = {
     "pull_off_pressure": "Pull-off force per nominal area $F_{po}/A_n$ (Pa)",
     "work_of_separation": r"Work of separation $\Delta\gamma$ (J/m$^2$)",
-    "mu": r"Friction coefficient $\mu$",
+    "mu": r"Friction coefficient $\mu$ (blank: load $\leq$ 0)",
     "F": r"Adhesion term $\bar F = F/(A_n K)$ (Eq. 5)",
     "T": r"Friction force $\bar T = T/(A_n K)$ (Eq. 7)",
     "contact_fraction": r"Contact fraction $N_c/N$",
 }
 
 #: Variables drawn on log axes (log colour scale in maps).
-LOG_VARIABLES = frozenset({"pull_off_pressure", "work_of_separation", "F", "T"})
+#: (μ too: with adhesion it diverges where the net load crosses zero, a log axis keeps
+#: the rest of the curve readable.)
+LOG_VARIABLES = frozenset({"pull_off_pressure", "work_of_separation", "F", "T", "mu"})
 
 #: Decades shown below the largest value on a log axis or colour scale: smaller values
 #: (e.g. the 1e-20 J/m² tail of a rough surface) sit at the bottom, the colour bar extended.
@@ -218,6 +220,17 @@ def _title(sweep, name: str) -> str:
     title = f"{name}: law set {law}; other inputs as {base}"
     if "sigma" in sweep.grid:
         title += "\n◆ and dotted lines: σ of the paper's Table-1 surfaces (at this R and η)"
+    errors = [str(e) for e in np.asarray(sweep.data["error"]).ravel() if e]
+    if errors:
+        rest = sum("never tensile" in e for e in errors)
+        parts = (
+            [f"{rest} with no separation of zero load (no contact at rest: no stiction)"]
+            if rest
+            else []
+        )
+        if len(errors) > rest:
+            parts.append(f"{len(errors) - rest} other (see the variable error)")
+        title += f"\n{len(errors)} failed points, left blank: {', '.join(parts)}"
     return title
 
 
@@ -263,8 +276,6 @@ def _lines_figure(sweep, dims: list[str], rows: list[int], name: str):
             top = ax.dataLim.y1
             if np.isfinite(top) and ax.dataLim.y0 < top / 10**DECADES:
                 ax.set_ylim(top / 10**DECADES, top * 3)
-        elif key == "mu":
-            ax.set_ylim(bottom=0)
         if x_dim == "sigma":
             _mark_table1(ax, sweep, lines, log_y)
         h_shown = float(h_grid[rows[0]]) if per_h and other is not None else None
@@ -274,7 +285,8 @@ def _lines_figure(sweep, dims: list[str], rows: list[int], name: str):
         if log_x or log_y:
             ax.grid(True, which="minor", alpha=0.12)
         if len(lines) > 1 or f"mc_{key}" in sweep.data:
-            ax.legend(fontsize=7, title=_legend_title(sweep, other, per_h), title_fontsize=7)
+            ax.legend(fontsize=7, title=_legend_title(sweep, other, per_h), title_fontsize=7,
+                      loc="lower left")  # fmt: skip
     fig.suptitle(_title(sweep, name), fontsize=9)
     return fig
 
@@ -355,7 +367,6 @@ def _map_figure(sweep, dims: list[str], row: int, name: str):
     from matplotlib import colormaps
     from matplotlib.colors import LogNorm, Normalize
     from matplotlib.figure import Figure
-    from matplotlib.patheffects import withStroke
 
     x_dim, y_dim = dims
     panels = _panels(sweep, name)[:2]
@@ -400,23 +411,27 @@ def _map_figure(sweep, dims: list[str], row: int, name: str):
         ax.set_xlabel(axis_label(sweep, x_dim), fontsize=9)
         ax.set_ylabel(axis_label(sweep, y_dim), fontsize=9)
         if x_dim == "sigma":
-            for s in PAPER_SURFACES:
-                xs = SURFACES[s].sigma * 1e9
-                if x.min() <= xs <= x.max():
-                    ax.axvline(xs, color="w", lw=0.6, ls=":")
-                    ax.text(xs, 0.01, f" {s}", transform=ax.get_xaxis_transform(), rotation=90,
-                            va="bottom", ha="right", fontsize=7, color="w",
-                            path_effects=[withStroke(linewidth=1.5, foreground="0.2")])  # fmt: skip
-    title = _title(sweep, name).replace("◆ and dotted", "dotted")
+            _table1_axis(ax, x)
+    title = (
+        _title(sweep, name)
+        .replace("◆ and dotted lines", "dotted lines, top axis")
+        .replace("left blank", "grey")
+    )
     title += ("\nregime boundaries: Johnson-Greenwood (1997) adhesion map (Maugis $\\lambda$ = "
               f"{DMT_BELOW:g}, {JKR_ABOVE:g}), plasticity index $\\psi$ = 1")  # fmt: skip
-    if np.any(failed):
-        errors = {str(e) for e in np.asarray(sweep.data["error"]).ravel() if e}
-        why = ("no separation of zero load: the surfaces do not touch at rest, no stiction"
-               if all("never tensile" in e for e in errors) else "see the variable error")  # fmt: skip
-        title += f"\ngrey: failed points ({why})"
     fig.suptitle(title, fontsize=9)
     return fig
+
+
+def _table1_axis(ax, x) -> None:
+    """The σ of the paper's Table-1 surfaces: dotted lines, named on a top axis."""
+    marks = {s: SURFACES[s].sigma * 1e9 for s in PAPER_SURFACES}
+    marks = {s: v for s, v in marks.items() if x.min() <= v <= x.max()}
+    for v in marks.values():
+        ax.axvline(v, color="w", lw=0.7, ls=":")
+    top = ax.secondary_xaxis("top")
+    top.set_xticks(list(marks.values()), list(marks), fontsize=7, rotation=30, ha="left")
+    top.minorticks_off()
 
 
 #: Region names of the Johnson–Greenwood map at low load, by Maugis λ.
@@ -436,24 +451,38 @@ def _regimes(ax, sweep, x, y, grid_values) -> None:
         if levels:
             cs = ax.contour(x, y, lam, levels=levels, colors="w", linewidths=1.6)
             cs.set_gid("regime-boundaries")
-            ax.clabel(cs, fmt={v: f"λ = {v:g}" for v in levels}, fontsize=7)
+            _contour_labels(ax, cs, {v: f"λ = {v:g}" for v in levels})
         for label, low, high in REGIONS:
             inside = np.isfinite(lam) & (lam >= (low or -np.inf)) & (lam < (high or np.inf))
-            if inside.any():
-                rows, cols = np.nonzero(inside)
-                i, j = int(np.median(rows)), int(np.median(cols))
-                if not inside[i, j]:
-                    i, j = rows[len(rows) // 2], cols[len(cols) // 2]
-                ax.text(x[j], y[i], label, ha="center", va="center", fontsize=9, weight="bold",
-                        color="k", bbox={"facecolor": "white", "alpha": 0.7, "edgecolor": "none"})  # fmt: skip
+            _region_label(ax, x, y, inside, label)
     if _finite(sweep, "plasticity_index"):
         psi = grid_values("plasticity_index")
         if np.nanmin(psi) < 1 < np.nanmax(psi):
-            cs = ax.contour(
-                x, y, psi, levels=[1.0], colors="orangered", linewidths=1.4, linestyles="--"
-            )
+            cs = ax.contour(x, y, psi, levels=[1.0], colors="orangered", linewidths=1.6,
+                            linestyles="--")  # fmt: skip
             cs.set_gid("plasticity-boundary")
-            ax.clabel(cs, fmt={1.0: "ψ = 1"}, fontsize=7)
+            _contour_labels(ax, cs, {1.0: "ψ = 1"})
+            _region_label(ax, x, y, psi > 1, "ψ > 1:\nplastic", colour="orangered", right=True)
+
+
+def _contour_labels(ax, cs, fmt: dict) -> None:
+    """Labels on the contour lines, not cut into them (cutting misplaces gaps on log axes)."""
+    for text in ax.clabel(cs, fmt=fmt, fontsize=7, inline=False):
+        text.set_bbox({"facecolor": "white", "alpha": 0.8, "edgecolor": "none", "pad": 1})
+        text.set_color("k")
+
+
+def _region_label(ax, x, y, inside: np.ndarray, label: str, colour: str = "k",
+                  right: bool = False) -> None:  # fmt: skip
+    """Name a region of the map at a cell near its middle (``right``: its right edge)."""
+    if not inside.any():
+        return
+    rows, cols = np.nonzero(inside)
+    i, j = int(np.median(rows)), int(cols.max() if right else np.median(cols))
+    if not inside[i, j]:
+        i, j = rows[len(rows) // 2], cols[len(cols) // 2]
+    ax.text(x[j], y[i], label, ha="right" if right else "center", va="center", fontsize=9,
+            weight="bold", color=colour, bbox={"facecolor": "white", "alpha": 0.75, "edgecolor": "none"})  # fmt: skip
 
 
 def save_sweep_figure(sweep, path, *, overwrite: bool = False, kind: str = "auto") -> Path:
