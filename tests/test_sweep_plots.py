@@ -177,3 +177,15 @@ def test_read_sweep_and_the_result_give_the_same_figure_axes(map_file):
     a = sweep_figure(read_sweep(map_file))
     b = sweep_figure(map_file)
     assert [ax.get_ylabel() for ax in a.axes] == [ax.get_ylabel() for ax in b.axes]
+
+
+def test_a_sweep_file_is_plotted_on_its_own_and_without_partial(
+    capsys, map_file, gamma_file, tmp_path
+):
+    out = str(tmp_path / "x.png")
+    code, _, err = run_cli(capsys, "plot", str(map_file), str(gamma_file), "--out", out)
+    assert code != 0 and "plot it on its own" in err and len(err.strip().splitlines()) == 1
+    code, _, err = run_cli(capsys, "plot", str(map_file), "--out", out, "--partial")
+    assert (
+        code != 0 and "--partial applies to run files" in err and len(err.strip().splitlines()) == 1
+    )
