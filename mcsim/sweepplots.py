@@ -127,8 +127,7 @@ def sweep_figure(sweep, *, kind: str = "auto", h=DEFAULT_H):
         raise ParameterError(f"plot: a map needs two numeric inputs; {name} varies "
                              f"{', '.join(dims)}")  # fmt: skip
     h_grid = np.asarray(sweep.coords["h"], dtype=float)
-    rows = sorted({int(np.argmin(np.abs(h_grid - x))) for x in np.atleast_1d(h)},
-                  key=lambda i: -h_grid[i])  # fmt: skip
+    rows = list(dict.fromkeys(int(np.argmin(np.abs(h_grid - x))) for x in np.atleast_1d(h)))
     if kind == "map" or (kind == "auto" and len(numeric) == 2):
         return _map_figure(sweep, numeric, rows[0], name)
     return _lines_figure(sweep, dims, rows, name)
@@ -171,7 +170,30 @@ def axis_label(sweep, dim: str) -> str:
     """Label of a grid dimension: symbol, meaning and display unit."""
     _, unit, symbol = DISPLAY.get(dim, (1.0, sweep.units.get(dim, ""), dim))
     meaning = sweep.long_names.get(dim, dim)
-    return f"{symbol}, {meaning}" + (f" ({unit})" if unit else "")
+    text = meaning if symbol == meaning else f"{symbol}, {meaning}"
+    return text + (f" ({unit})" if unit else "")
+
+
+def _number(v: float) -> str:
+    """A tick label: plain between 1e-3 and 1e4, else m×10^e."""
+    if v <= 0 or 1e-3 <= v < 1e4:
+        return f"{v:g}"
+    e = math.floor(math.log10(v))
+    m = v / 10**e
+    return f"$10^{{{e}}}$" if round(m, 6) == 1 else f"${m:.3g}\\times 10^{{{e}}}$"
+
+
+def _readable_log_ticks(axis) -> None:
+    """On a log axis spanning less than two decades, ticks at 1, 2, 5 × 10^k written as
+    plain numbers (the default would label only minor ticks, as 4×10⁰)."""
+    from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
+
+    low, high = sorted(axis.get_view_interval())
+    if axis.get_scale() != "log" or not 0 < low or high / low >= 100:
+        return
+    axis.set_major_locator(LogLocator(base=10, subs=(1.0, 2.0, 5.0)))
+    axis.set_major_formatter(FuncFormatter(lambda v, _: _number(v)))
+    axis.set_minor_formatter(NullFormatter())
 
 
 def _scaled(sweep, dim: str) -> np.ndarray:
@@ -262,7 +284,9 @@ def _lines_figure(sweep, dims: list[str], rows: list[int], name: str):
             }
             y = np.where(y > 0, y, np.nan) if log_y else y
             marker = "o" if categorical or x.size <= 12 else None
-            ax.plot(x, y, lw=1.7, marker=marker, ms=4, label=label, **style)
+            if categorical:  # law sets: no line between them
+                style["linestyle"] = "none"
+            ax.plot(x, y, lw=1.7, marker=marker, ms=5, label=label, **style)
             mc = f"mc_{key}"
             if per_h and mc in sweep.data:
                 mean = _take(sweep, mc, x_axis, index)[:, row]
@@ -271,6 +295,8 @@ def _lines_figure(sweep, dims: list[str], rows: list[int], name: str):
                            label="Monte Carlo mean ± 2 SE" if i == 0 else None)  # fmt: skip
         if log_x:
             ax.set_xscale("log")
+        if categorical:
+            ax.set_xlim(-0.5, x.size - 0.5)
         if log_y:
             ax.set_yscale("log")
             top = ax.dataLim.y1
@@ -279,6 +305,8 @@ def _lines_figure(sweep, dims: list[str], rows: list[int], name: str):
         if x_dim == "sigma":
             _mark_table1(ax, sweep, lines, log_y)
         h_shown = float(h_grid[rows[0]]) if per_h and other is not None else None
+        _readable_log_ticks(ax.xaxis)
+        _readable_log_ticks(ax.yaxis)
         ax.set_ylabel(_label(key, h_shown), fontsize=9)
         ax.set_xlabel(axis_label(sweep, x_dim), fontsize=9)
         ax.grid(True, which="major", alpha=0.4)
@@ -408,6 +436,8 @@ def _map_figure(sweep, dims: list[str], row: int, name: str):
             ax.set_yscale("log")
         ax.set_xlim(xe[0], xe[-1])
         ax.set_ylim(ye[0], ye[-1])
+        _readable_log_ticks(ax.xaxis)
+        _readable_log_ticks(ax.yaxis)
         ax.set_xlabel(axis_label(sweep, x_dim), fontsize=9)
         ax.set_ylabel(axis_label(sweep, y_dim), fontsize=9)
         if x_dim == "sigma":

@@ -135,7 +135,7 @@ def test_a_seed_sweep_has_no_pull_off_so_its_figure_shows_the_seed_curves_at_nam
         "Friction coefficient",
     ]
     legend = [t.get_text() for t in axes[0].get_legend().get_texts()]
-    assert legend == ["$d/\\sigma$ = 1", "$d/\\sigma$ = 0"]  # one line per separation, named
+    assert legend == ["$d/\\sigma$ = 0", "$d/\\sigma$ = 1"]  # one line per separation, named
 
 
 def test_a_sweep_with_no_value_to_plot_is_a_one_line_error():
