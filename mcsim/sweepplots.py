@@ -3,6 +3,7 @@
 >>> from mcsim.sweeps import read_sweep
 >>> from mcsim.sweepplots import sweep_figure
 >>> fig = sweep_figure(read_sweep("map.h5"))                          # doctest: +SKIP
+>>> mcsim.plotting.save(fig, "map.png", inputs=["map.h5"])           # doctest: +SKIP
 
 * **one varied input** (or two, one of them the law set or with ``kind="lines"``):
   the adhesion summary against the input, what a designer reads: the pull-off force per
@@ -14,7 +15,7 @@
   panels are the adhesion term F̄ (Eq. 5), the friction T̄ (Eq. 7) and μ (Eq. 8) at
   those separations.
 * **two numeric inputs**: maps of the pull-off pressure and of the work of separation
-  (seed: F̄ and μ at one separation) over the grid, with the regime boundaries of the
+  (seed: F̄ and T̄ at one separation) over the grid, with the regime boundaries of the
   Johnson–Greenwood (1997) adhesion map drawn on top: contours of Maugis' λ at
   :data:`mcsim.adhesion.DMT_BELOW` and :data:`mcsim.adhesion.JKR_ABOVE` (the thresholds
   of ``--law auto``, :func:`mcsim.adhesion.choose_law`; λ = 1.162 μ_T, Tabor's
@@ -29,7 +30,6 @@ from __future__ import annotations
 
 import functools
 import math
-from pathlib import Path
 
 import numpy as np
 
@@ -513,17 +513,3 @@ def _region_label(ax, x, y, inside: np.ndarray, label: str, colour: str = "k",
         i, j = rows[len(rows) // 2], cols[len(cols) // 2]
     ax.text(x[j], y[i], label, ha="right" if right else "center", va="center", fontsize=9,
             weight="bold", color=colour, bbox={"facecolor": "white", "alpha": 0.75, "edgecolor": "none"})  # fmt: skip
-
-
-def save_sweep_figure(sweep, path, *, overwrite: bool = False, kind: str = "auto") -> Path:
-    """Write :func:`sweep_figure` of a sweep file or result as a PNG (:func:`mcsim.plotting.save`);
-    never onto the sweep file itself."""
-    from .plotting import save
-    from .sweeps import Sweep
-
-    inputs = (
-        [sweep.path]
-        if isinstance(sweep, Sweep) and sweep.path
-        else ([] if isinstance(sweep, Sweep) else [sweep])
-    )
-    return save(sweep_figure(sweep, kind=kind), path, overwrite=overwrite, inputs=inputs)

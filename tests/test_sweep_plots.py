@@ -10,8 +10,9 @@ import pytest
 from mcsim.adhesion import DMT_BELOW, JKR_ABOVE, maugis_parameter
 from mcsim.cli import main
 from mcsim.errors import MCSimError, ParameterError
+from mcsim.plotting import save
 from mcsim.presets import MATERIALS, SURFACES
-from mcsim.sweepplots import is_log_grid, save_sweep_figure, sweep_figure
+from mcsim.sweepplots import is_log_grid, sweep_figure
 from mcsim.sweeps import read_sweep, sweep
 
 SMOOTH, SILICON = SURFACES["smooth"], MATERIALS["silicon"]
@@ -111,7 +112,7 @@ def test_mcsim_plot_never_writes_onto_the_sweep_file_itself(capsys, tmp_path):
     assert code != 0 and "is an input of this command" in err and len(err.strip().splitlines()) == 1
     assert sweep_png.read_bytes() == before
     with pytest.raises(MCSimError, match="is an input"):
-        save_sweep_figure(sweep_png, sweep_png, overwrite=True)
+        save(sweep_figure(sweep_png), sweep_png, overwrite=True, inputs=[sweep_png])
 
 
 def test_a_sweep_of_three_varied_inputs_is_a_one_line_error_naming_them(capsys, tmp_path):
