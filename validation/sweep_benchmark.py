@@ -19,7 +19,7 @@ Cases, each in its own Python process (``--case``) so that its peak resident mem
   client process plus the sum of the workers' ``ru_maxrss``.
 
 Timings are the best of ``--repeats`` sweeps (in memory: no file written). Run:
-``python validation/sweep_benchmark.py`` (minutes on 2 cores) or ``--quick`` (10 × 2
+``python validation/sweep_benchmark.py`` (several minutes on 2 cores) or ``--quick`` (10 × 2
 analytic points, 8 Monte Carlo points, about a minute). Prints a markdown table and
 writes it to ``validation/out/sweep_benchmark.md``.
 """
