@@ -728,11 +728,13 @@ def _plot_sweep(args, sweeps: list[str], out: Path) -> int:
 
     if len(args.run) > 1:
         raise ParameterError(f"plot: {sweeps[0]} is a sweep file: plot it on its own (one file)")
-    if args.partial:
-        raise ParameterError("--partial applies to run files; a sweep's checkpoint is completed "
-                             "with mcsim sweep ... --resume")  # fmt: skip
+    result = read_sweep(sweeps[0])
+    if not result.attrs.get("complete", True) and not args.partial:
+        raise ParameterError(f"{sweeps[0]}: an incomplete sweep (checkpoint): finish it with the same "
+                             "mcsim sweep command plus --resume, or pass --partial to plot its "
+                             "completed points")  # fmt: skip
     check_output(out, inputs=args.run, overwrite=args.overwrite)
-    figure = sweep_figure(read_sweep(sweeps[0]), kind=args.kind)
+    figure = sweep_figure(result, kind=args.kind)
     save(figure, out, overwrite=args.overwrite, inputs=args.run)
     print(f"wrote {out}")
     return 0
@@ -1145,7 +1147,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument(
         "--partial",
         action="store_true",
-        help="accept an incomplete run: plot its completed realizations",
+        help="accept an incomplete run or sweep checkpoint: plot its completed realizations or points",
     )
     p.add_argument("--versus", choices=("h", "load"),
                    help="x axis: the separation h, or the load (each patch's load against its area "

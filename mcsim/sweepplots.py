@@ -242,6 +242,8 @@ def _title(sweep, name: str) -> str:
     title = f"{name}: law set {law}; other inputs as {base}"
     if "sigma" in sweep.grid:
         title += "\n◆ and dotted lines: σ of the paper's Table-1 surfaces (at this R and η)"
+    if not sweep.attrs.get("complete", True):
+        title += "\nincomplete sweep (checkpoint): the points not yet computed are blank"
     errors = [str(e) for e in np.asarray(sweep.data["error"]).ravel() if e]
     if errors:
         rest = sum("never tensile" in e for e in errors)

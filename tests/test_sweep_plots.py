@@ -180,13 +180,39 @@ def test_read_sweep_and_the_result_give_the_same_figure_axes(map_file):
     assert [ax.get_ylabel() for ax in a.axes] == [ax.get_ylabel() for ax in b.axes]
 
 
-def test_a_sweep_file_is_plotted_on_its_own_and_without_partial(
-    capsys, map_file, gamma_file, tmp_path
-):
+def test_a_sweep_file_is_plotted_on_its_own(capsys, map_file, gamma_file, tmp_path):
     out = str(tmp_path / "x.png")
     code, _, err = run_cli(capsys, "plot", str(map_file), str(gamma_file), "--out", out)
     assert code != 0 and "plot it on its own" in err and len(err.strip().splitlines()) == 1
-    code, _, err = run_cli(capsys, "plot", str(map_file), "--out", out, "--partial")
-    assert (
-        code != 0 and "--partial applies to run files" in err and len(err.strip().splitlines()) == 1
-    )
+
+
+def test_an_incomplete_sweep_checkpoint_is_plotted_only_with_partial(capsys, tmp_path, monkeypatch):
+    import mcsim.sweeps as sweeps
+
+    evaluate = sweeps.evaluate
+
+    def stop_at_point_2(point, config):
+        if point.index == 2:
+            raise KeyboardInterrupt
+        return evaluate(point, config)
+
+    monkeypatch.setattr(sweeps, "evaluate", stop_at_point_2)
+    with pytest.raises(KeyboardInterrupt):
+        sweep(
+            SMOOTH,
+            SILICON,
+            {"gamma": "0.2:0.6:4"},
+            law="dmt",
+            h=H,
+            workers=1,
+            out=tmp_path / "s.h5",
+        )
+    partial, out = tmp_path / "s.partial.h5", tmp_path / "s.png"
+    code, _, err = run_cli(capsys, "plot", str(partial), "--out", str(out))
+    assert code != 0 and "incomplete sweep" in err and "--partial" in err
+    assert len(err.strip().splitlines()) == 1 and not out.exists()
+    code, _, _ = run_cli(capsys, "plot", str(partial), "--out", str(out), "--partial")
+    assert code == 0 and out.is_file()
+    fig = sweep_figure(partial)
+    assert "incomplete sweep" in fig.get_suptitle()
+    assert np.isfinite(fig.axes[0].get_lines()[0].get_ydata()).sum() == 2  # the completed points
