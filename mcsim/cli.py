@@ -690,6 +690,10 @@ def cmd_plot(args) -> int:
     sweeps = [path for path in args.run if is_sweep_file(path)]
     if sweeps:
         return _plot_sweep(args, sweeps, out)
+    if args.kind != "auto":
+        raise ParameterError(
+            f"--kind {args.kind}: applies to sweep files; {args.run[0]} is a run file"
+        )
     runs = [read_run(path, allow_incomplete=args.partial) for path in args.run]
     run, surface = runs[0], runs[0].spec.surface
     versus = args.versus or ("load" if "load_control" in run.attrs else "h")

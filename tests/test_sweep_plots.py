@@ -216,3 +216,14 @@ def test_an_incomplete_sweep_checkpoint_is_plotted_only_with_partial(capsys, tmp
     fig = sweep_figure(partial)
     assert "incomplete sweep" in fig.get_suptitle()
     assert np.isfinite(fig.axes[0].get_lines()[0].get_ydata()).sum() == 2  # the completed points
+
+
+def test_kind_is_refused_for_a_run_file(capsys, tmp_path):
+    run = tmp_path / "r.h5"
+    code, _, _ = run_cli(capsys, "simulate", "--surface", "smooth", "--area", "1um^2", "--h=1,0",
+                         "--seed", "1", "--out", str(run), "--quiet")  # fmt: skip
+    assert code == 0
+    code, _, err = run_cli(
+        capsys, "plot", str(run), "--out", str(tmp_path / "r.png"), "--kind", "map"
+    )
+    assert code != 0 and "applies to sweep files" in err and len(err.strip().splitlines()) == 1
