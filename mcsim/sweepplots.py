@@ -28,7 +28,9 @@ Axes carry units; an input whose grid is log-spaced gets a log axis. Failed poin
 
 from __future__ import annotations
 
+import dataclasses
 import functools
+import json
 import math
 
 import numpy as np
@@ -115,13 +117,12 @@ def sweep_figure(sweep, *, kind: str = "auto", h=DEFAULT_H):
         raise ParameterError(f"kind = {kind!r} is not one of 'auto', 'lines', 'map'")
     dims = [d for d in sweep.grid if sweep.coords[d].size > 1] or list(sweep.grid[:1])
     name = sweep.path.name if sweep.path is not None else "the sweep"
-    if len(dims) <= 2:
-        sweep = _squeezed(sweep, dims)
     if len(dims) > 2:
         raise ParameterError(
             f"plot: {name} varies {len(dims)} inputs ({', '.join(dims)}); a figure shows 1 or 2: "
             "select a slice with Sweep.to_xarray() and plot it yourself"
         )
+    sweep = _squeezed(sweep, dims)
     numeric = [d for d in dims if d != "law"]
     if kind == "map" and len(numeric) != 2:
         raise ParameterError(f"plot: a map needs two numeric inputs; {name} varies "
@@ -138,9 +139,6 @@ def sweep_figure(sweep, *, kind: str = "auto", h=DEFAULT_H):
 
 def _squeezed(sweep, dims: list[str]):
     """The sweep without its grid dimensions of one value (C order is kept by reshape)."""
-    import dataclasses
-    import json
-
     shape = tuple(sweep.coords[d].size for d in dims)
     data, var_dims = {}, {}
     for k, v in sweep.data.items():
@@ -231,8 +229,6 @@ def _label(key: str, h: float | None) -> str:
 def _title(sweep, name: str) -> str:
     a = sweep.attrs
     law = a.get("law", "?")
-    import json
-
     surface = json.loads(a["surface"]) if "surface" in a else {}
     material = json.loads(a["material"]) if "material" in a else {}
     base = f"surface {surface.get('name') or '(file)'}, material {material.get('name') or '(file)'}"
@@ -240,7 +236,10 @@ def _title(sweep, name: str) -> str:
         used = sorted({str(v) for v in np.asarray(sweep.data["law_used"]).ravel() if v})
         law = f"auto ({', '.join(used)})"
     title = f"{name}: law set {law}; other inputs as {base}"
-    if "sigma" in sweep.grid:
+    sigma = sweep.coords.get("sigma")
+    if sigma is not None and any(
+        sigma.min() <= SURFACES[s].sigma <= sigma.max() for s in PAPER_SURFACES
+    ):
         title += "\n◆ and dotted lines: σ of the paper's Table-1 surfaces (at this R and η)"
     if not sweep.attrs.get("complete", True):
         title += "\nincomplete sweep (checkpoint): the points not yet computed are blank"
