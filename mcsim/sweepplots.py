@@ -278,6 +278,7 @@ def _lines_figure(sweep, dims: list[str], rows: list[int], name: str):
         per_h = sweep.dims[key][-1] == "h"
         log_y = key in LOG_VARIABLES
         lines = _line_set(sweep, key, x_axis, other, rows if per_h else [None], per_h)
+        zeros = sum(int(np.sum(y == 0)) for _, y, _, _ in lines)
         for i, (label, y, row, index) in enumerate(lines):
             style = {
                 "color": _COLOURS[i % len(_COLOURS)],
@@ -298,6 +299,11 @@ def _lines_figure(sweep, dims: list[str], rows: list[int], name: str):
             ax.set_xscale("log")
         if categorical:
             ax.set_xlim(-0.5, x.size - 0.5)
+        if log_y and zeros:  # the surfaces rest apart there: nothing pulls off
+            total = sum(y.size for _, y, _, _ in lines)
+            ax.text(0.03, 0.03, f"0 at {zeros} of {total} points (not drawn on a log axis):\n"
+                    "no adhesive contact at rest", transform=ax.transAxes, fontsize=8,
+                    va="bottom", ha="left")  # fmt: skip
         if log_y:
             ax.set_yscale("log")
             top = ax.dataLim.y1

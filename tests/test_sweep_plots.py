@@ -139,10 +139,25 @@ def test_a_seed_sweep_has_no_pull_off_so_its_figure_shows_the_seed_curves_at_nam
     assert legend == ["$d/\\sigma$ = 0", "$d/\\sigma$ = 1"]  # one line per separation, named
 
 
-def test_a_sweep_with_no_value_to_plot_is_a_one_line_error():
-    # rough surface, jkr: no separation of zero load, so every adhesion summary fails,
-    # and jkr without tau has no seed curves or friction
+def test_points_with_nothing_to_pull_off_are_counted_on_the_log_axes_not_dropped_silently():
+    # rough surface, jkr: the approach load is never tensile, so the surfaces rest apart
+    # and nothing pulls off: 0, which a log axis cannot show
     result = sweep(SURFACES["rough"], SILICON, {"gamma": "0.2,0.3"}, law="jkr", h=H)
+    assert np.all(result.data["pull_off"] == 0)
+    fig = sweep_figure(result)
+    notes = [t.get_text() for t in fig.axes[0].texts]
+    assert any("0 at 2 of 2 points" in t for t in notes), notes
+
+
+def test_a_sweep_with_no_value_to_plot_is_a_one_line_error(monkeypatch):
+    import mcsim.sweeps
+
+    def failing(*args, **kwargs):
+        raise ParameterError("no root found (injected)")
+
+    monkeypatch.setattr(mcsim.sweeps, "adhesion_summary", failing)
+    # every adhesion summary fails, and jkr without tau has no seed curves or friction
+    result = sweep(SMOOTH, SILICON, {"gamma": "0.2,0.3"}, law="jkr", h=H)
     assert np.all(np.isnan(result.data["pull_off"]))
     with pytest.raises(ParameterError, match="nothing to plot") as err:
         sweep_figure(result)
