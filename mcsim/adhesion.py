@@ -354,6 +354,9 @@ def adhesion_summary(
     roots = [
         optimize.brentq(lambda x: load(x, "retract")[0], coarse[j], coarse[j + 1], xtol=1e-13)
         for j in change
+        # At the zero-load turn the load is 0 to rounding, and its sign can differ between
+        # this one-point evaluation and the grid's: no root inside the panel then.
+        if load(coarse[j], "retract")[0] * load(coarse[j + 1], "retract")[0] < 0
     ]
     cuts = np.unique(np.concatenate([coarse, roots, _kinks(surface, material, laws, turn, top)]))
     x, w = np.polynomial.legendre.leggauss(NODES)

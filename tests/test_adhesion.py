@@ -204,3 +204,15 @@ def test_dmt_pull_off_of_a_flat_population_is_n_times_two_pi_w_r():
         s = adhesion_summary(FLAT, MATERIAL, "dmt", turn=-10.0)
     single = 2 * math.pi * MATERIAL.gamma * SMOOTH.R
     assert s.pull_off * MATERIAL.K / SMOOTH.eta == pytest.approx(single, rel=1e-3)
+
+
+def test_a_retraction_load_that_is_zero_to_rounding_at_the_turn_is_not_taken_for_a_root():
+    """Found by a design-map sweep: at the zero-load turn the retraction load is 0 to
+    rounding (+4e-21 on the panel grid, -1.4e-20 alone, against -3.5e-5 one panel on), so
+    the panel looked like a sign change that Brent's method could not bracket."""
+    surface = dataclasses.replace(SURFACES["smooth"], sigma=3.8215645745853596e-10)
+    material = dataclasses.replace(MATERIALS["silicon"], gamma=0.19193831036664843)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RegimeWarning)
+        s = adhesion_summary(surface, material, "maugis-dugdale")
+    assert s.pull_off > 0 and s.work_of_separation > 0
