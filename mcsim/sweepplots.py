@@ -245,15 +245,7 @@ def _title(sweep, name: str) -> str:
         title += "\nincomplete sweep (checkpoint): the points not yet computed are blank"
     errors = [str(e) for e in np.asarray(sweep.data["error"]).ravel() if e]
     if errors:
-        rest = sum("never tensile" in e for e in errors)
-        parts = (
-            [f"{rest} with no separation of zero load (no contact at rest: no stiction)"]
-            if rest
-            else []
-        )
-        if len(errors) > rest:
-            parts.append(f"{len(errors) - rest} other (see the variable error)")
-        title += f"\n{len(errors)} failed points, left blank: {', '.join(parts)}"
+        title += f"\n{len(errors)} failed points, left blank (see the variable error)"
     return title
 
 
@@ -419,9 +411,11 @@ def _map_figure(sweep, dims: list[str], row: int, name: str):
     failed = failed.T if transpose else failed
     fig = Figure(figsize=(6.2 * len(panels), 5.2), layout="constrained")
     axes = np.atleast_1d(fig.subplots(1, len(panels)))
+    zeros = False
     for ax, key in zip(axes, panels):
         z = grid_values(key)
         log = key in LOG_VARIABLES
+        zeros |= bool(log and np.any(z == 0))
         shown = np.where(z > 0, z, np.nan) if log else z
         finite = shown[np.isfinite(shown)]
         norm, extend = None, "neither"
@@ -456,6 +450,8 @@ def _map_figure(sweep, dims: list[str], row: int, name: str):
     )
     title += ("\nregime boundaries: Johnson-Greenwood (1997) adhesion map (Maugis $\\lambda$ = "
               f"{DMT_BELOW:g}, {JKR_ABOVE:g}), plasticity index $\\psi$ = 1")  # fmt: skip
+    if zeros:
+        title += "; white: 0, no adhesive contact at rest"
     fig.suptitle(title, fontsize=9)
     return fig
 
