@@ -122,5 +122,17 @@ def test_the_seed_kernel_is_the_plain_prefix_loop_and_other_law_sets_count_conta
 
     seed_loop = _sweep_source(SEED, counting=False)
     assert "delta_max" not in seed_loop and "nc = n_eval" in seed_loop
+    assert "law0(delta, *a0)" in seed_loop and "law2(delta, *a2)" in seed_loop
     toy_loop = _sweep_source(TOY, counting=True)
-    assert "law0(delta, delta_max, *a0)" in toy_loop and "law2(delta, *a2)" in toy_loop
+    assert "law0(delta, delta_max, a0[0], a0[1], a0[2], a0[3])" in toy_loop
+
+
+def test_outputs_sharing_a_parameter_read_it_from_one_tuple_so_shared_work_is_computed_once():
+    """Outside the legacy (seed) kernel, a parameter that several outputs take (TOY: R
+    and c) is passed from the first output's tuple: the same value to LLVM, which then
+    computes identical subexpressions of the outputs once."""
+    from mcsim.kernels import _sweep_source
+
+    toy_loop = _sweep_source(TOY, counting=True)
+    assert "law1(delta, delta_max, a0[0], a0[2])" in toy_loop
+    assert "law2(delta, a0[0], a2[1])" in toy_loop

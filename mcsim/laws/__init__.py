@@ -171,6 +171,11 @@ class LawSet:
         Whether the retraction branch is implemented (elastic-plastic: no).
     friction : bool
         Whether friction is τ·area (Bowden–Tabor) when the material gives τ.
+    legacy_kernel : bool
+        Compile the Monte Carlo kernel exactly as mcsim 0.1 did (numba's default error
+        model, each output's parameter tuple passed whole): the seed's sums are pinned
+        bit for bit, and the other kernel's code, vectorised differently, adds them in
+        another order (see :mod:`mcsim.kernels`).
     """
 
     name: str
@@ -181,6 +186,7 @@ class LawSet:
     requires: tuple[str, ...] = ()
     retract: bool = True
     friction: bool = False
+    legacy_kernel: bool = False
 
     @property
     def names(self) -> tuple[str, ...]:
@@ -273,6 +279,7 @@ SEED = LawSet(
         Output("F", "N", seed.johnson_adhesion, "JKR adhesion term P1 - P (Eq. 4)"),
         Output("T", "N", seed.savkoor_briggs_friction, "Savkoor-Briggs friction (Eq. 6)"),
     ),
+    legacy_kernel=True,
 )
 
 LAW_SETS: dict[str, LawSet] = {SEED.name: SEED}
