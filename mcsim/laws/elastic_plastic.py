@@ -70,9 +70,43 @@ def elastic_plastic_load(delta, R, E_star, H, nu):
     x0 = np.minimum(x, 1.0)
     low, high = x < 6.0, x >= 6.0
     # one power for both elastic-plastic ranges: c x^e with x clamped to [1, 110]
-    power = (low * 1.03 + high * 1.40) * np.exp(
-        (low * 1.425 + high * 1.263) * np.log(np.minimum(np.maximum(x, 1.0), 110.0))
+    # x^e for 1 ≤ x ≤ 110 without libm calls (they keep the kernel from vectorising):
+    # x = 2^j m, √½ ≤ m < √2, j = 4c + 2b + a found by halving, x^e = (2^e)^j m^e, and
+    # m^e = exp(e ln m), ln m = 2 atanh((m − 1)/(m + 1)), by their series
+    xc = np.minimum(np.maximum(x, 1.0), 110.0)
+    c = xc >= 11.313708498984761  # √2·2³
+    x1 = xc * (1.0 - 0.9375 * c)
+    b = x1 >= 2.8284271247461903  # √2·2
+    x2 = x1 * (1.0 - 0.75 * b)
+    a = x2 >= 1.4142135623730951  # √2
+    m = x2 * (1.0 - 0.5 * a)
+    u = (m - 1.0) / (m + 1.0)
+    u2 = u * u
+    u4 = u2 * u2
+    u8 = u4 * u4
+    series = (1.0 + 0.3333333333333333 * u2) + u4 * (0.2 + 0.14285714285714285 * u2)
+    series = series + u8 * (
+        (0.1111111111111111 + 0.09090909090909091 * u2)
+        + u4 * (0.07692307692307693 + 0.06666666666666667 * u2)
+        + u8 * ((0.058823529411764705 + 0.05263157894736842 * u2) + u4 * 0.047619047619047616)
     )
+    y = (low * 1.425 + high * 1.263) * (2.0 * u * series)  # e ln m, |y| < 0.5
+    y2 = y * y
+    y4 = y2 * y2
+    y8 = y4 * y4
+    em = ((1.0 + y) + y2 * (0.5 + 0.16666666666666666 * y)) + y4 * (
+        (0.041666666666666664 + 0.008333333333333333 * y)
+        + y2 * (0.001388888888888889 + 0.0001984126984126984 * y)
+    )
+    em = em + y8 * (
+        (2.48015873015873e-05 + 2.7557319223985893e-06 * y)
+        + y2 * (2.755731922398589e-07 + 2.505210838544172e-08 * y)
+        + y4 * (2.08767569878681e-09 + 1.6059043836821613e-10 * y + 1.1470745597729725e-11 * y2)
+    )
+    q1 = low * 2.685145005560527 + high * 2.399942764746431  # 2^e
+    q2 = q1 * q1
+    scale = (1.0 + a * (q1 - 1.0)) * (1.0 + b * (q2 - 1.0)) * (1.0 + c * (q2 * q2 - 1.0))
+    power = (low * 1.03 + high * 1.40) * em * scale
     ratio = (
         (x < 1.0) * (x0 * np.sqrt(x0))
         + (x >= 1.0) * (x < 110.0) * power
@@ -108,9 +142,43 @@ def elastic_plastic_area(delta, R, E_star, H, nu):
     x = np.maximum(delta, 0.0) / w_c
     low, high = x < 6.0, x >= 6.0
     # one power for both elastic-plastic ranges: c x^e with x clamped to [1, 110]
-    power = (low * 0.93 + high * 0.94) * np.exp(
-        (low * 1.136 + high * 1.146) * np.log(np.minimum(np.maximum(x, 1.0), 110.0))
+    # x^e for 1 ≤ x ≤ 110 without libm calls (they keep the kernel from vectorising):
+    # x = 2^j m, √½ ≤ m < √2, j = 4c + 2b + a found by halving, x^e = (2^e)^j m^e, and
+    # m^e = exp(e ln m), ln m = 2 atanh((m − 1)/(m + 1)), by their series
+    xc = np.minimum(np.maximum(x, 1.0), 110.0)
+    c = xc >= 11.313708498984761  # √2·2³
+    x1 = xc * (1.0 - 0.9375 * c)
+    b = x1 >= 2.8284271247461903  # √2·2
+    x2 = x1 * (1.0 - 0.75 * b)
+    a = x2 >= 1.4142135623730951  # √2
+    m = x2 * (1.0 - 0.5 * a)
+    u = (m - 1.0) / (m + 1.0)
+    u2 = u * u
+    u4 = u2 * u2
+    u8 = u4 * u4
+    series = (1.0 + 0.3333333333333333 * u2) + u4 * (0.2 + 0.14285714285714285 * u2)
+    series = series + u8 * (
+        (0.1111111111111111 + 0.09090909090909091 * u2)
+        + u4 * (0.07692307692307693 + 0.06666666666666667 * u2)
+        + u8 * ((0.058823529411764705 + 0.05263157894736842 * u2) + u4 * 0.047619047619047616)
     )
+    y = (low * 1.136 + high * 1.146) * (2.0 * u * series)  # e ln m, |y| < 0.5
+    y2 = y * y
+    y4 = y2 * y2
+    y8 = y4 * y4
+    em = ((1.0 + y) + y2 * (0.5 + 0.16666666666666666 * y)) + y4 * (
+        (0.041666666666666664 + 0.008333333333333333 * y)
+        + y2 * (0.001388888888888889 + 0.0001984126984126984 * y)
+    )
+    em = em + y8 * (
+        (2.48015873015873e-05 + 2.7557319223985893e-06 * y)
+        + y2 * (2.755731922398589e-07 + 2.505210838544172e-08 * y)
+        + y4 * (2.08767569878681e-09 + 1.6059043836821613e-10 * y + 1.1470745597729725e-11 * y2)
+    )
+    q1 = low * 2.1977084351537592 + high * 2.2129947061845443  # 2^e
+    q2 = q1 * q1
+    scale = (1.0 + a * (q1 - 1.0)) * (1.0 + b * (q2 - 1.0)) * (1.0 + c * (q2 * q2 - 1.0))
+    power = (low * 0.93 + high * 0.94) * em * scale
     ratio = (x < 1.0) * x + (x >= 1.0) * (x < 110.0) * power + (x >= 110.0) * (2.0 * x)
     return a_c * ratio
 
