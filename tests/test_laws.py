@@ -15,6 +15,7 @@ from mcsim.config import load_material, material_from_table
 from mcsim.empirical import Empirical
 from mcsim.errors import ParameterError
 from mcsim.laws import dmt, elastic_plastic, get_law_set, jkr
+from mcsim.laws import maugis_dugdale as md
 from mcsim.params import Material, Surface
 from mcsim.presets import MATERIALS, SURFACES
 
@@ -264,12 +265,14 @@ LAWS = [
     (dmt.dmt_area, False),
     (elastic_plastic.elastic_plastic_load, False),
     (elastic_plastic.elastic_plastic_area, False),
+    (md.load, True),
+    (md.area, True),
 ]
 EXTREMES = np.array([-1e300, -1.0, -1e-9, -1e-300, 0.0, 1e-300, 1e-12, 1e-9, 1e-6, 1.0, 1e30])
 
 
 def law_arguments(f):
-    for name in ("jkr", "dmt", "elastic-plastic"):
+    for name in ("jkr", "dmt", "elastic-plastic", "maugis-dugdale"):
         law = get_law_set(name)
         for o, args in zip(law.outputs, law.arguments(SMOOTH, SILICON)):
             if o.law is f:

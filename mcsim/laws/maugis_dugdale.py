@@ -61,7 +61,8 @@ values at x = 1 are those limits. A not-a-knot cubic spline on 1024 intervals th
 reproduces the direct solution to 1e-10 (measured for λ = 1e-3 … 1e3, including
 λ = λ_c ± 1e-7), against the bound 1e-8 that the tests check for λ = 0.1 … 10, relative
 to max(|P̄|, 1) and max(A², 1) (P̄ changes sign and A → 0 at touch-down). The
-out-of-contact part of the stable branch is evaluated in closed form.
+out-of-contact part of the stable branch is evaluated in closed form. Δ is clamped to
+±1e30, so the values are finite for every finite δ.
 """
 
 from __future__ import annotations
@@ -364,7 +365,8 @@ def load(
     float or ndarray
         Load, N, positive when compressive; zero out of contact.
     """
-    D = delta / md_delta_unit
+    big = 1e30 * md_delta_unit  # |Δ| ≤ 1e30: finite values for every finite δ
+    D = np.minimum(np.maximum(delta, -big), big) / md_delta_unit
     on = (delta_max > md_jump_in) * (delta > md_break_off)
     zone = md_b + np.sqrt(np.maximum(md_b * md_b + 2.0 * (D + md_h0), 0.0))
     apart = -0.5 * np.pi * md_lambda * zone * zone
@@ -419,7 +421,8 @@ def area(
     float or ndarray
         Area, m²; zero out of contact, and inside the Dugdale zone before touch-down.
     """
-    D = delta / md_delta_unit
+    big = 1e30 * md_delta_unit  # |Δ| ≤ 1e30: finite values for every finite δ
+    D = np.minimum(np.maximum(delta, -big), big) / md_delta_unit
     on = (delta_max > md_jump_in) * (delta > md_break_off)
     r = np.sqrt(np.sqrt(np.maximum(D - md_delta_lo, 0.0)))
     u = r / (r + 1.0) * md_n
