@@ -15,7 +15,8 @@ Storing all summit heights would take 8 B × N (0.8 GB at 10⁸); the engine dra
 sums blocks of 65 536 summits, so the peak is set by the chunk size, not by N.
 
 Run: ``python validation/memory.py`` (≈30 s on 2 cores) or ``--quick`` (10⁵ with one worker, 10⁶ with two).
-Writes ``memory.png`` and ``memory.txt`` into ``validation/out/``.
+``--law NAME`` measures another law set (with ``--cycle`` where it has retraction) and
+writes ``memory-NAME.*``. Writes ``memory.png`` and ``memory.txt`` into ``validation/out/``.
 """
 
 from __future__ import annotations
@@ -45,7 +46,7 @@ def reset_peak() -> bool:
     return True
 
 
-def child(n: float, workers: int, seed: int) -> dict:
+def child(n: float, workers: int, seed: int, law: str = "seed") -> dict:
     """One measurement in this (fresh) process; returns the numbers as a dict."""
     import resource
     import tracemalloc
@@ -55,19 +56,21 @@ def child(n: float, workers: int, seed: int) -> dict:
     def maxrss() -> float:
         return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / MB
 
+    from mcsim.laws import get_law_set
     from mcsim.presets import MATERIALS, SURFACES
     from mcsim.simulation import simulate
 
     surface, material = SURFACES["smooth"], MATERIALS["silicon"]
     h_grid = np.linspace(*H_RANGE)
+    opts = {"law": law, "cycle": law != "seed" and get_law_set(law).retract}
     t_import = time.perf_counter() - _T_START
     rss_import = maxrss()
 
     t0 = time.perf_counter()
-    simulate(surface, material, h_grid, 1e3 / surface.eta, seed=0)  # compiles the kernel
+    simulate(surface, material, h_grid, 1e3 / surface.eta, seed=0, **opts)  # compiles the kernel
     t_first = time.perf_counter() - t0
     t0 = time.perf_counter()
-    simulate(surface, material, h_grid, 1e3 / surface.eta, seed=0)
+    simulate(surface, material, h_grid, 1e3 / surface.eta, seed=0, **opts)
     t_second = time.perf_counter() - t0
     rss_warm = maxrss()
 
@@ -75,7 +78,7 @@ def child(n: float, workers: int, seed: int) -> dict:
     rss_before = maxrss()
     tracemalloc.start()
     t0 = time.perf_counter()
-    run = simulate(surface, material, h_grid, n / surface.eta, seed=seed, workers=workers)
+    run = simulate(surface, material, h_grid, n / surface.eta, seed=seed, workers=workers, **opts)
     wall = time.perf_counter() - t0
     _, traced_peak = tracemalloc.get_traced_memory()
     tracemalloc.stop()
@@ -99,11 +102,15 @@ def main() -> None:
 
     p = parser(__doc__.splitlines()[0])
     p.add_argument("--child", nargs=3, metavar=("N", "WORKERS", "SEED"), help=__import__("argparse").SUPPRESS)  # fmt: skip
+    p.add_argument("--law", default="seed",
+                   help="law set (default %(default)s; one with retraction runs --cycle); "
+                        "outputs memory-LAW.* unless seed")  # fmt: skip
     args = p.parse_args()
     if args.child:
         n, workers, seed = args.child
-        print(json.dumps(child(float(n), int(workers), int(seed))))
+        print(json.dumps(child(float(n), int(workers), int(seed), args.law)))
         return
+    stem = "memory" if args.law == "seed" else f"memory-{args.law}"
     args.out.mkdir(parents=True, exist_ok=True)
     sizes = (1e5, 1e6) if args.quick else (1e6, 1e7, 1e8)
     cases = [(1e5, 1), (1e6, 2)] if args.quick else [(n, w) for w in (1, 2) for n in sizes]
@@ -111,6 +118,7 @@ def main() -> None:
     results = []
     for n, w in cases:
         cmd = [sys.executable, __file__, "--child", f"{n:g}", str(w), str(seeds[n])]
+        cmd += ["--law", args.law]
         with tempfile.TemporaryDirectory() as cache:  # cold numba cache: compile is measured
             env = {**os.environ, "MCSIM_CACHE_DIR": cache}
             proc = subprocess.run(cmd, capture_output=True, text=True, env=env)
@@ -156,14 +164,15 @@ def main() -> None:
     for ax in (ax_m, ax_t):
         ax.set_xlabel("summits in the patch  N = ηA")
         ax.grid(True, which="both", alpha=0.3)
-    fig.suptitle("smooth surface, silicon, one realization, 51 separations h = 4 … −1 "
+    fig.suptitle(f"law set {args.law}, smooth surface, silicon, one realization, 51 separations h = 4 … −1 "
                  "(summits above h = −1 sampled, 84 %)", fontsize=10)  # fmt: skip
     fig.tight_layout()
-    save_figure(fig, args.out / "memory.png", args)
+    save_figure(fig, args.out / f"{stem}.png", args)
 
     lines = [
         "Memory and time of one patch: smooth surface, silicon, 51 separations h = 4 ... -1,"
-        " one realization, fresh process per case",
+        f" one realization, fresh process per case; law set {args.law}"
+        f"{' with retraction (cycle)' if args.law != 'seed' else ''}",
         "RSS in MiB (ru_maxrss); 'run' = high-water mark reset before simulate() "
         f"({'reset worked' if all(r['peak_reset'] for r in results) else 'RESET NOT AVAILABLE: includes compile'});"
         " tracemalloc = peak of Python/NumPy allocations during simulate()",
@@ -188,7 +197,7 @@ def main() -> None:
         "max|z| = largest |MC - GW|/SE over the separations and quantities of the run's compare() "
         f"({results[-1]['n_z']} z-scores in the largest case).",
     ]
-    write_summary(args.out / "memory.txt", lines, args)
+    write_summary(args.out / f"{stem}.txt", lines, args)
 
 
 if __name__ == "__main__":
