@@ -21,6 +21,12 @@ kernel's cost per contacting pair for every registered law set (``mcsim.laws.LAW
 silicon with z0 = 0.3 nm and τ = 100 MPa), on approach and over a cycle (approach, then
 retraction from h = −1), against the seed's.
 
+End to end (issue 12): the user's command ``mcsim simulate`` (N = 5·10⁷ summits, fixed
+count, h = 4 … −1, one realization, all cores) timed as a whole process, interpreter
+start-up, imports, kernel loading, file writing and exit included, against the NumPy
+baseline at the same N in the same run; and a tiny run (10³ summits) as a whole
+process: the start-up and exit alone. ``--only end-to-end`` runs just this part.
+
 Every case runs in its own Python process (``--case``), so that its peak resident
 memory (``ru_maxrss`` at its end) is its own; timings are the best of a few repeats,
 after a warm-up that loads the compiled kernel. A pair is one (summit, separation)
@@ -38,6 +44,7 @@ import argparse
 import json
 import os
 import resource
+import shlex
 import subprocess
 import sys
 import tempfile
@@ -57,6 +64,8 @@ SWEEP_LABEL = {"full": "h = 4 … −1", "high": "h = 4 … 2"}
 MIB = 2**20
 #: Targets of issue 5.
 SPEEDUP_FULL, SPEEDUP_HIGH, RSS_STREAMED, ANALYTIC_S = 10.0, 20.0, 1e9, 0.050
+#: Issue 12: summits of the end-to-end command, and its target against the baseline.
+N_END_TO_END, SPEEDUP_END_TO_END = 5e7, 10.0
 SQRT_PER_PAIR = 3  # the fused kernel's square roots per contacting pair (one per law)
 
 
@@ -298,6 +307,73 @@ def spawn(case: str, n: float, sweep_name: str, repeats: int, seed: int, cache: 
     return result
 
 
+def simulate_command(n: float, seed: int, out: str) -> list[str]:
+    """The user's ``mcsim simulate`` of one patch of exactly ``n`` summits (fixed count,
+    A = n/η in m²), h = 4 … −1 (51 values), one realization, all cores, no progress bar."""
+    return [sys.executable, "-m", "mcsim", "simulate", "--surface", "smooth",
+            "--material", "silicon", "--area", repr(n / SURFACE.eta), "--count", "fixed",
+            "--h", "4:-1:51", "--realizations", "1", "--seed", str(seed), "--out", out,
+            "--overwrite", "--quiet"]  # fmt: skip
+
+
+def whole_process(n: float, repeats: int, seed: int, cache: str) -> dict:
+    """Wall time of :func:`simulate_command` as a fresh process, start-up and exit included.
+
+    A first, untimed run loads the kernel into ``cache`` (compiling it if needed) and
+    caches mcsim's bytecode, as an installed package has it (``PYTHONDONTWRITEBYTECODE``
+    is dropped); then the best of ``repeats`` runs.
+    """
+    env = {**os.environ, "MCSIM_CACHE_DIR": cache}
+    env.pop("PYTHONDONTWRITEBYTECODE", None)
+    walls = []
+    with tempfile.TemporaryDirectory() as tmp:
+        cmd = simulate_command(n, seed, os.path.join(tmp, "run.h5"))
+        for _ in range(repeats + 1):
+            t0 = time.perf_counter()
+            proc = subprocess.run(cmd, capture_output=True, text=True, env=env)
+            walls.append(time.perf_counter() - t0)
+            if proc.returncode != 0:
+                sys.exit(f"{shlex.join(cmd)} failed:\n{proc.stderr}")
+    best = min(walls[1:])
+    print(f"  mcsim simulate N={n:8.0e} whole process: best {best:5.2f} s", flush=True)
+    return {"n": n, "wall": best, "walls": walls[1:], "load": os.getloadavg()[0]}
+
+
+def end_to_end(n: float, repeats: int, seed: int, cache: str) -> dict:
+    """The whole-process timings of issue 12 and their references (see the module doc)."""
+    return {
+        "cli-tiny": whole_process(1e3, repeats, seed, cache),
+        "cli-big": whole_process(n, repeats, seed, cache),
+        "mcsimall-cli": spawn("mcsimall", n, "full", repeats, seed, cache),
+        "baseline-cli": spawn("baseline", n, "full", repeats, seed, cache),
+    }
+
+
+def end_to_end_lines(res: dict, repeats: int) -> list[str]:
+    """Report of :func:`end_to_end`."""
+    big, tiny = res["cli-big"], res["cli-tiny"]
+    base, kernel = res["baseline-cli"], res["mcsimall-cli"]
+    n = big["n"]
+    ratio = base["wall"] / big["wall"]
+    cmd = shlex.join(["mcsim", *simulate_command(n, 1, "RUN.h5")[3:]]).replace(
+        "--seed 1", "--seed S"
+    )
+    return [
+        f"End to end, as a user runs it (issue 12): `{cmd}` (N = {n:.0e} summits, "
+        f"{kernel['workers']} workers) as a whole process, interpreter start-up, imports, "
+        "kernel loading, file writing and exit included (numba cache and bytecode warm "
+        f"from an untimed first run; best of {repeats}), against the NumPy baseline at "
+        "the same N in this run:",
+        f"- {verdict(ratio >= SPEEDUP_END_TO_END)}: whole process ≥ "
+        f"{SPEEDUP_END_TO_END:g}× the baseline: {base['wall']:.2f} s / {big['wall']:.2f} s "
+        f"= **{ratio:.1f}×** (runs: {', '.join(f'{w:.2f}' for w in big['walls'])} s)",
+        f"- start-up and exit: the same command for 10³ summits takes {tiny['wall']:.2f} s "
+        f"as a whole process; the run itself in process (`run_sums`, warm, "
+        f"{kernel['workers']} workers): {kernel['wall']:.2f} s, "
+        f"{base['wall'] / kernel['wall']:.1f}× the baseline",
+    ]
+
+
 def agreement(base: dict, mc: dict) -> tuple[float, int]:
     """Largest |z| between the baseline's and mcsim's sums of P, F, T over the separations.
 
@@ -469,6 +545,8 @@ def report(res: dict, info: dict, args: argparse.Namespace, n: float, n_big: flo
         f"- cached (kernel from the on-disk cache): first call {cached['t_first']:.2f} s, "
         f"second {cached['t_second'] * 1e3:.1f} ms; whole process {cached['process']:.2f} s",
         "",
+        *end_to_end_lines(res, args.repeats),
+        "",
         f"Machine: {info['cpu']}, {cores} cores available (`os.sched_getaffinity`); "
         f"Python {info['python']}, NumPy {info['numpy']}, numba {info['numba']}. "
         "Load average (1, 5, 15 min) at start {:.2f} {:.2f} {:.2f}, at end {:.2f} {:.2f} {:.2f} "
@@ -482,6 +560,8 @@ def main() -> None:
     p = parser(__doc__.splitlines()[0])
     p.add_argument("--full", action="store_true", help="also the baseline at N = 1e8 (≈6 GB)")
     p.add_argument("--repeats", type=int, default=3, help="timing repeats (default %(default)s)")
+    p.add_argument("--only", choices=("end-to-end",),
+                   help="only this part: the whole-process timing of issue 12 (minutes)")  # fmt: skip
     p.add_argument("--case", help=argparse.SUPPRESS)
     p.add_argument("--n", type=float, default=1e7, help=argparse.SUPPRESS)
     p.add_argument("--sweep", default="full", choices=SWEEPS, help=argparse.SUPPRESS)
@@ -507,6 +587,15 @@ def main() -> None:
     r = args.repeats
     r_big = 1 if args.quick else 2
     res: dict = {}
+    n_end = N_END_TO_END / 10 if args.quick else N_END_TO_END
+    if args.only == "end-to-end":
+        with tempfile.TemporaryDirectory() as cache:
+            lines = end_to_end_lines(end_to_end(n_end, r, seed, cache), r)
+        lines.append(
+            f"Machine: {info['cpu']}, {info['cores']} cores; load at end {os.getloadavg()}"
+        )
+        print("\n" + "\n".join(lines))
+        return
     with tempfile.TemporaryDirectory() as cache:
         res["startup-cold"] = spawn("startup", 1e3, "full", 1, seed, cache)
         res["startup-cached"] = spawn("startup", 1e3, "full", 1, seed, cache)
@@ -521,6 +610,7 @@ def main() -> None:
             res["baseline-big"] = spawn("baseline", n_big, "full", 1, seed_big, cache)
         for case in ("mcsim1", "mcsimall"):
             res[f"{case}-big"] = spawn(case, n_big, "full", r_big, seed_big, cache)
+        res |= end_to_end(n_end, r, seed, cache)  # after the cold start-up: the cache is warm
     lines = report(res, info, args, n, n_big)
     text = "\n".join(lines)
     print()
