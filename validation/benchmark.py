@@ -25,7 +25,8 @@ End to end (issue 12): the user's command ``mcsim simulate`` (N = 5·10⁷ summi
 count, h = 4 … −1, one realization, all cores) timed as a whole process, interpreter
 start-up, imports, kernel loading, file writing and exit included, against the NumPy
 baseline at the same N in the same run; and a tiny run (10³ summits) as a whole
-process: the start-up and exit alone. ``--only end-to-end`` runs just this part.
+process: the start-up and exit alone. ``--only end-to-end`` runs just this part (≈3
+min; the baseline at 5·10⁷ summits peaks at ≈3.7 GB resident).
 
 Every case runs in its own Python process (``--case``), so that its peak resident
 memory (``ru_maxrss`` at its end) is its own; timings are the best of a few repeats,
@@ -33,7 +34,7 @@ after a warm-up that loads the compiled kernel. A pair is one (summit, separatio
 with the summit in contact; the baseline and mcsim count the same pairs (up to the
 random draw), so pairs/s compare like with like.
 
-Run: ``python validation/benchmark.py`` (≈2–3 min on 2 cores), ``--quick`` (N = 10⁶,
+Run: ``python validation/benchmark.py`` (≈5 min on 2 cores), ``--quick`` (N = 10⁶,
 streamed 10⁷, seconds) or ``--full`` (adds the baseline at N = 10⁸, ≈6 GB, minutes).
 Prints a markdown table and writes it to ``validation/out/benchmark.md``.
 """
@@ -591,10 +592,12 @@ def main() -> None:
     if args.only == "end-to-end":
         with tempfile.TemporaryDirectory() as cache:
             lines = end_to_end_lines(end_to_end(n_end, r, seed, cache), r)
-        lines.append(
-            f"Machine: {info['cpu']}, {info['cores']} cores; load at end {os.getloadavg()}"
+        load = (
+            "Load average (1, 5, 15 min) at start {:.2f} {:.2f} {:.2f}, at end {:.2f} {:.2f} {:.2f}"
         )
-        print("\n" + "\n".join(lines))
+        lines += ["", f"Machine: {info['cpu']}, {info['cores']} cores available. "
+                  + load.format(*info["load"], *os.getloadavg())]  # fmt: skip
+        write(lines, args, args.out / "benchmark-end-to-end.md")
         return
     with tempfile.TemporaryDirectory() as cache:
         res["startup-cold"] = spawn("startup", 1e3, "full", 1, seed, cache)
@@ -611,14 +614,17 @@ def main() -> None:
         for case in ("mcsim1", "mcsimall"):
             res[f"{case}-big"] = spawn(case, n_big, "full", r_big, seed_big, cache)
         res |= end_to_end(n_end, r, seed, cache)  # after the cold start-up: the cache is warm
-    lines = report(res, info, args, n, n_big)
+    write(report(res, info, args, n, n_big), args, args.out / "benchmark.md")
+
+
+def write(lines: list[str], args: argparse.Namespace, path) -> None:
+    """Print the report and write it to ``path`` with the provenance as a header."""
     text = "\n".join(lines)
     print()
     print(text)
     prov = provenance(args)
     prov["mode"] = "quick" if args.quick else ("full" if args.full else "default")
     header = "".join(f"<!-- {k}: {v} -->\n" for k, v in prov.items())
-    path = args.out / "benchmark.md"
     path.write_text(header + text + "\n")
     print(f"wrote {path}")
 
