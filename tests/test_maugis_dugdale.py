@@ -81,14 +81,14 @@ def table_values(delta, lam, delta_max=np.inf):
     common = {
         "md_jump_in": -1e300,
         "md_break_off": -1e300,
-        "md_delta_unit": 1.0,
+        "md_per_delta_unit": 1.0,
         "md_delta_lo": tab.delta_lo,
         "md_delta_touch": tab.delta_touch,
         "md_n": float(tab.n),
     }
     P = md.load(delta, delta_max, md_force_unit=1.0, md_lambda=lam, md_h0=tab.h0, md_b=tab.b,
-                md_load_table=tab.load, **common)  # fmt: skip
-    A2 = md.area(delta, delta_max, md_area_unit=1.0, md_area_table=tab.area, **common)
+                md_table=tab.coefficients, **common)  # fmt: skip
+    A2 = md.area(delta, delta_max, md_area_unit=1.0, md_table=tab.coefficients, **common)
     return P, A2
 
 

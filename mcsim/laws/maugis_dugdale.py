@@ -220,6 +220,15 @@ class Table:
     def n(self) -> int:
         return self.load.size // 4
 
+    @functools.cached_property
+    def coefficients(self) -> np.ndarray:
+        """:attr:`load` and :attr:`area` interleaved, eight numbers per interval (its
+        four load coefficients, then its four area coefficients), so that :func:`load` and
+        :func:`area` read one interval's 64 adjacent bytes."""
+        out = np.concatenate([self.load.reshape(-1, 4), self.area.reshape(-1, 4)], axis=1).ravel()
+        out.flags.writeable = False
+        return out
+
 
 def _solve_branch(targets: np.ndarray, psi_lo: float, lam: float) -> np.ndarray:
     """ψ on the stable branch (0, ψ_lo] with Δ(ψ) = target, by bisection in ln ψ (Δ
@@ -329,7 +338,7 @@ def load(
     delta_max,
     md_jump_in,
     md_break_off,
-    md_delta_unit,
+    md_per_delta_unit,
     md_force_unit,
     md_lambda,
     md_h0,
@@ -337,7 +346,7 @@ def load(
     md_delta_lo,
     md_delta_touch,
     md_n,
-    md_load_table,
+    md_table,
 ):
     """Net normal force on one summit, Maugis–Dugdale (module docstring), N.
 
@@ -349,24 +358,26 @@ def load(
         Largest interference reached (δ on approach), m.
     md_jump_in, md_break_off : float
         Edges of the contact branch, m.
-    md_delta_unit : float
-        (π²w²R/K²)^{1/3}, m.
+    md_per_delta_unit : float
+        1/(π²w²R/K²)^{1/3}, 1/m.
     md_force_unit : float
         πwR, N.
     md_lambda, md_h0, md_b, md_delta_lo, md_delta_touch : float
         λ and the dimensionless constants of :class:`Table`.
     md_n : float
         Number of table intervals.
-    md_load_table : ndarray
-        :attr:`Table.load`.
+    md_table : ndarray
+        :attr:`Table.coefficients` (load at offsets 0–3 of each interval's eight).
 
     Returns
     -------
     float or ndarray
         Load, N, positive when compressive; zero out of contact.
     """
-    big = 1e30 * md_delta_unit  # |Δ| ≤ 1e30: finite values for every finite δ
-    D = np.minimum(np.maximum(delta, -big), big) / md_delta_unit
+    # A product, not a division: on an AVX2 CPU without fast gathers LLVM computes
+    # everything the table index depends on one lane at a time (README, Performance).
+    big = 1e30 / md_per_delta_unit  # |Δ| ≤ 1e30: finite values for every finite δ
+    D = np.minimum(np.maximum(delta, -big), big) * md_per_delta_unit
     on = (delta_max > md_jump_in) * (delta > md_break_off)
     zone = md_b + np.sqrt(np.maximum(md_b * md_b + 2.0 * (D + md_h0), 0.0))
     apart = -0.5 * np.pi * md_lambda * zone * zone
@@ -374,10 +385,10 @@ def load(
     u = r / (r + 1.0) * md_n
     i = np.minimum(np.floor(u), md_n - 1.0)
     s = u - i
-    k = 4 * np.int64(i)
+    k = 8 * np.int64(i)
     w = r + 1.0
     w2 = w * w
-    t = md_load_table
+    t = md_table
     touching = (t[k] + s * (t[k + 1] + s * (t[k + 2] + s * t[k + 3]))) * (w2 * w2 * w2)
     inside = D >= md_delta_touch
     return on * (inside * touching + (1.0 - inside) * apart) * md_force_unit + 0.0  # no -0.0
@@ -388,12 +399,12 @@ def area(
     delta_max,
     md_jump_in,
     md_break_off,
-    md_delta_unit,
+    md_per_delta_unit,
     md_area_unit,
     md_delta_lo,
     md_delta_touch,
     md_n,
-    md_area_table,
+    md_table,
 ):
     """Real contact area πa² of one summit, Maugis–Dugdale (module docstring), m².
 
@@ -405,34 +416,34 @@ def area(
         Largest interference reached (δ on approach), m.
     md_jump_in, md_break_off : float
         Edges of the contact branch, m.
-    md_delta_unit : float
-        (π²w²R/K²)^{1/3}, m.
+    md_per_delta_unit : float
+        1/(π²w²R/K²)^{1/3}, 1/m.
     md_area_unit : float
         π (πwR²/K)^{2/3}, m².
     md_delta_lo, md_delta_touch : float
         Dimensionless constants of :class:`Table`.
     md_n : float
         Number of table intervals.
-    md_area_table : ndarray
-        :attr:`Table.area`.
+    md_table : ndarray
+        :attr:`Table.coefficients` (area at offsets 4–7 of each interval's eight).
 
     Returns
     -------
     float or ndarray
         Area, m²; zero out of contact, and inside the Dugdale zone before touch-down.
     """
-    big = 1e30 * md_delta_unit  # |Δ| ≤ 1e30: finite values for every finite δ
-    D = np.minimum(np.maximum(delta, -big), big) / md_delta_unit
+    big = 1e30 / md_per_delta_unit  # |Δ| ≤ 1e30: finite values for every finite δ
+    D = np.minimum(np.maximum(delta, -big), big) * md_per_delta_unit
     on = (delta_max > md_jump_in) * (delta > md_break_off)
     r = np.sqrt(np.sqrt(np.maximum(D - md_delta_lo, 0.0)))
     u = r / (r + 1.0) * md_n
     i = np.minimum(np.floor(u), md_n - 1.0)
     s = u - i
-    k = 4 * np.int64(i)
+    k = 8 * np.int64(i)
     w = r + 1.0
     w2 = w * w
-    t = md_area_table
-    touching = (t[k] + s * (t[k + 1] + s * (t[k + 2] + s * t[k + 3]))) * (w2 * w2)
+    t = md_table
+    touching = (t[k + 4] + s * (t[k + 5] + s * (t[k + 6] + s * t[k + 7]))) * (w2 * w2)
     return on * (D >= md_delta_touch) * touching * md_area_unit + 0.0
 
 
@@ -465,7 +476,7 @@ def constants(surface: Surface, material: Material) -> dict:
         "md_jump_in": -H0_PER_Z0 * material.z0,
         "md_break_off": tab.delta_break * delta_unit,
         "md_touch_down": tab.delta_touch * delta_unit,
-        "md_delta_unit": delta_unit,
+        "md_per_delta_unit": 1.0 / delta_unit,
         "md_force_unit": force_unit,
         "md_area_unit": np.pi * a_unit * a_unit,
         "md_h0": tab.h0,
@@ -473,8 +484,7 @@ def constants(surface: Surface, material: Material) -> dict:
         "md_delta_lo": tab.delta_lo,
         "md_delta_touch": tab.delta_touch,
         "md_n": float(tab.n),
-        "md_load_table": tab.load,
-        "md_area_table": tab.area,
+        "md_table": tab.coefficients,
     }
 
 
