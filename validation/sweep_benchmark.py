@@ -7,8 +7,9 @@ Cases, each in its own Python process (``--case``) so that its peak resident mem
   (linear grid), 40 × 5 points by default, with the ``jkr`` and ``dmt`` law sets: at
   each point the approach curves at 51 separations, the regime numbers and the adhesion
   summary (zero-load rest, pull-off, work of separation). Serial (``workers=1``) and
-  on threads (``workers=`` all cores). Points that fail (no zero-load rest on the rough
-  side of the grid) count as points: they are part of every real sweep.
+  on threads (``workers=`` all cores). On the rough side of the grid the surfaces rest
+  apart (no tensile approach load): those points are cheaper (pull-off 0 without a
+  retraction) and count as points, as in every real sweep.
 * **Monte Carlo**: σ = 0.5–3 nm × w = 0.5–1 J/m² (every point in contact at rest) with
   ``mc=True`` (``dmt``, one Monte Carlo run of 20 patches of 1000 µm², ``--quick``, or
   10⁴ µm² per point) on a local Dask cluster of N = 1
