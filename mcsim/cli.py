@@ -537,15 +537,18 @@ def cmd_sweep(args) -> int:
                 raise ParameterError(f"--vary: {name.strip()!r} is given twice")
             vary[name.strip()] = spec
         if not args.mc and (
-            args.area is not None or args.realizations is not None or args.seed is not None
+            args.area is not None
+            or args.realizations is not None
+            or args.seed is not None
+            or args.device != "cpu"
         ):
-            raise ParameterError("--area, --realizations and --seed apply to the Monte Carlo runs only (add --mc)")  # fmt: skip
+            raise ParameterError("--area, --realizations, --seed and --device apply to the Monte Carlo runs only (add --mc)")  # fmt: skip
         surface, material = _inputs(args)
         out = Path(args.out)
         try:
             result = sweep(
                 surface, material, vary, law=args.law, h=parse_h(args.h), turn=_parse_turn(args.turn),
-                mc=args.mc, area=args.area, realizations=args.realizations or 1, seed=args.seed,
+                mc=args.mc, area=args.area, realizations=args.realizations or 1, seed=args.seed, device=args.device,
                 workers=args.workers, scheduler=args.scheduler or args.dask, out=out,
                 overwrite=args.overwrite, resume=args.resume, checkpoint_every=args.checkpoint_every,
                 progress=not args.quiet and sys.stderr.isatty(), command=cli_command(),
@@ -1097,6 +1100,9 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--realizations", type=_count, help="patches per point (default: 1)")
     p.add_argument("--seed", type=_seed, help="root seed of the Monte Carlo runs (point i uses its own "
                    "child stream of it; default: fresh entropy, recorded in the file)")  # fmt: skip
+    p.add_argument("--device", choices=("cpu", "cuda"), default="cpu",
+                   help="where the Monte Carlo runs sample and sum (cuda: this machine's GPU, needs "
+                   "mcsim[gpu]; points then run one after another)")  # fmt: skip
     p.add_argument("--workers", type=_count, help="worker threads, or processes of --dask local "
                    "(default: all cores); results do not depend on it")  # fmt: skip
     p.add_argument("--scheduler", metavar="ADDRESS",

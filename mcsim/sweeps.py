@@ -271,6 +271,7 @@ class _Config:
     mc: bool
     realizations: int
     entropy: int | None
+    device: str = "cpu"
 
 
 def _point(base_surface, base_material, law, area, names, values, index) -> _Point:
@@ -343,7 +344,7 @@ def _evaluate(point: _Point, config: _Config, out: dict) -> None:
 
         run = simulate(surface, material, np.asarray(config.h), point.area,
                        realizations=config.realizations, seed=point_seed(config.entropy, point.index),
-                       law=law, workers=1, command="mcsim.sweep")  # fmt: skip
+                       law=law, device=config.device, workers=1, command="mcsim.sweep")  # fmt: skip
         for q in run.quantities:
             out[f"mc_{q}"] = run.summary.mean[q]
             out[f"mc_{q}_se"] = run.summary.se[q]
@@ -485,6 +486,7 @@ def sweep(
     area: float | str | None = None,
     realizations: int = 1,
     seed: int | None = None,
+    device: str = "cpu",
     workers: int | None = None,
     scheduler=None,
     out: str | Path | None = None,
@@ -524,6 +526,9 @@ def sweep(
         Patches per point.
     seed : int, optional
         Root seed of the Monte Carlo runs; point i uses :func:`point_seed` (seed, i).
+    device : {"cpu", "cuda"}
+        Where the Monte Carlo runs sample and sum (``"cuda"``: this machine's GPU, see
+        :func:`mcsim.simulate`; points then run one after another, not on Dask).
     workers : int, optional
         Local worker threads (all cores by default), or processes of ``"local"`` Dask.
     scheduler : str or dask.distributed.Client, optional
@@ -572,6 +577,21 @@ def sweep(
             area_m2 = check_range("area", parse_quantity(area, "area", "area"), "m^2", low=0)
         if isinstance(realizations, bool) or not isinstance(realizations, int) or realizations < 1:
             raise ParameterError(f"realizations = {realizations!r} is out of range (allowed: integer >= 1)")  # fmt: skip
+        if device not in ("cpu", "cuda"):
+            raise ParameterError(f"device = {device!r} is not one of cpu, cuda")
+        if device == "cuda":
+            from .cuda import require_gpu
+
+            require_gpu()
+            if scheduler is not None:
+                raise ParameterError(
+                    "device = 'cuda' runs on this machine's GPU: drop the Dask scheduler"
+                )
+            workers = 1  # one GPU; each point's run keeps it busy
+    elif device != "cpu":
+        raise ParameterError(
+            f"device = {device!r}: the device applies to the Monte Carlo runs only (add mc / --mc)"
+        )
     elif area is not None:
         raise ParameterError(
             "area: the pad area applies to the Monte Carlo runs only (add mc / --mc)"
@@ -602,7 +622,7 @@ def sweep(
             else:
                 partial.unlink(missing_ok=True)
         entropy = np.random.SeedSequence(seed).entropy if mc else None
-        config = _Config(h, turn, mc, realizations, entropy)
+        config = _Config(h, turn, mc, realizations, entropy, device)
         laws = list(grid[names.index("law")]) if "law" in names else [law]
         curve_names = _union(_curve_names(x, material) for x in laws)
         if "tau" in names and material.tau is None:
@@ -757,7 +777,8 @@ def _attrs(surface, material, law, dims, grid, config: _Config, area, command) -
     }
     if config.mc:
         attrs |= {"area": math.nan if area is None else area, "area_unit": "m^2",
-                  "realizations": config.realizations, "seed_entropy": str(config.entropy)}  # fmt: skip
+                  "realizations": config.realizations, "seed_entropy": str(config.entropy),
+                  "device": config.device}  # fmt: skip
     # What must match for a resume: everything but the time and the command line.
     attrs["definition"] = json.dumps({k: (None if isinstance(v, float) and math.isnan(v) else v)
                                       for k, v in attrs.items() if k != "command"}

@@ -266,21 +266,51 @@ def test_an_unknown_device_is_a_parameter_error():
         MonteCarloSpec(SURFACE, MATERIAL, [0.0], 1e-10, 1, 1, device="tpu")
 
 
-def test_device_cuda_on_a_machine_without_a_gpu_is_a_one_line_cli_error(tmp_path):
+@pytest.mark.parametrize(
+    "command",
+    [
+        ["simulate", "--h", "0,1", "--area", "1e-10", "--seed", "1"],
+        ["sweep", "--law", "dmt", "--vary", "gamma=0.1,0.2", "--h", "0,1", "--mc", "--area",
+         "1e-10", "--seed", "1"],
+    ],
+    ids=["simulate", "sweep"],
+)  # fmt: skip
+def test_device_cuda_on_a_machine_without_a_gpu_is_a_one_line_cli_error(tmp_path, command):
     if _gpu_reason() is None:
         pytest.skip("this machine has a GPU")
     env = {k: v for k, v in os.environ.items() if k != "NUMBA_ENABLE_CUDASIM"}
     out = tmp_path / "run.h5"
     done = subprocess.run(
-        [sys.executable, "-m", "mcsim", "simulate", "--surface", "smooth", "--material",
-         "silicon", "--h", "0,1", "--area", "1e-10", "--seed", "1", "--device", "cuda",
-         "--out", str(out)],
+        [sys.executable, "-m", "mcsim", *command, "--surface", "smooth", "--material", "silicon",
+         "--device", "cuda", "--out", str(out)],
         env=env, capture_output=True, text=True, timeout=300,
     )  # fmt: skip
     assert done.returncode != 0
     lines = done.stderr.strip().splitlines()
     assert len(lines) == 1 and "cuda" in lines[0], done.stderr
     assert list(tmp_path.iterdir()) == []
+
+
+def test_a_sweeps_monte_carlo_runs_use_the_device_asked_for_and_record_it(monkeypatch):
+    import mcsim.cuda
+    import mcsim.simulation
+    import mcsim.sweeps
+
+    simulate = mcsim.simulation.simulate
+
+    used = []
+
+    def on_cpu(*args, device="cpu", **kwargs):  # stands in for the GPU: records the device
+        used.append(device)
+        return simulate(*args, **kwargs)
+
+    monkeypatch.setattr(mcsim.cuda, "require_gpu", lambda: None)
+    monkeypatch.setattr(mcsim.simulation, "simulate", on_cpu)
+    result = mcsim.sweeps.sweep(SURFACE, MATERIAL, {"gamma": [0.1, 0.2]}, law="dmt", h=[1.0],
+                                mc=True, area=1e-11, seed=1, device="cuda")  # fmt: skip
+    assert used == ["cuda", "cuda"] and result.attrs["device"] == "cuda"
+    with pytest.raises(ParameterError, match="Monte Carlo runs only"):
+        mcsim.sweeps.sweep(SURFACE, MATERIAL, {"gamma": [0.1]}, law="dmt", device="cuda")
 
 
 def test_a_cpu_run_file_records_its_device(tmp_path):
