@@ -665,7 +665,7 @@ def cmd_show(args) -> int:
     print(f"separations   {spec.h.size}: h = {spec.h.min():g} .. {spec.h.max():g}")
     if "load_control" in a:  # simulate --pressure/--load: the pressures those separations balance
         p = json.loads(a["load_control"])["pressure"]
-        print(f"load control  {len(p)} nominal pressures: p = {min(p):g} .. {max(p):g} Pa")
+        print(f"load control  nominal pressure p = {min(p):g} .. {max(p):g} Pa ({len(p)} values)")
     if not np.any(state.done_blocks == state.n_blocks):
         return 0
     z = read_run(args.run, allow_incomplete=True).compare()["z"].to_numpy()

@@ -282,7 +282,7 @@ def test_simulate_with_load_divides_by_the_patch_area(capsys, tmp_path):
 
     assert read_run(tmp_path / "a.h5").h == pytest.approx(read_run(tmp_path / "b.h5").h, abs=1e-9)
     code, out, _ = run_cli(capsys, "show", str(tmp_path / "b.h5"))
-    assert code == 0 and "load control  1 nominal pressures: p = 10000 .. 10000 Pa" in out
+    assert code == 0 and "load control  nominal pressure p = 10000 .. 10000 Pa (1 values)" in out
 
 
 @pytest.mark.parametrize(
