@@ -107,12 +107,10 @@ def elastic_plastic_load(delta, R, E_star, H, nu):
     q2 = q1 * q1
     scale = (1.0 + a * (q1 - 1.0)) * (1.0 + b * (q2 - 1.0)) * (1.0 + c * (q2 * q2 - 1.0))
     power = (low * 1.03 + high * 1.40) * em * scale
-    ratio = (
-        (x < 1.0) * (x0 * np.sqrt(x0))
-        + (x >= 1.0) * (x < 110.0) * power
-        + (x >= 110.0) * (3.0 / k * x)
-    )
-    return p_c * ratio
+    ratio = (x < 1.0) * (x0 * np.sqrt(x0)) + (x >= 1.0) * (x < 110.0) * power
+    # fully plastic P = HA = 2πHRδ (= P_c 3x/k), with no division: under the kernel's
+    # fast-math flags LLVM turns (3/k)·x into a division per summit
+    return p_c * ratio + (x >= 110.0) * (2.0 * np.pi * H * R * np.maximum(delta, 0.0))
 
 
 def elastic_plastic_area(delta, R, E_star, H, nu):
