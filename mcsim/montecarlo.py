@@ -382,7 +382,7 @@ def default_workers() -> int:
         return os.cpu_count() or 1
 
 
-def _in_order(submit: Callable, tasks: Iterable[Task], window: int, interrupt: Callable[[], None]):
+def in_order(submit: Callable, tasks: Iterable[Task], window: int, interrupt: Callable[[], None]):
     """Yield ``(task, result)`` in task order, with at most ``window`` tasks in flight,
     calling ``interrupt()`` at least every :data:`POLL` seconds while waiting.
 
@@ -523,7 +523,7 @@ def run_sums(
             return state
 
         results = stack.enter_context(
-            contextlib.closing(_in_order(submit, tasks, window, interrupt or (lambda: None)))
+            contextlib.closing(in_order(submit, tasks, window, interrupt or (lambda: None)))
         )
         try:
             for task, (partials, blocks) in results:

@@ -166,7 +166,8 @@ def lock(path: str | Path):
 # --- writing --------------------------------------------------------------------------
 
 
-def _heights_to_json(surface: Surface) -> str:
+def heights_to_json(surface: Surface) -> str:
+    """The summit-height distribution as run and sweep files store it (JSON text)."""
     heights = surface.heights
     if heights == GAUSSIAN:
         return json.dumps({"name": "gaussian"})
@@ -229,7 +230,7 @@ def _row_axis(spec: MonteCarloSpec) -> str:
     return "row" if spec.cycle else "h"
 
 
-def _checksum(f) -> str:
+def checksum(f) -> str:
     """SHA-256 over every dataset (name, shape, dtype, bytes) and every attribute but
     the checksum itself, in name order."""
     digest = hashlib.sha256()
@@ -273,7 +274,7 @@ def _write_inputs(f, spec: MonteCarloSpec, command: str, complete: bool, extra=N
     f.attrs.update(attrs)
     s = f.create_group("input/surface")
     s.attrs.update(sigma=spec.surface.sigma, R=spec.surface.R, eta=spec.surface.eta,
-                   name=spec.surface.name, heights=_heights_to_json(spec.surface))  # fmt: skip
+                   name=spec.surface.name, heights=heights_to_json(spec.surface))  # fmt: skip
     s.attrs["units"] = json.dumps({"sigma": "m", "R": "m", "eta": "m^-2"})
     m = f.create_group("input/material")
     mat = spec.material
@@ -309,7 +310,7 @@ def _write_state(f, state: EnsembleSums) -> None:
     _dataset(f, "progress/done_blocks", state.done_blocks, "1", "blocks done", per_realization)
 
 
-def _atomic_write(path: Path, fill) -> None:
+def atomic_write(path: Path, fill) -> None:
     """Build the file through ``fill(h5file)`` in memory, then write it to a temporary
     file and rename that onto ``path``.
 
@@ -322,7 +323,7 @@ def _atomic_write(path: Path, fill) -> None:
     try:
         with h5py.File(tmp, "w", driver="core", backing_store=False) as f:
             fill(f)
-            f.attrs["checksum"] = _checksum(f)
+            f.attrs["checksum"] = checksum(f)
             f.flush()
             image = memoryview(f.id.get_file_image())
         umask = os.umask(0)
@@ -362,7 +363,7 @@ def write_checkpoint(
         _write_inputs(f, state.spec, command, complete=False, extra=extra)
         _write_state(f, state)
 
-    _atomic_write(Path(path), fill)
+    atomic_write(Path(path), fill)
 
 
 def write_run(path: str | Path, run, *, command: str, extra: dict | None = None):
@@ -404,7 +405,7 @@ def write_run(path: str | Path, run, *, command: str, extra: dict | None = None)
                     shuffle=True,
                 )
 
-    _atomic_write(path, fill)
+    atomic_write(path, fill)
     return dataclasses.replace(run, path=path, attrs=attrs)
 
 
@@ -536,7 +537,7 @@ def _quantities(spec: MonteCarloSpec) -> tuple[str, ...]:
 
 def _verified(path: Path, f) -> None:
     stored = f.attrs.get("checksum")
-    if stored is None or _checksum(f) != stored:
+    if stored is None or checksum(f) != stored:
         raise RunFileError(f"{path}: damaged run file: checksum mismatch (truncated or edited)")
 
 

@@ -92,7 +92,7 @@ from .adhesion import (
 from .analytic import gw_curves, quantities
 from .errors import MCSimError, ParameterError, RunFileError
 from .laws import get_law_set
-from .montecarlo import FIRST_CHECKPOINT, _in_order, default_workers
+from .montecarlo import FIRST_CHECKPOINT, default_workers, in_order
 from .params import Material, Surface, check_range, check_separations, plasticity_index
 from .units import SI_UNITS, parse_quantity
 
@@ -759,7 +759,7 @@ def _input_of(dim: str) -> str:
 
 def _attrs(surface, material, law, dims, grid, config: _Config, area, command) -> dict:
     surface_json = json.dumps({"sigma": surface.sigma, "R": surface.R, "eta": surface.eta,
-                               "name": surface.name, "heights": runfile._heights_to_json(surface),
+                               "name": surface.name, "heights": runfile.heights_to_json(surface),
                                "units": {"sigma": "m", "R": "m", "eta": "m^-2"}})  # fmt: skip
     material_json = json.dumps({**{k: getattr(material, k) for k in ("E1", "E2", "nu1", "nu2", "gamma", "H", "z0", "tau", "name")},
                                 "units": {"E1": "Pa", "E2": "Pa", "nu1": "1", "nu2": "1", "gamma": "J/m^2",
@@ -815,7 +815,7 @@ def _run(stack, points, config, result: Sweep, done, workers, scheduler, progres
     next_checkpoint = time.monotonic() + min(FIRST_CHECKPOINT, checkpoint_every)
     unsaved = False
     results = stack.enter_context(
-        contextlib.closing(_in_order(submit, points, window, interrupt.check))
+        contextlib.closing(in_order(submit, points, window, interrupt.check))
     )
     try:
         for point, values in results:
@@ -862,7 +862,7 @@ def _write(path: Path, result: Sweep, attrs: dict, *, complete: bool, done=None)
             for axis, d in enumerate(result.grid):
                 ds.dims[axis].attach_scale(f[d])
 
-    runfile._atomic_write(Path(path), fill)
+    runfile.atomic_write(Path(path), fill)
 
 
 def _variable(f, name: str, values: np.ndarray, unit: str, long_name: str):
@@ -895,7 +895,7 @@ def _read_file(path: Path) -> dict:
             if int(f.attrs["sweep_schema_version"]) != SCHEMA_VERSION:
                 raise RunFileError(f"{path}: sweep schema version {f.attrs['sweep_schema_version']} "
                                    f"is not supported (this mcsim reads {SCHEMA_VERSION})")  # fmt: skip
-            if f.attrs.get("checksum") != runfile._checksum(f):
+            if f.attrs.get("checksum") != runfile.checksum(f):
                 raise RunFileError(f"{path}: damaged sweep file: checksum mismatch")
             attrs = {k: (v.item() if hasattr(v, "item") else v) for k, v in f.attrs.items()}
             data, units, long_names = {}, {}, {}

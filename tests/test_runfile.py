@@ -169,12 +169,12 @@ def test_an_edited_input_is_detected_on_open(tmp_path):
 
 
 def test_datasets_that_disagree_with_the_inputs_are_refused_even_with_a_valid_checksum(tmp_path):
-    from mcsim.runfile import _checksum
+    from mcsim.runfile import checksum
 
     path = make_run(tmp_path / "a.h5").path
     with h5py.File(path, "r+") as f:
         f.attrs["realizations"] = 5
-        f.attrs["checksum"] = _checksum(f)
+        f.attrs["checksum"] = checksum(f)
     with pytest.raises(
         RunFileError, match=r"realizations/N has shape \(3,\), the inputs ask for \(5,\)"
     ):
