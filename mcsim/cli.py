@@ -931,6 +931,21 @@ def _add_inputs(p: argparse.ArgumentParser, separations: bool = True, law: str =
                         f"(at most {MAX_SEPARATIONS})")  # fmt: skip
 
 
+def _add_separations_or_loads(p, balance: str) -> None:
+    """``--h``, or the pressures (``--pressure``) or forces (``--load``, over ``--area``)
+    whose balancing separations on the analytic approach branch are used instead."""
+    mode = p.add_mutually_exclusive_group(required=True)
+    mode.add_argument("--h", metavar="SPEC",
+                      help="separations d/sigma: a list '--h=-1,0,1.5' or start:stop:num '--h=4:-1:51' "
+                           f"(at most {MAX_SEPARATIONS})")  # fmt: skip
+    mode.add_argument("--pressure", metavar="SPEC", help="instead of --h: nominal pressures (> 0, Pa "
+                      "unless a unit is given), a list '1kPa,1MPa' or start:stop:num[:log] "
+                      f"'1kPa:10MPa:31:log'; {balance} (seed: P = p/K, Eq. 3; other law sets: "
+                      "load = p/K)")  # fmt: skip
+    mode.add_argument("--load", metavar="SPEC", help="instead of --h: applied forces (> 0, N unless a "
+                      "unit is given), '1uN,10uN' or a range as for --pressure; pressure = load/--area")  # fmt: skip
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = _Parser(
         prog="mcsim",
@@ -953,14 +968,7 @@ def build_parser() -> argparse.ArgumentParser:
         "with --area also N_c, force_N (applied), load_N, friction_N, P_N, F_N, T_N (N) and area_m2 (m^2).",
     )
     _add_inputs(p, separations=False)
-    mode = p.add_mutually_exclusive_group(required=True)
-    mode.add_argument("--h", metavar="SPEC",
-                   help="separations d/sigma: a list '--h=-1,0,1.5' or start:stop:num '--h=4:-1:51' "
-                        f"(at most {MAX_SEPARATIONS})")  # fmt: skip
-    mode.add_argument("--pressure", metavar="SPEC", help="nominal pressures (> 0, Pa unless a unit is "
-                   "given): a list '1kPa,1MPa' or start:stop:num[:log] '1kPa:10MPa:31:log'")  # fmt: skip
-    mode.add_argument("--load", metavar="SPEC", help="applied forces (> 0, N unless a unit is given), "
-                   "'1uN,10uN' or a range as for --pressure; needs --area")  # fmt: skip
+    _add_separations_or_loads(p, "the curves' separations balance them")
     p.add_argument("--area", metavar="AREA", help="nominal area A_n, e.g. 1mm^2 (m^2 unless a unit "
                    "is given): adds dimensional columns (forces in N)")  # fmt: skip
     p.add_argument("--plot", metavar="FILE.png", help="with --pressure/--load: plot A_r/A_n versus "
@@ -1004,15 +1012,7 @@ def build_parser() -> argparse.ArgumentParser:
                        "`mcsim analytic --pressure` finds them; `mcsim plot` then draws each patch's "
                        "load and area.")  # fmt: skip
     _add_inputs(p, separations=False)
-    mode = p.add_mutually_exclusive_group(required=True)
-    mode.add_argument("--h", metavar="SPEC",
-                      help="separations d/sigma: a list '--h=-1,0,1.5' or start:stop:num '--h=4:-1:51' "
-                           f"(at most {MAX_SEPARATIONS})")  # fmt: skip
-    mode.add_argument("--pressure", metavar="SPEC", help="instead of --h: nominal pressures (> 0, Pa "
-                      "unless a unit is given), '1kPa,1MPa' or '1kPa:10MPa:31:log'; the run's separations "
-                      "balance them (seed: P = p/K, Eq. 3; other law sets: load = p/K)")  # fmt: skip
-    mode.add_argument("--load", metavar="SPEC", help="instead of --h: applied forces on the patch (> 0, N "
-                      "unless a unit is given), '1uN,10uN'; pressure = load/--area")  # fmt: skip
+    _add_separations_or_loads(p, "the run's separations balance them")
     p.add_argument(
         "--area", required=True, help="patch area: m^2 or with a unit ('100um^2', '0.01mm^2')"
     )
