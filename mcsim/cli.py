@@ -189,46 +189,11 @@ def _contact_inputs(material) -> str:
 
 
 def parse_values(spec: str, dimension: str, option: str) -> list[float]:
-    """A list ``"1kPa,10kPa"`` or a range ``"1kPa:10MPa:31[:log]"`` (inclusive) to SI floats.
+    """Values of a CLI option (:func:`mcsim.units.parse_values`), at most
+    :data:`MAX_SEPARATIONS` of them."""
+    from .units import parse_values
 
-    Each number may carry a unit of ``dimension`` (:func:`mcsim.units.parse_quantity`);
-    a bare number is SI. At most :data:`MAX_SEPARATIONS` values.
-    """
-    import numpy as np
-
-    from .units import parse_quantity
-
-    text = spec.strip()
-    if not text:
-        raise ParameterError(f"{option}: empty list of values")
-    if ":" not in text:
-        return [parse_quantity(x, dimension, option) for x in text.split(",")]
-    parts = text.split(":")
-    scale = parts.pop() if len(parts) == 4 else "lin"
-    if len(parts) != 3 or scale not in ("lin", "log"):
-        raise ParameterError(
-            f"{option}: cannot read {spec!r} (give a list '1kPa,10kPa' or start:stop:num[:log] "
-            "'1kPa:10MPa:31:log')"
-        )
-    start, stop = (parse_quantity(x, dimension, option) for x in parts[:2])
-    num = _count_of(parts[2], spec, option)
-    if scale == "log":
-        if start <= 0 or stop <= 0:
-            raise ParameterError(f"{option}: {spec!r} is out of range (allowed: a log range "
-                                 "needs start > 0 and stop > 0)")  # fmt: skip
-        return np.geomspace(start, stop, num).tolist()
-    return np.linspace(start, stop, num).tolist()
-
-
-def _count_of(text: str, spec: str, option: str) -> int:
-    try:
-        num = int(text)
-    except ValueError:
-        num = 0
-    if not 1 <= num <= MAX_SEPARATIONS:
-        raise ParameterError(f"{option}: {spec!r} asks for {text!r} points (allowed: a whole "
-                             f"number 1 <= num <= {MAX_SEPARATIONS})")  # fmt: skip
-    return num
+    return parse_values(spec, dimension, option, limit=MAX_SEPARATIONS)
 
 
 #: Unit of each load-control column (``mcsim analytic --pressure``).

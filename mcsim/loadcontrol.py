@@ -34,11 +34,14 @@ from .analytic import AnalyticCurves, gw_curves
 from .errors import ParameterError
 from .laws import LawSet, get_law_set
 from .params import MAX_ABS_H, Material, Surface
+from .units import parse_values
 
 #: Points of the approach grid that brackets each root.
 GRID = 801
 #: Tolerance of the roots in h = d/σ.
 XTOL = 1e-12
+#: Most pressures one call takes (as the command line's separations).
+MAX_PRESSURES = 10_000
 
 
 def balanced_quantity(law: str | LawSet) -> str:
@@ -151,8 +154,9 @@ def load_control(
     ----------
     surface, material : Surface, Material
         The inputs of :func:`mcsim.gw_curves`.
-    pressure : array_like
-        Nominal pressures p, Pa (> 0 compressive); finite. A tensile (negative) or zero
+    pressure : array_like or str
+        Nominal pressures p, Pa (> 0 compressive); finite. Or a string as on the command
+        line: ``"1kPa,1MPa"`` or ``"1kPa:10MPa:31:log"`` (:func:`mcsim.units.parse_values`). A tensile (negative) or zero
         pressure is allowed only for a law set whose approach load is tensile somewhere.
     law : str or LawSet
         Law set; for ``seed`` the balanced load is P̄ (Eq. 3), else ``load``.
@@ -169,7 +173,13 @@ def load_control(
     """
     laws = get_law_set(law)
     quantity = balanced_quantity(laws)
-    p = np.atleast_1d(np.asarray(pressure, dtype=float))
+    if isinstance(pressure, str):
+        pressure = parse_values(pressure, "pressure", "pressure", limit=MAX_PRESSURES)
+    try:
+        p = np.atleast_1d(np.asarray(pressure, dtype=float))
+    except (TypeError, ValueError):
+        raise ParameterError(f"pressure = {pressure!r}: give numbers (Pa) or a string such as "
+                             "'1kPa:10MPa:31:log'") from None  # fmt: skip
     if p.ndim != 1 or p.size == 0 or not np.all(np.isfinite(p)):
         raise ParameterError(f"pressure = {pressure!r}: give one or more finite values, Pa")
     targets = p / material.K

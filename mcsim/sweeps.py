@@ -78,7 +78,7 @@ from pathlib import Path
 
 import numpy as np
 
-from . import interrupt, runfile
+from . import interrupt, runfile, units
 from ._version import __version__
 from .adhesion import (
     RegimeWarning,
@@ -182,7 +182,7 @@ def parse_values(name: str, spec) -> np.ndarray:
         if not text:
             raise ParameterError(f"{where}: empty list of values")
         if ":" in text and name != "law":
-            values = _range(text, dimension, where)
+            values = units.parse_values(text, dimension, where, limit=MAX_POINTS, ascending=True)
         else:
             values = [x.strip() for x in text.split(",")]
     else:
@@ -210,35 +210,6 @@ def parse_values(name: str, spec) -> np.ndarray:
 def _plain(value):
     """A NumPy scalar as a Python number (what :func:`parse_quantity` takes)."""
     return value.item() if isinstance(value, np.generic) else value
-
-
-def _range(text: str, dimension: str, where: str) -> list[float]:
-    parts = text.split(":")
-    scale = parts.pop() if len(parts) == 4 else "lin"
-    if len(parts) != 3 or scale not in ("lin", "log"):
-        raise ParameterError(f"{where}: cannot read {text!r} (give a list 'a,b,c' or "
-                             "start:stop:num[:log], e.g. '0.3nm:20nm:40:log')")  # fmt: skip
-    start, stop = (parse_quantity(x, dimension, where) for x in parts[:2])
-    try:
-        num = int(parts[2])
-    except ValueError:
-        raise ParameterError(f"{where}: {text!r}: num {parts[2]!r} is not a whole number") from None
-    if num < 1:
-        raise ParameterError(
-            f"{where}: {text!r} is an empty range (num = {num}; allowed: num >= 1)"
-        )
-    if num > MAX_POINTS:
-        raise ParameterError(f"{where}: {text!r} asks for {num} values, more than a sweep's "
-                             f"{MAX_POINTS} points")  # fmt: skip
-    if stop < start:
-        raise ParameterError(f"{where}: {text!r} is an empty range (stop < start; allowed: "
-                             "start <= stop)")  # fmt: skip
-    if scale == "log":
-        if start <= 0:
-            raise ParameterError(f"{where}: {text!r} is out of range (a log range needs "
-                                 "start > 0)")  # fmt: skip
-        return np.geomspace(start, stop, num).tolist()
-    return np.linspace(start, stop, num).tolist()
 
 
 def dimension_name(name: str) -> str:

@@ -202,3 +202,64 @@ def _finite(result: float, value: object, field: str) -> float:
     if not math.isfinite(result):
         raise UnitError(f"{field}: {value!r} is not finite")
     return result
+
+
+def parse_values(spec: str, dimension: str, field: str, *, limit: int,
+                 ascending: bool = False) -> list[float]:  # fmt: skip
+    """A list ``"1kPa,10kPa"`` or a range ``"1kPa:10MPa:31[:log]"`` (inclusive) to SI floats.
+
+    Parameters
+    ----------
+    spec : str
+        Comma list, or ``start:stop:num`` with ``:log`` for geometric spacing; each number
+        may carry a unit of ``dimension`` (:func:`parse_quantity`), a bare number is SI.
+    dimension, field : str
+        As for :func:`parse_quantity`.
+    limit : int
+        Most values allowed.
+    ascending : bool
+        Refuse a range with stop < start (an empty range, for grids that must increase).
+
+    Raises
+    ------
+    ParameterError
+        An empty or unreadable spec, a range of fewer than 1 or more than ``limit``
+        values, or a log range through values <= 0.
+    UnitError
+        A number that cannot be read, or a unit of another dimension.
+    """
+    import numpy as np
+
+    from .errors import ParameterError
+
+    text = spec.strip()
+    if not text:
+        raise ParameterError(f"{field}: empty list of values")
+    if ":" not in text:
+        values = [parse_quantity(x.strip(), dimension, field) for x in text.split(",")]
+        if len(values) > limit:
+            raise ParameterError(f"{field}: {len(values)} values (allowed: at most {limit})")
+        return values
+    parts = text.split(":")
+    scale = parts.pop() if len(parts) == 4 else "lin"
+    if len(parts) != 3 or scale not in ("lin", "log"):
+        raise ParameterError(f"{field}: cannot read {spec!r} (give a list 'a,b,c' or "
+                             "start:stop:num[:log], e.g. '1kPa:10MPa:31:log')")  # fmt: skip
+    start, stop = (parse_quantity(x, dimension, field) for x in parts[:2])
+    try:
+        num = int(parts[2])
+    except ValueError:
+        num = None
+    if num is None or not 1 <= num <= limit:
+        empty = ", an empty range" if num is not None and num < 1 else ""
+        raise ParameterError(f"{field}: {spec!r} asks for {parts[2]!r} points{empty} (allowed: "
+                             f"a whole number 1 <= num <= {limit})")  # fmt: skip
+    if ascending and stop < start:
+        raise ParameterError(f"{field}: {spec!r} is an empty range (stop < start; allowed: "
+                             "start <= stop)")  # fmt: skip
+    if scale == "log":
+        if start <= 0 or stop <= 0:
+            raise ParameterError(f"{field}: {spec!r} is out of range (allowed: a log range "
+                                 "needs start > 0 and stop > 0)")  # fmt: skip
+        return np.geomspace(start, stop, num).tolist()
+    return np.linspace(start, stop, num).tolist()

@@ -376,3 +376,13 @@ def test_plot_versus_load_refuses_a_cycle_run_and_several_runs_in_one_line(capsy
                                  "load", "--out", str(tmp_path / "x.png"))  # fmt: skip
         assert code == 2 and out == "" and len(err.strip().splitlines()) == 1 and message in err
     assert not (tmp_path / "x.png").exists()
+
+
+def test_the_api_takes_pressures_written_as_on_the_command_line():
+    from mcsim.loadcontrol import load_control
+
+    spec = load_control(SMOOTH, SILICON, "1kPa:1MPa:2:log", "jkr")
+    values = load_control(SMOOTH, SILICON, [1e3, 1e6], "jkr")
+    np.testing.assert_array_equal(spec.h, values.h)
+    with pytest.raises(ParameterError, match=r"pressure = \['lots'\]: give numbers"):
+        load_control(SMOOTH, SILICON, ["lots"], "jkr")

@@ -5,8 +5,8 @@ import re
 
 import pytest
 
-from mcsim.errors import MCSimError, UnitError
-from mcsim.units import parse_quantity, unit_factor
+from mcsim.errors import MCSimError, ParameterError, UnitError
+from mcsim.units import parse_quantity, parse_values, unit_factor
 
 LENGTH_UNITS = r"m, mm, um, µm, nm, A"
 AREA_UNITS = r"m\^2, mm\^2, um\^2, nm\^2"
@@ -161,3 +161,30 @@ def test_a_near_miss_unit_suggests_the_intended_one(text, dimension, closest):
         UnitError, match=rf"^E: unknown unit .*; did you mean {re.escape(repr(closest))}\?$"
     ):
         parse_quantity(text, dimension, "E")
+
+
+def test_values_are_a_list_or_an_inclusive_range_with_units_a_bare_number_being_si():
+    assert parse_values("1kPa, 2MPa", "pressure", "p", limit=10) == [1e3, 2e6]
+    assert parse_values("1kPa:100kPa:3:log", "pressure", "p", limit=10) == pytest.approx(
+        [1e3, 1e4, 1e5], rel=1e-15
+    )
+    assert parse_values("3:1:3", "pressure", "p", limit=10) == [3.0, 2.0, 1.0]
+
+
+@pytest.mark.parametrize(
+    ("spec", "kwargs", "message"),
+    [
+        ("", {}, "empty list of values"),
+        ("1:2", {}, "cannot read '1:2'"),
+        ("1:2:0", {}, "asks for '0' points, an empty range"),
+        ("1:2:x", {}, "asks for 'x' points"),
+        ("1:2:11", {}, r"allowed: a whole number 1 <= num <= 10"),
+        ("1,2,3,4,5,6,7,8,9,10,11", {}, r"11 values \(allowed: at most 10\)"),
+        ("2:1:3", {"ascending": True}, r"empty range \(stop < start"),
+        ("0:1:3:log", {}, "a log range needs start > 0"),
+    ],
+)
+def test_bad_value_specs_name_the_field_and_what_is_allowed(spec, kwargs, message):
+    with pytest.raises(ParameterError, match=message) as err:
+        parse_values(spec, "pressure", "p", limit=10, **kwargs)
+    assert str(err.value).startswith("p: ")
