@@ -848,30 +848,25 @@ class _Parser(argparse.ArgumentParser):
         self.exit(2, f"mcsim: error: {text} (see: {self.prog} --help)\n")
 
 
-def _seed(text: str) -> int:
-    """A root seed: a non-negative integer (numpy's SeedSequence takes no other)."""
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(
-            f"{text!r} is not a whole number (allowed: integer >= 0)"
-        ) from None
-    if value < 0:
-        raise argparse.ArgumentTypeError(f"{value} is negative (allowed: integer >= 0)")
-    return value
+def _integer(low: int):
+    """argparse type: a whole number >= ``low`` written in digits (``1e9`` is refused)."""
+
+    def parse(text: str) -> int:
+        try:
+            value = int(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(
+                f"{text!r} is not a whole number written in digits (allowed: integer >= {low})"
+            ) from None
+        if value < low:
+            raise argparse.ArgumentTypeError(f"{value} is out of range (allowed: integer >= {low})")
+        return value
+
+    return parse
 
 
-def _count(text: str) -> int:
-    """A positive whole number, as digits (``1e9`` is refused: write 1000000000)."""
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(
-            f"{text!r} is not a whole number written in digits (allowed: integer >= 1)"
-        ) from None
-    if value < 1:
-        raise argparse.ArgumentTypeError(f"{value} is out of range (allowed: integer >= 1)")
-    return value
+#: A root seed (numpy's SeedSequence takes non-negative integers only) and a count.
+_seed, _count = _integer(0), _integer(1)
 
 
 def _add_inputs(p: argparse.ArgumentParser, separations: bool = True, law: str = "seed") -> None:

@@ -24,7 +24,7 @@ def one_line_error(capsys, argv) -> str:
 @pytest.mark.parametrize(
     ("option", "message"),
     [
-        ("--seed=-1", r"argument --seed: -1 is negative \(allowed: integer >= 0\)"),
+        ("--seed=-1", r"argument --seed: -1 is out of range \(allowed: integer >= 0\)"),
         ("--seed=1.5", r"argument --seed: '1.5' is not a whole number"),
         ("--realizations=1e9", r"argument --realizations: '1e9' is not a whole number"),
         ("--realizations=-3", r"argument --realizations: -3 is out of range"),
