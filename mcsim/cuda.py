@@ -47,7 +47,7 @@ import numpy as np
 
 from .errors import ParameterError
 from .kernels import sum_columns
-from .laws import Edges, LawSet
+from .laws import Edges, LawSet, ieee
 
 #: Threads per CUDA block (part of the reproducibility contract: the reduction tree).
 THREADS = 256
@@ -142,10 +142,16 @@ def check_vocabulary(fn) -> None:
         )
     for name in fn.__code__.co_names:
         value = fn.__globals__.get(name, getattr(builtins, name, None))
-        if name != "np" and name in fn.__globals__ and not isinstance(value, int | float):
+        if (
+            name != "np"
+            and name in fn.__globals__
+            and not isinstance(value, int | float)
+            and not any(value is h for h in ieee.HELPERS)
+        ):
             raise ParameterError(
                 f"law function {fn.__module__}.{fn.__qualname__} uses the global {name!r}: "
-                "law functions may use only np (restricted vocabulary) and numbers"
+                "law functions may use only np (restricted vocabulary), numbers and "
+                "mcsim.laws.ieee"
             )
 
 
@@ -167,15 +173,28 @@ def device_numpy() -> types.ModuleType:
     return module
 
 
+def _on_device(value):
+    """A law function's global as a device function sees it: numbers as they are, the
+    :mod:`mcsim.laws.ieee` helpers as CUDA's bit casts (the simulator runs the NumPy
+    ones)."""
+    if simulating() or not any(value is h for h in ieee.HELPERS):
+        return value
+    from numba.cuda import libdevice
+
+    if value is ieee.float_bits:
+        return libdevice.double_as_longlong
+    return libdevice.longlong_as_double
+
+
 def device_source(fn) -> types.FunctionType:
     """A copy of law function ``fn`` compiled from its own source with ``np`` bound to
-    :func:`device_numpy` (and the numbers it uses as globals), ready for
-    ``cuda.jit(device=True)``."""
+    :func:`device_numpy` (and the numbers and :mod:`mcsim.laws.ieee` helpers it uses as
+    globals), ready for ``cuda.jit(device=True)``."""
     check_vocabulary(fn)
     namespace = {"np": device_numpy(), "__builtins__": builtins}
-    namespace.update(
-        {n: fn.__globals__[n] for n in fn.__code__.co_names if n in fn.__globals__ and n != "np"}
-    )
+    for name in fn.__code__.co_names:
+        if name in fn.__globals__ and name != "np":
+            namespace[name] = _on_device(fn.__globals__[name])
     source = textwrap.dedent(inspect.getsource(fn))
     code = compile(source, f"<device {fn.__module__}.{fn.__qualname__}>", "exec")
     exec(code, namespace)

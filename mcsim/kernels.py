@@ -297,8 +297,59 @@ def _generate(law: LawSet, counting: bool = False):
     spec = importlib.util.spec_from_file_location(name, path)
     module = importlib.util.module_from_spec(spec)
     sys.modules[name] = module  # numba's cache re-imports the module by name
+    _register_bitcasts()
     spec.loader.exec_module(module)
     return module.kernel
+
+
+def compile_law(fn, **options):
+    """Law function ``fn`` compiled by numba on its own (``numba.njit(fn, **options)``),
+    with its :mod:`mcsim.laws.ieee` calls compiled as in the kernel."""
+    import numba
+
+    _register_bitcasts()
+    return numba.njit(fn, **options)
+
+
+@functools.cache
+def _register_bitcasts() -> None:
+    """Compile the law functions' :mod:`mcsim.laws.ieee` calls to one LLVM bitcast each.
+
+    Inline overloads of an intrinsic: numba's scalar ``.view`` is a call to a separate
+    function, which keeps numba from removing the reference counting of the table
+    arrays inside the loop and LLVM from vectorising it.
+    """
+    from llvmlite import ir
+    from numba import types
+    from numba.extending import intrinsic, overload
+
+    from .laws import ieee
+
+    def bitcast(source, target, llvm_type):
+        @intrinsic
+        def cast(typingctx, x):
+            if x != source:
+                return None
+            return target(source), lambda context, builder, sig, args: builder.bitcast(
+                args[0], llvm_type
+            )
+
+        return cast
+
+    to_int = bitcast(types.float64, types.int64, ir.IntType(64))
+    to_float = bitcast(types.int64, types.float64, ir.DoubleType())
+
+    @overload(ieee.float_bits, inline="always")
+    def _float_bits(x):
+        if isinstance(x, types.Float):
+            return lambda x: to_int(np.float64(x))
+        return None
+
+    @overload(ieee.bits_float, inline="always")
+    def _bits_float(b):
+        if isinstance(b, types.Integer):
+            return lambda b: to_float(np.int64(b))
+        return None
 
 
 def numba_version() -> str:

@@ -28,7 +28,7 @@ from cuda_checks import MATERIAL, SURFACE
 
 from mcsim import cuda as mc
 from mcsim.errors import ParameterError
-from mcsim.laws import LAW_SETS
+from mcsim.laws import LAW_SETS, ieee
 
 HAVE_NUMBA_CUDA = importlib.util.find_spec("numba_cuda") is not None
 needs_numba_cuda = pytest.mark.skipif(not HAVE_NUMBA_CUDA, reason="numba-cuda is not installed")
@@ -177,6 +177,17 @@ def test_law_functions_reach_the_cuda_compiler_through_the_device_vocabulary():
     compiled = mc.device_source(fn)
     assert compiled.__globals__["np"] is mc.device_numpy()
     cuda.compile_ptx(compiled, sig, device=True, cc=(9, 0))
+
+
+@needs_numba_cuda
+def test_the_ieee_helpers_become_cudas_bit_casts_on_a_real_device(monkeypatch):
+    """The simulator runs the NumPy helpers; the CUDA compiler gets libdevice's casts."""
+    from numba.cuda import libdevice
+
+    monkeypatch.setattr(mc, "simulating", lambda: False)
+    assert mc._on_device(ieee.float_bits) is libdevice.double_as_longlong
+    assert mc._on_device(ieee.bits_float) is libdevice.longlong_as_double
+    assert mc._on_device(2.5) == 2.5
 
 
 @needs_numba_cuda

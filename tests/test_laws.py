@@ -14,7 +14,8 @@ from mcsim.cli import main
 from mcsim.config import load_material, material_from_table
 from mcsim.empirical import Empirical
 from mcsim.errors import ParameterError
-from mcsim.laws import dmt, elastic_plastic, get_law_set, jkr
+from mcsim.kernels import compile_law
+from mcsim.laws import dmt, elastic_plastic, get_law_set, ieee, jkr
 from mcsim.laws import maugis_dugdale as md
 from mcsim.params import Material, Surface
 from mcsim.presets import MATERIALS, SURFACES
@@ -291,10 +292,23 @@ def test_law_values_are_finite_for_extreme_finite_inputs_without_warnings(f, sta
             assert np.all(np.isfinite(f(EXTREMES, *args)))
 
 
+BIT_PATTERNS = np.array([0.0, -0.0, 5e-324, 2.0**-70, 1.0, 1.5, np.pi, 1e30, -2.5, np.inf])
+
+
+def test_the_ieee_helpers_are_the_bit_casts_in_numpy_and_in_compiled_code():
+    expected = BIT_PATTERNS.view(np.int64)
+    np.testing.assert_array_equal(ieee.float_bits(BIT_PATTERNS), expected)
+    assert ieee.float_bits(1.0) == 1023 << 52 and np.ndim(ieee.float_bits(1.0)) == 0
+    np.testing.assert_array_equal(ieee.bits_float(expected).view(np.int64), expected)
+    to_int, to_float = compile_law(ieee.float_bits), compile_law(ieee.bits_float)
+    for x, bits in zip(BIT_PATTERNS, expected):
+        assert to_int(x) == bits
+        assert np.float64(to_float(bits)).view(np.int64) == bits
+
+
 @pytest.mark.parametrize(("f", "stateful"), LAWS, ids=[f.__name__ for f, _ in LAWS])
 def test_each_law_function_compiles_with_numba_and_equals_numpy(f, stateful):
-    numba = pytest.importorskip("numba")
-    compiled = numba.njit(f)
+    compiled = compile_law(f)
     args = law_arguments(f)
     deltas = np.concatenate(
         [EXTREMES, -np.geomspace(1e-12, 4e-9, 60), np.geomspace(1e-13, 1e-6, 120)]

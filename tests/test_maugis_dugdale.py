@@ -9,13 +9,13 @@ and max(A², 1): P̄ changes sign and A vanishes at touch-down.
 import dataclasses
 
 import mpmath
-import numba
 import numpy as np
 import pytest
 from scipy.optimize import brentq, minimize_scalar
 
 from mcsim import Material, Surface
 from mcsim.errors import ParameterError
+from mcsim.kernels import compile_law
 from mcsim.laws import get_law_set
 from mcsim.laws import maugis_dugdale as md
 from mcsim.presets import MATERIALS, SURFACES
@@ -84,7 +84,6 @@ def table_values(delta, lam, delta_max=np.inf):
         "md_per_delta_unit": 1.0,
         "md_delta_lo": tab.delta_lo,
         "md_delta_touch": tab.delta_touch,
-        "md_n": float(tab.n),
     }
     P = md.load(delta, delta_max, md_force_unit=1.0, md_lambda=lam, md_h0=tab.h0, md_b=tab.b,
                 md_table=tab.coefficients, **common)  # fmt: skip
@@ -254,7 +253,7 @@ def test_compiled_law_functions_equal_the_numpy_ones():
     delta = rng.uniform(-1e-9, 1e-8, 400)
     delta_max = delta + (rng.random(400) < 0.5) * rng.uniform(0, 1e-8, 400)
     for fn, args in ((md.load, args_load), (md.area, args_area)):
-        compiled = numba.njit(fn)
+        compiled = compile_law(fn)
         expected = fn(delta, delta_max, *args)
         got = np.array([compiled(d, m, *args) for d, m in zip(delta, delta_max)])
         assert np.count_nonzero(expected) > 100

@@ -23,9 +23,10 @@ the edges say a force may act, but vectorised callers evaluate everywhere).
 Law functions are restricted to a small vocabulary so that the same source also
 compiles as a CUDA device function: arithmetic, comparisons, ``np.sqrt``,
 ``np.cbrt``, ``np.exp``, ``np.log``, ``np.abs``, ``np.maximum``, ``np.minimum``,
-``np.floor``, ``np.arctan``, ``np.cos``, ``np.arccos``, ``np.pi``, ``np.int64``, and
-indexing 1-D float arrays passed as parameters. No ``np.where``, no Python
-``if``/``while`` on array values, no calls to other Python functions.
+``np.floor``, ``np.arctan``, ``np.cos``, ``np.arccos``, ``np.pi``, ``np.int64``, the bit
+casts of :mod:`mcsim.laws.ieee` and integer shifts and masks, and indexing 1-D float
+arrays passed as parameters. No ``np.where``, no Python ``if``/``while`` on array
+values, no calls to other Python functions.
 """
 
 from __future__ import annotations

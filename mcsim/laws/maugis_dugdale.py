@@ -50,19 +50,26 @@ force. For λ → 0 this is DMT (pull-off 2πwR, no jump); for λ → ∞ JKR (j
 break-off at δ_c with P = −(5/6)πwR; load-controlled pull-off 1.5πwR).
 
 **The table.** All summits share R, so the stable contact branch (Δ ≥ Δ_lo, Δ_lo = Δ at
-ψ = π/2 for λ ≤ λ_c, the turning point otherwise) is solved once per λ on a uniform grid
-in x = r/(r + 1), r = (Δ − Δ_lo)^{1/4} (two square roots: the law functions use no
-slower root), x ∈ [0, 1]. The tabulated functions P̄(1 − x)⁶ and A²(1 − x)⁴ are smooth
-on the closed interval: at a turning point A − A_lo ∝ (Δ − Δ_lo)^{1/2} = r², and at
-λ = λ_c, where the turning point reaches touch-down, A ∝ (Δ − Δ_lo)^{1/3} = r^{4/3},
-which the crowding of the grid at x = 0 resolves; as Δ → ∞, P̄/Δ^{3/2} and A²/Δ tend to
-1 with corrections in powers of Δ^{-1/6} from Δ^{-5/6} ∝ (1 − x)^{10/3} on, and the
-values at x = 1 are those limits. A not-a-knot cubic spline on 1024 intervals then
-reproduces the direct solution to 1e-10 (measured for λ = 1e-3 … 1e3, including
-λ = λ_c ± 1e-7), against the bound 1e-8 that the tests check for λ = 0.1 … 10, relative
-to max(|P̄|, 1) and max(A², 1) (P̄ changes sign and A → 0 at touch-down). The
-out-of-contact part of the stable branch is evaluated in closed form. Δ is clamped to
-±1e30, so the values are finite for every finite δ.
+ψ = π/2 for λ ≤ λ_c, the turning point otherwise) is solved once per λ at the nodes of a
+geometric grid in y = Δ − Δ_lo, 2^6 intervals per octave from y = 2^-70 to 2^100 (the
+doubles whose bits are multiples of 2^46: :func:`nodes`), and P̄ and A² are a
+not-a-knot cubic spline in y through them. A law function finds a summit's interval and
+its place in it from the bits of y (:mod:`mcsim.laws.ieee`: the exponent and the first
+six fraction bits are the interval, the other fraction bits the place), with no root,
+logarithm or division: on a CPU without fast gathers (AVX2) LLVM computes everything a
+table address depends on one lane at a time, and the fourth root an earlier grid needed
+there made this law set cost 2.5–3.3 times the seed's per pair. On a geometric grid a
+power law y^α has the same relative interpolation error in every interval, so the grid
+resolves the branch at every scale: P̄ − P̄_lo and A − A_lo ∝ y^{1/2} at a turning point,
+A ∝ y^{1/3} at λ = λ_c (the turning point at touch-down), P̄ → Δ^{3/2} and A² → Δ as
+Δ → ∞. Below 2^-70 a value is read at 2^-70 (an error of order √(2^-70) ≈ 3e-11).
+Relative to max(|P̄|, 1) and max(A², 1) (P̄ changes sign and A → 0 at touch-down), the
+table reproduces the direct solution of Maugis' equations (as in the tests) to 7e-10 for
+λ = 1e-3 … 10, to 3e-9 at λ = λ_c − 1e-7, and to 1.2e-10 in the tail out to A = 1e6;
+the tests check the bound 1e-8 for λ = 0.1 … 10. (For λ ≥ 100 the direct solution
+itself, a root in m → 1, limits the comparison within y ≈ 1e-9 of the turning point.)
+The out-of-contact part of the stable branch is evaluated in closed form. Δ is clamped
+to ±1e30 (so y < 2^100), and the values are finite for every finite δ.
 """
 
 from __future__ import annotations
@@ -76,13 +83,25 @@ import numpy as np
 from ..errors import ParameterError
 from ..params import Material, Surface
 from . import Edges, LawSet, Output
+from .ieee import bits_float, float_bits
 
 #: Dugdale range per equilibrium spacing, h0 = 0.97 z0 (Maugis 1992).
 H0_PER_Z0 = 0.97
 #: Maugis parameter where the turning point moves from out of contact into contact.
 LAMBDA_C = (9.0 * np.pi / (16.0 * (np.pi - 1.0))) ** (1.0 / 3.0)
-#: Intervals of the table (uniform in x).
-N_TABLE = 1024
+#: The table's grid (module docstring): 2**GRID_BITS intervals per octave of
+#: y = Δ − Δ_lo, from 2**Y_EXPONENTS[0] to 2**Y_EXPONENTS[1].
+GRID_BITS = 6
+Y_EXPONENTS = (-70, 100)
+#: Intervals of the table.
+N_TABLE = (Y_EXPONENTS[1] - Y_EXPONENTS[0]) << GRID_BITS
+#: Lowest node of the grid; a smaller y is read as Y_MIN.
+Y_MIN = 2.0 ** Y_EXPONENTS[0]
+# IEEE 754 binary64: y = 2**(e − 1023) (1 + f/2**52) has the bits e·2**52 + f.
+_SHIFT = 52 - GRID_BITS  # bits >> _SHIFT = e·2**GRID_BITS + the first GRID_BITS bits of f
+_FIRST = (1023 + Y_EXPONENTS[0]) << GRID_BITS  # bits >> _SHIFT of Y_MIN
+_FRACTION = (1 << 52) - 1
+_ONE = 1023 << 52  # the bits of 1.0
 #: Range of λ the table is built and tested for.
 LAMBDA_RANGE = (1e-3, 1e3)
 
@@ -201,9 +220,9 @@ class Table:
         λ > λ_c one unit below the turning point, where no summit is in contact).
     delta_break : float
         Break-off: the turning point of the curve in Δ.
-    load, area : ndarray, shape (4 N,)
-        Cubic coefficients, interval by interval, of P̄(1 − x)⁶ and A²(1 − x)⁴ in the
-        local coordinate s = N x − k ∈ [0, 1) of interval k.
+    load, area : ndarray, shape (4 N_TABLE,)
+        Cubic coefficients, interval by interval, of P̄ and A² in the local coordinate
+        s = (y − y_k)/(y_{k+1} − y_k) ∈ [0, 1) of interval k of :func:`nodes`.
     """
 
     lam: float
@@ -243,29 +262,35 @@ def _solve_branch(targets: np.ndarray, psi_lo: float, lam: float) -> np.ndarray:
     return np.exp(0.5 * (lo + hi))
 
 
-def _coefficients(x: np.ndarray, f: np.ndarray) -> np.ndarray:
-    """Not-a-knot cubic spline through (x, f), as local cubics in s ∈ [0, 1) per interval,
+def _coefficients(y: np.ndarray, f: np.ndarray) -> np.ndarray:
+    """Not-a-knot cubic spline through (y, f), as local cubics in s ∈ [0, 1) per interval,
     interleaved [c0, c1, c2, c3] for interval 0, then interval 1, ..."""
     from scipy.interpolate import CubicSpline  # on first use: keeps `import mcsim.laws` light
 
-    c = CubicSpline(x, f).c  # c[3 − j] multiplies (x − x_k)^j
-    h = x[1] - x[0]
+    c = CubicSpline(y, f).c  # c[3 − j] multiplies (y − y_k)^j
+    h = np.diff(y)
     local = np.stack([c[3 - j] * h**j for j in range(4)], axis=1)
     out = np.ascontiguousarray(local.ravel())
     out.flags.writeable = False
     return out
 
 
+def nodes() -> np.ndarray:
+    """The grid of the table in y = Δ − Δ_lo: the N_TABLE + 1 binary64 numbers whose bits
+    are multiples of 2**(52 − GRID_BITS), from Y_MIN to 2**Y_EXPONENTS[1] (module
+    docstring)."""
+    bits = (np.arange(N_TABLE + 1, dtype=np.int64) + _FIRST) << _SHIFT
+    return bits.view(np.float64)
+
+
 @functools.lru_cache(maxsize=64)
-def table(lam: float, n: int = N_TABLE) -> Table:
+def table(lam: float) -> Table:
     """Solve and tabulate the stable branch for one Maugis parameter (cached).
 
     Parameters
     ----------
     lam : float
         Maugis parameter λ, within :data:`LAMBDA_RANGE`.
-    n : int
-        Number of intervals of the uniform grid in x.
 
     Returns
     -------
@@ -286,13 +311,10 @@ def table(lam: float, n: int = N_TABLE) -> Table:
         delta_break, delta_touch = delta_lo, delta_lo - 1.0
     else:
         delta_break = -h0 - 0.5 * b * b
-    x = np.linspace(0.0, 1.0, n + 1)
-    tau = (x[1:-1] / (1.0 - x[1:-1])) ** 2
-    psi = np.concatenate([[psi_lo], _solve_branch(delta_lo + tau * tau, psi_lo, lam)])
+    y = nodes()
+    target = delta_lo + y
+    psi = np.where(target > delta_lo, _solve_branch(target, psi_lo, lam), psi_lo)
     A, P, _, _ = contact_curve(psi, lam)
-    y = 1.0 - x[:-1]
-    load = np.append(P * y**6, 1.0)  # limits as Δ → ∞: P̄ → Δ^{3/2}, A² → Δ
-    area = np.append(A * A * y**4, 1.0)
     return Table(
         lam=lam,
         h0=h0,
@@ -301,8 +323,8 @@ def table(lam: float, n: int = N_TABLE) -> Table:
         delta_lo=delta_lo,
         delta_touch=delta_touch,
         delta_break=delta_break,
-        load=_coefficients(x, load),
-        area=_coefficients(x, area),
+        load=_coefficients(y, P),
+        area=_coefficients(y, A * A),
     )
 
 
@@ -345,7 +367,6 @@ def load(
     md_b,
     md_delta_lo,
     md_delta_touch,
-    md_n,
     md_table,
 ):
     """Net normal force on one summit, Maugis–Dugdale (module docstring), N.
@@ -364,8 +385,6 @@ def load(
         πwR, N.
     md_lambda, md_h0, md_b, md_delta_lo, md_delta_touch : float
         λ and the dimensionless constants of :class:`Table`.
-    md_n : float
-        Number of table intervals.
     md_table : ndarray
         :attr:`Table.coefficients` (load at offsets 0–3 of each interval's eight).
 
@@ -374,22 +393,19 @@ def load(
     float or ndarray
         Load, N, positive when compressive; zero out of contact.
     """
-    # A product, not a division: on an AVX2 CPU without fast gathers LLVM computes
-    # everything the table index depends on one lane at a time (README, Performance).
+    # The interval and the position in it are read off the bits of y (module docstring):
+    # on an AVX2 CPU without fast gathers LLVM computes everything a table address
+    # depends on one lane at a time, so that path holds no root and no division.
     big = 1e30 / md_per_delta_unit  # |Δ| ≤ 1e30: finite values for every finite δ
     D = np.minimum(np.maximum(delta, -big), big) * md_per_delta_unit
     on = (delta_max > md_jump_in) * (delta > md_break_off)
     zone = md_b + np.sqrt(np.maximum(md_b * md_b + 2.0 * (D + md_h0), 0.0))
     apart = -0.5 * np.pi * md_lambda * zone * zone
-    r = np.sqrt(np.sqrt(np.maximum(D - md_delta_lo, 0.0)))
-    u = r / (r + 1.0) * md_n
-    i = np.minimum(np.floor(u), md_n - 1.0)
-    s = u - i
-    k = 8 * np.int64(i)
-    w = r + 1.0
-    w2 = w * w
+    bits = float_bits(np.maximum(D - md_delta_lo, Y_MIN))
+    k = 8 * np.minimum((bits >> _SHIFT) - _FIRST, N_TABLE - 1)
+    s = bits_float(((bits << GRID_BITS) & _FRACTION) | _ONE) - 1.0
     t = md_table
-    touching = (t[k] + s * (t[k + 1] + s * (t[k + 2] + s * t[k + 3]))) * (w2 * w2 * w2)
+    touching = t[k] + s * (t[k + 1] + s * (t[k + 2] + s * t[k + 3]))
     inside = D >= md_delta_touch
     return on * (inside * touching + (1.0 - inside) * apart) * md_force_unit + 0.0  # no -0.0
 
@@ -403,7 +419,6 @@ def area(
     md_area_unit,
     md_delta_lo,
     md_delta_touch,
-    md_n,
     md_table,
 ):
     """Real contact area πa² of one summit, Maugis–Dugdale (module docstring), m².
@@ -422,8 +437,6 @@ def area(
         π (πwR²/K)^{2/3}, m².
     md_delta_lo, md_delta_touch : float
         Dimensionless constants of :class:`Table`.
-    md_n : float
-        Number of table intervals.
     md_table : ndarray
         :attr:`Table.coefficients` (area at offsets 4–7 of each interval's eight).
 
@@ -435,15 +448,11 @@ def area(
     big = 1e30 / md_per_delta_unit  # |Δ| ≤ 1e30: finite values for every finite δ
     D = np.minimum(np.maximum(delta, -big), big) * md_per_delta_unit
     on = (delta_max > md_jump_in) * (delta > md_break_off)
-    r = np.sqrt(np.sqrt(np.maximum(D - md_delta_lo, 0.0)))
-    u = r / (r + 1.0) * md_n
-    i = np.minimum(np.floor(u), md_n - 1.0)
-    s = u - i
-    k = 8 * np.int64(i)
-    w = r + 1.0
-    w2 = w * w
+    bits = float_bits(np.maximum(D - md_delta_lo, Y_MIN))
+    k = 8 * np.minimum((bits >> _SHIFT) - _FIRST, N_TABLE - 1)
+    s = bits_float(((bits << GRID_BITS) & _FRACTION) | _ONE) - 1.0
     t = md_table
-    touching = (t[k + 4] + s * (t[k + 5] + s * (t[k + 6] + s * t[k + 7]))) * (w2 * w2)
+    touching = t[k + 4] + s * (t[k + 5] + s * (t[k + 6] + s * t[k + 7]))
     return on * (D >= md_delta_touch) * touching * md_area_unit + 0.0
 
 
@@ -483,7 +492,6 @@ def constants(surface: Surface, material: Material) -> dict:
         "md_b": tab.b,
         "md_delta_lo": tab.delta_lo,
         "md_delta_touch": tab.delta_touch,
-        "md_n": float(tab.n),
         "md_table": tab.coefficients,
     }
 
