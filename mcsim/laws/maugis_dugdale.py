@@ -220,9 +220,10 @@ class Table:
         λ > λ_c one unit below the turning point, where no summit is in contact).
     delta_break : float
         Break-off: the turning point of the curve in Δ.
-    load, area : ndarray, shape (4 N_TABLE,)
-        Cubic coefficients, interval by interval, of P̄ and A² in the local coordinate
-        s = (y − y_k)/(y_{k+1} − y_k) ∈ [0, 1) of interval k of :func:`nodes`.
+    coefficients : ndarray, shape (8 N_TABLE,), read-only
+        Eight numbers per interval k of :func:`nodes`: the cubic coefficients of P̄, then
+        those of A², in the local coordinate s = (y − y_k)/(y_{k+1} − y_k) ∈ [0, 1), so
+        that :func:`load` and :func:`area` read one interval's 64 adjacent bytes.
     """
 
     lam: float
@@ -232,21 +233,7 @@ class Table:
     delta_lo: float
     delta_touch: float
     delta_break: float
-    load: np.ndarray
-    area: np.ndarray
-
-    @property
-    def n(self) -> int:
-        return self.load.size // 4
-
-    @functools.cached_property
-    def coefficients(self) -> np.ndarray:
-        """:attr:`load` and :attr:`area` interleaved, eight numbers per interval (its
-        four load coefficients, then its four area coefficients), so that :func:`load` and
-        :func:`area` read one interval's 64 adjacent bytes."""
-        out = np.concatenate([self.load.reshape(-1, 4), self.area.reshape(-1, 4)], axis=1).ravel()
-        out.flags.writeable = False
-        return out
+    coefficients: np.ndarray
 
 
 def _solve_branch(targets: np.ndarray, psi_lo: float, lam: float) -> np.ndarray:
@@ -262,15 +249,18 @@ def _solve_branch(targets: np.ndarray, psi_lo: float, lam: float) -> np.ndarray:
     return np.exp(0.5 * (lo + hi))
 
 
-def _coefficients(y: np.ndarray, f: np.ndarray) -> np.ndarray:
-    """Not-a-knot cubic spline through (y, f), as local cubics in s ∈ [0, 1) per interval,
-    interleaved [c0, c1, c2, c3] for interval 0, then interval 1, ..."""
+def _coefficients(y: np.ndarray, *f: np.ndarray) -> np.ndarray:
+    """Not-a-knot cubic splines through (y, f) for each f, as local cubics in s ∈ [0, 1)
+    per interval, interleaved: interval 0's [c0, c1, c2, c3] of each f, then interval 1's,
+    ..."""
     from scipy.interpolate import CubicSpline  # on first use: keeps `import mcsim.laws` light
 
-    c = CubicSpline(y, f).c  # c[3 − j] multiplies (y − y_k)^j
     h = np.diff(y)
-    local = np.stack([c[3 - j] * h**j for j in range(4)], axis=1)
-    out = np.ascontiguousarray(local.ravel())
+    local = []
+    for values in f:
+        c = CubicSpline(y, values).c  # c[3 − j] multiplies (y − y_k)^j
+        local += [c[3 - j] * h**j for j in range(4)]
+    out = np.ascontiguousarray(np.stack(local, axis=1).ravel())
     out.flags.writeable = False
     return out
 
@@ -283,7 +273,7 @@ def nodes() -> np.ndarray:
     return bits.view(np.float64)
 
 
-@functools.lru_cache(maxsize=64)
+@functools.lru_cache(maxsize=16)  # 0.7 MB each
 def table(lam: float) -> Table:
     """Solve and tabulate the stable branch for one Maugis parameter (cached).
 
@@ -323,8 +313,7 @@ def table(lam: float) -> Table:
         delta_lo=delta_lo,
         delta_touch=delta_touch,
         delta_break=delta_break,
-        load=_coefficients(y, P),
-        area=_coefficients(y, A * A),
+        coefficients=_coefficients(y, P, A * A),
     )
 
 
