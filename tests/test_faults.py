@@ -41,12 +41,21 @@ ARGS = ["simulate", "--surface", "smooth", "--h=2:-1:7", "--area", "1e-8", "--re
 
 #: A run that takes no time.
 SMALL = ["simulate", "--surface", "rough", "--area", "1e-10", "--h=0", "--quiet"]
+#: ARGS on a tenth of the area: the same run file and the same 500 tasks (one block each,
+#: an interruption check between any two), a tenth of the work.
+SHORT = [a if a != "1e-8" else "1e-9" for a in ARGS]
 
 
 @pytest.fixture(scope="module")
 def reference():
     """The uninterrupted run."""
     return simulate(SURFACES["smooth"], MATERIALS["silicon"], H, 1e-8, realizations=500, seed=3)
+
+
+@pytest.fixture(scope="module")
+def short_reference():
+    """The uninterrupted run of SHORT."""
+    return simulate(SURFACES["smooth"], MATERIALS["silicon"], H, 1e-9, realizations=500, seed=3)
 
 
 def start_and_wait_for_progress(out):
@@ -94,9 +103,12 @@ def test_full_disk_gives_a_clear_error_and_leaves_earlier_runs_untouched(tmp_pat
     earlier = tmp_path / "earlier.h5"
     assert main([*SMALL, "--out", str(earlier)]) == 0
     before = earlier.read_bytes()
-    out = tmp_path / "big.h5"  # ~100 kB of results: past the 40 kB limit
+    out = tmp_path / "big.h5"  # ~500 kB of results: past the 40 kB limit
     done = subprocess.run(
-        [EXE, *ARGS, "--out", str(out)], capture_output=True, text=True, preexec_fn=_limit_file_size
+        [EXE, *SHORT, "--out", str(out)],
+        capture_output=True,
+        text=True,
+        preexec_fn=_limit_file_size,
     )
     assert done.returncode == 2, done.stderr
     assert re.match(  # the final write, or a checkpoint (after 10 s on a slow machine)
@@ -130,9 +142,9 @@ def test_a_real_full_disk_gives_one_line_and_no_crash_and_leaves_earlier_runs_un
         earlier = disk / "earlier.h5"
         assert main([*SMALL, "--out", str(earlier)]) == 0
         before = earlier.read_bytes()
-        out = disk / "big.h5"  # ~300 kB of results
-        big = [a if a != "500" else "1500" for a in ARGS]
-        done = subprocess.run([sys.executable, "-m", "mcsim", *big, "--area", "1e-9", "--out", str(out)],
+        out = disk / "big.h5"  # ~1.5 MB of results
+        big = [a if a != "500" else "1500" for a in SHORT]
+        done = subprocess.run([sys.executable, "-m", "mcsim", *big, "--area", "1e-10", "--out", str(out)],
                               capture_output=True, text=True)  # fmt: skip
         assert done.returncode == 2, done.stderr
         assert re.fullmatch(
@@ -219,16 +231,16 @@ def test_resume_refuses_other_arguments(tmp_path, capsys):
 
 
 def test_resume_with_nothing_to_resume_starts_from_the_beginning_and_says_so(
-    tmp_path, capsys, reference
+    tmp_path, capsys, short_reference
 ):
     out = tmp_path / "t.h5"
-    assert main([*ARGS, "--out", str(out), "--resume"]) == 0
+    assert main([*SHORT, "--out", str(out), "--resume"]) == 0
     err = capsys.readouterr().err
     assert err == (
         f"mcsim: {out}: nothing to resume (no checkpoint t.partial.h5): starting the run "
         "from the beginning\n"
     )
-    np.testing.assert_array_equal(read_run(out).sums, reference.sums)
+    np.testing.assert_array_equal(read_run(out).sums, short_reference.sums)
 
 
 def test_a_run_file_at_the_path_is_not_resumed_over_without_overwrite(tmp_path, capsys):
@@ -253,23 +265,23 @@ def interrupt_after(monkeypatch, calls: int) -> None:
 
 
 def test_an_interrupted_overwrite_keeps_the_earlier_run_until_the_new_one_completes(
-    tmp_path, monkeypatch, capsys, reference
+    tmp_path, monkeypatch, capsys, short_reference
 ):
     out = tmp_path / "t.h5"
     assert main([*SMALL, "--out", str(out)]) == 0
     before = out.read_bytes()
-    args = [*ARGS, "--out", str(out), "--overwrite"]
+    args = [*SHORT, "--out", str(out), "--overwrite"]
     interrupt_after(monkeypatch, 5)
     assert main(args) == 130
     assert out.read_bytes() == before, "the complete earlier run survives the interruption"
     assert f"progress saved in {checkpoint_path(out)}" in capsys.readouterr().err
     monkeypatch.undo()
     assert not read_state(checkpoint_path(out))[0].complete
-    assert main([*ARGS, "--out", str(out), "--resume"]) == 2  # replacing needs --overwrite
+    assert main([*SHORT, "--out", str(out), "--resume"]) == 2  # replacing needs --overwrite
     assert "file exists" in capsys.readouterr().err
     assert out.read_bytes() == before
     assert main([*args, "--resume"]) == 0
-    np.testing.assert_array_equal(read_run(out).sums, reference.sums)
+    np.testing.assert_array_equal(read_run(out).sums, short_reference.sums)
     assert sorted(p.name for p in tmp_path.iterdir()) == ["t.h5"]
 
 
