@@ -94,6 +94,20 @@ def interrupt(proc, timeout: float = 60.0) -> tuple[int, str]:
 
 
 @pytest.fixture(scope="session")
+def long_run_reference():
+    """The uninterrupted ``mcsim simulate --surface smooth --h=2:-1:7 --area 1e-8
+    --realizations 500 --seed 3`` (a ~4 s run that the Ctrl-C and SIGKILL tests interrupt
+    and resume), computed once for the session."""
+    import numpy as np
+
+    from mcsim.presets import MATERIALS, SURFACES
+    from mcsim.simulation import simulate
+
+    h = np.linspace(2, -1, 7)
+    return simulate(SURFACES["smooth"], MATERIALS["silicon"], h, 1e-8, realizations=500, seed=3)
+
+
+@pytest.fixture(scope="session")
 def dask_local_client():
     """One local Dask cluster of two single-threaded worker processes for the whole session
     (starting one costs ~10 s on two cores), as ``mcsim.cluster.dask_client("local")`` makes."""

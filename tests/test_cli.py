@@ -166,14 +166,15 @@ def test_installed_entry_point_reports_version_and_fails_cleanly():
     assert done.returncode == 2 and "Traceback" not in done.stderr
 
 
-def test_ctrl_c_leaves_a_resumable_run_that_resumes_to_identical_numbers(tmp_path):
+def test_ctrl_c_leaves_a_resumable_run_that_resumes_to_identical_numbers(
+    tmp_path, long_run_reference
+):
     """SIGINT during a long simulate: exit 130, an incomplete run in the checkpoint beside
     the path (another run in the folder untouched, no temporaries); --resume then gives the
     uninterrupted datasets."""
     import h5py
 
     from mcsim.runfile import checkpoint_path, read_state
-    from mcsim.simulation import simulate
 
     exe = os.path.join(os.path.dirname(sys.executable), "mcsim")
     other = tmp_path / "other.h5"
@@ -200,8 +201,7 @@ def test_ctrl_c_leaves_a_resumable_run_that_resumes_to_identical_numbers(tmp_pat
     assert sorted(p.name for p in tmp_path.iterdir()) == ["other.h5", "t.partial.h5"]
 
     assert main([*args, "--resume", "--quiet"]) == 0
-    reference = simulate(SURFACES["smooth"], MATERIALS["silicon"], np.linspace(2, -1, 7), 1e-8,
-                         realizations=500, seed=3)  # fmt: skip
+    reference = long_run_reference  # the uninterrupted run of args
     with h5py.File(out) as f:
         assert f.attrs["complete"]
         np.testing.assert_array_equal(f["realizations/sums"][()], reference.sums)

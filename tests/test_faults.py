@@ -47,12 +47,6 @@ SHORT = [a if a != "1e-8" else "1e-9" for a in ARGS]
 
 
 @pytest.fixture(scope="module")
-def reference():
-    """The uninterrupted run."""
-    return simulate(SURFACES["smooth"], MATERIALS["silicon"], H, 1e-8, realizations=500, seed=3)
-
-
-@pytest.fixture(scope="module")
 def short_reference():
     """The uninterrupted run of SHORT."""
     return simulate(SURFACES["smooth"], MATERIALS["silicon"], H, 1e-9, realizations=500, seed=3)
@@ -74,7 +68,7 @@ def start_and_wait_for_progress(out):
 
 @pytest.mark.parametrize("moment", np.random.default_rng(20261122).uniform(0.0, 2.0, 3).round(2))
 def test_sigkill_leaves_nothing_or_a_complete_run_and_resume_completes_it(
-    tmp_path, reference, moment
+    tmp_path, long_run_reference, moment
 ):
     """Killed ``moment`` seconds after its first checkpoint; then the same command with
     --resume (what a batch script does) ends with the uninterrupted numbers."""
@@ -89,6 +83,7 @@ def test_sigkill_leaves_nothing_or_a_complete_run_and_resume_completes_it(
         assert not read_state(checkpoint_path(out))[0].complete  # readable: never torn
         assert main([*ARGS, "--out", str(out), "--resume"]) == 0
     run = read_run(out)
+    reference = long_run_reference  # the uninterrupted run of ARGS
     np.testing.assert_array_equal(run.sums, reference.sums)
     np.testing.assert_array_equal(run.summary.mean["mu"], reference.summary.mean["mu"])
     assert sorted(p.name for p in tmp_path.iterdir()) == ["t.h5"], "no lock or temporary file left"
