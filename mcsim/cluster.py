@@ -13,6 +13,9 @@ from collections.abc import Iterator
 
 from .errors import MCSimError
 
+#: Seconds to wait for an existing scheduler to answer before giving up.
+CONNECT_TIMEOUT = 5.0
+
 
 @contextlib.contextmanager
 def dask_client(scheduler: str, workers: int | None = None) -> Iterator[object]:
@@ -41,7 +44,7 @@ def dask_client(scheduler: str, workers: int | None = None) -> Iterator[object]:
             yield client
         return
     try:
-        client = Client(scheduler, timeout="5s")
+        client = Client(scheduler, timeout=CONNECT_TIMEOUT)
     except (OSError, TimeoutError, ValueError) as err:
         raise MCSimError(f"cannot reach the Dask scheduler at {scheduler!r}: {err}") from None
     with client:

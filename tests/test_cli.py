@@ -208,8 +208,11 @@ def test_ctrl_c_leaves_a_resumable_run_that_resumes_to_identical_numbers(
         np.testing.assert_array_equal(f["summary/se/mu"][()], reference.summary.se["mu"])
 
 
-def test_unreachable_dask_scheduler_is_a_one_line_error(capsys, tmp_path):
+def test_unreachable_dask_scheduler_is_a_one_line_error(capsys, tmp_path, monkeypatch):
     pytest.importorskip("distributed", reason="Dask (extra 'dask') not installed")
+    import mcsim.cluster
+
+    monkeypatch.setattr(mcsim.cluster, "CONNECT_TIMEOUT", 0.5)  # nothing listens: no need to wait
     code, _, err = run_cli(capsys, "simulate", "--surface", "smooth", "--area", "1e-10", "--h=0",
                            "--scheduler", "tcp://127.0.0.1:9", "--out", str(tmp_path / "x.h5"))  # fmt: skip
     assert code == 2 and "cannot reach the Dask scheduler at 'tcp://127.0.0.1:9'" in err
