@@ -13,6 +13,7 @@ Three levels, each skipped with its reason where it cannot run:
 
 from __future__ import annotations
 
+import functools
 import importlib.util
 import json
 import os
@@ -212,6 +213,7 @@ def run_checks(simulator: bool, *argv: str) -> dict:
     return json.loads(done.stdout.strip().splitlines()[-1])
 
 
+@functools.cache  # a fresh process per probe (~1 s); the answer holds for the session
 def _gpu_reason() -> str | None:
     if not HAVE_NUMBA_CUDA:
         return "numba-cuda is not installed"
