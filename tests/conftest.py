@@ -6,6 +6,8 @@ the repository (``$MCSIM_TEST_DATA`` or ``~/.cache/mcsim-test-data``) and never
 committed. Nanosurf's NSFopen package (MIT, a test dependency) ships real .nid maps.
 """
 
+import importlib.util
+import json
 import os
 import subprocess
 import sys
@@ -116,3 +118,53 @@ def dask_local_client():
 
     with dask_client("local", workers=2) as client:
         yield client
+
+
+class CudaChecks:
+    """``python tests/cuda_checks.py ARGV`` (see there) running in a process of its own,
+    its output in ``folder``; :meth:`result` waits for it and returns its JSON."""
+
+    def __init__(self, simulator: bool, folder: Path, *argv: str):
+        env = dict(os.environ)
+        env.pop("NUMBA_ENABLE_CUDASIM", None)
+        if simulator:
+            env["NUMBA_ENABLE_CUDASIM"] = "1"
+        self.out, self.err = folder / "stdout.txt", folder / "stderr.txt"
+        script = Path(__file__).with_name("cuda_checks.py")
+        with open(self.out, "w") as out, open(self.err, "w") as err:
+            self.proc = subprocess.Popen([sys.executable, str(script), *argv, str(folder)],
+                                         env=env, stdout=out, stderr=err, text=True)  # fmt: skip
+
+    def result(self, timeout: float = 900) -> dict:
+        code = self.proc.wait(timeout=timeout)
+        assert code == 0, self.err.read_text()[-3000:]
+        return json.loads(self.out.read_text().strip().splitlines()[-1])
+
+    def stop(self) -> None:
+        if self.proc.poll() is None:
+            self.proc.kill()
+            self.proc.wait()
+
+
+def _runs_the_simulator_checks(item) -> bool:
+    callspec = getattr(item, "callspec", None)
+    return callspec is not None and callspec.params.get("checks") == "simulator"
+
+
+@pytest.fixture(scope="session", autouse=True)
+def cuda_simulator_checks(request, tmp_path_factory):
+    """tests/cuda_checks.py under numba's CUDA simulator, started in the background as
+    the session starts when test_cuda.py's simulator checks are selected (else None).
+
+    The simulator runs each CUDA thread as a Python thread: ~35 s on one core, which
+    the other tests (mostly on one core) leave free; the checks share nothing with
+    them (their own process and folder), and test_cuda.py waits for the result.
+    """
+    if importlib.util.find_spec("numba_cuda") is None or not any(
+        _runs_the_simulator_checks(item) for item in request.session.items
+    ):
+        yield None
+        return
+    checks = CudaChecks(True, tmp_path_factory.mktemp("cuda-simulator"), "300", "500,200")
+    yield checks
+    checks.stop()  # only if the tests that wait for it did not run

@@ -15,16 +15,15 @@ from __future__ import annotations
 
 import functools
 import importlib.util
-import json
 import os
 import subprocess
 import sys
 import types
-from pathlib import Path
 from unittest import mock
 
 import numpy as np
 import pytest
+from conftest import CudaChecks
 from cuda_checks import MATERIAL, SURFACE
 
 from mcsim import cuda as mc
@@ -33,7 +32,6 @@ from mcsim.laws import LAW_SETS, ieee
 
 HAVE_NUMBA_CUDA = importlib.util.find_spec("numba_cuda") is not None
 needs_numba_cuda = pytest.mark.skipif(not HAVE_NUMBA_CUDA, reason="numba-cuda is not installed")
-CHECKS = Path(__file__).with_name("cuda_checks.py")
 
 
 def law_using_where(delta, R):
@@ -202,17 +200,6 @@ def test_the_device_numpy_holds_only_the_vocabulary():
 # -- the kernel's results: simulator, and a GPU where there is one -------------------
 
 
-def run_checks(simulator: bool, *argv: str) -> dict:
-    env = dict(os.environ)
-    env.pop("NUMBA_ENABLE_CUDASIM", None)
-    if simulator:
-        env["NUMBA_ENABLE_CUDASIM"] = "1"
-    done = subprocess.run([sys.executable, str(CHECKS), *argv], env=env, capture_output=True,
-                          text=True, timeout=900)  # fmt: skip
-    assert done.returncode == 0, done.stderr[-3000:]
-    return json.loads(done.stdout.strip().splitlines()[-1])
-
-
 @functools.cache  # a fresh process per probe (~1 s); the answer holds for the session
 def _gpu_reason() -> str | None:
     if not HAVE_NUMBA_CUDA:
@@ -224,17 +211,19 @@ def _gpu_reason() -> str | None:
 
 
 @pytest.fixture(scope="module", params=["simulator", "gpu"])
-def checks(request, tmp_path_factory):
-    folder = str(tmp_path_factory.mktemp(f"cuda-{request.param}"))
+def checks(request, tmp_path_factory, cuda_simulator_checks):
+    """The results of tests/cuda_checks.py: under the simulator (small populations;
+    started as the session started, see conftest.py), and on a GPU where there is one."""
     if request.param == "simulator":
         if not HAVE_NUMBA_CUDA:
             pytest.skip("numba-cuda is not installed")
-        return run_checks(True, "300", "500,200", folder)
+        return cuda_simulator_checks.result()
     reason = _gpu_reason()
     if reason is not None:
         print(f"GPU checks skipped: {reason}")
         pytest.skip(reason)
-    return run_checks(False, "200000", "65536,65536,65536,1000", folder)
+    folder = tmp_path_factory.mktemp("cuda-gpu")
+    return CudaChecks(False, folder, "200000", "65536,65536,65536,1000").result()
 
 
 def test_gpu_block_sums_equal_numpy_for_every_law_set_and_branch(checks):
