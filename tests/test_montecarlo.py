@@ -491,26 +491,44 @@ def test_monte_carlo_agrees_with_the_analytic_curves_on_both_branches_for_every_
     assert set(finite.branch) == set(run.spec.branches)
 
 
+@pytest.fixture(scope="module")
+def toy_cycles_over_seeds(tmp_path_factory):
+    """The toy cycle (rows: h = 1 on approach, 0; retraction h = 1, 0, after the turn
+    at 0) run with seeds 0..149, and its quadrature expectations. Each z-score test
+    below picks its quantity and row out of these same independent runs."""
+    from lawset_toy import TOY
+
+    from mcsim.laws import LAW_SETS
+    from mcsim.results import assemble
+
+    material = dataclasses.replace(SILICON, tau=1e8)
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setenv("MCSIM_CACHE_DIR", str(tmp_path_factory.mktemp("cache")))
+        mp.setitem(LAW_SETS, TOY.name, TOY)
+        base = spec(h=[1.0, 0.0], law="toy", cycle=True, material=material, area=2e-10,
+                    realizations=2)  # fmt: skip
+        summaries = [
+            assemble(run_sums(dataclasses.replace(base, entropy=seed), workers=1)).summary
+            for seed in range(150)
+        ]
+        return toy_expected(base, material), summaries
+
+
 @pytest.mark.parametrize(
     ("quantity", "row"),
     [("load", 0), ("load", 2), ("area", 2), ("contact_fraction", 2), ("friction", 0)],
 )
 def test_z_scores_of_a_law_set_with_hysteresis_over_independent_seeds_are_standard_normal(
-    toy, quantity, row
+    toy_cycles_over_seeds, quantity, row
 ):
-    """As for the seed, on both branches (rows: h = 1 on approach, 0; retraction h = 1, 0,
-    after the turn at 0): one z per seed against the quadrature, n = 150:
+    """As for the seed, on both branches: one z per seed against the quadrature, n = 150:
     |mean| < 5/√n and |var − 1| < 5·√(2/(n−1))."""
-    from mcsim.results import assemble
-
-    n = 150
-    base = spec(h=[1.0, 0.0], law="toy", cycle=True, material=toy, area=2e-10, realizations=2)
-    expected = toy_expected(base, toy)[quantity][row]
-    zs = []
-    for seed in range(n):
-        summary = assemble(run_sums(dataclasses.replace(base, entropy=seed), workers=1)).summary
-        zs.append((summary.mean[quantity][row] - expected) / summary.se[quantity][row])
-    zs = np.array(zs)
+    expected, summaries = toy_cycles_over_seeds
+    n = len(summaries)
+    assert n == 150
+    zs = np.array(
+        [(s.mean[quantity][row] - expected[quantity][row]) / s.se[quantity][row] for s in summaries]
+    )
     assert np.all(np.isfinite(zs))
     assert abs(zs.mean()) < 5 / np.sqrt(n)
     assert abs(zs.var(ddof=1) - 1) < 5 * np.sqrt(2 / (n - 1))
