@@ -96,6 +96,14 @@ def interrupt(proc, timeout: float = 60.0) -> tuple[int, str]:
 
 
 @pytest.fixture(scope="session")
+def law_set_cache(tmp_path_factory) -> str:
+    """A throw-away kernel cache (``MCSIM_CACHE_DIR``) for the test-only law sets, never
+    the user's; one for the session, so that a kernel compiled once is found on disk
+    again after a test has cleared the in-process cache."""
+    return str(tmp_path_factory.mktemp("law-set-cache"))
+
+
+@pytest.fixture(scope="session")
 def long_run_reference():
     """The uninterrupted ``mcsim simulate --surface smooth --h=2:-1:7 --area 1e-8
     --realizations 500 --seed 3`` (a ~4 s run that the Ctrl-C and SIGKILL tests interrupt

@@ -286,13 +286,13 @@ def test_json_output_is_strict_json_with_null_for_undefined_values(capsys, tmp_p
 
 
 @pytest.fixture
-def toy_material(monkeypatch, tmp_path):
+def toy_material(monkeypatch, tmp_path, law_set_cache):
     """The test-only toy law set registered, and a material file giving tau."""
     from lawset_toy import TOY, TOY_APPROACH_ONLY
 
     from mcsim.laws import LAW_SETS
 
-    monkeypatch.setenv("MCSIM_CACHE_DIR", str(tmp_path / "cache"))
+    monkeypatch.setenv("MCSIM_CACHE_DIR", law_set_cache)
     monkeypatch.setitem(LAW_SETS, TOY.name, TOY)
     monkeypatch.setitem(LAW_SETS, TOY_APPROACH_ONLY.name, TOY_APPROACH_ONLY)
     path = tmp_path / "m.toml"

@@ -16,10 +16,10 @@ MATERIAL = dataclasses.replace(MATERIALS["silicon"], H=12.5e9, z0=0.3e-9, tau=1e
 
 
 @pytest.fixture(autouse=True, scope="module")
-def _private_cache(tmp_path_factory):
+def _private_cache(law_set_cache):
     """Test law sets compile into a throw-away cache, not the user's."""
     mp = pytest.MonkeyPatch()
-    mp.setenv("MCSIM_CACHE_DIR", str(tmp_path_factory.mktemp("cache")))
+    mp.setenv("MCSIM_CACHE_DIR", law_set_cache)
     yield
     mp.undo()
 

@@ -300,7 +300,7 @@ def test_threads_starting_together_on_a_cold_cache_build_the_kernel_once(monkeyp
 
 
 @pytest.fixture
-def toy(monkeypatch, tmp_path):
+def toy(monkeypatch, law_set_cache):
     """The toy law set registered, compiled into a throw-away cache."""
     import dataclasses
 
@@ -308,7 +308,7 @@ def toy(monkeypatch, tmp_path):
 
     from mcsim.laws import LAW_SETS
 
-    monkeypatch.setenv("MCSIM_CACHE_DIR", str(tmp_path / "cache"))
+    monkeypatch.setenv("MCSIM_CACHE_DIR", law_set_cache)
     monkeypatch.setitem(LAW_SETS, TOY.name, TOY)
     monkeypatch.setitem(LAW_SETS, TOY_APPROACH_ONLY.name, TOY_APPROACH_ONLY)
     return dataclasses.replace(SILICON, tau=1e8)
@@ -492,7 +492,7 @@ def test_monte_carlo_agrees_with_the_analytic_curves_on_both_branches_for_every_
 
 
 @pytest.fixture(scope="module")
-def toy_cycles_over_seeds(tmp_path_factory):
+def toy_cycles_over_seeds(law_set_cache):
     """The toy cycle (rows: h = 1 on approach, 0; retraction h = 1, 0, after the turn
     at 0) run with seeds 0..149, and its quadrature expectations. Each z-score test
     below picks its quantity and row out of these same independent runs."""
@@ -503,7 +503,7 @@ def toy_cycles_over_seeds(tmp_path_factory):
 
     material = dataclasses.replace(SILICON, tau=1e8)
     with pytest.MonkeyPatch.context() as mp:
-        mp.setenv("MCSIM_CACHE_DIR", str(tmp_path_factory.mktemp("cache")))
+        mp.setenv("MCSIM_CACHE_DIR", law_set_cache)
         mp.setitem(LAW_SETS, TOY.name, TOY)
         base = spec(h=[1.0, 0.0], law="toy", cycle=True, material=material, area=2e-10,
                     realizations=2)  # fmt: skip

@@ -246,14 +246,14 @@ def test_a_schema_1_run_file_still_opens_with_identical_results():
 
 
 @pytest.fixture
-def toy(monkeypatch, tmp_path):
+def toy(monkeypatch, law_set_cache):
     import dataclasses
 
     from lawset_toy import TOY
 
     from mcsim.laws import LAW_SETS
 
-    monkeypatch.setenv("MCSIM_CACHE_DIR", str(tmp_path / "cache"))
+    monkeypatch.setenv("MCSIM_CACHE_DIR", law_set_cache)
     monkeypatch.setitem(LAW_SETS, TOY.name, TOY)
     return dataclasses.replace(MATERIALS["silicon"], tau=1e8, z0=0.3e-9)
 
