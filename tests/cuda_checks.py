@@ -116,11 +116,15 @@ def simulated_runs(folder: str) -> dict:
 
 
 def one_core() -> None:
-    """Keep this process on one core. The simulator runs each CUDA thread as a Python
-    thread; handing the GIL among 256 of them across cores takes twice the time (and
-    more than one core) that it takes on one."""
+    """Keep this process on one core, at low priority. The simulator runs each CUDA
+    thread as a Python thread; handing the GIL among 256 of them across cores takes
+    twice the time (and more than one core) that it takes on one. tests/conftest.py
+    runs these checks beside the other tests: they take a core left idle and give way
+    to the tests on a busy one."""
     if hasattr(os, "sched_setaffinity"):
         os.sched_setaffinity(0, {max(os.sched_getaffinity(0))})
+    if hasattr(os, "nice"):
+        os.nice(10)
 
 
 def main() -> None:
