@@ -906,6 +906,16 @@ def _add_separations_or_loads(p, balance: str) -> None:
                       "unit is given), '1uN,10uN' or a range as for --pressure; pressure = load/--area")  # fmt: skip
 
 
+def _add_parallel(p, workers: str) -> None:
+    """``--workers`` (described as ``workers``), ``--scheduler`` and ``--dask``."""
+    p.add_argument("--workers", type=_count,
+                   help=f"{workers} (default: all cores); results do not depend on it")  # fmt: skip
+    p.add_argument("--scheduler", metavar="ADDRESS",
+                   help="run on an existing Dask cluster, e.g. tcp://host:8786 (needs mcsim[dask])")  # fmt: skip
+    p.add_argument("--dask", choices=("local",),
+                   help="'local': start a local Dask cluster of --workers processes")  # fmt: skip
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = _Parser(
         prog="mcsim",
@@ -1005,18 +1015,7 @@ def build_parser() -> argparse.ArgumentParser:
     )
     p.add_argument("--out", help="run file (default: runs/<surface>-<time>.h5)")
     p.add_argument("--overwrite", action="store_true", help="replace an existing run file")
-    p.add_argument(
-        "--workers",
-        type=_count,
-        help="worker threads (default: all cores); results do not depend on it",
-    )
-    p.add_argument("--scheduler", metavar="ADDRESS",
-                   help="run on an existing Dask cluster, e.g. tcp://host:8786 (needs mcsim[dask])")  # fmt: skip
-    p.add_argument(
-        "--dask",
-        choices=("local",),
-        help="'local': start a local Dask cluster of --workers processes",
-    )
+    _add_parallel(p, "worker threads")
     p.add_argument(
         "--chunk-size",
         type=_count,
@@ -1066,15 +1065,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--device", choices=("cpu", "cuda"), default="cpu",
                    help="where the Monte Carlo runs sample and sum (cuda: this machine's GPU, needs "
                    "mcsim[gpu]; points then run one after another)")  # fmt: skip
-    p.add_argument("--workers", type=_count, help="worker threads, or processes of --dask local "
-                   "(default: all cores); results do not depend on it")  # fmt: skip
-    p.add_argument("--scheduler", metavar="ADDRESS",
-                   help="run on an existing Dask cluster, e.g. tcp://host:8786 (needs mcsim[dask])")  # fmt: skip
-    p.add_argument(
-        "--dask",
-        choices=("local",),
-        help="'local': start a local Dask cluster of --workers processes",
-    )
+    _add_parallel(p, "worker threads, or processes of --dask local")
     p.add_argument("--overwrite", action="store_true", help="replace an existing sweep file")
     p.add_argument("--resume", action="store_true", help="continue from the checkpoint beside --out "
                    "(same arguments): completed points are not recomputed")  # fmt: skip

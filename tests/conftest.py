@@ -6,7 +6,9 @@ the repository (``$MCSIM_TEST_DATA`` or ``~/.cache/mcsim-test-data``) and never
 committed. Nanosurf's NSFopen package (MIT, a test dependency) ships real .nid maps.
 """
 
+import csv
 import importlib.util
+import io
 import json
 import os
 import subprocess
@@ -176,3 +178,17 @@ def cuda_simulator_checks(request, tmp_path_factory):
     checks = CudaChecks(True, tmp_path_factory.mktemp("cuda-simulator"), "300", "500,200")
     yield checks
     checks.stop()  # only if the tests that wait for it did not run
+
+
+def run_cli(capsys, *argv):
+    """``mcsim ARGV`` in this process (arguments as strings): exit code, stdout, stderr."""
+    from mcsim.cli import main
+
+    code = main([str(a) for a in argv])
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def rows_of(out: str) -> list[dict]:
+    """The rows of CSV text."""
+    return list(csv.DictReader(io.StringIO(out)))

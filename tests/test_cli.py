@@ -10,17 +10,11 @@ import time
 
 import numpy as np
 import pytest
-from conftest import interrupt
+from conftest import interrupt, run_cli
 
 from mcsim.analytic import gw_curves
 from mcsim.cli import main
 from mcsim.presets import MATERIALS, SURFACES
-
-
-def run_cli(capsys, *argv):
-    code = main(list(argv))
-    out, err = capsys.readouterr()
-    return code, out, err
 
 
 def test_analytic_csv_has_the_six_columns_and_the_analytic_values(capsys):

@@ -5,19 +5,17 @@ put into the registry for the duration of a test; a material preset with z0 and 
 added the same way.
 """
 
-import csv
 import dataclasses
-import io
 import json
 import math
 
 import numpy as np
 import pytest
+from conftest import rows_of, run_cli
 from toy_laws import MATERIAL, TOY
 
 from mcsim import gw_curves
 from mcsim.adhesion import adhesion_summary
-from mcsim.cli import main
 from mcsim.laws import LAW_SETS
 from mcsim.presets import MATERIALS, SURFACES
 
@@ -27,16 +25,6 @@ def registered(monkeypatch):
     monkeypatch.setitem(LAW_SETS, "toy", TOY)
     monkeypatch.setitem(MATERIALS, "si-tau", MATERIAL)
     monkeypatch.setitem(MATERIALS, "si-z0", dataclasses.replace(MATERIAL, tau=None))
-
-
-def run_cli(capsys, *argv):
-    code = main(list(argv))
-    out, err = capsys.readouterr()
-    return code, out, err
-
-
-def rows_of(out):
-    return list(csv.DictReader(io.StringIO(out)))
 
 
 def test_analytic_csv_columns_of_a_contact_law_set(capsys):

@@ -1,16 +1,15 @@
 """Results versus load (issue 11, §1): load control on the approach branch."""
 
-import csv
-import io
 import json
 import math
 
 import numpy as np
 import pytest
+from conftest import rows_of, run_cli
 from scipy import integrate, optimize, stats
 
 from mcsim import gw_curves
-from mcsim.cli import main, parse_values
+from mcsim.cli import parse_values
 from mcsim.errors import ParameterError
 from mcsim.loadcontrol import load_control, solve_targets
 from mcsim.plotting import light_load_ratio
@@ -25,16 +24,6 @@ H = "12.5 GPa"
 z0 = "0.3 nm"
 tau = "100 MPa"
 """
-
-
-def run_cli(capsys, *argv):
-    code = main(list(argv))
-    out, err = capsys.readouterr()
-    return code, out, err
-
-
-def rows_of(out):
-    return list(csv.DictReader(io.StringIO(out)))
 
 
 @pytest.mark.parametrize("law, quantity", [("seed", "P"), ("jkr", "load")])

@@ -5,6 +5,7 @@ import math
 
 import numpy as np
 import pytest
+from conftest import run_cli
 
 from mcsim.cli import main
 from mcsim.errors import ParameterError, UnitError
@@ -122,12 +123,6 @@ def cycle_run(tmp_path_factory):
     return simulate(tmp_path_factory.mktemp("pads") / "c.h5", "--cycle")
 
 
-def run_cli(capsys, *argv):
-    code = main([str(a) for a in argv])
-    out, err = capsys.readouterr()
-    return code, out, err
-
-
 def test_pads_json_has_exactly_the_statistics_of_the_runs_per_pad_pull_off(cycle_run, capsys):
     from mcsim.runfile import read_run
 
@@ -201,7 +196,9 @@ def test_a_missing_file_is_a_one_line_error_naming_it(tmp_path, capsys):
     assert str(tmp_path / "none.h5") in err
 
 
-def test_an_incomplete_cycle_run_is_a_one_line_error_naming_the_file(tmp_path, capsys):
+def half_done_checkpoint(path):
+    """A checkpoint of a jkr cycle run of 4 pads (smooth, 1e-12 m², seed 9) holding its
+    first two; returns the partial sums written."""
     from mcsim.montecarlo import EnsembleSums, MonteCarloSpec, run_sums
     from mcsim.presets import MATERIALS, SURFACES
     from mcsim.runfile import write_checkpoint
@@ -211,7 +208,12 @@ def test_an_incomplete_cycle_run_is_a_one_line_error_naming_the_file(tmp_path, c
     full = run_sums(spec)
     partial = EnsembleSums.start(spec)
     partial.sums[:2], partial.done_blocks[:2] = full.sums[:2], full.n_blocks[:2]
-    write_checkpoint(tmp_path / "p.h5", partial, command="test")
+    write_checkpoint(path, partial, command="test")
+    return partial
+
+
+def test_an_incomplete_cycle_run_is_a_one_line_error_naming_the_file(tmp_path, capsys):
+    half_done_checkpoint(tmp_path / "p.h5")
     err = one_line_error(capsys, "pads", tmp_path / "p.h5")
     assert str(tmp_path / "p.h5") in err and "incomplete run" in err
 
@@ -322,17 +324,9 @@ def test_pads_csv_has_one_row_per_pad_with_the_pull_off_in_newtons(cycle_run, ca
 
 
 def test_pads_partial_reads_the_completed_pads_of_a_checkpoint_and_says_how_many(tmp_path, capsys):
-    from mcsim.montecarlo import EnsembleSums, MonteCarloSpec, run_sums
-    from mcsim.presets import MATERIALS, SURFACES
     from mcsim.results import assemble
-    from mcsim.runfile import write_checkpoint
 
-    spec = MonteCarloSpec(SURFACES["smooth"], MATERIALS["silicon"], np.array([1.0, 0.0]), 1e-12,
-                          4, 9, law="jkr", cycle=True)  # fmt: skip
-    full = run_sums(spec)
-    partial = EnsembleSums.start(spec)
-    partial.sums[:2], partial.done_blocks[:2] = full.sums[:2], full.n_blocks[:2]
-    write_checkpoint(tmp_path / "p.partial.h5", partial, command="test")
+    partial = half_done_checkpoint(tmp_path / "p.partial.h5")
     err = one_line_error(capsys, "pads", tmp_path / "p.partial.h5")
     assert "--partial" in err and "--resume" in err
     code, out, err = run_cli(capsys, "pads", tmp_path / "p.partial.h5", "--partial", "--format",

@@ -10,10 +10,10 @@ import warnings
 
 import numpy as np
 import pytest
+from conftest import run_cli
 
 from mcsim.adhesion import RegimeWarning, adhesion_summary
 from mcsim.analytic import gw_curves
-from mcsim.cli import main
 from mcsim.errors import MCSimError, ParameterError
 from mcsim.presets import MATERIALS, PAPER_SURFACES, SURFACES
 from mcsim.sweeps import SUMMARY, sweep
@@ -22,12 +22,6 @@ SMOOTH, SILICON = SURFACES["smooth"], MATERIALS["silicon"]
 #: The four Table-1 surfaces' σ (m).
 TABLE1_SIGMA = [SURFACES[name].sigma for name in PAPER_SURFACES]
 H = [3.0, 1.0, 0.0, -0.5]
-
-
-def run_cli(capsys, *argv):
-    code = main(list(argv))
-    out, err = capsys.readouterr()
-    return code, out, err
 
 
 @pytest.fixture(scope="module")

@@ -6,9 +6,9 @@ import dataclasses
 
 import numpy as np
 import pytest
+from conftest import run_cli
 
 from mcsim.adhesion import DMT_BELOW, JKR_ABOVE, maugis_parameter
-from mcsim.cli import main
 from mcsim.errors import MCSimError, ParameterError
 from mcsim.plotting import save
 from mcsim.presets import MATERIALS, SURFACES
@@ -19,12 +19,6 @@ SMOOTH, SILICON = SURFACES["smooth"], MATERIALS["silicon"]
 H = [2.0, 1.0, 0.0]
 #: w at which Maugis' λ of the smooth surface on silicon is DMT_BELOW (λ ∝ w^(2/3)).
 W_DMT = 0.5 * (DMT_BELOW / maugis_parameter(SMOOTH, SILICON)) ** 1.5
-
-
-def run_cli(capsys, *argv):
-    code = main(list(argv))
-    out, err = capsys.readouterr()
-    return code, out, err
 
 
 @pytest.fixture(scope="module")
