@@ -6,44 +6,45 @@ other light commands do not pay for SciPy, h5py or numba.
 
 import importlib
 
-from ._version import __version__
-from .errors import MCSimError, ParameterError, RunFileError, UnitError
+from mcsim._version import __version__
+from mcsim.model.errors import MCSimError, ParameterError, RunFileError, UnitError
 
 _LAZY = {
-    "AnalyticCurves": "analytic",
-    "gw_curves": "analytic",
-    "GAUSSIAN": "distributions",
-    "Gaussian": "distributions",
-    "HeightDistribution": "distributions",
-    "Empirical": "empirical",
-    "LAW_SETS": "laws",
-    "LawSet": "laws",
-    "get_law_set": "laws",
-    "Material": "params",
-    "Surface": "params",
-    "combine_surfaces": "params",
-    "plasticity_index": "params",
-    "surface_energy_parameter": "params",
-    "LoadControl": "loadcontrol",
-    "load_control": "loadcontrol",
-    "Run": "results",
-    "simulate": "simulation",
-    "Sweep": "sweeps",
-    "sweep": "sweeps",
-    "read_run": "runfile",
+    "AnalyticCurves": "physics.analytic",
+    "gw_curves": "physics.analytic",
+    "GAUSSIAN": "model.distributions",
+    "Gaussian": "model.distributions",
+    "HeightDistribution": "model.distributions",
+    "Empirical": "topography.empirical",
+    "LAW_SETS": "physics.laws",
+    "LawSet": "physics.laws",
+    "get_law_set": "physics.laws",
+    "Material": "model.params",
+    "Surface": "model.params",
+    "combine_surfaces": "model.params",
+    "plasticity_index": "model.params",
+    "surface_energy_parameter": "model.params",
+    "LoadControl": "physics.loadcontrol",
+    "load_control": "physics.loadcontrol",
+    "Run": "store.results",
+    "simulate": "studies.simulation",
+    "Sweep": "store.sweepfile",
+    "sweep": "studies.sweeps",
+    "read_run": "store.runfile",
 }
 
-#: Submodules reachable as attributes after a plain ``import mcsim`` (``mcsim.laws.jkr``).
+#: Submodules reachable as attributes after a plain ``import mcsim`` (``mcsim.laws.jkr``), by
+#: their short names of mcsim 0.2.
 _SUBMODULES = {
-    "adhesion",
-    "analytic",
-    "laws",
-    "plotting",
-    "presets",
-    "results",
-    "statistics",
-    "sweeps",
-    "units",
+    "adhesion": "physics.adhesion",
+    "analytic": "physics.analytic",
+    "laws": "physics.laws",
+    "plotting": "figures",
+    "presets": "model.presets",
+    "results": "store.results",
+    "statistics": "engine.statistics",
+    "sweeps": "studies.sweeps",
+    "units": "model.units",
 }
 
 __all__ = [
@@ -62,7 +63,7 @@ def __getattr__(name: str):
         globals()[name] = value
         return value
     if name in _SUBMODULES:
-        return importlib.import_module(f".{name}", __name__)
+        return importlib.import_module(f".{_SUBMODULES[name]}", __name__)
     raise AttributeError(f"module 'mcsim' has no attribute {name!r}")
 
 

@@ -112,8 +112,8 @@ def long_run_reference():
     and resume), computed once for the session."""
     import numpy as np
 
-    from mcsim.presets import MATERIALS, SURFACES
-    from mcsim.simulation import simulate
+    from mcsim.model.presets import MATERIALS, SURFACES
+    from mcsim.studies.simulation import simulate
 
     h = np.linspace(2, -1, 7)
     return simulate(SURFACES["smooth"], MATERIALS["silicon"], h, 1e-8, realizations=500, seed=3)
@@ -122,9 +122,9 @@ def long_run_reference():
 @pytest.fixture(scope="session")
 def dask_local_client():
     """One local Dask cluster of two single-threaded worker processes for the whole session
-    (starting one costs ~10 s on two cores), as ``mcsim.cluster.dask_client("local")`` makes."""
+    (starting one costs ~10 s on two cores), as ``mcsim.engine.cluster.dask_client("local")`` makes."""
     pytest.importorskip("distributed", reason="Dask (extra 'dask') not installed")
-    from mcsim.cluster import dask_client
+    from mcsim.engine.cluster import dask_client
 
     with dask_client("local", workers=2) as client:
         yield client
@@ -182,7 +182,7 @@ def cuda_simulator_checks(request, tmp_path_factory):
 
 def run_cli(capsys, *argv):
     """``mcsim ARGV`` in this process (arguments as strings): exit code, stdout, stderr."""
-    from mcsim.cli import main
+    from mcsim.cli.main import main
 
     code = main([str(a) for a in argv])
     out, err = capsys.readouterr()

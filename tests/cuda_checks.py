@@ -1,4 +1,4 @@
-"""Checks of the GPU path (mcsim.cuda), run in a process of their own.
+"""Checks of the GPU path (mcsim.engine.cuda), run in a process of their own.
 
 ``python tests/cuda_checks.py`` prints one JSON object. tests/test_cuda.py runs it
 under numba's CUDA simulator (``NUMBA_ENABLE_CUDASIM=1``, small populations) and, where
@@ -15,11 +15,11 @@ import sys
 
 import numpy as np
 
-from mcsim import cuda as mc
-from mcsim.empirical import Empirical
-from mcsim.kernels import block_sums_numpy
-from mcsim.laws import LAW_SETS
-from mcsim.presets import MATERIALS, SURFACES
+from mcsim.engine import cuda as mc
+from mcsim.engine.kernels import block_sums_numpy
+from mcsim.model.presets import MATERIALS, SURFACES
+from mcsim.physics.laws import LAW_SETS
+from mcsim.topography.empirical import Empirical
 
 SURFACE = SURFACES["smooth"]
 #: Silicon with the optional fields some law sets require.
@@ -100,7 +100,7 @@ def simulated_runs(folder: str) -> dict:
     files' datasets, the device they record, and the z-scores against the GW curves."""
     import h5py
 
-    from mcsim.simulation import simulate
+    from mcsim.studies.simulation import simulate
 
     kw = dict(realizations=2, seed=3, count="fixed", device="cuda", overwrite=True)
     area = 900 / SURFACE.eta

@@ -8,7 +8,7 @@ contract. Importable by the generated kernel module (``tests`` is on ``sys.path`
 
 import numpy as np
 
-from mcsim.laws import Edges, LawSet, Output
+from mcsim.physics.laws import Edges, LawSet, Output
 
 
 def toy_load(delta, delta_max, R, K, c, table):

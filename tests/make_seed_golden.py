@@ -9,12 +9,12 @@ from pathlib import Path
 
 import numpy as np
 
-from mcsim.analytic import gw_curves
-from mcsim.empirical import Empirical
-from mcsim.kernels import block_sums
-from mcsim.laws import SEED
-from mcsim.presets import MATERIALS, PAPER_SURFACES, SURFACES
-from mcsim.simulation import simulate
+from mcsim.engine.kernels import block_sums
+from mcsim.model.presets import MATERIALS, PAPER_SURFACES, SURFACES
+from mcsim.physics.analytic import gw_curves
+from mcsim.physics.laws import SEED
+from mcsim.studies.simulation import simulate
+from mcsim.topography.empirical import Empirical
 
 OUT = Path(__file__).parent / "data" / "seed_golden.npz"
 H = np.linspace(4.0, -1.0, 11)

@@ -10,8 +10,8 @@ import dataclasses
 import numpy as np
 
 from mcsim import Empirical
-from mcsim.laws import Edges, LawSet, Output
-from mcsim.presets import MATERIALS
+from mcsim.model.presets import MATERIALS
+from mcsim.physics.laws import Edges, LawSet, Output
 
 Z0 = 0.3e-9
 MATERIAL = dataclasses.replace(MATERIALS["silicon"], z0=Z0, tau=1e8)

@@ -3,7 +3,7 @@
 For the four combined surfaces of Table 1 (rough, intermediate, smooth, super-smooth)
 and silicon (z0 from the preset), every contact law set (``jkr``, ``dmt``,
 ``maugis-dugdale``, ``elastic-plastic``) is put through an approach–retraction cycle
-on the analytic GW curves (:func:`mcsim.adhesion.adhesion_summary`): the surfaces
+on the analytic GW curves (:func:`mcsim.physics.adhesion.adhesion_summary`): the surfaces
 rest under zero external load (the default turn), or, where the approach load is
 never tensile (no adhesive rest), are pressed to h_turn = 0. Reported: the turn,
 pull-off (force/(A_n K) and MPa) and its separation, work of separation and
@@ -21,9 +21,9 @@ import warnings
 from reporting import parser, write_summary
 
 from mcsim import gw_curves
-from mcsim.adhesion import RegimeWarning, adhesion_summary, choose_law, regime_warnings
-from mcsim.laws import get_law_set
-from mcsim.presets import MATERIALS, PAPER_SURFACES, SURFACES
+from mcsim.model.presets import MATERIALS, PAPER_SURFACES, SURFACES
+from mcsim.physics.adhesion import RegimeWarning, adhesion_summary, choose_law, regime_warnings
+from mcsim.physics.laws import get_law_set
 
 LAWS = ("jkr", "dmt", "maugis-dugdale", "elastic-plastic")
 FALLBACK_TURN = 0.0

@@ -17,7 +17,7 @@ numba compile (cold, into an empty ``MCSIM_CACHE_DIR``) and the cached start-up,
 split of mcsim's time between sampling (``sample_block``) and the kernel
 (``block_sums``), and the arithmetic bound: the kernel takes 3 square roots per
 contacting pair, so ``np.sqrt`` throughput / 3 bounds the pairs per second. Finally the
-kernel's cost per contacting pair for every registered law set (``mcsim.laws.LAW_SETS``,
+kernel's cost per contacting pair for every registered law set (``mcsim.physics.laws.LAW_SETS``,
 silicon with z0 = 0.3 nm and τ = 100 MPa), on approach and over a cycle (approach, then
 retraction from h = −1), against the seed's.
 
@@ -54,9 +54,9 @@ import time
 import numpy as np
 from reporting import child_seeds, parser, provenance
 
-from mcsim.laws import SEED
-from mcsim.montecarlo import MonteCarloSpec, default_workers, run_sums
-from mcsim.presets import MATERIALS, SURFACES
+from mcsim.engine.montecarlo import MonteCarloSpec, default_workers, run_sums
+from mcsim.model.presets import MATERIALS, SURFACES
+from mcsim.physics.laws import SEED
 
 SURFACE, MATERIAL = SURFACES["smooth"], MATERIALS["silicon"]
 #: Separation sweeps d/σ: (start, stop, count) for np.linspace.
@@ -204,8 +204,8 @@ def run_case(case: str, n: float, sweep_name: str, repeats: int, seed: int) -> d
         result |= {"wall": best, "workers": workers, "pairs": float(sums[:, 0].sum())}
         result["sums"] = sums.tolist()
     elif case == "parts":
-        from mcsim.kernels import block_sums
-        from mcsim.montecarlo import plan_patch, sample_block
+        from mcsim.engine.kernels import block_sums
+        from mcsim.engine.montecarlo import plan_patch, sample_block
 
         warm_up()
         spec = spec_for(n, h, seed)
@@ -231,7 +231,7 @@ def run_case(case: str, n: float, sweep_name: str, repeats: int, seed: int) -> d
     elif case == "laws":
         result["laws"] = law_costs(n, h, repeats, seed)
     elif case == "analytic":
-        from mcsim.analytic import gw_curves
+        from mcsim.physics.analytic import gw_curves
 
         h_dense = np.linspace(4.0, -1.0, 1000)
         gw_curves(SURFACE, MATERIAL, h_dense)
@@ -260,9 +260,9 @@ def law_costs(n: float, h: np.ndarray, repeats: int, seed: int) -> dict:
     """
     import dataclasses
 
-    from mcsim.kernels import block_sums
-    from mcsim.laws import LAW_SETS
-    from mcsim.montecarlo import plan_patch, sample_block
+    from mcsim.engine.kernels import block_sums
+    from mcsim.engine.montecarlo import plan_patch, sample_block
+    from mcsim.physics.laws import LAW_SETS
 
     material = dataclasses.replace(MATERIAL, z0=0.3e-9, tau=100e6)
     out, kernels = {}, {}

@@ -1,12 +1,12 @@
-"""Speed of the GPU backend (``mcsim.cuda``) against a bare CUDA kernel and the CPU engine.
+"""Speed of the GPU backend (``mcsim.engine.cuda``) against a bare CUDA kernel and the CPU engine.
 
 Seed law set, smooth surface, silicon, one patch of N summits (fixed count), the sweep
 h = d/σ = 4 … −1 (51 values), heights drawn above h_min = −1. Cases, in one process:
 
-* **mcsim cuda, kernel**: the launches of :func:`mcsim.cuda.patch_block_sums_cuda`
+* **mcsim cuda, kernel**: the launches of :func:`mcsim.engine.cuda.patch_block_sums_cuda`
   (sampling on the GPU fused into the kernel, per-block sums copied back), timed
   between synchronisations, compilation excluded (a warm-up run first);
-* **mcsim cuda, end to end**: the summit counts drawn (:func:`mcsim.montecarlo.plan_patch`),
+* **mcsim cuda, end to end**: the summit counts drawn (:func:`mcsim.engine.montecarlo.plan_patch`),
   the launches, and the per-block sums added on the host in block order, as the engine
   does;
 * **bare kernel**: the ceiling, a plain numba-cuda kernel written for the seed alone:
@@ -28,10 +28,10 @@ import time
 import numpy as np
 from numba import cuda
 
-from mcsim import cuda as mc
-from mcsim.laws import SEED
-from mcsim.montecarlo import BLOCK, MonteCarloSpec, default_workers, plan_patch, run_sums
-from mcsim.presets import MATERIALS, SURFACES
+from mcsim.engine import cuda as mc
+from mcsim.engine.montecarlo import BLOCK, MonteCarloSpec, default_workers, plan_patch, run_sums
+from mcsim.model.presets import MATERIALS, SURFACES
+from mcsim.physics.laws import SEED
 
 SURFACE, MATERIAL = SURFACES["smooth"], MATERIALS["silicon"]
 H = np.linspace(4.0, -1.0, 51)

@@ -21,9 +21,9 @@ import numpy as np
 from gw_moments import scatter_coefficients
 from reporting import child_seeds, parser, save_figure, write_summary
 
-from mcsim.analytic import gw_curves
-from mcsim.presets import MATERIALS, SURFACES
-from mcsim.simulation import simulate
+from mcsim.model.presets import MATERIALS, SURFACES
+from mcsim.physics.analytic import gw_curves
+from mcsim.studies.simulation import simulate
 
 SURFACE, MATERIAL = SURFACES["smooth"], MATERIALS["silicon"]
 H = np.array([0.0, 1.0, 2.0])

@@ -22,8 +22,8 @@ import numpy as np
 from gw_moments import scatter_coefficients
 from reporting import child_seeds, parser, save_figure, write_summary
 
-from mcsim.presets import MATERIALS, PAPER_SURFACES, SURFACES
-from mcsim.simulation import simulate
+from mcsim.model.presets import MATERIALS, PAPER_SURFACES, SURFACES
+from mcsim.studies.simulation import simulate
 
 MATERIAL = MATERIALS["silicon"]
 AREA = 1e-10  # m², a 10 µm × 10 µm patch

@@ -2,11 +2,11 @@
 
 Greenwood–Williamson summits with Gaussian heights, each obeying exact JKR under fixed
 penetration (law set ``jkr``): pressed to a closest approach h_turn, then pulled apart.
-The pull-off force (the most tensile load on retraction, :func:`mcsim.adhesion.adhesion_summary`)
+The pull-off force (the most tensile load on retraction, :func:`mcsim.physics.adhesion.adhesion_summary`)
 is normalised by what the same summits would give if they all sat at one height,
 N_turn · (3/2)πwR, N_turn = N·P(S > h_turn) the summits touched at the turn
 ((3/2)πwR is the least load on a JKR summit's stable branch), and plotted against the
-adhesion parameter θ = E* σ^{3/2}/(R^{1/2} w) (:func:`mcsim.adhesion.adhesion_parameter`),
+adhesion parameter θ = E* σ^{3/2}/(R^{1/2} w) (:func:`mcsim.physics.adhesion.adhesion_parameter`),
 varied through σ at the smooth surface's R and η, silicon's E* and w.
 
 Fuller & Tabor's result: the normalised pull-off falls from 1 for θ → 0 to almost
@@ -26,9 +26,9 @@ import numpy as np
 from reporting import parser, save_figure, write_summary
 
 from mcsim import ParameterError
-from mcsim.adhesion import RegimeWarning, adhesion_parameter, adhesion_summary
-from mcsim.plotting import fuller_tabor_figure
-from mcsim.presets import MATERIALS, SURFACES
+from mcsim.figures.adhesion import fuller_tabor_figure
+from mcsim.model.presets import MATERIALS, SURFACES
+from mcsim.physics.adhesion import RegimeWarning, adhesion_parameter, adhesion_summary
 
 TURNS = (0.0, 1.0, 2.0)
 

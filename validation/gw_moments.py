@@ -13,7 +13,7 @@ N summits,
 
 The expectations are computed here with adaptive quadrature in u = √(s − h) (which
 removes the δ^{3/2} branch point), independently of the Gauss–Legendre rule that
-:func:`mcsim.analytic.gw_curves` uses.
+:func:`mcsim.physics.analytic.gw_curves` uses.
 """
 
 from __future__ import annotations
@@ -21,8 +21,8 @@ from __future__ import annotations
 import numpy as np
 from scipy import integrate
 
-from mcsim.laws import seed
-from mcsim.params import Material, Surface
+from mcsim.model.params import Material, Surface
+from mcsim.physics.laws import seed
 
 _PAIRS = ("p", "f", "t", "pp", "ff", "tt", "pf", "pt", "ft")
 

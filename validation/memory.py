@@ -56,9 +56,9 @@ def child(n: float, workers: int, seed: int, law: str = "seed") -> dict:
     def maxrss() -> float:
         return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / MB
 
-    from mcsim.laws import get_law_set
-    from mcsim.presets import MATERIALS, SURFACES
-    from mcsim.simulation import simulate
+    from mcsim.model.presets import MATERIALS, SURFACES
+    from mcsim.physics.laws import get_law_set
+    from mcsim.studies.simulation import simulate
 
     surface, material = SURFACES["smooth"], MATERIALS["silicon"]
     h_grid = np.linspace(*H_RANGE)

@@ -4,14 +4,14 @@ For each of the paper's four combined surfaces (Table 1) with silicon (z0 = 0.3 
 the law set ``--law auto`` picks on the Johnson–Greenwood map, and pads of nominal area
 A from 0.3 to 100 µm² (ηA ≈ 3 to 2600 summits, Poisson count), a ``--cycle`` Monte
 Carlo run approaches to h_turn = 0 and retracts; each realization is one pad and its
-pull-off is :meth:`mcsim.results.Run.pull_off` (most tensile retraction load on the
+pull-off is :meth:`mcsim.store.results.Run.pull_off` (most tensile retraction load on the
 grid). Reported per surface and area: mean pad pull-off (µN) against the GW analytic
-mean (:func:`mcsim.pads.analytic_pad_pull_off`), the coefficient of variation CV =
+mean (:func:`mcsim.studies.pads.analytic_pad_pull_off`), the coefficient of variation CV =
 std/mean across pads and CV·√(ηA), which the N^(-1/2) law says is constant, and the
 CV predicted from one patch's moments: a pad's pull-off is, to first order, minus its
 load at the separation h* where the mean retraction load is most tensile, whose
 variance for a Poisson count is ηA E[x²] (x the load of one summit), estimated by the
-pooled Σx² of the run (:func:`mcsim.pads.moment_std`); CV_pred = that/(mean pull-off).
+pooled Σx² of the run (:func:`mcsim.studies.pads.moment_std`); CV_pred = that/(mean pull-off).
 
 Measured (default run, seed 20240611, 300 pads per point, ≈ 20 s): super-smooth follows
 the law at every area, CV·√(ηA) = 1.13–1.25 from ηA = 8 to 2600, CV within |z| < 2 of
@@ -39,10 +39,10 @@ import warnings
 import numpy as np
 from reporting import child_seeds, parser, save_figure, write_summary
 
-from mcsim.adhesion import RegimeWarning, choose_law
-from mcsim.pads import analytic_pad_pull_off, moment_std, pad_statistics
-from mcsim.presets import MATERIALS, PAPER_SURFACES, SURFACES
-from mcsim.simulation import simulate
+from mcsim.model.presets import MATERIALS, PAPER_SURFACES, SURFACES
+from mcsim.physics.adhesion import RegimeWarning, choose_law
+from mcsim.studies.pads import analytic_pad_pull_off, moment_std, pad_statistics
+from mcsim.studies.simulation import simulate
 
 MATERIAL = MATERIALS["silicon"]
 AREAS_UM2 = (0.3, 1.0, 3.0, 10.0, 30.0, 100.0)

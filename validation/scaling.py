@@ -43,7 +43,7 @@ from benchmark import (
 from benchmark import warm_up as warm_up_kernel
 from reporting import child_seeds, parser, save_figure, write_summary
 
-from mcsim.montecarlo import run_sums
+from mcsim.engine.montecarlo import run_sums
 
 H_START, H_STOP = 4.0, -1.0
 M_DEFAULT = 51

@@ -39,9 +39,9 @@ import numpy as np
 from benchmark import MIB, best_of, machine, peak_rss
 from reporting import parser, provenance
 
-from mcsim.adhesion import RegimeWarning
-from mcsim.presets import MATERIALS, SURFACES
-from mcsim.sweeps import sweep
+from mcsim.model.presets import MATERIALS, SURFACES
+from mcsim.physics.adhesion import RegimeWarning
+from mcsim.studies.sweeps import sweep
 
 SURFACE, MATERIAL = SURFACES["smooth"], MATERIALS["silicon"]
 

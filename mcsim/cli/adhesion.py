@@ -1,0 +1,88 @@
+"""``mcsim adhesion``: pull-off, work of separation, hysteresis and regime numbers."""
+
+from __future__ import annotations
+
+import json
+import math
+
+from mcsim.cli.display import contact_inputs, cutoff_notes, describe_inputs, print_lines, print_rows
+from mcsim.cli.options import add_inputs, inputs_of, parse_turn, resolve_law
+from mcsim.model.errors import ParameterError
+
+#: Keys of ``mcsim adhesion``, in order, with unit and meaning.
+ADHESION_KEYS = {
+    "pull_off": ("1", "pull-off force/(A_n K): most tensile load on retraction (magnitude)"),
+    "h_pull_off": ("1", "separation d/sigma of the pull-off"),
+    "pull_off_pressure": ("Pa", "pull-off force per nominal area"),
+    "work_of_separation": ("J/m^2", "integral of the tensile load over d on retraction"),
+    "hysteresis": ("J/m^2", "integral of (approach - retraction load) over d"),
+    "tabor": ("1", "Tabor mu_T = (R w^2/(E*^2 z0^3))^(1/3)"),
+    "maugis_lambda": ("1", "Maugis lambda = 2 sigma0 (R/(pi w K^2))^(1/3), sigma0 = w/(0.97 z0)"),
+    "adhesion_parameter": ("1", "Fuller-Tabor theta = E* sigma^(3/2)/(R^(1/2) w)"),
+    "plasticity_index": ("1", "psi = (E*/H) sqrt(sigma/R)"),
+    "turn": ("1", "closest approach h_turn = d_turn/sigma before retraction"),
+}
+
+
+def run(args) -> int:
+    import warnings
+
+    from mcsim.physics.adhesion import RegimeWarning, adhesion_summary
+
+    surface, material = inputs_of(args)
+    law, notes = resolve_law(args, surface, material)
+    if args.plot:
+        from mcsim.store.outputs import check_output
+
+        if not str(args.plot).endswith(".png"):
+            raise ParameterError(
+                f"--plot: {args.plot}: the figure is a PNG file, its name must end in .png"
+            )
+        check_output(args.plot, overwrite=args.overwrite)  # before the work, not after it
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RegimeWarning)  # printed once below
+        summary = adhesion_summary(surface, material, law, turn=parse_turn(args.turn))
+        if args.plot:
+            from mcsim.figures.adhesion import adhesion_figure
+            from mcsim.figures.style import save
+
+            save(
+                adhesion_figure(surface, material, law, summary),
+                args.plot,
+                overwrite=args.overwrite,
+            )
+    values = summary.to_dict()
+    notes += cutoff_notes(surface, material, summary.law, summary.h_pull_off)
+    turn_from = {"given": "given by --turn", "zero load on approach": "zero approach load"}.get(
+        summary.turn_from, summary.turn_from
+    )
+    print_lines(notes)
+    if args.format == "json":
+        out = {k: values[k] for k in ADHESION_KEYS}
+        out |= {"turn_from": turn_from, "law": summary.law}
+        clean = {k: (None if isinstance(v, float) and not math.isfinite(v) else v)
+                 for k, v in out.items()}  # fmt: skip
+        print(json.dumps(clean, indent=1, allow_nan=False))
+        return 0
+    rows = [{"quantity": k, "value": values[k], "unit": u, "meaning": m}
+            for k, (u, m) in ADHESION_KEYS.items()]  # fmt: skip
+    rows = [{**r, "value": math.nan if r["value"] is None else float(r["value"])} for r in rows]
+    header = [*describe_inputs(surface, material), contact_inputs(material), f"law set {summary.law}; turn h_turn = "
+              f"{summary.turn:.6g} ({turn_from})"]  # fmt: skip
+    print_rows(rows, ["quantity", "value", "unit", "meaning"], args.format, header)
+    return 0
+
+
+def add_parser(sub) -> None:
+    p = sub.add_parser("adhesion", help="pull-off force, work of separation, regime numbers",
+                       description="Adhesion summary from the analytic curves: pull-off force and its separation, "
+                       "work of separation and hysteresis of an approach-retraction cycle, and the Tabor, "
+                       "Maugis, Fuller-Tabor and plasticity numbers.")  # fmt: skip
+    add_inputs(p, separations=False, law="auto")
+    p.add_argument("--turn", metavar="H", help="closest approach d/sigma before retraction "
+                   "(default: where the approach load is zero, resting under no external load)")  # fmt: skip
+    p.add_argument("--format", choices=("table", "json"), default="table")
+    p.add_argument("--plot", metavar="FILE.png", help="also draw the approach and retraction load "
+                   "curves with the pull-off marked and the work of separation shaded")  # fmt: skip
+    p.add_argument("--overwrite", action="store_true", help="replace an existing --plot file")
+    p.set_defaults(func=run)

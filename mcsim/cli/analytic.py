@@ -1,0 +1,142 @@
+"""``mcsim analytic``: the analytic GW curves, versus separation or load."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+from mcsim.cli.display import (
+    contact_inputs,
+    cutoff_notes,
+    describe_inputs,
+    dimensional,
+    print_lines,
+    print_rows,
+)
+from mcsim.cli.options import (
+    FORMATS,
+    LOAD_UNITS,
+    add_inputs,
+    add_separations_or_loads,
+    area_option,
+    inputs_of,
+    parse_h,
+    parse_turn,
+    pressures_option,
+    resolve_law,
+)
+from mcsim.model.errors import ParameterError
+
+
+def _load_control(args, surface, material, law: str, notes: list[str]) -> int:
+
+    from mcsim.physics.loadcontrol import load_control
+
+    area = area_option(args)
+    inputs = [x for x in (args.surface, args.material) if x and Path(x).is_file()]
+    if args.plot is not None:
+        from mcsim.store.outputs import check_output
+
+        if not str(args.plot).endswith(".png"):
+            raise ParameterError(
+                f"--plot: {args.plot}: the figure is a PNG file, its name must end in .png"
+            )
+        check_output(args.plot, inputs=inputs, overwrite=args.overwrite)
+    pressure = pressures_option(args, area)
+    result = load_control(surface, material, pressure, law)
+    if result.equilibrium.any():
+        notes += cutoff_notes(surface, material, law, result.h[result.equilibrium])
+    table = result.columns()
+    if area is not None:
+        table["force_N"] = pressure * area
+        table |= dimensional(result.curves, area)
+    columns = list(table)
+    rows = [{c: (bool(v[i]) if v.dtype == bool else float(v[i])) for c, v in table.items()}
+            for i in range(pressure.size)]  # fmt: skip
+    print_lines(notes)
+    if result.equilibrium.size and not result.equilibrium.all():
+        print_lines(["tensile load beyond the pull-off: no equilibrium (h undefined)"])
+    if args.format == "json":
+        clean = [{k: (None if isinstance(v, float) and v != v else v) for k, v in r.items()}
+                 for r in rows]  # fmt: skip
+        out = {"law": result.curves.law, "balanced": result.quantity, "K_Pa": material.K,
+               "area_m2": area, "units": {c: LOAD_UNITS[c] for c in columns}, "rows": clean}  # fmt: skip
+        print(json.dumps(out, indent=1, allow_nan=False))
+    else:
+        header = [*describe_inputs(surface, material), f"law set {result.curves.law}: pressure p (Pa) "
+                  f"balances {result.quantity} = p/K on the approach branch (K = "
+                  f"{material.K / 1e9:.4g} GPa)", "jump: reached through a jump of h; "
+                  "equilibrium false: tensile beyond the pull-off"]  # fmt: skip
+        print_rows(rows, columns, args.format, header)
+    if args.plot is not None:
+        from mcsim.figures.loadcontrol import load_control_figure
+        from mcsim.figures.style import save
+
+        save(load_control_figure(result), args.plot, overwrite=args.overwrite, inputs=inputs)
+    return 0
+
+
+def run(args) -> int:
+    from mcsim.physics.analytic import gw_curves
+
+    surface, material = inputs_of(args)
+    law, notes = resolve_law(args, surface, material)
+    if args.h is None:
+        if args.branch != "approach" or args.turn is not None:
+            raise ParameterError("--branch/--turn: load control is on the approach branch only")
+        return _load_control(args, surface, material, law, notes)
+    if args.plot is not None:
+        raise ParameterError("--plot applies to --pressure/--load only")
+    curves = gw_curves(surface, material, parse_h(args.h), law, branch=args.branch,
+                       turn=parse_turn(args.turn))  # fmt: skip
+    notes += cutoff_notes(surface, material, curves.law, curves.h)
+    table = curves.columns()
+    area = area_option(args)
+    if area is not None:
+        table |= dimensional(curves, area)
+    columns = list(table)
+    rows = [{c: float(table[c][i]) for c in columns} for i in range(curves.h.size)]
+    if curves.law == "seed":
+        meaning = "dimensionless: P, F, T = force/(A_n K) (Eqs. 3, 5, 7); mu = T/(P+F) (Eq. 8)"
+    else:
+        meaning = ("dimensionless: load = net force/(A_n K), > 0 compressive; area = A_r/A_n; "
+                   "friction = tau A_r/(A_n K); mu = friction/load, undefined where load <= 0")  # fmt: skip
+    header = describe_inputs(surface, material)
+    if curves.law != "seed":
+        header.append(contact_inputs(material))
+        turn = (
+            "" if curves.turn is None else f" after the closest approach h_turn = {curves.turn:g}"
+        )
+        header.append(f"law set {curves.law}, branch {curves.branch}{turn}")
+    header.append(meaning)
+    print_lines(notes)
+    print_rows(rows, columns, args.format, header)
+    return 0
+
+
+def add_parser(sub) -> None:
+    p = sub.add_parser(
+        "analytic",
+        help="analytic GW curves (Eqs. 1-8)",
+        description="Analytic GW curves versus h = d/sigma (--h), or versus load: the separation on "
+        "the approach branch that balances a nominal pressure p (--pressure, or --load with --area), "
+        "p = load K. For the seed the balanced load is the paper's external force P (Eq. 3), "
+        "P/(A_n K) = p/K; for the other law sets it is load = force/(A_n K). Where adhesion makes the "
+        "load non-monotone the stable separation (reached by raising the load from zero) is reported "
+        "and a jump on the way is flagged; a tensile load beyond the pull-off has no equilibrium. "
+        "Units: pressure Pa; h, contact_fraction, load, area, friction, mu dimensionless as with --h; "
+        "with --area also N_c, force_N (applied), load_N, friction_N, P_N, F_N, T_N (N) and area_m2 (m^2).",
+    )
+    add_inputs(p, separations=False)
+    add_separations_or_loads(p, "the curves' separations balance them")
+    p.add_argument("--area", metavar="AREA", help="nominal area A_n, e.g. 1mm^2 (m^2 unless a unit "
+                   "is given): adds dimensional columns (forces in N)")  # fmt: skip
+    p.add_argument("--plot", metavar="FILE.png", help="with --pressure/--load: plot A_r/A_n versus "
+                   "p/E* and friction versus load")  # fmt: skip
+    p.add_argument("--overwrite", action="store_true", help="replace an existing --plot file")
+    p.add_argument("--branch", choices=("approach", "retract"), default="approach",
+                   help="approach from far away (default) or retraction after --turn")  # fmt: skip
+    p.add_argument("--turn", metavar="H", help="closest approach d/sigma before retraction "
+                   "(default: the lowest --h)")  # fmt: skip
+    p.add_argument("--format", choices=FORMATS, default="table")
+    p.set_defaults(func=run)

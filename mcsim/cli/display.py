@@ -1,0 +1,124 @@
+"""What the commands print: inputs, tables, notes."""
+
+from __future__ import annotations
+
+import contextlib
+import json
+import sys
+
+
+def describe_inputs(surface, material) -> list[str]:
+    from mcsim.model.params import plasticity_index, surface_energy_parameter
+
+    psi = plasticity_index(surface, material)
+    lines = [
+        f"surface {surface.name or '(file)'}: sigma = {surface.sigma * 1e9:.4g} nm, R = {surface.R * 1e6:.4g} um, "
+        f"eta = {surface.eta * 1e-12:.4g} um^-2, heights {surface.heights.name}",
+        f"material {material.name or '(file)'}: K = {material.K / 1e9:.4g} GPa, G = {material.G / 1e9:.4g} GPa, "
+        f"gamma = {material.gamma:.4g} J/m^2",
+        f"A0 = eta R sigma = {surface.A0:.4g}, B0 = gamma/(K sigma) = {surface_energy_parameter(surface, material):.4g}, "
+        f"R0 = R/sigma = {surface.R0:.4g}",
+    ]
+    if psi is not None:
+        note = (
+            " (> 1: mostly plastic contacts; the elastic model is questionable)" if psi > 1 else ""
+        )
+        lines.append(f"plasticity index psi = (E*/H) sqrt(sigma/R) = {psi:.3g}{note}")
+    return lines
+
+
+def print_rows(
+    rows: list[dict], columns: list[str], fmt: str, header: list[str] | None = None
+) -> None:
+    if fmt == "json":
+        clean = [
+            {k: (None if isinstance(v, float) and v != v else v) for k, v in r.items()}
+            for r in rows
+        ]
+        print(json.dumps(clean, indent=1, allow_nan=False))  # undefined values are null
+        return
+    if fmt == "csv":
+        import csv
+
+        writer = csv.DictWriter(
+            sys.stdout, fieldnames=columns, extrasaction="ignore", lineterminator="\n"
+        )
+        writer.writeheader()
+        for row in rows:
+            writer.writerow({k: ("" if isinstance(v, float) and v != v else (repr(v) if isinstance(v, float) else v))
+                             for k, v in row.items()})  # fmt: skip
+        return
+    for line in header or []:
+        print(f"# {line}")
+
+    def cell(v):
+        if isinstance(v, float):
+            return "undefined" if v != v else f"{v:.6g}"
+        return str(v)
+
+    table = [[cell(r.get(c, "")) for c in columns] for r in rows]
+    widths = [
+        max(len(c), *(len(t[i]) for t in table)) if table else len(c) for i, c in enumerate(columns)
+    ]
+    print("  ".join(c.rjust(w) for c, w in zip(columns, widths)).rstrip())
+    for t in table:
+        print("  ".join(v.rjust(w) for v, w in zip(t, widths)).rstrip())
+
+
+def cutoff_notes(surface, material, law: str, h) -> list[str]:
+    """For ``dmt``: how much of the attraction its tail cutoff drops at separations ``h``."""
+    if law != "dmt":
+        return []
+    import numpy as np
+
+    from mcsim.physics.laws import dmt
+
+    h = np.atleast_1d(np.asarray(h, dtype=float))
+    frac = dmt.truncated_fraction(surface, material, h)
+    where = (f"at h = {h[0]:g}" if h.size == 1 else
+             f"from {frac.min():.3g} to {frac.max():.3g} over h = {h.min():g} .. {h.max():g}")  # fmt: skip
+    if h.size == 1:
+        where = f"{frac[0]:.3g} {where}"
+    return [f"note: dmt cuts the van der Waals tail at a gap of {dmt.DEFAULT_CUTOFF:g} z0: "
+            f"it drops {where} of the attraction (mcsim.physics.laws.dmt.truncated_fraction)"]  # fmt: skip
+
+
+def print_lines(lines: list[str]) -> None:
+    for line in lines:
+        print(f"mcsim: {line}", file=sys.stderr)
+
+
+def contact_inputs(material) -> str:
+    def given(value, scale, unit):
+        return "not given" if value is None else f"{value * scale:.4g} {unit}"
+
+    return (f"z0 = {given(material.z0, 1e9, 'nm')}, tau = {given(material.tau, 1e-6, 'MPa')}, "
+            f"H = {given(material.H, 1e-9, 'GPa')}")  # fmt: skip
+
+
+def dimensional(curves, area: float) -> dict:
+    """Dimensional columns for a nominal area: N_c and forces in N, the area in m^2."""
+    forces = curves.forces(area)
+    return {("area_m2" if k == "area" else k if k == "N_c" else f"{k}_N"): v
+            for k, v in forces.items()}  # fmt: skip
+
+
+@contextlib.contextmanager
+def log_notes(quiet: bool):
+    """Print the library's log records (notices, estimates) as ``mcsim: ...`` lines on stderr."""
+    import logging
+
+    logger = logging.getLogger("mcsim")
+    handler = logging.StreamHandler(sys.stderr)
+    handler.setFormatter(logging.Formatter("mcsim: %(message)s"))
+    handler.setLevel(logging.WARNING if quiet else logging.INFO)
+    level, propagate = logger.level, logger.propagate
+    logger.addHandler(handler)
+    logger.setLevel(logging.INFO)
+    logger.propagate = False
+    try:
+        yield
+    finally:
+        logger.removeHandler(handler)
+        logger.setLevel(level)
+        logger.propagate = propagate

@@ -1,0 +1,81 @@
+"""``mcsim ingest``: a height map or histogram to a surface file."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from mcsim.cli.options import parse_h
+from mcsim.model.errors import ParameterError
+
+
+def run(args) -> int:
+    from mcsim.model.units import parse_quantity
+    from mcsim.store.outputs import check_output
+    from mcsim.studies.ingest import ingest_file
+    from mcsim.studies.ingested import IngestResult
+    from mcsim.studies.simulation import cli_command
+
+    def length(value, option):
+        return None if value is None else parse_quantity(value, "length", option)
+
+    out = Path(args.out) if args.out else Path(f"{Path(args.file).stem}.toml")
+    extra = IngestResult.companion_paths(out)
+    figures = [extra["histogram_figure"]] + ([extra["comparison_figure"]] if args.plot else [])
+    for path in [out, extra["histogram"], *figures]:  # all refused before any work or writing
+        check_output(path, inputs=[args.file], overwrite=args.overwrite)
+    material = None
+    if args.plot:
+        from mcsim.store.config import load_material
+
+        material = load_material(args.material)
+    elif args.material != "silicon":
+        raise ParameterError("--material: used only by the --plot figure; add --plot")
+    result = ingest_file(
+        args.file, unit=args.unit, pixel_size=length(args.pixel_size, "--pixel-size"),
+        route=args.route, level=args.level, heights=args.heights, R=length(args.R, "--R"),
+        eta=None if args.eta is None else parse_quantity(args.eta, "density", "--eta"),
+        channel=args.channel,
+    )  # fmt: skip
+    for line in result.summary_lines():
+        print(line)
+    written = result.write_surface(out, overwrite=args.overwrite, command=cli_command())
+    from mcsim.figures.style import save
+    from mcsim.figures.topography import comparison_figure, histogram_figure
+
+    title = f"{result.heights_from}: {Path(args.file).name}"
+    save(histogram_figure(result.distribution, result.distribution.sigma, title=title), figures[0],
+         overwrite=args.overwrite, inputs=[args.file])  # fmt: skip
+    if args.plot:
+        s = result.surface
+        fig = comparison_figure(s, result.gaussian_surface, material, parse_h("4:-1:51"))
+        save(fig, figures[1], overwrite=args.overwrite, inputs=[args.file])
+    print(f"wrote {', '.join(str(p) for p in [*written, *figures])}")
+    print(f"next: mcsim analytic --surface {out} --h=4:-1:11")
+    return 0
+
+
+def add_parser(sub) -> None:
+    p = sub.add_parser("ingest", help="height map or histogram to a surface file",
+                       description="Read a measured height map (.gwy .ibw .nid .npy .xyz, text matrix) or a text "
+                       "histogram; print its height and summit statistics (direct and spectral routes); write a "
+                       "surface TOML file with the measured summit-height histogram beside it.")  # fmt: skip
+    p.add_argument("file", help="height map or text histogram")
+    p.add_argument("--channel", help="channel of a multi-channel file (.gwy .ibw .nid; default: the "
+                   "height channel); an unknown name lists the file's channels")  # fmt: skip
+    p.add_argument("--unit", help="height unit if the file stores none (e.g. nm)")
+    p.add_argument("--pixel-size", help="pixel size if the file stores none (e.g. 10nm)")
+    p.add_argument("--out", help="surface file (default: <file stem>.toml here)")
+    p.add_argument("--overwrite", action="store_true", help="replace existing output files")
+    p.add_argument("--route", choices=("direct", "spectral"), default="direct",
+                   help="summit statistics written as sigma, R, eta (default: direct)")  # fmt: skip
+    p.add_argument("--level", default="plane", choices=("none", "plane", "poly2", "poly3", "poly4", "poly5"),
+                   help="levelling before analysis (default: plane; none removes the mean only)")  # fmt: skip
+    p.add_argument("--heights", choices=("summits", "map"), default="summits",
+                   help="histogram written: direct-route summit heights (default) or all map heights")  # fmt: skip
+    p.add_argument("--R", help="summit radius for a histogram input (e.g. 1.7um)")
+    p.add_argument("--eta", help="summit density for a histogram input (e.g. 17um^-2)")
+    p.add_argument("--plot", action="store_true",
+                   help="also plot the analytic curves against the Gaussian GW curves")  # fmt: skip
+    p.add_argument("--material", default="silicon",
+                   help="material of the --plot curves: preset or FILE.toml (default: silicon)")  # fmt: skip
+    p.set_defaults(func=run)

@@ -1,0 +1,220 @@
+"""Option blocks and option parsing shared by the commands."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+from mcsim.model.errors import ParameterError
+
+FORMATS = ("table", "csv", "json")
+
+
+#: Most separations one --h spec may ask for (a curve needs tens to hundreds).
+MAX_SEPARATIONS = 10_000
+
+
+def parse_h(spec: str) -> list[float]:
+    """``"-1,0,1.5"`` (a list) or ``"4:-1:51"`` (start:stop:num, inclusive) to a list of floats.
+
+    At most :data:`MAX_SEPARATIONS` values.
+    """
+    import numpy as np
+
+    text = spec.strip()
+    if not text:
+        raise ParameterError("--h: empty list of separations")
+    try:
+        if ":" in text:
+            start, stop, num = text.split(":")
+            start, stop, num = float(start), float(stop), int(num)
+        else:
+            values = [float(x) for x in text.split(",")]
+    except ValueError:
+        raise ParameterError(
+            f"--h: cannot read {spec!r} (give a list '-1,0,1.5' or start:stop:num '4:-1:51')"
+        ) from None
+    if ":" in text:
+        if not 1 <= num <= MAX_SEPARATIONS:
+            raise ParameterError(
+                f"--h: {spec!r} asks for {num} points (allowed: 1 <= num <= {MAX_SEPARATIONS})"
+            )
+        values = np.linspace(start, stop, num).tolist()
+    if len(values) > MAX_SEPARATIONS:
+        raise ParameterError(
+            f"--h: {len(values)} separations, more than the limit of {MAX_SEPARATIONS}"
+        )
+    bad = [v for v in values if not np.isfinite(v)]
+    if bad:
+        raise ParameterError(f"--h: separations must be finite, got {bad[0]!r}")
+    return values
+
+
+def inputs_of(args):
+    from mcsim.store.config import load_material, load_surface, material_in_surface_file
+
+    surface = load_surface(args.surface)
+    if args.material is not None:
+        material = load_material(args.material)
+    else:
+        from mcsim.model.presets import MATERIALS
+
+        material = material_in_surface_file(args.surface) or MATERIALS["silicon"]
+    return surface, material
+
+
+def parse_turn(text: str | None) -> float | None:
+    if text is None:
+        return None
+    try:
+        return float(text)
+    except ValueError:
+        raise ParameterError(
+            f"--turn: cannot read {text!r} (give a separation d/sigma, e.g. --turn=-0.5)"
+        ) from None
+
+
+def resolve_law(args, surface, material) -> tuple[str, list[str]]:
+    """The law set (``auto`` resolved on the adhesion map) and the stderr lines to print."""
+    from mcsim.physics.adhesion import choose_law, regime_warnings
+
+    lines = []
+    law = args.law
+    if law == "auto":
+        law, reason = choose_law(surface, material)
+        lines.append(reason)
+    lines += [f"warning: {w}" for w in regime_warnings(surface, material, law)]
+    return law, lines
+
+
+def parse_values(spec: str, dimension: str, option: str) -> list[float]:
+    """Values of a CLI option (:func:`mcsim.model.units.parse_values`), at most
+    :data:`MAX_SEPARATIONS` of them."""
+    from mcsim.model.units import parse_values
+
+    return parse_values(spec, dimension, option, limit=MAX_SEPARATIONS)
+
+
+#: Unit of each load-control column (``mcsim analytic --pressure``).
+LOAD_UNITS = {
+    "pressure": "Pa", "h": "1 (d/sigma)", "contact_fraction": "1 (N_c/N)",
+    "load": "1 (force/(A_n K))", "area": "1 (A_r/A_n)", "friction": "1 (tau A_r/(A_n K))",
+    "P": "1 (P/(A_n K), Eq. 3)", "F": "1 (F/(A_n K), Eq. 5)", "T": "1 (T/(A_n K), Eq. 7)",
+    "mu": "1", "jump": "bool", "equilibrium": "bool", "force_N": "N", "N_c": "1 (count)",
+    "load_N": "N", "area_m2": "m^2", "friction_N": "N", "P_N": "N", "F_N": "N", "T_N": "N",
+}  # fmt: skip
+
+
+def area_option(args) -> float | None:
+    from mcsim.model.params import check_range
+    from mcsim.model.units import parse_quantity
+
+    if args.area is None:
+        return None
+    return check_range("--area", parse_quantity(args.area, "area", "--area"), "m^2", low=0)
+
+
+def pressures_option(args, area: float | None):
+    """Nominal pressures (Pa, > 0) of ``--pressure``, or of ``--load`` over ``--area``."""
+    import numpy as np
+
+    if args.load is not None:
+        if area is None:
+            raise ParameterError("--load needs --area (the nominal area A_n: pressure = load/area)")
+        pressure = np.array(parse_values(args.load, "force", "--load")) / area
+        option = "--load"
+    else:
+        pressure = np.array(parse_values(args.pressure, "pressure", "--pressure"))
+        option = "--pressure"
+    bad = pressure[~(pressure > 0)]
+    if bad.size:
+        raise ParameterError(f"{option}: {bad[0]:g} Pa is out of range (allowed: > 0, compressive)")
+    return pressure
+
+
+def balancing_h(args, surface, material):
+    """Separations that balance ``--pressure`` (or ``--load`` over the patch ``--area``)
+    on the analytic approach branch (:func:`mcsim.physics.loadcontrol.load_control`), and the
+    pressures (Pa)."""
+    from mcsim.physics.loadcontrol import load_control
+
+    if args.cycle:
+        raise ParameterError("--pressure/--load: load control is on the approach branch only "
+                             "(not with --cycle)")  # fmt: skip
+    pressure = pressures_option(args, area_option(args))
+    result = load_control(surface, material, pressure, args.law)
+    if not args.quiet:
+        jumped = int(result.jump.sum())
+        print(f"mcsim: load control ({result.quantity} = p/K on the approach branch): "
+              f"{pressure.size} pressure(s) from {pressure.min():.4g} to {pressure.max():.4g} Pa "
+              f"at h = {result.h.max():.6g} .. {result.h.min():.6g}"
+              + (f"; {jumped} reached through a jump" if jumped else ""), file=sys.stderr)  # fmt: skip
+    return [float(x) for x in result.h], pressure
+
+
+def integer(low: int):
+    """argparse type: a whole number >= ``low`` written in digits (``1e9`` is refused)."""
+
+    def parse(text: str) -> int:
+        try:
+            value = int(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(
+                f"{text!r} is not a whole number written in digits (allowed: integer >= {low})"
+            ) from None
+        if value < low:
+            raise argparse.ArgumentTypeError(f"{value} is out of range (allowed: integer >= {low})")
+        return value
+
+    return parse
+
+
+#: A root seed (numpy's SeedSequence takes non-negative integers only) and a count.
+seed_type, count_type = integer(0), integer(1)
+
+
+def add_inputs(p: argparse.ArgumentParser, separations: bool = True, law: str = "seed") -> None:
+    p.add_argument(
+        "--surface",
+        required=True,
+        help="preset (rough, intermediate, smooth, super-smooth, ...) or FILE.toml",
+    )
+    p.add_argument(
+        "--material",
+        help="preset (silicon) or FILE.toml; default: the surface file's [material], else silicon",
+    )
+    meaning = {
+        "seed": "the paper as written",
+        "auto": "chosen on the Johnson-Greenwood adhesion map",
+    }
+    p.add_argument("--law", default=law, help=f"law set or auto (default: {law}, {meaning[law]})")
+    if not separations:
+        return
+    p.add_argument("--h", required=True, metavar="SPEC",
+                   help="separations d/sigma: a list '--h=-1,0,1.5' or start:stop:num '--h=4:-1:51' "
+                        f"(at most {MAX_SEPARATIONS})")  # fmt: skip
+
+
+def add_separations_or_loads(p, balance: str) -> None:
+    """``--h``, or the pressures (``--pressure``) or forces (``--load``, over ``--area``)
+    whose balancing separations on the analytic approach branch are used instead."""
+    mode = p.add_mutually_exclusive_group(required=True)
+    mode.add_argument("--h", metavar="SPEC",
+                      help="separations d/sigma: a list '--h=-1,0,1.5' or start:stop:num '--h=4:-1:51' "
+                           f"(at most {MAX_SEPARATIONS})")  # fmt: skip
+    mode.add_argument("--pressure", metavar="SPEC", help="instead of --h: nominal pressures (> 0, Pa "
+                      "unless a unit is given), a list '1kPa,1MPa' or start:stop:num[:log] "
+                      f"'1kPa:10MPa:31:log'; {balance} (seed: P = p/K, Eq. 3; other law sets: "
+                      "load = p/K)")  # fmt: skip
+    mode.add_argument("--load", metavar="SPEC", help="instead of --h: applied forces (> 0, N unless a "
+                      "unit is given), '1uN,10uN' or a range as for --pressure; pressure = load/--area")  # fmt: skip
+
+
+def add_parallel(p, workers: str) -> None:
+    """``--workers`` (described as ``workers``), ``--scheduler`` and ``--dask``."""
+    p.add_argument("--workers", type=count_type,
+                   help=f"{workers} (default: all cores); results do not depend on it")  # fmt: skip
+    p.add_argument("--scheduler", metavar="ADDRESS",
+                   help="run on an existing Dask cluster, e.g. tcp://host:8786 (needs mcsim[dask])")  # fmt: skip
+    p.add_argument("--dask", choices=("local",),
+                   help="'local': start a local Dask cluster of --workers processes")  # fmt: skip

@@ -1,0 +1,120 @@
+"""``mcsim pads``: pull-off statistics of finite pads from a cycle run."""
+
+from __future__ import annotations
+
+import json
+import math
+import sys
+from pathlib import Path
+
+from mcsim.cli.display import print_rows
+from mcsim.cli.options import FORMATS
+from mcsim.model.errors import ParameterError
+
+#: Names of the intervals of ``mcsim pads``, as printed.
+_INTERVAL_NAMES = {"clopper-pearson": "Clopper-Pearson", "wilson": "Wilson"}
+
+
+def run(args) -> int:
+    from mcsim.model.units import parse_quantity
+    from mcsim.store.runfile import read_run
+    from mcsim.studies.pads import analytic_pad_pull_off, pad_statistics
+
+    fr = None
+    if args.restoring_force is not None:
+        fr = parse_quantity(args.restoring_force, "force", "--restoring-force")
+        if fr < 0:
+            raise ParameterError(f"--restoring-force: {args.restoring_force!r} is negative "
+                                 "(allowed: a force >= 0, e.g. 2uN)")  # fmt: skip
+    if args.plot:
+        from mcsim.store.outputs import check_output
+
+        if Path(args.plot).suffix.lower() != ".png":
+            raise ParameterError(
+                f"--plot: {args.plot}: the figure is a PNG file, its name must end in .png"
+            )
+        check_output(args.plot, inputs=[args.run], overwrite=args.overwrite)
+    run = read_run(args.run, allow_incomplete=args.partial)
+    try:
+        pull_off = run.pull_off()
+    except ParameterError as err:
+        raise ParameterError(f"{args.run}: {err}") from None
+    stats = pad_statistics(pull_off.force, fr, args.interval)
+    analytic = analytic_pad_pull_off(run.spec)
+    interval = f"{_INTERVAL_NAMES[args.interval]} 95 %"
+    if not run.complete:
+        print(f"mcsim: note: {run.path} is incomplete: statistics over its {stats.pads} completed "
+              f"pad(s) of {run.attrs.get('realizations')}", file=sys.stderr)  # fmt: skip
+    out = stats.to_dict()
+    if args.format in ("json", "csv"):
+        print(f"mcsim: note: analytic mean {analytic:.6g} N (GW pull-off x A K: minimum of the mean "
+              f"curve); per-pad pull-off on the run's grid, spacing {pull_off.resolution:.3g} in h"
+              + ("; p_stick_ci: " + interval if args.format == "json" else ""), file=sys.stderr)  # fmt: skip
+    if args.format == "json":
+        print(json.dumps({k: (None if isinstance(v, float) and not math.isfinite(v) else v)
+                          for k, v in out.items()}, indent=1, allow_nan=False))  # fmt: skip
+    elif args.format == "csv":
+        print("mcsim: note: columns: pad (realization index), pull_off_N (most tensile retraction "
+              "load of the pad, a magnitude, N), h_pull_off (its separation d/sigma)", file=sys.stderr)  # fmt: skip
+        rows = [{"pad": i, "pull_off_N": float(f), "h_pull_off": float(h)}
+                for i, (f, h) in enumerate(zip(pull_off.force, pull_off.h))]  # fmt: skip
+        print_rows(rows, ["pad", "pull_off_N", "h_pull_off"], "csv")
+    else:
+        ci = out.pop("p_stick_ci", None)
+        rows_fr = [] if fr is None else [{"quantity": "restoring_force", "value": fr, "unit": "N"}]
+        rows = [{"quantity": k, "value": float(v), "unit": "1" if k in ("pads", "p_stick") else "N"}
+                for k, v in out.items()]  # fmt: skip
+        rows[7:7] = rows_fr
+        if ci is not None:
+            rows += [{"quantity": "p_stick_ci_low", "value": ci[0], "unit": "1"},
+                     {"quantity": "p_stick_ci_high", "value": ci[1], "unit": "1"}]  # fmt: skip
+        rows.append({"quantity": "analytic_mean", "value": analytic, "unit": "N"})
+        spec = run.spec
+        header = [f"run {run.path}: law {spec.law}, A = {spec.area * 1e12:.4g} um^2, E[N] = "
+                  f"{spec.expected_summits:.4g} summits per pad, {stats.pads} pads",
+                  "pull-off per pad: most tensile retraction load on the run's grid "
+                  f"(spacing {pull_off.resolution:.3g} in h); p_stick = P(pull-off > restoring force), "
+                  f"{interval} interval",
+                  "analytic_mean: GW pull-off x A K (minimum of the mean curve, not the mean of "
+                  "the per-pad minima on the grid)"]  # fmt: skip
+        print_rows(rows, ["quantity", "value", "unit"], "table", header)
+    if args.plot:
+        from mcsim.figures.style import save
+        from mcsim.studies.pads import pads_figure
+
+        fig = pads_figure(pull_off.force, analytic, restoring_force=fr,
+                          title=f"{Path(args.run).name}: pull-off of {stats.pads} pads")  # fmt: skip
+        save(fig, args.plot, overwrite=args.overwrite, inputs=[args.run])
+        print(f"wrote {args.plot}", file=sys.stderr)
+    return 0
+
+
+def add_parser(sub) -> None:
+    p = sub.add_parser("pads", help="pull-off statistics of finite pads from a --cycle run",
+                       description="Per-pad pull-off force of a --cycle Monte Carlo run (one pad per realization): "
+                       "mean, standard error, standard deviation, 5/50/95 % quantiles (N) and, with a restoring "
+                       "force, the probability that a pad sticks with its 95 % interval (Clopper-Pearson, or "
+                       "Wilson's score interval). --format csv lists each pad's pull-off force (N) instead.")  # fmt: skip
+    p.add_argument(
+        "run", help="run file (.h5) of `mcsim simulate ... --cycle` with a contact law set"
+    )
+    p.add_argument("--restoring-force", metavar="F",
+                   help="force pulling the pad off: N or with a unit ('2uN', '500nN'); a pad sticks when "
+                        "its pull-off exceeds it")  # fmt: skip
+    p.add_argument("--interval", choices=("clopper-pearson", "wilson"), default="clopper-pearson",
+                   help="95 %% interval of the probability of sticking: Clopper-Pearson exact (default; "
+                        "coverage never below 95 %%) or Wilson's score interval (Wilson 1927; shorter)")  # fmt: skip
+    p.add_argument("--format", choices=FORMATS, default="table",
+                   help="table or json: the statistics; csv: one row per pad (pull-off in N)")  # fmt: skip
+    p.add_argument(
+        "--partial",
+        action="store_true",
+        help="accept an incomplete run (a checkpoint RUN.partial.h5): its completed pads",
+    )
+    p.add_argument(
+        "--plot",
+        metavar="FILE.png",
+        help="histogram and CDF of the pad pull-off with the analytic mean",
+    )
+    p.add_argument("--overwrite", action="store_true", help="replace an existing --plot file")
+    p.set_defaults(func=run)

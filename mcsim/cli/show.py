@@ -1,0 +1,72 @@
+"""``mcsim show``: a human summary of a run or sweep file."""
+
+from __future__ import annotations
+
+import json
+
+from mcsim.cli.display import describe_inputs
+
+
+def run(args) -> int:
+    import numpy as np
+
+    from mcsim.store.runfile import read_run, read_state
+    from mcsim.store.sweepfile import is_sweep_file, read_sweep
+
+    if is_sweep_file(args.run):
+        result = read_sweep(args.run)
+        print(result)
+        a = result.attrs
+        print(
+            f"  created  {a.get('created')} by mcsim {a.get('mcsim_version')}\n  command  {a.get('command')}"
+        )
+        for inputs, error in result.failed[:5]:
+            print(f"  failed   {inputs}: {error}")
+        return 0
+    state, a = read_state(args.run)
+    spec = state.spec
+    print(f"run file      {args.run}")
+    status = "complete" if state.complete else (
+        f"INCOMPLETE: {int(state.done_blocks.sum())} of {int(state.n_blocks.sum())} blocks done, "
+        f"{int(np.sum(state.done_blocks == state.n_blocks))} of {spec.realizations} realizations complete; "
+        "finish it with the same `mcsim simulate` command plus --resume"
+    )  # fmt: skip
+    print(f"status        {status}")
+    print(
+        f"created       {a.get('created')} by mcsim {a.get('mcsim_version')} (schema {a.get('schema_version')})"
+    )
+    print(f"command       {a.get('command')}")
+    print(f"seed entropy  {spec.entropy}")
+    for line in describe_inputs(spec.surface, spec.material):
+        print(f"input         {line}")
+    print(f"law set       {spec.law}" + (f" (cycle: approach, then retraction from h = {spec.turn:g})"
+                                          if spec.cycle else ""))  # fmt: skip
+    print(f"device        {spec.device}")
+    print(
+        f"patch         A = {spec.area * 1e12:.6g} um^2, N ~ {spec.count}, E[N] = {spec.expected_summits:.6g}"
+    )
+    print(f"realizations  {spec.realizations}: N = {', '.join(str(int(n)) for n in state.n_summits[:8])}"
+          f"{' ...' if spec.realizations > 8 else ''}")  # fmt: skip
+    print(f"separations   {spec.h.size}: h = {spec.h.min():g} .. {spec.h.max():g}")
+    if "load_control" in a:  # simulate --pressure/--load: the pressures those separations balance
+        p = json.loads(a["load_control"])["pressure"]
+        print(f"load control  nominal pressure p = {min(p):g} .. {max(p):g} Pa ({len(p)} values)")
+    if not np.any(state.done_blocks == state.n_blocks):
+        return 0
+    z = read_run(args.run, allow_incomplete=True).compare()["z"].to_numpy()
+    finite = z[np.isfinite(z)]
+    if finite.size:
+        part = "" if state.complete else " (completed realizations only)"
+        print(f"vs GW         max |z| = {np.max(np.abs(finite)):.2f} over {finite.size} (h, quantity) pairs "
+              f"with enough contacts{part}; details: mcsim compare {args.run}")  # fmt: skip
+    return 0
+
+
+def add_parser(sub) -> None:
+    p = sub.add_parser(
+        "show",
+        help="human summary of a run or sweep file",
+        description="Summarise a run or sweep file.",
+    )
+    p.add_argument("run", help="run file or sweep file (.h5)")
+    p.set_defaults(func=run)

@@ -1,0 +1,136 @@
+"""``mcsim simulate``: a Monte Carlo run of finite patches, stored as HDF5."""
+
+from __future__ import annotations
+
+import json
+import sys
+from pathlib import Path
+
+from mcsim.cli.display import log_notes
+from mcsim.cli.options import (
+    add_inputs,
+    add_parallel,
+    add_separations_or_loads,
+    balancing_h,
+    count_type,
+    inputs_of,
+    parse_h,
+    seed_type,
+)
+
+
+def _default_run_path(surface) -> Path:
+    import datetime as dt
+
+    stamp = dt.datetime.now().strftime("%Y%m%d-%H%M%S")
+    folder = Path("runs")
+    folder.mkdir(exist_ok=True)
+    return folder / f"{surface.name or 'surface'}-{stamp}.h5"
+
+
+def run(args) -> int:
+    import time
+
+    from mcsim.engine.interrupt import Interrupted, interruptible
+
+    with interruptible(), log_notes(args.quiet):  # SIGINT/SIGTERM owned before heavy imports
+        from mcsim.store.files import checkpoint_path
+        from mcsim.studies.simulation import cli_command, simulate
+
+        surface, material = inputs_of(args)
+        pressure = None
+        if args.h is None:
+            h, pressure = balancing_h(args, surface, material)
+        else:
+            h = parse_h(args.h)
+        out = Path(args.out) if args.out else _default_run_path(surface)
+        show_progress = not args.quiet and sys.stderr.isatty()
+        t0 = time.perf_counter()
+        try:
+            run = simulate(
+                surface, material, h, args.area, realizations=args.realizations, seed=args.seed, law=args.law,
+                count=args.count, cycle=args.cycle, device=args.device, workers=args.workers, scheduler=args.scheduler or args.dask,
+                chunk_size=args.chunk_size, keep_heights=args.keep_heights, out=out, overwrite=args.overwrite,
+                resume=args.resume, checkpoint_every=args.checkpoint_every, progress=show_progress,
+                command=cli_command(),
+                extra_attrs=None if pressure is None else {"load_control": json.dumps(
+                    {"pressure": pressure.tolist(), "unit": "Pa"})},
+            )  # fmt: skip
+        except Interrupted as stop:
+            partial = checkpoint_path(out)
+            if partial.exists() and not args.keep_heights:
+                print(f"mcsim: interrupted ({stop}); progress saved in {partial}: run the same "
+                      "command with --resume to finish it", file=sys.stderr)  # fmt: skip
+            else:
+                print(f"mcsim: interrupted ({stop}); no output written", file=sys.stderr)
+            return stop.exit_status
+        elapsed = time.perf_counter() - t0
+        if not args.quiet:
+            n = run.n_summits
+            print(f"wrote {run.path}: {run.spec.realizations} realizations x {len(h)} separations, "
+                  f"N = {n.mean():.6g} summits per patch on average, {elapsed:.2f} s")  # fmt: skip
+            print(f"next: mcsim compare {run.path}   |   mcsim plot {run.path}")
+    return 0
+
+
+def add_parser(sub) -> None:
+    p = sub.add_parser("simulate", help="Monte Carlo run on finite patches, stored as HDF5",
+                       description="Sample finite patches, sum the per-summit laws, store the run as HDF5. "
+                       "The separations are given (--h), or are those that balance nominal pressures on the "
+                       "analytic approach branch (--pressure, or --load over the patch --area), as "
+                       "`mcsim analytic --pressure` finds them; `mcsim plot` then draws each patch's "
+                       "load and area.")  # fmt: skip
+    add_inputs(p, separations=False)
+    add_separations_or_loads(p, "the run's separations balance them")
+    p.add_argument(
+        "--area", required=True, help="patch area: m^2 or with a unit ('100um^2', '0.01mm^2')"
+    )
+    p.add_argument(
+        "--realizations", type=count_type, default=1, help="independent patches (default: 1)"
+    )
+    p.add_argument(
+        "--seed",
+        type=seed_type,
+        help="root seed, an integer >= 0 (default: fresh entropy, recorded in the file)",
+    )
+    p.add_argument(
+        "--count",
+        choices=("poisson", "fixed"),
+        default="poisson",
+        help="N ~ Poisson(eta A) or round(eta A)",
+    )
+    p.add_argument(
+        "--cycle",
+        action="store_true",
+        help="approach over the --h grid (descending), then retraction back over the same grid "
+        "from its lowest value; both branches stored",
+    )
+    p.add_argument(
+        "--device",
+        choices=("cpu", "cuda"),
+        default="cpu",
+        help="sample and sum on the CPU or on an NVIDIA GPU (needs mcsim[gpu]; other random "
+        "streams than the CPU's, recorded in the run file)",
+    )
+    p.add_argument("--out", help="run file (default: runs/<surface>-<time>.h5)")
+    p.add_argument("--overwrite", action="store_true", help="replace an existing run file")
+    add_parallel(p, "worker threads")
+    p.add_argument(
+        "--chunk-size",
+        type=count_type,
+        default=1 << 18,
+        help="summits per task (results do not depend on it)",
+    )
+    p.add_argument(
+        "--keep-heights", action="store_true", help="store the sampled heights (compressed)"
+    )
+    p.add_argument(
+        "--resume",
+        action="store_true",
+        help="continue from the checkpoint beside --out (same arguments); "
+        "without one, start from the beginning",
+    )
+    p.add_argument("--checkpoint-every", type=float, default=60.0, metavar="SECONDS",
+                   help="save progress beside --out (RUN.partial.h5) after 10 s, then this often (default: 60 s)")  # fmt: skip
+    p.add_argument("--quiet", action="store_true", help="no progress bar or summary")
+    p.set_defaults(func=run)

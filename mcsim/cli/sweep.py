@@ -1,0 +1,122 @@
+"""``mcsim sweep``: curves and adhesion summaries over a grid of inputs."""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+from mcsim.cli.display import log_notes
+from mcsim.cli.options import (
+    add_inputs,
+    add_parallel,
+    count_type,
+    inputs_of,
+    parse_h,
+    parse_turn,
+    seed_type,
+)
+from mcsim.model.errors import ParameterError
+
+#: Failed points of a sweep listed one per line on stderr; the rest are counted.
+MAX_FAILED_SHOWN = 20
+
+
+def run(args) -> int:
+    from mcsim.engine.interrupt import Interrupted, interruptible
+
+    with interruptible(), log_notes(args.quiet):  # SIGINT/SIGTERM owned before heavy imports
+        from mcsim.store.files import checkpoint_path
+        from mcsim.studies.simulation import cli_command
+        from mcsim.studies.sweeps import sweep
+
+        vary = {}
+        for item in args.vary:
+            name, sep, spec = item.partition("=")
+            if not sep:
+                raise ParameterError(f"--vary: cannot read {item!r} (give NAME=SPEC, e.g. "
+                                     "sigma=0.3nm:20nm:40:log)")  # fmt: skip
+            if name.strip() in vary:
+                raise ParameterError(f"--vary: {name.strip()!r} is given twice")
+            vary[name.strip()] = spec
+        if not args.mc and (
+            args.area is not None
+            or args.realizations is not None
+            or args.seed is not None
+            or args.device != "cpu"
+        ):
+            raise ParameterError("--area, --realizations, --seed and --device apply to the Monte Carlo runs only (add --mc)")  # fmt: skip
+        surface, material = inputs_of(args)
+        out = Path(args.out)
+        try:
+            result = sweep(
+                surface, material, vary, law=args.law, h=parse_h(args.h), turn=parse_turn(args.turn),
+                mc=args.mc, area=args.area, realizations=args.realizations or 1, seed=args.seed, device=args.device,
+                workers=args.workers, scheduler=args.scheduler or args.dask, out=out,
+                overwrite=args.overwrite, resume=args.resume, checkpoint_every=args.checkpoint_every,
+                progress=not args.quiet and sys.stderr.isatty(), command=cli_command(),
+            )  # fmt: skip
+        except Interrupted as stop:
+            partial = checkpoint_path(out)
+            saved = f"completed points saved in {partial}: run the same command with --resume to finish it"
+            print(f"mcsim: interrupted ({stop}); {saved if partial.exists() else 'no output written'}",
+                  file=sys.stderr)  # fmt: skip
+            return stop.exit_status
+        warned = result.data["regime_warning"]
+        n_warned = int((warned != "").sum())
+        if n_warned:
+            first = next(str(w) for w in warned.ravel() if w)
+            print(f"mcsim: warning: {n_warned} of {warned.size} points outside their law set's regime "
+                  f"(variable regime_warning), e.g.: {first}", file=sys.stderr)  # fmt: skip
+        failed = result.failed
+        for inputs, error in failed[:MAX_FAILED_SHOWN]:
+            shown = ", ".join(f"{k} = {v:.6g}" if isinstance(v, float) else f"{k} = {v}"
+                              for k, v in inputs.items())  # fmt: skip
+            print(f"mcsim: point {shown} failed: {error}", file=sys.stderr)
+        if len(failed) > MAX_FAILED_SHOWN:
+            print(f"mcsim: ... and {len(failed) - MAX_FAILED_SHOWN} more failed points (variable "
+                  f"error of {out})", file=sys.stderr)  # fmt: skip
+        if not args.quiet:
+            print(f"wrote {result.path}: {warned.size} points ({' x '.join(map(str, result.shape))}), "
+                  f"{len(result.failed)} failed")  # fmt: skip
+        return 1 if result.failed else 0
+
+
+def add_parser(sub) -> None:
+    p = sub.add_parser("sweep", help="curves and adhesion summaries over a grid of inputs, as HDF5",
+                       description="Analytic curves over --h, regime numbers and, for law sets with a load and a "
+                       "retraction branch, the adhesion summary (as mcsim analytic and mcsim adhesion) at every "
+                       "point of the outer product of the --vary inputs; optionally a Monte Carlo run per point. "
+                       "One netCDF-compatible HDF5 file: xarray.open_dataset(FILE, engine='h5netcdf').")  # fmt: skip
+    add_inputs(p, separations=False)
+    p.set_defaults(law=None)
+    p.add_argument("--vary", action="append", required=True, metavar="NAME=SPEC",
+                   help="input to vary (repeatable; the grid is their outer product, in this order): sigma, R, "
+                   "eta, E (both solids), E1, E2, nu (both), nu1, nu2, gamma, z0, tau, H, law (a list, e.g. "
+                   "law=jkr,dmt,maugis-dugdale), area (pad area, with --mc). SPEC: start:stop:num[:log] or a "
+                   "list a,b,c; each value with an optional unit, a bare number is SI "
+                   "(sigma=0.3nm:20nm:40:log, gamma=0.05:1:5 in J/m^2)")  # fmt: skip
+    p.add_argument("--out", required=True, metavar="FILE.h5", help="sweep file (HDF5)")
+    p.add_argument("--h", default="4:-1:51", metavar="SPEC",
+                   help="separations d/sigma of the curves (default 4:-1:51)")  # fmt: skip
+    p.add_argument("--turn", metavar="H", help="closest approach d/sigma before retraction for the "
+                   "adhesion summary (default: where the approach load is zero)")  # fmt: skip
+    p.add_argument("--mc", action="store_true", help="also one Monte Carlo run per point (in memory): "
+                   "mean and standard error of each curve")  # fmt: skip
+    p.add_argument(
+        "--area", help="patch area of the Monte Carlo runs: m^2 or with a unit ('100um^2')"
+    )
+    p.add_argument("--realizations", type=count_type, help="patches per point (default: 1)")
+    p.add_argument("--seed", type=seed_type, help="root seed of the Monte Carlo runs (point i uses its own "
+                   "child stream of it; default: fresh entropy, recorded in the file)")  # fmt: skip
+    p.add_argument("--device", choices=("cpu", "cuda"), default="cpu",
+                   help="where the Monte Carlo runs sample and sum (cuda: this machine's GPU, needs "
+                   "mcsim[gpu]; points then run one after another)")  # fmt: skip
+    add_parallel(p, "worker threads, or processes of --dask local")
+    p.add_argument("--overwrite", action="store_true", help="replace an existing sweep file")
+    p.add_argument("--resume", action="store_true", help="continue from the checkpoint beside --out "
+                   "(same arguments): completed points are not recomputed")  # fmt: skip
+    p.add_argument("--checkpoint-every", type=float, default=60.0, metavar="SECONDS",
+                   help="save the completed points beside --out (FILE.partial.h5) after 10 s, then this "
+                   "often (default: 60 s)")  # fmt: skip
+    p.add_argument("--quiet", action="store_true", help="no progress bar or summary")
+    p.set_defaults(func=run)

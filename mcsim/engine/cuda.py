@@ -1,0 +1,532 @@
+"""GPU backend: the law set's own functions compiled as CUDA device functions.
+
+Optional (``pip install mcsim[gpu]``, which installs numba-cuda). Nothing here is
+imported unless a run asks for ``device="cuda"``; without numba-cuda or without a GPU
+that request is a :class:`~mcsim.model.errors.ParameterError`.
+
+How a law set becomes a kernel
+------------------------------
+Each output function's *source* is executed again in a namespace whose ``np`` is
+:func:`device_numpy`, a module holding only the restricted vocabulary of
+:mod:`mcsim.physics.laws` mapped to functions the CUDA compiler knows (``np.sqrt`` →
+``math.sqrt``, ``np.maximum`` → ``max``, ``np.cbrt`` → libdevice ``cbrt``, ...): numba's
+CUDA target cannot compile NumPy ufuncs. A law that uses anything else is rejected
+before compilation (:func:`check_vocabulary`). The per-summit loop, the moments and the
+columns are those of :func:`mcsim.engine.kernels.block_sums` (``sum_columns``): ``n_contact``,
+Σ of each output, Σ of each output², Σ of the products of outputs i < j.
+
+Reproducibility
+---------------
+A *block* is a fixed set of at most :data:`mcsim.engine.montecarlo.BLOCK` summits. One CUDA
+thread block of :data:`THREADS` threads evaluates one block, tile by tile
+(:data:`TILE` summits, summit ``t + k·THREADS + thread`` in thread ``thread``'s slot
+``k``); the threads' moments are reduced in a fixed binary tree in shared memory and
+added to the block's sums in tile order by one thread per column. Heights are drawn by
+Philox4x32-10 (Salmon et al., SC'11) keyed by (seed, realization) with the counter
+(summit, block, stream): a summit's height depends on nothing else. So the per-block
+sums are bit-identical for any grid size, any number of blocks per launch and any
+split of the separations between launches; blocks are added on the host in block
+order. GPU and CPU draw different heights: they agree statistically, not bit for bit.
+"""
+
+from __future__ import annotations
+
+import ast
+import builtins
+import functools
+import importlib.util
+import inspect
+import math
+import os
+import textwrap
+import threading
+import types
+from collections.abc import Iterator
+
+import numpy as np
+
+from mcsim.engine.kernels import sum_columns
+from mcsim.model.errors import ParameterError
+from mcsim.physics.laws import Edges, LawSet, ieee
+
+#: Threads per CUDA block (part of the reproducibility contract: the reduction tree).
+THREADS = 256
+#: Summits per thread per tile.
+PER_THREAD = 8
+#: Summits per tile (part of the reproducibility contract).
+TILE = THREADS * PER_THREAD
+#: Most blocks handled by one kernel launch (bounds the GPU memory of a run).
+LAUNCH_BLOCKS = 4096
+
+#: ``np.<name>`` a law function may use (:mod:`mcsim.physics.laws`), and what it becomes on
+#: the device: a ``math`` function, a builtin or a libdevice function.
+VOCABULARY = {
+    "sqrt": "math.sqrt",
+    "cbrt": "libdevice.cbrt",
+    "exp": "math.exp",
+    "log": "math.log",
+    "abs": "abs",
+    "maximum": "max",
+    "minimum": "min",
+    "floor": "libdevice.floor",
+    "arctan": "math.atan",
+    "cos": "math.cos",
+    "arccos": "math.acos",
+    "pi": "math.pi",
+    "int64": "int",
+}
+
+
+#: Stream tag of the heights in the Philox counter.
+_HEIGHTS = 1
+
+
+def simulating() -> bool:
+    """Whether numba's CUDA simulator is on (``NUMBA_ENABLE_CUDASIM=1``)."""
+    return os.environ.get("NUMBA_ENABLE_CUDASIM", "0") not in ("", "0")
+
+
+def _cuda():
+    """numba.cuda of numba-cuda (not numba's deprecated built-in target), or a
+    ParameterError saying what is missing."""
+    try:
+        if importlib.util.find_spec("numba_cuda") is None:
+            raise ImportError("No module named 'numba_cuda'")
+        import numba.cuda as cuda
+    except ImportError as exc:
+        raise ParameterError(
+            f"device = 'cuda' needs numba-cuda ({exc}); install it with pip install 'mcsim[gpu]'"
+        ) from None
+    return cuda
+
+
+def require_gpu() -> None:
+    """Raise :class:`ParameterError` (one line) unless a CUDA GPU can be used."""
+    cuda = _cuda()
+    if simulating():
+        return
+    try:
+        ok = cuda.is_available()
+    except Exception:  # a broken driver reads as no GPU
+        ok = False
+    if not ok:
+        raise ParameterError(
+            "device = 'cuda' but no CUDA GPU is available here (no driver or no device); "
+            "use device = 'cpu'"
+        )
+
+
+# -- law functions as device functions ---------------------------------------------
+
+
+def _np_attributes(fn) -> list[str]:
+    """The ``np.<name>`` a function's source uses, in order."""
+    tree = ast.parse(textwrap.dedent(inspect.getsource(fn)))
+    return [
+        node.attr
+        for node in ast.walk(tree)
+        if isinstance(node, ast.Attribute)
+        and isinstance(node.value, ast.Name)
+        and node.value.id == "np"
+    ]
+
+
+def check_vocabulary(fn) -> None:
+    """Raise :class:`ParameterError` if law function ``fn`` uses NumPy outside
+    :data:`VOCABULARY` or a global that is neither ``np`` nor a number."""
+    bad = sorted(set(_np_attributes(fn)) - set(VOCABULARY))
+    if bad:
+        raise ParameterError(
+            f"law function {fn.__module__}.{fn.__qualname__} uses np.{bad[0]}, which has "
+            f"no CUDA equivalent (allowed: {', '.join('np.' + v for v in VOCABULARY)})"
+        )
+    for name in fn.__code__.co_names:
+        value = fn.__globals__.get(name, getattr(builtins, name, None))
+        if (
+            name != "np"
+            and name in fn.__globals__
+            and not isinstance(value, int | float)
+            and not any(value is h for h in ieee.HELPERS)
+        ):
+            raise ParameterError(
+                f"law function {fn.__module__}.{fn.__qualname__} uses the global {name!r}: "
+                "law functions may use only np (restricted vocabulary), numbers and "
+                "mcsim.physics.laws.ieee"
+            )
+
+
+@functools.cache
+def device_numpy() -> types.ModuleType:
+    """The ``np`` a law function sees when compiled for the GPU: a module holding only
+    :data:`VOCABULARY`, mapped to ``math``, builtins and libdevice (under the simulator,
+    ``math`` and NumPy stand in for libdevice)."""
+    module = types.ModuleType("mcsim_device_numpy", "np for CUDA device functions")
+    if simulating():
+        libdevice = types.SimpleNamespace(cbrt=np.cbrt, floor=math.floor)
+    else:
+        from numba.cuda import libdevice
+    scope = {"math": math, "libdevice": libdevice, "abs": abs, "max": max, "min": min,
+             "int": int}  # fmt: skip
+    for name, target in VOCABULARY.items():
+        head, _, attr = target.partition(".")
+        setattr(module, name, getattr(scope[head], attr) if attr else scope[head])
+    return module
+
+
+def _on_device(value):
+    """A law function's global as a device function sees it: numbers as they are, the
+    :mod:`mcsim.physics.laws.ieee` helpers as CUDA's bit casts (the simulator runs the NumPy
+    ones)."""
+    if simulating() or not any(value is h for h in ieee.HELPERS):
+        return value
+    from numba.cuda import libdevice
+
+    if value is ieee.float_bits:
+        return libdevice.double_as_longlong
+    return libdevice.longlong_as_double
+
+
+def device_source(fn) -> types.FunctionType:
+    """A copy of law function ``fn`` compiled from its own source with ``np`` bound to
+    :func:`device_numpy` (and the numbers and :mod:`mcsim.physics.laws.ieee` helpers it uses as
+    globals), ready for ``cuda.jit(device=True)``."""
+    check_vocabulary(fn)
+    namespace = {"np": device_numpy(), "__builtins__": builtins}
+    for name in fn.__code__.co_names:
+        if name in fn.__globals__ and name != "np":
+            namespace[name] = _on_device(fn.__globals__[name])
+    source = textwrap.dedent(inspect.getsource(fn))
+    code = compile(source, f"<device {fn.__module__}.{fn.__qualname__}>", "exec")
+    exec(code, namespace)
+    return namespace[fn.__name__]
+
+
+# -- the kernel ---------------------------------------------------------------------
+
+_PHILOX = '''
+_M0 = np.uint64(0xD2511F53)
+_M1 = np.uint64(0xCD9E8D57)
+_W0 = np.uint64(0x9E3779B9)
+_W1 = np.uint64(0xBB67AE85)
+_MASK = np.uint64(0xFFFFFFFF)
+_S32 = np.uint64(32)
+_S20 = np.uint64(20)
+_S12 = np.uint64(12)
+_ULP = 2.0 ** -52
+
+
+def _philox(c0, c1, c2, c3, k0, k1):
+    """Philox4x32-10 of the counter (c0..c3) under the key (k0, k1), 32-bit words held
+    in uint64 (Salmon, Moraes, Dror & Shaw, SC'11; Random123's kat_vectors)."""
+    for _ in range(10):
+        p0 = _M0 * c0
+        p1 = _M1 * c2
+        c0, c1, c2, c3 = (p1 >> _S32) ^ c1 ^ k0, p1 & _MASK, (p0 >> _S32) ^ c3 ^ k1, p0 & _MASK
+        k0 = (k0 + _W0) & _MASK
+        k1 = (k1 + _W1) & _MASK
+    return c0, c1, c2, c3
+
+
+def _unit(hi, lo):
+    """Uniform in (0, 1) from 52 bits x of two words: (x + 1/2) 2^-52, exact in double
+    (53 bits would round the largest to 1)."""
+    return (float((hi << _S20) | (lo >> _S12)) + 0.5) * _ULP
+
+
+def _height(i, block, k0, k1, dist, tail, cum, lo, hi):
+    """Standardized height of summit i of a block: Gaussian above s_min by the inverse
+    CDF of its upper tail (s = −Φ⁻¹(u·P(S > s_min))), or a histogram bin chosen by its
+    mass above s_min and a uniform point in it (as Empirical.sample_above)."""
+    w0, w1, w2, w3 = _philox(np.uint64(i), np.uint64(block), np.uint64(_HEIGHTS), np.uint64(0), k0, k1)
+    u = _unit(w0, w1)
+    if dist == 0:
+        return -_ndtri(u * tail)
+    a, b = 0, cum.size
+    while a < b:  # first bin whose cumulative mass exceeds u
+        mid = (a + b) // 2
+        if cum[mid] > u:
+            b = mid
+        else:
+            a = mid + 1
+    k = min(a, cum.size - 1)
+    return hi[k] - (hi[k] - lo[k]) * _unit(w2, w3)
+'''
+
+_KERNEL = """
+def _kernel(z, offsets, sizes, block0, sigma, k0, k1, dist, tail, cum, lo, hi, sample,
+            d, d_turn, thr, jump_in, break_off, out, {params}):
+    tid = cuda.threadIdx.x
+    red = cuda.shared.array(({ncols}, THREADS), float64)
+    zk = cuda.local.array(PER_THREAD, float64)
+    m = d.size
+    for b in range(cuda.blockIdx.x, sizes.size, cuda.gridDim.x):
+        n = sizes[b]
+        for t in range(0, n, TILE):
+            for k in range(PER_THREAD):
+                i = t + k * THREADS + tid
+                if i >= n:
+                    zk[k] = -math.inf
+                elif sample:
+                    zk[k] = sigma * _height(i, block0 + b, k0, k1, dist, tail, cum, lo, hi)
+                else:
+                    zk[k] = z[offsets[b] + i]
+            for j in range(m):
+                dj = d[j]
+                dtj = d_turn[j]
+                tj = thr[j]
+                {zero}
+                busy = 0
+                for k in range(PER_THREAD):
+                    zi = zk[k]
+                    if zi > tj:
+                        busy = 1
+                        delta = zi - dj
+                        delta_max = zi - dtj
+{body}
+                if cuda.syncthreads_or(busy):
+{store}
+                    cuda.syncthreads()
+                    stride = THREADS // 2
+                    while stride > 0:
+                        if tid < stride:
+                            for c in range({ncols}):
+                                red[c, tid] += red[c, tid + stride]
+                        cuda.syncthreads()
+                        stride //= 2
+                    if tid < {ncols}:
+                        out[b, j, tid] += red[tid, 0]
+                    cuda.syncthreads()
+"""
+
+
+def kernel_source(law: LawSet) -> str:
+    """Source of the CUDA kernel of ``law`` (device functions ``law0``, ``law1``, ...
+    and the helpers of the Philox sampler are globals of the module it is run in)."""
+    k = len(law.outputs)
+    pairs = [(i, j) for i in range(k) for j in range(i + 1, k)]
+    acc = ["nc", *(f"s{i}" for i in range(k)), *(f"s{i}{i}" for i in range(k)),
+           *(f"s{i}{j}" for i, j in pairs)]  # fmt: skip
+    params, body = [], []
+    pad = " " * 24
+    for i, o in enumerate(law.outputs):
+        names = [f"a{i}_{p}" for p in range(len(o.parameter_names))]
+        params += names
+        state = "delta_max, " if o.stateful else ""
+        body.append(f"{pad}o{i} = law{i}(delta, {state}{', '.join(names)})")
+    body.append(f"{pad}nc += (delta_max > jump_in) * (delta > break_off) * 1.0")
+    body += [f"{pad}s{i} += o{i}" for i in range(k)]
+    body += [f"{pad}s{i}{i} += o{i} * o{i}" for i in range(k)]
+    body += [f"{pad}s{i}{j} += o{i} * o{j}" for i, j in pairs]
+    store = "\n".join(f"{' ' * 20}red[{c}, tid] = {a}" for c, a in enumerate(acc))
+    return _KERNEL.format(
+        params=", ".join(params) or "_unused=0.0",
+        ncols=len(acc),
+        zero=" = ".join(acc) + " = 0.0",
+        body="\n".join(body),
+        store=store,
+    )
+
+
+_COMPILE_LOCK = threading.Lock()
+
+
+@functools.cache
+def _namespace(law: LawSet) -> dict:
+    """The generated module of ``law``'s kernel: device functions and the kernel."""
+    cuda = _cuda()
+    from numba import float64
+
+    device = functools.partial(cuda.jit, device=True)
+    if simulating():
+        from scipy.special import ndtri
+    else:
+        from numba.cuda.libdevice import normcdfinv as ndtri
+    ns = {"np": np, "math": math, "cuda": cuda, "float64": float64, "THREADS": THREADS,
+          "PER_THREAD": PER_THREAD, "TILE": TILE, "_HEIGHTS": _HEIGHTS, "_ndtri": ndtri}  # fmt: skip
+    for i, fn in enumerate(law.laws):
+        ns[f"law{i}"] = device(device_source(fn))
+    exec(compile(_PHILOX, "<mcsim.engine.cuda philox>", "exec"), ns)
+    for name in ("_philox", "_unit", "_height"):
+        ns[name] = device(ns[name])
+    exec(compile(kernel_source(law), f"<mcsim.engine.cuda kernel {law.name}>", "exec"), ns)
+    ns["kernel"] = cuda.jit(ns["_kernel"])
+    return ns
+
+
+def compiled(law: LawSet):
+    """The CUDA kernel of a law set, built once per process."""
+    with _COMPILE_LOCK:
+        return _namespace(law)["kernel"]
+
+
+# -- host side ------------------------------------------------------------------------
+
+
+def _rows(d, d_turn, edges: Edges | None):
+    d = np.ascontiguousarray(d, dtype=float)
+    d_turn = d if d_turn is None else np.ascontiguousarray(d_turn, dtype=float)
+    if d_turn.shape != d.shape or d.ndim != 1:
+        raise ValueError("d and d_turn must be 1-D arrays of the same length")
+    edges = Edges() if edges is None else edges
+    thr = np.ascontiguousarray(edges.threshold(d, d_turn), dtype=float)
+    return d, d_turn, thr, float(edges.jump_in), float(edges.break_off)
+
+
+def _device_args(args) -> list:
+    """The law parameters flattened, arrays copied to the GPU."""
+    cuda = _cuda()
+    flat = []
+    for a in args:
+        for p in a:
+            if np.ndim(p) == 0:
+                flat.append(float(p))
+            else:
+                flat.append(cuda.to_device(np.ascontiguousarray(p, dtype=float)))
+    return flat or [0.0]
+
+
+def _launch(law, out_shape, *, z, offsets, sizes, block0=0, sigma=1.0, key=(0, 0),
+            sampler=None, rows, params, grid=None) -> np.ndarray:  # fmt: skip
+    cuda = _cuda()
+    d, d_turn, thr, jump_in, break_off = rows
+    dist, tail, cum, lo, hi = sampler if sampler is not None else (0, 1.0, *[np.zeros(1)] * 3)
+    out = cuda.to_device(np.zeros(out_shape))
+    n_blocks = sizes.size
+    grid = n_blocks if grid is None else grid
+    compiled(law)[grid, THREADS](
+        z, cuda.to_device(offsets), cuda.to_device(sizes), np.int64(block0), float(sigma),
+        np.uint64(key[0]), np.uint64(key[1]), np.int64(dist), float(tail),
+        cuda.to_device(cum), cuda.to_device(lo), cuda.to_device(hi), sampler is not None,
+        cuda.to_device(d), cuda.to_device(d_turn), cuda.to_device(thr), jump_in, break_off,
+        out, *params,
+    )  # fmt: skip
+    return out.copy_to_host()
+
+
+def block_sums_cuda(
+    z: np.ndarray,
+    d: np.ndarray,
+    law: LawSet,
+    args,
+    *,
+    d_turn=None,
+    edges: Edges | None = None,
+    grid: int | None = None,
+) -> np.ndarray:
+    """Partial sums of given heights on the GPU (contract of
+    :func:`mcsim.engine.kernels.block_sums_numpy`).
+
+    Parameters
+    ----------
+    z : ndarray
+        Summit heights, m (one block: at most :data:`mcsim.engine.montecarlo.BLOCK`).
+    d, d_turn : ndarray
+        Separations of the rows and the closest approach before each, m.
+    law, args, edges
+        As for :func:`mcsim.engine.kernels.block_sums`.
+    grid : int, optional
+        CUDA blocks launched (the result does not depend on it).
+
+    Returns
+    -------
+    ndarray, shape (len(d), len(sum_columns(law)))
+    """
+    require_gpu()
+    z = np.ascontiguousarray(z, dtype=float)
+    out = _launch(
+        law, (1, d.size if np.ndim(d) else 1, len(sum_columns(law))),
+        z=_cuda().to_device(z if z.size else np.zeros(1)),
+        offsets=np.zeros(1, np.int64), sizes=np.array([z.size], np.int64),
+        rows=_rows(d, d_turn, edges), params=_device_args(args), grid=grid,
+    )  # fmt: skip
+    return out[0]
+
+
+def philox_key(entropy: int, realization: int) -> tuple[int, int]:
+    """The Philox key of a realization: two 32-bit words from
+    ``SeedSequence(entropy, spawn_key=(realization, 0xC0DA))``."""
+    seq = np.random.SeedSequence(entropy, spawn_key=(realization, 0xC0DA))
+    k0, k1 = seq.generate_state(2, np.uint32)
+    return int(k0), int(k1)
+
+
+def height_sampler(heights, s_min: float) -> tuple:
+    """Kernel arguments drawing standardized heights above ``s_min``:
+    ``(dist, tail, cum, lo, hi)``. Gaussian (``dist`` 0, ``tail`` = P(S > s_min)) or a
+    histogram (``dist`` 1, :class:`mcsim.topography.empirical.Empirical`)."""
+    name = getattr(heights, "name", None)
+    if name == "gaussian":
+        tail = float(heights.sf(s_min)) if s_min > -np.inf else 1.0
+        return 0, tail, np.zeros(1), np.zeros(1), np.zeros(1)
+    if name == "empirical":
+        lo = np.maximum(heights.edges[:-1], s_min)
+        hi = np.ascontiguousarray(heights.edges[1:])
+        mass = heights.densities * np.clip(hi - lo, 0.0, None)
+        if not mass.sum() > 0:
+            raise ParameterError(f"no summit heights above s = {s_min:g}")
+        return 1, 1.0, np.cumsum(mass) / mass.sum(), np.ascontiguousarray(lo), hi
+    raise ParameterError(
+        f"device = 'cuda' samples gaussian or empirical heights, not {name!r}; use device = 'cpu'"
+    )
+
+
+def patch_block_sums_cuda(
+    *,
+    law: LawSet,
+    args,
+    heights,
+    sigma: float,
+    s_min: float,
+    entropy: int,
+    realization: int,
+    block_sizes,
+    first_block: int,
+    d: np.ndarray,
+    d_turn=None,
+    edges: Edges | None = None,
+    launch_blocks: int = LAUNCH_BLOCKS,
+    grid: int | None = None,
+) -> Iterator[np.ndarray]:
+    """Sample and sum blocks of one patch on the GPU, in launches of at most
+    ``launch_blocks`` blocks; heights never leave the GPU.
+
+    Parameters
+    ----------
+    law, args, edges
+        As for :func:`block_sums_cuda`.
+    heights : HeightDistribution
+        Gaussian or empirical, standardized.
+    sigma : float
+        Height scale, m.
+    s_min : float
+        Heights drawn above s_min (standardized).
+    entropy, realization : int
+        The run's seed and the patch: the Philox key.
+    block_sizes : sequence of int
+        Summits of the blocks ``first_block``, ``first_block + 1``, ...
+    d, d_turn : ndarray
+        Rows, m.
+    launch_blocks, grid : int
+        Blocks per launch and CUDA blocks per launch (the result does not depend on
+        either).
+
+    Yields
+    ------
+    ndarray, shape (blocks in the launch, len(d), columns)
+        Per-block partial sums, in block order.
+    """
+    require_gpu()
+    rows = _rows(d, d_turn, edges)
+    sampler = height_sampler(heights, s_min)
+    params = _device_args(args)
+    key = philox_key(entropy, realization)
+    sizes = np.asarray(block_sizes, dtype=np.int64)
+    dummy = _cuda().to_device(np.zeros(1))
+    ncols = len(sum_columns(law))
+    for start in range(0, sizes.size, launch_blocks):
+        part = sizes[start : start + launch_blocks]
+        yield _launch(
+            law, (part.size, rows[0].size, ncols), z=dummy, offsets=np.zeros(part.size, np.int64),
+            sizes=part, block0=first_block + start, sigma=sigma, key=key, sampler=sampler,
+            rows=rows, params=params, grid=grid,
+        )  # fmt: skip

@@ -1,0 +1,265 @@
+"""Parameters of a contact: the material pair and the rough surface (paper, Eqs. 2-7).
+
+Small frozen dataclasses, SI units, validated on construction. Derived quantities
+(K, G, E*, the dimensionless groups of Eq. 5, the plasticity index) are properties,
+never stored twice.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from mcsim.model.distributions import GAUSSIAN, HeightDistribution
+from mcsim.model.errors import ParameterError
+
+#: Accepted ranges (closed, SI) of the inputs: wide enough for any real solid and rough
+#: surface (soft gels to diamond; sub-ångström to centimetre roughness), narrow enough
+#: that every analytic and Monte Carlo output is a finite float (tests/test_edges.py
+#: checks the corners). Values outside are refused, not silently turned into inf or NaN.
+RANGES: dict[str, tuple[float, float, str]] = {
+    "E": (1.0, math.inf, "Pa"),  # a huge E2 models a rigid counterface
+    "K": (0.0, 1e14, "Pa"),  # so K and G (at most ~K) stay below this
+    "H": (1.0, 1e13, "Pa"),
+    "gamma": (0.0, 1e3, "J/m^2"),
+    "sigma": (1e-12, 1e-2, "m"),
+    "R": (1e-10, 10.0, "m"),
+    "eta": (1.0, 1e20, "m^-2"),
+}
+#: Largest |h| = |d|/σ accepted: the quadrature of the GW integrals keeps ~1e-11 relative
+#: accuracy up to here (it loses digits as |h| grows; see tests/test_analytic.py), and
+#: no physical separation is a million σ.
+MAX_ABS_H = 1e6
+
+
+def check_range(
+    name: str,
+    value: float,
+    unit: str,
+    *,
+    low: float | None = None,
+    high: float | None = None,
+    low_open: bool = True,
+    high_open: bool = True,
+) -> float:
+    """Return ``value`` as a float if it is finite and inside the range, else raise.
+
+    The message names the field, the value (with its SI unit) and the allowed range.
+    """
+    try:
+        value = float(value)
+    except (TypeError, ValueError):
+        raise ParameterError(f"{name} must be a number, got {value!r}") from None
+    if low is not None and high is not None:
+        allowed = f"{'(' if low_open else '['}{low:g}, {high:g}{')' if high_open else ']'}"
+    elif low is not None:
+        allowed = f"{'>' if low_open else '>='} {low:g}"
+    else:
+        allowed = "finite"
+    bad = not math.isfinite(value)
+    bad |= low is not None and (value <= low if low_open else value < low)
+    bad |= high is not None and (value >= high if high_open else value > high)
+    if bad:
+        u = "" if unit == "1" else f" {unit}"
+        raise ParameterError(f"{name} = {value!r}{u} is out of range (allowed: {allowed}{u})")
+    return value
+
+
+def _in_range(name: str, value: float, kind: str | None = None) -> float:
+    """``value`` checked against :data:`RANGES` (``kind`` names the entry, default ``name``)."""
+    low, high, unit = RANGES[kind or name]
+    high = None if high == math.inf else high
+    return check_range(name, value, unit, low=low, high=high, low_open=False, high_open=False)
+
+
+def check_separations(h) -> np.ndarray:
+    """Separations h = d/σ as a non-empty 1-D float array; raise unless finite with |h| <= 1e6.
+
+    Parameters
+    ----------
+    h : array_like
+        Dimensionless separations d/σ.
+    """
+    if h is None:
+        raise ParameterError("h must be a list of separations d/sigma, got None")
+    try:
+        values = np.atleast_1d(np.asarray(h, dtype=float))
+    except (TypeError, ValueError):
+        raise ParameterError(f"h must be a list of numbers, got {h!r}") from None
+    if values.ndim != 1 or values.size == 0:
+        raise ParameterError(f"h must be a non-empty list of separations (1-D), got {h!r}")
+    allowed = f"-{MAX_ABS_H:g} <= h <= {MAX_ABS_H:g}"
+    if not np.all(np.isfinite(values)):
+        bad = float(values[~np.isfinite(values)][0])
+        raise ParameterError(f"h must be finite, got {bad!r} (allowed: {allowed})")
+    bad = values[~(np.abs(values) <= MAX_ABS_H)]
+    if bad.size:
+        raise ParameterError(f"h = {float(bad[0])!r} is out of range (allowed: {allowed})")
+    return values
+
+
+@dataclass(frozen=True)
+class Material:
+    """Elastic and adhesive properties of a pair of contacting solids.
+
+    Parameters
+    ----------
+    E1, E2 : float
+        Young's moduli of the two solids, Pa, >= 1 (:data:`RANGES`); the derived K
+        and G must stay <= 1e14 Pa (a huge E2 models a rigid counterface).
+    nu1, nu2 : float
+        Poisson's ratios, in (-1, 0.5).
+    gamma : float
+        Work of adhesion w used by Eqs. 4 and 6, J/m², in [0, 1e3]. The paper calls it the work
+        of adhesion in the introduction and a "surface energy" in the results; its
+        formulas use it as the work of adhesion (for two identical clean surfaces
+        w = 2 γ_s). mcsim uses it as written.
+    H : float or None
+        Indentation hardness of the softer solid, Pa, in [1, 1e13]. Given in the paper
+        but unused by its elastic model; used by the ``elastic-plastic`` law set and
+        the plasticity index.
+    z0 : float or None
+        Equilibrium spacing of the surface interaction, m (``dmt``,
+        ``maugis-dugdale`` and the Tabor parameter).
+    tau : float or None
+        Interfacial shear strength, Pa: friction τ·A_r of the new law sets
+        (Bowden–Tabor); no friction is reported without it.
+    name : str
+        Label for output files and plots.
+    """
+
+    E1: float
+    E2: float
+    nu1: float
+    nu2: float
+    gamma: float
+    H: float | None = None
+    name: str = ""
+    z0: float | None = None
+    tau: float | None = None
+
+    def __post_init__(self) -> None:
+        for attr in ("E1", "E2"):
+            object.__setattr__(self, attr, _in_range(attr, getattr(self, attr), "E"))
+        for attr in ("nu1", "nu2"):
+            object.__setattr__(
+                self, attr, check_range(attr, getattr(self, attr), "1", low=-1, high=0.5)
+            )
+        object.__setattr__(self, "gamma", _in_range("gamma", self.gamma))
+        for name, modulus in (("K", self.K), ("G", self.G)):
+            if not modulus <= RANGES["K"][1]:
+                raise ParameterError(
+                    f"{name} = {modulus:.4g} Pa (from E1, E2, nu1, nu2) is out of range "
+                    f"(allowed: <= {RANGES['K'][1]:g} Pa): one solid needs E <= about 1e13 Pa "
+                    "and nu away from -1"
+                )
+        if self.H is not None:
+            object.__setattr__(self, "H", _in_range("H", self.H))
+        if self.z0 is not None:
+            object.__setattr__(self, "z0", check_range("z0", self.z0, "m", low=0))
+        if self.tau is not None:
+            object.__setattr__(self, "tau", check_range("tau", self.tau, "Pa", low=0))
+
+    @property
+    def nu(self) -> float:
+        """Poisson's ratio of the softer solid (the lower E), as used by Kogut & Etsion."""
+        return self.nu1 if self.E1 <= self.E2 else self.nu2
+
+    @property
+    def K(self) -> float:
+        """Paper's elastic constant K, Pa: 1/K = ¾[(1−ν1²)/E1 + (1−ν2²)/E2] (after Eq. 2).
+
+        K = (4/3) E*, so that the Hertz load is P = K R^½ δ^{3/2}.
+        """
+        return 1.0 / (0.75 * ((1 - self.nu1**2) / self.E1 + (1 - self.nu2**2) / self.E2))
+
+    @property
+    def E_star(self) -> float:
+        """Contact modulus E* = ¾ K, Pa (Johnson's 1/E* = Σ (1−ν²)/E)."""
+        return 0.75 * self.K
+
+    @property
+    def G(self) -> float:
+        """Combined shear modulus of Eq. 7, Pa: 1/G = (2−ν1)/G1 + (2−ν2)/G2, G_i = E_i/(2(1+ν_i))."""
+        G1 = self.E1 / (2 * (1 + self.nu1))
+        G2 = self.E2 / (2 * (1 + self.nu2))
+        return 1.0 / ((2 - self.nu1) / G1 + (2 - self.nu2) / G2)
+
+
+@dataclass(frozen=True)
+class Surface:
+    """A Greenwood–Williamson population of spherical summits (the combined surface).
+
+    Parameters
+    ----------
+    sigma : float
+        Standard deviation of the summit heights σ, m, in [1e-12, 1e-2] (:data:`RANGES`).
+    R : float
+        Summit radius of curvature, m, in [1e-10, 10].
+    eta : float
+        Areal density of summits η, m⁻², in [1, 1e20].
+    heights : HeightDistribution
+        Shape of the summit-height distribution in units of σ (zero mean, unit
+        standard deviation). Gaussian by default, as in the paper.
+    name : str
+        Label for output files and plots.
+    """
+
+    sigma: float
+    R: float
+    eta: float
+    heights: HeightDistribution = field(default=GAUSSIAN)
+    name: str = ""
+
+    def __post_init__(self) -> None:
+        for attr in ("sigma", "R", "eta"):
+            object.__setattr__(self, attr, _in_range(attr, getattr(self, attr)))
+
+    @property
+    def A0(self) -> float:
+        """Dimensionless roughness parameter A0 = η R σ (Eq. 5)."""
+        return self.eta * self.R * self.sigma
+
+    @property
+    def R0(self) -> float:
+        """Dimensionless radius R0 = R/σ (Eq. 5)."""
+        return self.R / self.sigma
+
+
+def surface_energy_parameter(surface: Surface, material: Material) -> float:
+    """Dimensionless surface-energy parameter B0 = γ/(K σ) (Eq. 5)."""
+    return material.gamma / (material.K * surface.sigma)
+
+
+def plasticity_index(surface: Surface, material: Material) -> float | None:
+    """Greenwood–Williamson plasticity index ψ = (E*/H) √(σ/R), or None without H.
+
+    ψ ≲ 0.6: contacts mostly elastic; ψ ≳ 1: mostly plastic, where the paper's
+    purely elastic model is questionable (Greenwood & Williamson 1966).
+    """
+    if material.H is None:
+        return None
+    return material.E_star / material.H * math.sqrt(surface.sigma / surface.R)
+
+
+def combine_surfaces(first: Surface, second: Surface, eta: float, name: str = "") -> Surface:
+    """Combined surface of two rough surfaces, as in the paper's Table 1.
+
+    σ = √(σ1² + σ2²) and R = (R1⁻² + R2⁻²)^(−½): these reproduce every combined row
+    of Table 1 (the usual sum-of-curvatures rule 1/R = 1/R1 + 1/R2 does not). The
+    combined summit density cannot be derived from the two surfaces: give it.
+
+    Parameters
+    ----------
+    first, second : Surface
+        The two rough surfaces (Gaussian heights).
+    eta : float
+        Summit density of the combined surface, m⁻².
+    name : str
+        Label of the result.
+    """
+    sigma = math.hypot(first.sigma, second.sigma)
+    R = (first.R**-2 + second.R**-2) ** -0.5
+    return Surface(sigma=sigma, R=R, eta=eta, name=name)

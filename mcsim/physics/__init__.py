@@ -1,0 +1,1 @@
+"""The physics as pure functions: per-summit contact laws, the GW integrals and analytic curves, adhesion summaries, mean-field load control."""

@@ -1,0 +1,408 @@
+"""Adhesion summary of a rough contact: pull-off force, work of separation, regime numbers.
+
+From the analytic GW curves of a contact law set (:func:`mcsim.gw_curves`) on approach
+and on retraction after a closest approach h_turn:
+
+* **pull-off force**: the most tensile net load on retraction, min over h ≥ h_turn
+  of the load, located by a bounded minimisation (to 1e-6 in h) around the lowest
+  point of a grid; reported as a magnitude, force/(A_n K) and as a pressure (Pa);
+* **work of separation**: ∫ max(−load, 0) dd on retraction from d_turn, J/m² of
+  nominal area (d = σh, force per area = load·K);
+* **hysteresis**: ∫ (load_approach − load_retract) dd over the same range, J/m²: the
+  energy lost in one approach–retraction cycle;
+* **regime numbers** of one summit: Tabor's μ_T = (R w²/(E*² z0³))^{1/3} (Tabor 1977),
+  Maugis' λ = 2σ0 (R/(π w K²))^{1/3} with σ0 = w/h0, h0 = 0.97 z0 and K = 4E*/3
+  (Maugis 1992; Johnson & Greenwood 1997), so λ = 1.162 μ_T; the Fuller–Tabor
+  adhesion parameter θ = E* σ^{3/2}/(R^{1/2} w) (see :func:`adhesion_parameter`); the
+  plasticity index ψ = (E*/H)√(σ/R) (Greenwood & Williamson 1966).
+
+Which law set fits is read off the Johnson–Greenwood (1997) adhesion map at the low
+loads that decide pull-off: DMT for λ < 0.1, JKR for λ > 5, Maugis–Dugdale between
+(:data:`DMT_BELOW`, :data:`JKR_ABOVE`). A law set used outside its zone, or an elastic
+law set at ψ > 1 (mostly plastic summits), gives a :class:`RegimeWarning`.
+
+References: K.N.G. Fuller & D. Tabor, Proc. R. Soc. Lond. A 345 (1975) 327–342;
+D. Tabor, J. Colloid Interface Sci. 58 (1977) 2–13; D. Maugis, J. Colloid Interface
+Sci. 150 (1992) 243–269; K.L. Johnson & J.A. Greenwood, J. Colloid Interface Sci. 192
+(1997) 326–333; J.A. Greenwood & J.B.P. Williamson, Proc. R. Soc. Lond. A 295 (1966)
+300–319.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from dataclasses import asdict, dataclass
+
+import numpy as np
+from scipy import optimize
+
+from mcsim.model.errors import ParameterError
+from mcsim.model.params import Material, Surface, check_range, plasticity_index
+from mcsim.physics.analytic import gw_curves
+from mcsim.physics.laws import LawSet, get_law_set
+
+#: Johnson–Greenwood (1997) map at low load: DMT below this Maugis λ.
+DMT_BELOW = 0.1
+#: Johnson–Greenwood (1997) map at low load: JKR above this Maugis λ.
+JKR_ABOVE = 5.0
+#: Dugdale range over the equilibrium spacing, h0/z0 (Maugis' match to Lennard-Jones).
+H0_OVER_Z0 = 0.97
+#: Points of the grid on which the zero of the approach load is bracketed.
+GRID = 200
+#: Panels on [turn, top] for the work and hysteresis integrals, and their
+#: Gauss–Legendre nodes; the pull-off is bracketed on the same points.
+PANELS = 64
+NODES = 8
+#: Absolute tolerance of the pull-off separation, in h.
+H_TOLERANCE = 1e-7
+#: Gaussian heights: standardized height above which the quadrature sees no summit
+#: (the weight is below e^-41 of its peak there, as in :mod:`mcsim.model.distributions`).
+GAUSSIAN_TOP = math.sqrt(82.0)
+
+
+class NoAdhesiveRest(ParameterError):
+    """The approach load is never tensile: under no external load the surfaces rest apart."""
+
+
+class RegimeWarning(UserWarning):
+    """A law set used outside its regime (adhesion map, plasticity index)."""
+
+
+def tabor_parameter(surface: Surface, material: Material) -> float | None:
+    """Tabor's μ_T = (R w²/(E*² z0³))^{1/3} of one summit, or None without z0 (Tabor 1977)."""
+    if material.z0 is None:
+        return None
+    w = material.gamma
+    return (surface.R * w**2 / (material.E_star**2 * material.z0**3)) ** (1 / 3)
+
+
+def maugis_parameter(surface: Surface, material: Material) -> float | None:
+    """Maugis' λ = 2σ0 (R/(π w K²))^{1/3}, σ0 = w/(0.97 z0), K = 4E*/3; None without z0.
+
+    Maugis (1992) in the notation of Johnson & Greenwood (1997); λ = 1.162 μ_T
+    (λ ∝ w^{2/3}: 0 for w = 0).
+    """
+    if material.z0 is None:
+        return None
+    w = material.gamma
+    sigma0 = w / (H0_OVER_Z0 * material.z0)
+    return 2 * sigma0 * (surface.R / (math.pi * w * material.K**2)) ** (1 / 3) if w > 0 else 0.0
+
+
+def adhesion_parameter(surface: Surface, material: Material) -> float:
+    """Fuller–Tabor adhesion parameter θ = E* σ^{3/2}/(R^{1/2} w) (inf for w = 0).
+
+    θ = (σ/ℓ)^{3/2} with ℓ = (R w²/E*²)^{1/3} the JKR length of one summit: the
+    ratio of the roughness to the distance over which a summit's adhesion acts.
+    Fuller & Tabor (1975) plot pull-off against the inverse of Δ_c = |δ_c|/σ,
+    δ_c = ¾(π² w² R/E*²)^{1/3} the JKR break-off under fixed grips, i.e. against
+    σ/|δ_c| = θ^{2/3}/(¾ π^{2/3}) = 0.6216 θ^{2/3}: the same group up to a power and
+    a constant. Pull-off falls to almost nothing for θ ≳ 10.
+    """
+    w = material.gamma
+    if w == 0:
+        return math.inf
+    return material.E_star * surface.sigma**1.5 / (math.sqrt(surface.R) * w)
+
+
+def choose_law(surface: Surface, material: Material) -> tuple[str, str]:
+    """The law set the Johnson–Greenwood adhesion map picks, and why (one line).
+
+    DMT for λ < 0.1, JKR for λ > 5, Maugis–Dugdale between (at the low loads that
+    decide pull-off). Needs z0.
+
+    Raises
+    ------
+    ParameterError
+        Without z0 (λ is unknown).
+    """
+    lam = maugis_parameter(surface, material)
+    if lam is None:
+        raise ParameterError(
+            "law = 'auto' needs the material's z0 (equilibrium spacing, m) to place the "
+            "contact on the Johnson-Greenwood adhesion map"
+        )
+    if lam < DMT_BELOW:
+        name, zone = "dmt", f"< {DMT_BELOW:g}: DMT zone"
+    elif lam > JKR_ABOVE:
+        name, zone = "jkr", f"> {JKR_ABOVE:g}: JKR zone"
+    else:
+        name, zone = (
+            "maugis-dugdale",
+            f"between {DMT_BELOW:g} and {JKR_ABOVE:g}: JKR-DMT transition",
+        )
+    return name, (
+        f"law auto: {name} (Maugis lambda = {lam:.3g} {zone} of the Johnson-Greenwood 1997 "
+        "adhesion map)"
+    )
+
+
+def regime_warnings(surface: Surface, material: Material, law: str | LawSet) -> list[str]:
+    """One line per reason the law set is outside its regime (empty if none).
+
+    ``jkr`` at λ < 5, ``dmt`` at λ > 0.1 (Johnson & Greenwood 1997); any elastic law
+    set (one that does not take the hardness H) at ψ > 1. The seed law set, the
+    paper's model as written, is never flagged here.
+    """
+    laws = get_law_set(law)
+    if laws.name == "seed":
+        return []
+    out = []
+    lam = maugis_parameter(surface, material)
+    if lam is not None and laws.name == "jkr" and lam < JKR_ABOVE:
+        out.append(f"law jkr used at Maugis lambda = {lam:.3g} < {JKR_ABOVE:g}, outside the JKR "
+                   "zone of the Johnson-Greenwood adhesion map (use maugis-dugdale or --law auto)")  # fmt: skip
+    if lam is not None and laws.name == "dmt" and lam > DMT_BELOW:
+        out.append(f"law dmt used at Maugis lambda = {lam:.3g} > {DMT_BELOW:g}, outside the DMT "
+                   "zone of the Johnson-Greenwood adhesion map (use maugis-dugdale or --law auto)")  # fmt: skip
+    psi = plasticity_index(surface, material)
+    if psi is not None and psi > 1 and "H" not in laws.requires:
+        out.append(f"plasticity index psi = {psi:.3g} > 1: most summits yield, which the elastic "
+                   f"law set {laws.name} ignores")  # fmt: skip
+    return out
+
+
+@dataclass(frozen=True)
+class AdhesionSummary:
+    """Pull-off, work of separation, hysteresis and regime numbers of a rough contact.
+
+    Attributes
+    ----------
+    law : str
+        Law set.
+    turn : float
+        Closest approach h_turn = d_turn/σ before retraction.
+    turn_from : str
+        How ``turn`` was chosen: ``"zero load on approach"``, ``"given"``, or (no
+        tensile approach load, so no adhesive rest) ``"none: ..."``.
+    pull_off : float
+        Magnitude of the most tensile net load on retraction, force/(A_n K); 0 if the
+        load never turns tensile.
+    h_pull_off : float
+        Separation d/σ of the pull-off; NaN (undefined) when ``pull_off`` is 0.
+    pull_off_pressure : float
+        ``pull_off`` × K: the pull-off force per nominal area, Pa.
+    work_of_separation : float
+        ∫ tensile load dd on retraction from the turn, J/m² of nominal area.
+    hysteresis : float
+        ∫ (load_approach − load_retract) dd from the turn, J/m².
+    tabor, maugis_lambda : float or None
+        μ_T and λ of one summit (None without z0).
+    adhesion_parameter : float
+        Fuller–Tabor θ = E* σ^{3/2}/(R^{1/2} w).
+    plasticity_index : float or None
+        ψ = (E*/H)√(σ/R) (None without H).
+    warnings : tuple of str
+        Regime warnings (:func:`regime_warnings`).
+    """
+
+    law: str
+    turn: float
+    turn_from: str
+    pull_off: float
+    h_pull_off: float
+    pull_off_pressure: float
+    work_of_separation: float
+    hysteresis: float
+    tabor: float | None
+    maugis_lambda: float | None
+    adhesion_parameter: float
+    plasticity_index: float | None
+    warnings: tuple[str, ...] = ()
+
+    def to_dict(self) -> dict:
+        """Plain dict (JSON-ready apart from NaN/inf, which the CLI writes as null)."""
+        return asdict(self)
+
+
+def _top(surface: Surface, laws: LawSet, material: Material) -> float:
+    """Separation h above which no summit carries force on either branch."""
+    heights = surface.heights
+    top = float(heights.edges[-1]) if hasattr(heights, "edges") else GAUSSIAN_TOP
+    edges = laws.edges_for(surface, material)
+    return top - min(edges.reach, edges.break_off, 0.0) / surface.sigma
+
+
+def _bottom(surface: Surface) -> float:
+    heights = surface.heights
+    return float(heights.edges[0]) if hasattr(heights, "edges") else -GAUSSIAN_TOP
+
+
+def _kinks(surface, material, laws, turn: float, top: float) -> np.ndarray:
+    """Separations in (turn, top) where the retraction load may have a kink.
+
+    Where an edge in δ (reach, break-off, 0, jump-in, breakpoints) meets an edge in
+    δ_max (jump-in, breakpoints), and, for a histogram, where an edge in δ crosses a
+    bin edge (the density jumps there).
+    """
+    edges = laws.edges_for(surface, material)
+    sigma = surface.sigma
+    in_delta = np.array([0.0, edges.reach, edges.break_off, edges.jump_in, *edges.breakpoints])
+    in_max = np.array([edges.jump_in, *edges.breakpoints])
+    h = [turn + (in_max[:, None] - in_delta[None, :]).ravel() / sigma]
+    if hasattr(surface.heights, "edges"):
+        h.append((surface.heights.edges[:, None] - in_delta[None, :] / sigma).ravel())
+    h = np.concatenate(h)
+    return np.unique(h[(h > turn) & (h < top)])
+
+
+def zero_load_separation(surface: Surface, material: Material, law: str | LawSet) -> float:
+    """Separation h where the approach load first turns compressive, coming from far away.
+
+    The surfaces rest there under no external load (the stable zero of the load:
+    tensile above, compressive below). Bracketed on a grid from where no summit
+    reaches down to the lowest summit (further down if the load is still tensile
+    there, as for summits much rougher in adhesion than in height), then solved by
+    Brent's method to 1e-12 in h.
+
+    Raises
+    ------
+    NoAdhesiveRest
+        If the approach load is never tensile where the quadrature sees summits (no
+        adhesion, or too little for the roughness): the surfaces rest out of contact.
+    ParameterError
+        If the load is still tensile at h = -1e6.
+    """
+    laws = get_law_set(law)
+    top, bottom = _top(surface, laws, material), _bottom(surface)
+    # Below the lowest summit every summit is pressed in: extend the scan downwards
+    # (doubling its span) until the load turns compressive, or up to |h| = 1e6.
+    while True:
+        h = np.linspace(top, bottom, GRID)
+        load = gw_curves(surface, material, h, laws).load
+        tensile = np.flatnonzero(load < 0)
+        if tensile.size == 0:
+            raise NoAdhesiveRest(
+                f"law set {laws.name!r}: the approach load is never tensile, so there is no "
+                "separation of zero external load; give turn (--turn=H)"
+            )
+        after = np.flatnonzero((load > 0) & (np.arange(h.size) > tensile[0]))
+        if after.size or bottom < -1e6:
+            break
+        bottom = top - 2 * (top - bottom)
+    if after.size == 0:
+        raise ParameterError(
+            f"law set {laws.name!r}: the approach load stays tensile down to h = {h[-1]:g}; "
+            "give turn (--turn=H)"
+        )
+    i = after[0]
+
+    def f(x: float) -> float:
+        return float(gw_curves(surface, material, [x], laws).load[0])
+
+    return float(optimize.brentq(f, h[i], h[i - 1], xtol=1e-12, rtol=4 * np.finfo(float).eps))
+
+
+def adhesion_summary(
+    surface: Surface, material: Material, law: str | LawSet, turn: float | None = None
+) -> AdhesionSummary:
+    """Adhesion summary from the analytic curves (see the module docstring).
+
+    Parameters
+    ----------
+    surface, material : Surface, Material
+        The contact.
+    law : str or LawSet
+        A law set with a ``load`` output and a retraction branch.
+    turn : float, optional
+        Closest approach h_turn = d_turn/σ; default the separation of zero load on
+        approach (:func:`zero_load_separation`). Where the approach load is never
+        tensile (no adhesion, or too little for the roughness) the surfaces rest apart
+        under no load: the summary then has pull-off, work of separation and
+        hysteresis 0, ``turn`` the top of the summit population and ``turn_from``
+        saying so.
+
+    Returns
+    -------
+    AdhesionSummary
+        Regime warnings are also issued as :class:`RegimeWarning`.
+
+    Raises
+    ------
+    ParameterError
+        A law set without a ``load`` or a retraction branch, or a missing material field.
+    """
+    laws = get_law_set(law)
+    if "load" not in laws.names:
+        raise ParameterError(
+            f"law set {laws.name!r} has no net load (the seed's Eq. 4 term is not a tensile "
+            "force): use a contact law set (jkr, dmt, maugis-dugdale) or law auto"
+        )
+    laws.check_branch("retract")
+    if turn is None:
+        try:
+            turn, turn_from = zero_load_separation(surface, material, laws), "zero load on approach"
+        except NoAdhesiveRest:
+            # Under no external load the surfaces never come together: nothing to pull off.
+            return _summary(surface, material, laws, _top(surface, laws, material),
+                            "none: the approach load is never tensile, the surfaces rest apart",
+                            0.0, math.nan, 0.0, 0.0)  # fmt: skip
+    else:
+        turn, turn_from = check_range("turn", turn, "1"), "given"
+    top = max(_top(surface, laws, material), turn)
+
+    def load(x, branch: str) -> np.ndarray:
+        return gw_curves(surface, material, np.atleast_1d(x), laws, branch=branch,
+                         turn=turn if branch == "retract" else None).load  # fmt: skip
+
+    # Panels on [turn, top], split where the retraction load changes sign (a kink of
+    # max(−load, 0)); Gauss–Legendre nodes on each, both branches in one call each.
+    coarse = np.linspace(turn, top, PANELS + 1)
+    on_coarse = load(coarse, "retract")
+    change = np.flatnonzero(np.sign(on_coarse[:-1]) * np.sign(on_coarse[1:]) < 0)
+    roots = [
+        optimize.brentq(lambda x: load(x, "retract")[0], coarse[j], coarse[j + 1], xtol=1e-13)
+        for j in change
+        # At the zero-load turn the load is 0 to rounding, and its sign can differ between
+        # this one-point evaluation and the grid's: no root inside the panel then.
+        if load(coarse[j], "retract")[0] * load(coarse[j + 1], "retract")[0] < 0
+    ]
+    cuts = np.unique(np.concatenate([coarse, roots, _kinks(surface, material, laws, turn, top)]))
+    x, w = np.polynomial.legendre.leggauss(NODES)
+    half = np.diff(cuts)[:, None] / 2
+    nodes = ((cuts[:-1, None] + cuts[1:, None]) / 2 + half * x).ravel()
+    weights = (half * w).ravel()
+    retract = load(nodes, "retract")
+    approach = load(nodes, "approach")
+    scale = material.K * surface.sigma  # load·K is force per nominal area; dd = σ dh
+    work = scale * float(np.sum(weights * np.maximum(-retract, 0.0)))
+    hysteresis = scale * float(np.sum(weights * (approach - retract)))
+    # Pull-off: bounded minimisation around the lowest of the nodes and panel edges.
+    grid = np.concatenate([cuts, nodes])
+    values = np.concatenate([load(cuts, "retract"), retract])
+    order = np.argsort(grid)
+    grid, values = grid[order], values[order]
+    i = int(np.argmin(values))
+    pull_off, h_pull_off = 0.0, math.nan
+    if values[i] < 0:
+        lo, hi = grid[max(i - 1, 0)], grid[min(i + 1, grid.size - 1)]
+        best = optimize.minimize_scalar(
+            lambda x: load(x, "retract")[0], bounds=(lo, hi), method="bounded",
+            options={"xatol": H_TOLERANCE},
+        )  # fmt: skip
+        x, value = (best.x, best.fun) if best.fun <= values[i] else (grid[i], values[i])
+        pull_off, h_pull_off = -float(value), float(x)
+    return _summary(surface, material, laws, turn, turn_from, pull_off, h_pull_off, work,
+                    hysteresis)  # fmt: skip
+
+
+def _summary(surface, material, laws, turn, turn_from, pull_off, h_pull_off, work, hysteresis):
+    notes = tuple(regime_warnings(surface, material, laws))
+    for note in notes:
+        warnings.warn(note, RegimeWarning, stacklevel=3)
+    return AdhesionSummary(
+        law=laws.name,
+        turn=float(turn),
+        turn_from=turn_from,
+        pull_off=pull_off,
+        h_pull_off=h_pull_off,
+        pull_off_pressure=pull_off * material.K,
+        work_of_separation=work,
+        hysteresis=hysteresis,
+        tabor=tabor_parameter(surface, material),
+        maugis_lambda=maugis_parameter(surface, material),
+        adhesion_parameter=adhesion_parameter(surface, material),
+        plasticity_index=plasticity_index(surface, material),
+        warnings=notes,
+    )

@@ -1,0 +1,1 @@
+"""Files: run files and checkpoints, run results, sweep files, TOML configurations, safe writing of every output."""

@@ -1,0 +1,346 @@
+"""Surfaces and materials by preset name or from a small TOML file with units.
+
+.. code-block:: toml
+
+    [surface]                 # or: combine = ["polished-polysilicon", "polished-polysilicon"]
+    name = "my-surface"
+    sigma = "1.4 nm"          # std of summit heights
+    R = "1.7 um"              # summit radius
+    eta = "17 um^-2"          # summit density
+    heights = "gaussian"      # optional: "gaussian" (default) or a histogram file
+
+    [material]                # optional in a surface file; E and nu set both solids
+    E = "160 GPa"
+    nu = 0.22
+    gamma = "0.5 J/m^2"       # work of adhesion
+    H = "12.5 GPa"            # optional: hardness (plasticity index, elastic-plastic)
+    z0 = "0.3 nm"             # optional: equilibrium spacing (dmt, maugis-dugdale, Tabor)
+    tau = "100 MPa"           # optional: interfacial shear strength (friction tau*A)
+
+The summit-height distribution is Gaussian unless ``heights`` names a measured
+histogram: a text file (read by :mod:`mcsim.topography.readers.histogram`, its path relative
+to the TOML file's folder), or a table with the file or the bins inline:
+
+.. code-block:: toml
+
+    [surface.heights]
+    file = "hist.csv"         # or, inline: edges = [...] with counts = [...] (or densities = [...])
+    unit = "nm"               # height unit of the file or of the edges, if the file names none
+
+With a measured histogram, ``sigma`` is optional and defaults to the histogram's
+own standard deviation (of its piecewise-uniform density,
+:class:`~mcsim.topography.empirical.Empirical`); a given ``sigma`` rescales its shape.
+
+Dimensional quantities in a file must carry their unit (``sigma = "1.4 nm"``): a bare
+number is refused, since ``sigma = 1.4`` would otherwise be read as 1.4 m. (The
+dataclasses and the table builders called from Python take bare numbers as SI.)
+Unknown keys, missing keys, unknown units and out-of-range values raise a
+:class:`~mcsim.model.errors.MCSimError` naming the file and the field as written.
+"""
+
+from __future__ import annotations
+
+import difflib
+import tomllib
+from pathlib import Path
+from typing import Any
+
+from mcsim.model.errors import MCSimError, ParameterError, UnitError
+from mcsim.model.params import Material, Surface, combine_surfaces
+from mcsim.model.presets import MATERIALS, SURFACES
+from mcsim.model.units import SI_UNITS, has_unit, parse_quantity
+from mcsim.topography.empirical import Empirical
+
+_SURFACE_KEYS = {
+    "sigma": ("length", "std of summit heights, e.g. '1.4 nm'"),
+    "R": ("length", "summit radius, e.g. '1.7 um'"),
+    "eta": ("density", "summit density, e.g. '17 um^-2'"),
+}
+_HEIGHTS_KEYS = {"file", "edges", "counts", "densities", "unit"}
+_MATERIAL_KEYS = {
+    "E1": ("pressure", "Young's modulus of solid 1, e.g. '160 GPa'"),
+    "E2": ("pressure", "Young's modulus of solid 2, e.g. '160 GPa'"),
+    "nu1": ("dimensionless", "Poisson's ratio of solid 1, e.g. 0.22"),
+    "nu2": ("dimensionless", "Poisson's ratio of solid 2"),
+    "gamma": ("energy_per_area", "work of adhesion, e.g. '0.5 J/m^2'"),
+    "H": ("pressure", "hardness (optional), e.g. '12.5 GPa'"),
+    "z0": ("length", "equilibrium spacing (optional), e.g. '0.3 nm'"),
+    "tau": ("pressure", "interfacial shear strength (optional), e.g. '100 MPa'"),
+}
+
+
+def _read_toml(path: Path) -> dict[str, Any]:
+    try:
+        with path.open("rb") as f:
+            return tomllib.load(f)
+    except FileNotFoundError:
+        raise MCSimError(f"{path}: no such file") from None
+    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as err:
+        raise MCSimError(f"{path}: not a valid TOML file ({err})") from None
+    except RecursionError:
+        raise MCSimError(f"{path}: not a valid TOML file (nested too deeply)") from None
+    except OSError as err:
+        raise MCSimError(f"{path}: cannot read ({err.strerror})") from None
+    except ValueError:  # a NUL byte in the name
+        raise MCSimError(f"{path!r}: not a valid file name") from None
+
+
+def _quantities(
+    table: dict[str, Any],
+    keys: dict,
+    where: str,
+    optional=(),
+    *,
+    units_required: bool = False,
+    written: dict[str, str] | None = None,
+) -> dict[str, float]:
+    """Parse ``keys`` of ``table``; ``written`` maps a key to the name the user wrote
+    (``E1`` came from ``E``), for messages."""
+    written = written or {}
+    unknown = set(table) - set(keys) - {"name"}
+    if unknown:
+        raise ParameterError(
+            f"{where}: unknown key(s) {', '.join(sorted(unknown))} (allowed: {', '.join(keys)}, name)"
+        )
+    out = {}
+    for key, (dimension, meaning) in keys.items():
+        if key not in table:
+            if key in optional:
+                continue
+            raise ParameterError(f"{where}: missing key '{key}' ({meaning})")
+        name = written.get(key, key)
+        value = table[key]
+        if units_required and dimension != "dimensionless" and _is_bare(value):
+            parse_quantity(value, dimension, f"{where}: {name}")  # not finite: says so
+            raise UnitError(
+                f"{where}: {name} = {value!r} has no unit (a bare number in a file is refused); "
+                f"write it with its unit, e.g. {name} = {_with_unit(value, dimension, meaning)}"
+            )
+        out[key] = parse_quantity(value, dimension, f"{where}: {name}")
+    return out
+
+
+def _with_unit(value: Any, dimension: str, meaning: str) -> str:
+    """``"1.4 nm"``: the bare ``value`` with the unit of the key's example, or with the SI
+    unit where the number looks like SI already (|value| >= 1e3 or <= 1e-3)."""
+    number = float(value)
+    typical = meaning.split("e.g. '")[-1].rstrip("'").split(" ", 1)[-1]
+    looks_si = number != 0 and not 1e-3 < abs(number) < 1e3
+    return f'"{value} {SI_UNITS[dimension] if looks_si else typical}"'
+
+
+def _is_bare(value: Any) -> bool:
+    """A number, or a string holding only a number: no unit given."""
+    return _is_number(value) or (isinstance(value, str) and not has_unit(value))
+
+
+def _table(data: dict[str, Any], key: str, path: Path) -> dict[str, Any]:
+    if key not in data:
+        raise ParameterError(f"{path}: missing table [{key}]")
+    if not isinstance(data[key], dict):
+        raise ParameterError(f"{path}: [{key}] must be a table, got {data[key]!r}")
+    return data[key]
+
+
+def _heights_from_value(
+    value: Any, where: str, base_dir: Path | None, units_required: bool = False
+) -> Empirical | None:
+    """The ``heights`` entry of a surface table: None for Gaussian, else the histogram."""
+    from mcsim.topography.readers import read_histogram
+
+    if isinstance(value, str) and value.strip().lower() == "gaussian":
+        return None
+    if isinstance(value, str):
+        value = {"file": value}
+    if not isinstance(value, dict):
+        raise ParameterError(
+            f"{where}: heights must be 'gaussian', a histogram file or a table, got {value!r}"
+        )
+    unknown = set(value) - _HEIGHTS_KEYS
+    if unknown:
+        raise ParameterError(
+            f"{where}: heights: unknown key(s) {', '.join(sorted(unknown))} "
+            f"(allowed: {', '.join(sorted(_HEIGHTS_KEYS))})"
+        )
+    unit = value.get("unit")
+    if unit is not None and not isinstance(unit, str):
+        raise ParameterError(f"{where}: heights: unit must be a string, got {unit!r}")
+    if "file" in value and not isinstance(value["file"], str):
+        raise ParameterError(f"{where}: heights: file must be a string, got {value['file']!r}")
+    if "file" in value:
+        if {"edges", "counts", "densities"} & set(value):
+            raise ParameterError(f"{where}: heights: give either file or edges, not both")
+        path = Path(value["file"])
+        if base_dir is not None and not path.is_absolute():
+            path = base_dir / path
+        try:
+            return read_histogram(path, unit=unit).to_empirical()
+        except MCSimError as err:
+            raise ParameterError(f"{where}: heights: {err}") from None
+    if "edges" not in value or ("counts" in value) == ("densities" in value):
+        raise ParameterError(
+            f"{where}: heights: give file, or edges with one of counts or densities"
+        )
+    if unit is None and units_required:
+        raise UnitError(f'{where}: heights: inline edges need their unit, e.g. unit = "nm"')
+    factor = (
+        1.0 if unit is None else parse_quantity(f"1 {unit}", "length", f"{where}: heights: unit")
+    )
+    weights = value.get("counts", value.get("densities"))
+    edges = value["edges"]
+    if not (isinstance(edges, list) and all(_is_number(e) for e in edges)):
+        raise ParameterError(f"{where}: heights: edges must be a list of numbers, got {edges!r}")
+    try:
+        return Empirical.from_histogram(
+            [factor * e for e in edges],
+            weights,
+            density="densities" in value,
+            source=f"{where}: inline histogram",
+        )
+    except (ParameterError, TypeError) as err:
+        raise ParameterError(f"{where}: heights: {err}") from None
+
+
+def _is_number(value: Any) -> bool:
+    return isinstance(value, int | float) and not isinstance(value, bool)
+
+
+def surface_from_table(
+    table: dict[str, Any],
+    where: str = "surface",
+    base_dir: Path | None = None,
+    *,
+    including: tuple[Path, ...] = (),
+    units_required: bool = False,
+) -> Surface:
+    """Build a :class:`Surface` from a TOML-like table (see the module docstring).
+
+    ``base_dir`` is the folder that relative histogram paths in ``heights`` start
+    from (the TOML file's folder); the working directory if None. ``including`` lists
+    the surface files being read (for ``combine``), so that files including each
+    other are refused. ``units_required``: refuse bare numbers for dimensional
+    quantities (files).
+    """
+    strict = {"units_required": units_required}
+    name = str(table.get("name", ""))
+    try:
+        if "combine" in table:
+            pair = table["combine"]
+            if not (
+                isinstance(pair, list) and len(pair) == 2 and all(isinstance(p, str) for p in pair)
+            ):
+                raise ParameterError(f"{where}: combine must list two surfaces, got {pair!r}")
+            rest = {k: v for k, v in table.items() if k not in ("combine", "name")}
+            eta = _quantities(rest, {"eta": _SURFACE_KEYS["eta"]}, where, **strict)["eta"]
+            try:
+                first, second = (
+                    load_surface(_relative_to(p, base_dir), including=including) for p in pair
+                )
+            except MCSimError as err:
+                raise type(err)(f"{where}: combine: {err}") from None
+            return combine_surfaces(first, second, eta=eta, name=name)
+        table = dict(table)
+        heights = _heights_from_value(
+            table.pop("heights", "gaussian"), where, base_dir, units_required
+        )
+        if heights is None:
+            return Surface(**_quantities(table, _SURFACE_KEYS, where, **strict), name=name)
+        values = _quantities(table, _SURFACE_KEYS, where, optional=("sigma",), **strict)
+        values.setdefault("sigma", heights.sigma)
+        return Surface(**values, heights=heights, name=name)
+    except ParameterError as err:
+        if str(err).startswith(where):
+            raise
+        raise ParameterError(f"{where}: {err}") from None
+
+
+def material_from_table(
+    table: dict[str, Any], where: str = "material", *, units_required: bool = False
+) -> Material:
+    """Build a :class:`Material` from a TOML-like table; ``E``/``nu`` set both solids.
+
+    ``units_required``: refuse bare numbers for dimensional quantities (files).
+    """
+    table = dict(table)
+    written = {}
+    for both, (one, two) in {"E": ("E1", "E2"), "nu": ("nu1", "nu2")}.items():
+        if both in table and (one in table or two in table):
+            raise ParameterError(f"{where}: give either {both} or {one} and {two}, not both")
+        if both in table:
+            value = table.pop(both)
+            table.setdefault(one, value)
+            table.setdefault(two, value)
+            written |= {one: both, two: both}
+    values = _quantities(
+        table, _MATERIAL_KEYS, where, optional=("H", "z0", "tau"), units_required=units_required,
+        written=written,
+    )  # fmt: skip
+    try:
+        return Material(**values, name=str(table.get("name", "")))
+    except ParameterError as err:
+        raise ParameterError(f"{where}: {err}") from None
+
+
+def load_surface(spec: str | Path, *, including: tuple[Path, ...] = ()) -> Surface:
+    """A preset name (``smooth``, ...) or a TOML file with a ``[surface]`` table.
+
+    ``including``: the surface files whose ``combine`` led here (refused if repeated).
+    """
+    if str(spec) in SURFACES:
+        return SURFACES[str(spec)]
+    path = Path(spec)
+    if path.suffix != ".toml":
+        raise ParameterError(
+            f"unknown surface {str(spec)!r}{_closest(spec, SURFACES)}: give a preset "
+            f"({', '.join(SURFACES)}) or a .toml file"
+        )
+    table = _table(_read_toml(path), "surface", path)
+    if path.resolve() in including:
+        raise ParameterError(f"{path}: combine: the surface files include each other")
+    return surface_from_table(
+        table,
+        where=f"{path} [surface]",
+        base_dir=path.parent,
+        including=(*including, path.resolve()),
+        units_required=True,
+    )
+
+
+def _closest(spec: str | Path, names) -> str:
+    """' (did you mean 'smooth'?)' for the preset nearest a mistyped name, else ''."""
+    close = difflib.get_close_matches(str(spec).lower(), list(names), n=1, cutoff=0.6)
+    return f" (did you mean {close[0]!r}?)" if close else ""
+
+
+def _relative_to(spec: str, base: Path | None) -> str | Path:
+    """A surface file named in ``combine``, relative to the including file's folder."""
+    if base is None or Path(spec).suffix != ".toml" or Path(spec).is_absolute():
+        return spec
+    return base / spec
+
+
+def load_material(spec: str | Path) -> Material:
+    """A preset name (``silicon``) or a TOML file with a ``[material]`` table."""
+    if str(spec) in MATERIALS:
+        return MATERIALS[str(spec)]
+    path = Path(spec)
+    if path.suffix != ".toml":
+        raise ParameterError(
+            f"unknown material {str(spec)!r}{_closest(spec, MATERIALS)}: give a preset "
+            f"({', '.join(MATERIALS)}) or a .toml file"
+        )
+    table = _table(_read_toml(path), "material", path)
+    return material_from_table(table, where=f"{path} [material]", units_required=True)
+
+
+def material_in_surface_file(spec: str | Path) -> Material | None:
+    """The ``[material]`` table of a surface TOML file, if it has one."""
+    path = Path(spec)
+    if path.suffix != ".toml" or str(spec) in SURFACES:
+        return None
+    data = _read_toml(path)
+    if "material" not in data:
+        return None
+    return material_from_table(
+        _table(data, "material", path), where=f"{path} [material]", units_required=True
+    )

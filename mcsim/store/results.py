@@ -1,0 +1,259 @@
+"""The result of a Monte Carlo run: its sums, statistics and GW expectation (:class:`Run`).
+
+Layering: this module sits above the engine (:mod:`mcsim.engine.montecarlo`), the statistics
+and the analytic integrals, and below storage (:mod:`mcsim.store.runfile`) and
+:func:`mcsim.studies.simulation.simulate`, so that reading a run file needs no simulation code.
+"""
+
+from __future__ import annotations
+
+import inspect
+import types
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from mcsim.engine.kernels import sum_columns
+from mcsim.engine.montecarlo import EnsembleSums, MonteCarloSpec
+from mcsim.engine.statistics import (
+    Summary,
+    compare_table,
+    expected_values,
+    per_realization,
+    quantities,
+    summarize,
+)
+from mcsim.model.errors import ParameterError
+from mcsim.physics.analytic import gw_curves
+
+#: Normalisation of each dimensionless quantity, spelled out (the ``unit`` of tables and files).
+NORMALISED = {
+    "contact_fraction": "N_c/N",
+    "P": "P/(A K)",
+    "F": "F/(A K)",
+    "T": "T/(A K)",
+    "mu": "T/(P + F)",
+}
+
+#: Unit of each column of the seed's raw sums (:data:`mcsim.engine.kernels.SUM_COLUMNS`): the
+#: count of contacting summits, the forces P, F, T and their second moments (any law set:
+#: :func:`mcsim.engine.kernels.sum_units`).
+SUM_UNITS = ("1", "N", "N", "N", "N^2", "N^2", "N^2", "N^2", "N^2", "N^2")
+
+#: Ensemble statistics stored per quantity.
+STATS = ("mean", "se", "std", "se_between")
+
+
+@dataclass(frozen=True)
+class PullOff:
+    """Per-patch pull-off force of a cycle run: the most tensile load on retraction.
+
+    Attributes
+    ----------
+    force : ndarray, shape (R,)
+        Magnitude of the most tensile total load of each patch over the retraction
+        rows, N (0 where no row is tensile).
+    normalised : ndarray, shape (R,)
+        The same divided by A K (the ``load`` normalisation).
+    h : ndarray, shape (R,)
+        d/σ of the row where it occurs.
+    resolution : float
+        Largest spacing of the swept grid in d/σ: the pull-off is the minimum over the
+        grid, so it is located to within this and underestimates the true one.
+    """
+
+    force: np.ndarray
+    normalised: np.ndarray
+    h: np.ndarray
+    resolution: float
+
+
+@dataclass(frozen=True)
+class Run:
+    """A Monte Carlo run with its statistics and the GW expectation for the same inputs.
+
+    Attributes
+    ----------
+    ensemble : EnsembleSums
+        The inputs (``ensemble.spec``), the summit counts and the raw sums.
+    realizations : dict of ndarray
+        (R, M) dimensionless curves per quantity (N_c/N; force/(A·K); μ).
+    summary : Summary
+        Ensemble estimates and standard errors.
+    analytic : dict of ndarray
+        GW expected values of the estimators, per quantity.
+    attrs : dict
+        Provenance (command, versions, creation time) once written or read.
+    path : Path or None
+        The run file, if any.
+    heights : list of ndarray or None
+        Sampled heights above h_min (m), when kept.
+    complete : bool
+        False for the completed part of an unfinished run.
+    """
+
+    ensemble: EnsembleSums
+    realizations: dict
+    summary: Summary
+    analytic: dict
+    attrs: dict = field(default_factory=dict)
+    path: Path | None = None
+    heights: list | None = field(default=None, repr=False)
+    complete: bool = True
+
+    @property
+    def spec(self) -> MonteCarloSpec:
+        return self.ensemble.spec
+
+    @property
+    def n_summits(self) -> np.ndarray:
+        """Summits per patch."""
+        return self.ensemble.n_summits
+
+    @property
+    def sums(self) -> np.ndarray:
+        """Raw sums, shape (R, M, 10): :data:`mcsim.engine.kernels.SUM_COLUMNS` in :data:`SUM_UNITS`."""
+        return self.ensemble.sums
+
+    @property
+    def h(self) -> np.ndarray:
+        return self.spec.h
+
+    @property
+    def d(self) -> np.ndarray:
+        return self.spec.d
+
+    def _summary(self) -> tuple[str, list[tuple[str, str]]]:
+        from mcsim.model import display as _display
+
+        spec = self.spec
+        n = self.n_summits
+        drawn = f" (drawn: {np.min(n)} to {np.max(n)})" if n.size else ""
+        rows = _display.inputs(spec.surface, spec.material, spec.law, spec.h)
+        if spec.cycle:
+            rows.append(("branches", f"approach, then retraction from h = {np.min(spec.h):g}"))
+        rows.append(
+            ("patch", f"A = {spec.area * 1e12:.4g} µm², N ~ {spec.count} with E[N] = "
+                      f"{spec.expected_summits:.4g}{drawn}")
+        )  # fmt: skip
+        done = "complete" if self.complete else "completed part of an unfinished run"
+        rows.append(("realizations", f"{spec.realizations}, {done}; seed entropy {spec.entropy}"))
+        if self.path is not None:
+            rows.append(("file", str(self.path)))
+        return "Monte Carlo run", rows
+
+    def __repr__(self) -> str:
+        from mcsim.model import display as _display
+
+        return _display.text(*self._summary())
+
+    def _repr_html_(self) -> str:
+        from mcsim.model import display as _display
+
+        return _display.table(*self._summary())
+
+    @property
+    def quantities(self) -> tuple[str, ...]:
+        """Names of the estimated curves (see :func:`mcsim.engine.statistics.quantities`)."""
+        return tuple(self.summary.mean)
+
+    def normalisation(self, quantity: str) -> str:
+        """How ``quantity`` is made dimensionless (``"P/(A K)"``, ``"area/A"``, ...)."""
+        return quantities(self.spec.law_set, self.spec.material)[quantity].normalisation
+
+    def compare(self):
+        """DataFrame ``h, branch, quantity, mc_mean, mc_se, analytic, z, note``, one row
+        per separation, branch and quantity (see :mod:`mcsim.engine.statistics`)."""
+        import pandas as pd
+
+        return pd.DataFrame(
+            compare_table(self.summary, self.analytic, self.spec.row_h, self.spec.row_branch)
+        )
+
+    def pull_off(self) -> PullOff:
+        """Per-patch pull-off of a cycle run (the law set must have a signed ``load``)."""
+        spec = self.spec
+        if not spec.cycle or "load" not in spec.law_set.names:
+            raise ParameterError(
+                f"pull-off needs a cycle run (--cycle) of a law set with a signed load; "
+                f"this run has law = {spec.law!r}, cycle = {spec.cycle}"
+            )
+        M = spec.h.size
+        load = self.sums[:, M:, sum_columns(spec.law_set).index("load")]
+        j = np.argmin(load, axis=1)
+        force = np.maximum(-load[np.arange(load.shape[0]), j], 0.0)
+        grid = np.unique(spec.h)
+        return PullOff(force=force, normalised=force / (spec.area * spec.material.K), h=spec.h[j],
+                       resolution=float(np.max(np.diff(grid))) if grid.size > 1 else np.inf)  # fmt: skip
+
+    def to_dataframe(self):
+        """Tidy table: one row per (source, realization, h, quantity).
+
+        Columns: ``source`` (``realization``, ``mean``, ``se``, ``std``, ``se_between``
+        or ``analytic``), ``realization`` (index, -1 for the others), ``h`` (d/σ), ``d``
+        (m), for a cycle run ``branch`` (``approach``/``retract``), ``quantity``,
+        ``value``, ``unit``. Values are dimensionless: N_c/N (Eq. 1), force/(A·K) for
+        P, F, T (Eqs. 3, 5, 7) and T/(P+F) for μ (Eq. 8); for the other law sets
+        load/(A K), area/A, friction/(A K) and friction/load; ``unit`` spells out the
+        normalisation.
+        """
+        import pandas as pd
+
+        spec = self.spec
+        rows = {"h": spec.row_h, "d": np.tile(self.d, len(spec.branches))}
+        if spec.cycle:
+            rows["branch"] = spec.row_branch
+
+        def frame(source, realization, q, values):
+            return pd.DataFrame({"source": source, "realization": realization, **rows,
+                                 "quantity": q, "value": values, "unit": self.normalisation(q)})  # fmt: skip
+
+        frames = []
+        for q in self.quantities:
+            frames += [
+                frame("realization", r, q, row) for r, row in enumerate(self.realizations[q])
+            ]
+            frames += [frame(stat, -1, q, getattr(self.summary, stat)[q]) for stat in STATS]
+            frames.append(frame("analytic", -1, q, self.analytic[q]))
+        return pd.concat(frames, ignore_index=True)
+
+
+def assemble(ens: EnsembleSums, **kwargs) -> Run:
+    """Statistics and GW expectations of a complete ensemble, as a :class:`Run`."""
+    spec = ens.spec
+    return Run(
+        ensemble=ens,
+        realizations=per_realization(ens),
+        summary=summarize(ens),
+        analytic=expected_values(spec, analytic_curves(spec)),
+        heights=ens.heights,
+        **kwargs,
+    )
+
+
+def analytic_curves(spec: MonteCarloSpec, h=None) -> list:
+    """GW curves of each branch of ``spec`` (at ``h``, by default the run's), with
+    retraction after the closest approach min(spec.h).
+
+    Where :func:`mcsim.physics.analytic.gw_curves` cannot give a law set's curves (no
+    branches), the values are NaN (no comparison; the table says so).
+    """
+    h = spec.h if h is None else np.asarray(h, dtype=float)
+    if "branch" in inspect.signature(gw_curves).parameters:
+        return [
+            gw_curves(
+                spec.surface,
+                spec.material,
+                h,
+                law=spec.law,
+                branch=b,
+                **({"turn": spec.turn} if b == "retract" else {}),
+            )
+            for b in spec.branches
+        ]
+    if spec.law_set.stateful or not {"P", "F", "T"} <= set(spec.law_set.names):
+        nan = np.full(h.shape, np.nan)
+        names = quantities(spec.law_set, spec.material)
+        return [types.SimpleNamespace(**dict.fromkeys(names, nan)) for _ in spec.branches]
+    return [gw_curves(spec.surface, spec.material, h, spec.law)] * len(spec.branches)

@@ -1,0 +1,462 @@
+"""HDF5 run files: atomic, checksummed, resumable; read back as a :class:`~mcsim.store.results.Run`.
+
+Layout (schema version :data:`SCHEMA_VERSION`; every dataset carries a ``unit``
+attribute, dimensionless ones ``"1"`` with the normalisation in ``description``):
+
+    /                      attrs: schema_version, mcsim_version, created, command,
+                           seed_entropy, law, law_outputs (JSON: name -> unit),
+                           quantities (JSON: name -> normalisation), count,
+                           area [m^2], realizations, cycle, branches (JSON), turn
+                           (d/σ of the closest approach; cycle only),
+                           block_size, complete, checksum
+    /input/surface         attrs: sigma [m], R [m], eta [m^-2], name, heights (JSON)
+    /input/material        attrs: E1, E2 [Pa], nu1, nu2, gamma [J/m^2], H [Pa], name,
+                           z0 [m], tau [Pa] (NaN: not given; absent in older files)
+    /h, /d                 separations: d/σ and d [m] (M each)
+    /branch                (rows,) branch of each row: the M separations on approach,
+                           then with ``cycle`` the same M on retraction
+    /realizations/N        summits per patch
+    /realizations/sums     (R, rows, C) raw sums; attrs columns (sum_columns of the law
+                           set) and their units (1, the outputs', their squares, products)
+    /progress/n_blocks, /progress/done_blocks   blocks per patch, and done
+    -- complete runs only --
+    /realizations/<q>      (R, rows) dimensionless curves, q in ``quantities``
+    /summary/<stat>/<q>    (rows,) stat in mean, se, std, se_between
+    /summary/expected_contacts
+    /analytic/<q>          (rows,) GW curves for the same inputs (expected values)
+    /heights/<r>           optional: sampled heights above s_min [m]
+
+Schema 1 (mcsim 0.1: the seed law set, approach only, no law_outputs, quantities,
+cycle, branches, turn, z0, tau or /branch) is still read, with identical results.
+
+Named axes: every group whose datasets have an axis h (M), realization (R) or column
+(the 10 sums columns) holds that axis's coordinate as an HDF5 dimension scale of the same
+name, attached to those datasets, so netCDF readers (xarray with h5netcdf) name the
+dimensions alike in every group and give their values. Files written before the scales
+were added read the same.
+
+Guarantees:
+
+* every file is written under a temporary name in the target folder and moved into
+  place with one atomic rename, so the path holds either nothing, an earlier
+  complete file or a new complete file — never half a file;
+* the file is built in memory and written with plain writes, so a full disk fails
+  cleanly (one line, the temporary removed), never inside the HDF5 library;
+* a run in progress checkpoints itself beside its path, in :func:`checkpoint_path`
+  (``<stem>.partial<suffix>``), as an *incomplete* run (``complete = False``, sums of
+  the blocks done so far), which ``--resume`` continues; the path itself only ever
+  receives complete runs;
+* a complete run is never replaced without ``overwrite``; an ``flock`` on
+  ``<name>.lock`` keeps two processes from writing the same path;
+* ``checksum`` (SHA-256 over every dataset and attribute) and the shapes are checked
+  on every read: a truncated or edited file is refused.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import datetime as _dt
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+
+from mcsim._version import __version__
+from mcsim.engine.kernels import sum_columns, sum_units
+from mcsim.engine.montecarlo import BLOCK, EnsembleSums, MonteCarloSpec
+from mcsim.engine.statistics import Summary, quantities
+from mcsim.model.distributions import GAUSSIAN
+from mcsim.model.errors import MCSimError, RunFileError
+from mcsim.model.params import Material, Surface
+from mcsim.physics.laws import get_law_set
+from mcsim.store.files import atomic_write, checksum
+from mcsim.store.results import STATS, Run, assemble
+
+SCHEMA_VERSION = 2
+
+#: Schema versions this mcsim reads.
+READABLE = (1, 2)
+
+
+# --- locking --------------------------------------------------------------------------
+
+
+# --- writing --------------------------------------------------------------------------
+
+
+def heights_to_json(surface: Surface) -> str:
+    """The summit-height distribution as run and sweep files store it (JSON text)."""
+    heights = surface.heights
+    if heights == GAUSSIAN:
+        return json.dumps({"name": "gaussian"})
+    return json.dumps({"name": heights.name, **heights.to_dict()})
+
+
+def _heights_from_json(text: str):
+    data = json.loads(text)
+    if data["name"] == "gaussian":
+        return GAUSSIAN
+    from mcsim.topography.empirical import Empirical
+
+    return Empirical.from_dict({k: v for k, v in data.items() if k != "name"})
+
+
+def _dataset(f, name: str, data, unit: str, description: str, dims=(), **options):
+    """Create dataset ``name`` with its unit; ``dims`` name its axes (see :func:`_axis`)."""
+    ds = f.create_dataset(name, data=np.asarray(data), **options)
+    ds.attrs["unit"] = unit
+    ds.attrs["description"] = description
+    for k, axis in enumerate(dims):
+        ds.dims[k].attach_scale(_axis(ds.parent, axis, ds.shape[k]))
+    return ds
+
+
+#: Named axes: unit and meaning of each coordinate.
+AXES = {
+    "h": ("1", "d/sigma"),
+    "row": ("1", "d/sigma of each row of a cycle: approach, then retraction (see branch)"),
+    "realization": ("1", "realization index"),
+    "column": ("1", "column of realizations/sums"),
+}
+
+
+def _axis(group, axis: str, size: int):
+    """The coordinate ``axis`` of ``group``, created on first use.
+
+    Each group that uses an axis holds its own copy as an HDF5 dimension scale named
+    after it, so that netCDF readers (``xarray.open_dataset(path, group=...,
+    engine="h5netcdf")``, ``open_datatree``) name the dimension and give its values,
+    with the same name in every group.
+    """
+    if axis not in group:
+        values = {
+            "h": lambda: group.file["h"][()],
+            "row": lambda: group.file["row"][()],
+            "realization": lambda: np.arange(size),
+            "column": lambda: np.array(sum_columns(get_law_set(group.file.attrs["law"])), "S"),
+        }[axis]()
+        scale = _dataset(group, axis, values, *AXES[axis])
+        if axis == "column":
+            scale.attrs["_Encoding"] = "utf-8"  # netCDF readers decode the names to text
+        scale.make_scale(axis)
+    return group[axis]
+
+
+def _row_axis(spec: MonteCarloSpec) -> str:
+    """Name of the row axis of the sums and curves: ``h`` (approach only), or ``row``
+    (a cycle: the M approach rows, then the M retraction rows)."""
+    return "row" if spec.cycle else "h"
+
+
+def _write_inputs(f, spec: MonteCarloSpec, command: str, complete: bool, extra=None) -> dict:
+    attrs = {
+        "schema_version": SCHEMA_VERSION,
+        "mcsim_version": __version__,
+        "created": _dt.datetime.now(_dt.UTC).isoformat(timespec="seconds"),
+        "command": command,
+        "seed_entropy": str(spec.entropy),
+        "law": spec.law,
+        "law_outputs": json.dumps({o.name: o.unit for o in spec.law_set.outputs}),
+        "quantities": json.dumps(
+            {q: v.normalisation for q, v in quantities(spec.law_set, spec.material).items()}
+        ),
+        "count": spec.count,
+        "area": spec.area,
+        "area_unit": "m^2",
+        "realizations": spec.realizations,
+        "cycle": spec.cycle,
+        "device": spec.device,
+        "branches": json.dumps(list(spec.branches)),
+        **({"turn": spec.turn} if spec.cycle else {}),
+        "block_size": BLOCK,
+        "complete": complete,
+        **(extra or {}),
+    }
+    f.attrs.update(attrs)
+    s = f.create_group("input/surface")
+    s.attrs.update(sigma=spec.surface.sigma, R=spec.surface.R, eta=spec.surface.eta,
+                   name=spec.surface.name, heights=heights_to_json(spec.surface))  # fmt: skip
+    s.attrs["units"] = json.dumps({"sigma": "m", "R": "m", "eta": "m^-2"})
+    m = f.create_group("input/material")
+    mat = spec.material
+    m.attrs.update(E1=mat.E1, E2=mat.E2, nu1=mat.nu1, nu2=mat.nu2, gamma=mat.gamma,
+                   H=np.nan if mat.H is None else mat.H, name=mat.name)  # fmt: skip
+    m.attrs.update({k: np.nan if getattr(mat, k) is None else getattr(mat, k) for k in ("z0", "tau")})  # fmt: skip
+    m.attrs["units"] = json.dumps({"E1": "Pa", "E2": "Pa", "nu1": "1", "nu2": "1", "gamma": "J/m^2",
+                                   "H": "Pa", "z0": "m", "tau": "Pa"})  # fmt: skip
+    _dataset(f, "h", spec.h, *AXES["h"]).make_scale("h")
+    _dataset(f, "d", spec.d, "m", "mean separation", dims=("h",))
+    if spec.cycle:
+        _dataset(f, "row", spec.row_h, *AXES["row"]).make_scale("row")
+    _dataset(f, "branch", spec.row_branch.astype("S"), "1", "branch of each row of the sums",
+             dims=(_row_axis(spec),))  # fmt: skip
+    return attrs
+
+
+def _write_state(f, state: EnsembleSums) -> None:
+    per_realization = ("realization",)
+    _dataset(f, "realizations/N", state.n_summits, "1", "summits in the patch", per_realization)
+    sums = _dataset(
+        f,
+        "realizations/sums",
+        state.sums,
+        "per column, see units",
+        "raw per-row sums over the blocks done",
+        ("realization", _row_axis(state.spec), "column"),
+    )
+    sums.attrs["columns"] = list(sum_columns(state.spec.law_set))
+    sums.attrs["units"] = list(sum_units(state.spec.law_set))
+    blocks = f"blocks of {BLOCK} summits above s_min"
+    _dataset(f, "progress/n_blocks", state.n_blocks, "1", blocks, per_realization)
+    _dataset(f, "progress/done_blocks", state.done_blocks, "1", "blocks done", per_realization)
+
+
+def write_checkpoint(
+    path: str | Path, state: EnsembleSums, *, command: str, extra: dict | None = None
+) -> None:
+    """Write a run in progress (``complete = False``), replacing the previous checkpoint.
+
+    ``extra``: further root attributes (numbers or strings), as for :func:`write_run`.
+    """
+
+    def fill(f):
+        _write_inputs(f, state.spec, command, complete=False, extra=extra)
+        _write_state(f, state)
+
+    atomic_write(Path(path), fill)
+
+
+def write_run(path: str | Path, run, *, command: str, extra: dict | None = None):
+    """Write a complete ``run`` (a :class:`mcsim.store.results.Run`); return it with path and attrs.
+
+    The caller holds :func:`lock` and has checked the path with :func:`check_output_path`.
+    ``extra``: further root attributes, numbers or strings (provenance such as
+    ``load_control``, the JSON list of nominal pressures, Pa, that a load-controlled
+    run's separations balance).
+    """
+    import dataclasses
+
+    path = Path(path)
+    attrs: dict = {}
+
+    def fill(f):
+        attrs.update(_write_inputs(f, run.spec, command, complete=True, extra=extra))
+        _write_state(f, run.ensemble)
+        per_row = (_row_axis(run.spec),)
+        for q in run.quantities:
+            norm = run.normalisation(q)
+            curves = run.realizations[q]
+            _dataset(f, f"realizations/{q}", curves, "1", norm, ("realization", per_row[0]))
+            _dataset(f, f"analytic/{q}", run.analytic[q], "1", norm, per_row)
+            for stat in STATS:
+                values = getattr(run.summary, stat)[q]
+                _dataset(f, f"summary/{stat}/{q}", values, "1", norm, per_row)
+        expected = run.summary.expected_contacts
+        _dataset(f, "summary/expected_contacts", expected, "1", "R E[N] S(s)", per_row)
+        if run.heights is not None:
+            for r, z in enumerate(run.heights):
+                _dataset(
+                    f,
+                    f"heights/{r}",
+                    z,
+                    "m",
+                    "sampled heights above s_min",
+                    compression="gzip",
+                    shuffle=True,
+                )
+
+    atomic_write(path, fill)
+    return dataclasses.replace(run, path=path, attrs=attrs)
+
+
+# --- reading --------------------------------------------------------------------------
+
+
+def _open(path: Path):
+    import h5py
+
+    if not path.is_file():
+        raise RunFileError(f"{path}: no such file")
+    try:
+        f = h5py.File(path, "r")
+    except OSError:
+        raise RunFileError(f"{path}: not an HDF5 file, or truncated") from None
+    try:
+        with _damaged(path):
+            version = f.attrs.get("schema_version")
+            if version is None:
+                raise RunFileError(f"{path}: not an mcsim run file (no schema_version)")
+            if not (np.ndim(version) == 0 and np.issubdtype(np.asarray(version).dtype, np.integer)):
+                raise RunFileError(
+                    f"{path}: damaged run file: schema_version is {_shown(version)}, not an integer"
+                )
+            if int(version) not in READABLE:
+                raise RunFileError(
+                    f"{path}: run-file schema version {int(version)} is not supported "
+                    f"(this mcsim {__version__} reads versions {', '.join(map(str, READABLE))})"
+                )
+            _check_sizes(path, f)
+    except BaseException:
+        f.close()
+        raise
+    return f
+
+
+def _shown(value) -> str:
+    """A short one-line repr of a value read from a file, for messages."""
+    text = repr(value.tolist() if hasattr(value, "tolist") else value)
+    return text if len(text) <= 40 else text[:40] + "..."
+
+
+#: A run file's datasets hold at most this many times the file's size (gzip on sampled
+#: heights saves ~10 %; nothing in a run file compresses 64-fold).
+_MAX_EXPANSION = 64
+
+
+def _check_sizes(path: Path, f) -> None:
+    """Refuse, before reading any data, datasets that are not numbers or that declare
+    more bytes than the file could hold (a damaged header can declare terabytes)."""
+    import h5py
+
+    budget = _MAX_EXPANSION * path.stat().st_size
+    total = 0
+    found: list[tuple[str, object]] = []
+    f.visititems(lambda name, obj: found.append((name, obj)))
+    for name, obj in found:
+        if not isinstance(obj, h5py.Dataset):
+            continue
+        if obj.dtype.kind not in "biufS":  # numbers; fixed-length names (column scale)
+            raise RunFileError(
+                f"{path}: damaged run file: dataset {name} holds {obj.dtype}, not numbers"
+            )
+        size = math.prod(obj.shape) * obj.dtype.itemsize
+        total += size
+        if total > budget:
+            raise RunFileError(
+                f"{path}: damaged run file: dataset {name} declares {size} bytes ({total} with "
+                f"those before it), more than this {path.stat().st_size}-byte file can hold"
+            )
+
+
+def _read_state(path: Path, f) -> EnsembleSums:
+    attrs = f.attrs
+    s, m = f["input/surface"].attrs, f["input/material"].attrs
+    surface = Surface(sigma=float(s["sigma"]), R=float(s["R"]), eta=float(s["eta"]),
+                      heights=_heights_from_json(s["heights"]), name=str(s["name"]))  # fmt: skip
+    H, z0, tau = (float(m.get(k, np.nan)) for k in ("H", "z0", "tau"))
+    material = Material(E1=float(m["E1"]), E2=float(m["E2"]), nu1=float(m["nu1"]), nu2=float(m["nu2"]),
+                        gamma=float(m["gamma"]), H=None if np.isnan(H) else H, name=str(m["name"]),
+                        z0=None if np.isnan(z0) else z0, tau=None if np.isnan(tau) else tau)  # fmt: skip
+    spec = MonteCarloSpec(surface, material, f["h"][()], float(attrs["area"]), int(attrs["realizations"]),
+                          int(attrs["seed_entropy"]), str(attrs["law"]), str(attrs["count"]),
+                          bool(attrs.get("cycle", False)), str(attrs.get("device", "cpu")))  # fmt: skip
+    R, M, rows = spec.realizations, spec.h.size, spec.row_h.size
+    columns = sum_columns(spec.law_set)
+    expected = {
+        "d": (M,),
+        "realizations/N": (R,),
+        "realizations/sums": (R, rows, len(columns)),
+        "progress/n_blocks": (R,),
+        "progress/done_blocks": (R,),
+    }
+    if int(attrs["schema_version"]) >= 2:
+        expected["branch"] = (rows,)
+        stored = [str(c) for c in f["realizations/sums"].attrs["columns"]]
+        if stored != list(columns):
+            raise RunFileError(
+                f"{path}: sums columns {stored} differ from law set {spec.law!r}'s {list(columns)}"
+            )
+    if bool(attrs["complete"]):
+        names = _quantities(spec)
+        expected |= {f"realizations/{q}": (R, rows) for q in names}
+        expected |= {f"analytic/{q}": (rows,) for q in names}
+        expected |= {f"summary/{stat}/{q}": (rows,) for stat in STATS for q in names}
+        expected["summary/expected_contacts"] = (rows,)
+    for name, shape in expected.items():
+        if name not in f:
+            raise RunFileError(f"{path}: damaged run file: dataset {name} is missing")
+        if f[name].shape != shape:
+            raise RunFileError(
+                f"{path}: damaged run file: {name} has shape {f[name].shape}, the inputs ask for {shape}"
+            )
+    if int(attrs.get("block_size", -1)) != BLOCK:
+        raise RunFileError(
+            f"{path}: written with blocks of {attrs.get('block_size')} summits, this mcsim uses {BLOCK}"
+        )
+    state = EnsembleSums(spec, f["realizations/N"][()], f["realizations/sums"][()],
+                         f["progress/n_blocks"][()], f["progress/done_blocks"][()])  # fmt: skip
+    if state.complete != bool(attrs["complete"]):
+        raise RunFileError(f"{path}: damaged run file: progress disagrees with the 'complete' flag")
+    return state
+
+
+def _quantities(spec: MonteCarloSpec) -> tuple[str, ...]:
+    """Names of the stored curves of a run (schema 1: the seed's)."""
+    return tuple(quantities(spec.law_set, spec.material))
+
+
+def _verified(path: Path, f) -> None:
+    stored = f.attrs.get("checksum")
+    if stored is None or checksum(f) != stored:
+        raise RunFileError(f"{path}: damaged run file: checksum mismatch (truncated or edited)")
+
+
+@contextlib.contextmanager
+def _damaged(path: Path):
+    """Report anything a damaged file makes h5py or the parameter checks raise as damage."""
+    try:
+        yield
+    except MCSimError:
+        raise
+    except (KeyError, ValueError, TypeError, OSError, RuntimeError, AttributeError, IndexError,
+            OverflowError) as err:  # fmt: skip
+        reason = " ".join(str(err).split())[:200]  # HDF5's messages span lines
+        raise RunFileError(f"{path}: damaged run file ({type(err).__name__}: {reason})") from None
+
+
+def read_state(path: str | Path) -> tuple[EnsembleSums, dict]:
+    """The sums and progress of a run file (complete or not), for resuming, and its attributes."""
+    path = Path(path)
+    with _open(path) as f, _damaged(path):
+        _verified(path, f)
+        return _read_state(path, f), dict(f.attrs)
+
+
+def read_run(path: str | Path, *, allow_incomplete: bool = False):
+    """Open a run file as a :class:`mcsim.store.results.Run`.
+
+    Refuses other schema versions, damaged files (checksum, shapes) and, unless
+    ``allow_incomplete``, runs that did not finish. With ``allow_incomplete`` an
+    unfinished run is summarised over its completed realizations (``run.complete``
+    is then False).
+    """
+    path = Path(path)
+    with _open(path) as f, _damaged(path):
+        _verified(path, f)
+        state = _read_state(path, f)
+        attrs = {k: (v.item() if hasattr(v, "item") else v) for k, v in f.attrs.items()}
+        if not state.complete:
+            if not allow_incomplete:
+                done = int(np.sum(state.done_blocks == state.n_blocks))
+                raise RunFileError(
+                    f"{path}: incomplete run ({done} of {state.spec.realizations} realizations done); "
+                    "resume it with `mcsim simulate ... --resume`, or use the completed part (--partial)"
+                )
+            return assemble(state.completed(), attrs=attrs, path=path, complete=False)
+        names = _quantities(state.spec)
+        stats = {stat: {q: f[f"summary/{stat}/{q}"][()] for q in names} for stat in STATS}
+        heights = (
+            [f[f"heights/{r}"][()] for r in sorted(f["heights"], key=int)]
+            if "heights" in f
+            else None
+        )
+        return Run(
+            ensemble=state,
+            realizations={q: f[f"realizations/{q}"][()] for q in names},
+            summary=Summary(**stats, expected_contacts=f["summary/expected_contacts"][()]),
+            analytic={q: f[f"analytic/{q}"][()] for q in names},
+            attrs=attrs,
+            path=path,
+            heights=heights,
+        )

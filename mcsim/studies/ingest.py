@@ -1,0 +1,352 @@
+"""From a measured file to a surface file: ``mcsim ingest``.
+
+:func:`ingest_file` reads a height map (any format of :mod:`mcsim.topography.readers`) or a text
+histogram of heights, and returns an :class:`IngestResult`: what was read, the height
+statistics, the summit statistics by both routes of :mod:`mcsim.topography.summits`, and the
+GW :class:`~mcsim.model.params.Surface` built from them. :meth:`IngestResult.write_surface`
+writes that surface as a TOML file that ``mcsim analytic --surface`` and ``mcsim
+simulate --surface`` read (:mod:`mcsim.store.config`).
+
+What the surface file holds
+---------------------------
+* ``R`` and ``eta`` from the chosen route (``direct``: 8-neighbour summits, default;
+  ``spectral``: Nayak/McCool), and ``sigma`` = that route's σ_s.
+* The *shape* of the summit-height distribution, as a measured histogram: the heights
+  of the direct-route summits (default), or, with ``heights="map"``, of all pixels of
+  the levelled map. It is written to a companion CSV file next to the TOML file,
+  ``<stem>-heights.csv`` (three columns ``left [nm], right [nm], count``), and named
+  by a path relative to the TOML file's folder (``[surface.heights] file = ...``), so
+  the two files move together. The histogram is standardized when read; ``sigma``
+  sets its scale (:mod:`mcsim.store.config`).
+* Comments with the provenance: source file and channel, creation time, mcsim
+  version, command line, route, levelling, pixel size, both routes' numbers and the
+  caveat that they depend on the sampling interval.
+
+A text histogram as input (two or three columns, see :mod:`mcsim.topography.readers.histogram`)
+carries no summit radius or density: the caller gives ``R`` and ``eta``, and
+``sigma`` is the histogram's own. A text file with more than three numeric columns
+(or a ``.asc``/``.xyz`` file) is a height map.
+
+Summit statistics depend strongly on the pixel size and the instrument bandwidth
+(PHYSICS.md, "Summit statistics from a height map"): they describe the surface *as
+sampled*; the pixel size is written next to them everywhere.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import re
+import warnings
+from pathlib import Path
+
+import numpy as np
+
+from mcsim.model.errors import MCSimError, ParameterError
+from mcsim.model.params import Surface
+from mcsim.studies.ingested import LEVELS, ROUTES, HeightSummary, IngestResult
+from mcsim.topography.empirical import Empirical
+from mcsim.topography.readers import ReaderError, read_height_map, read_histogram
+from mcsim.topography.readers import histogram as _histogram_format
+from mcsim.topography.summits import TopographyResult, summit_heights, summit_statistics
+from mcsim.topography.summits import level as level_heights
+
+HEIGHTS = ("summits", "map")
+#: Largest number of bins of a written histogram (Freedman–Diaconis otherwise).
+MAX_BINS = 256
+#: Bins wider than this many σ (forced by the :data:`MAX_BINS` cap) are warned about.
+COARSE_BIN = 0.25
+#: Direct and spectral summit statistics further apart than this factor are warned about.
+ROUTE_DISAGREEMENT = 3.0
+#: Peak memory of the analysis per map pixel, bytes (measured: float64 copies, FFT, masks).
+BYTES_PER_PIXEL = 96
+_FORMAT_NAMES = {
+    ".gwy": "Gwyddion .gwy",
+    ".ibw": "Igor binary wave .ibw",
+    ".nid": "Nanosurf .nid",
+    ".npy": "NumPy .npy",
+    ".xyz": "XYZ text",
+}
+_SPLIT = re.compile(r"[,;\s]+")
+
+
+def _is_histogram_file(path: Path) -> bool:
+    """A text histogram: ``.hist``/``.tsv``, or a text file with at most 3 numeric columns."""
+    suffix = path.suffix.lower()
+    if suffix in (".hist", ".tsv"):
+        return True
+    if suffix not in _HISTOGRAM_OR_MATRIX:
+        return False
+    try:
+        text = path.read_bytes()[:65536].decode("utf-8", errors="replace")
+    except OSError:
+        return False  # the reader names the problem
+    for line in text.splitlines():
+        cells = [c for c in _SPLIT.split(line.strip()) if c]
+        if not cells or line.lstrip().startswith("#"):
+            continue
+        try:
+            [float(c) for c in cells]
+        except ValueError:
+            continue
+        return len(cells) <= 3
+    return True
+
+
+_HISTOGRAM_OR_MATRIX = tuple(set(_histogram_format.EXTENSIONS) - {".hist", ".tsv"})
+
+
+def _histogram_bins(z: np.ndarray) -> np.ndarray:
+    """Freedman–Diaconis bins, at most :data:`MAX_BINS`; warns when outliers make them coarse."""
+    edges = np.histogram_bin_edges(z, bins="fd")
+    if edges.size - 1 > MAX_BINS or edges.size < 3:
+        capped = edges.size - 1 > MAX_BINS
+        edges = np.histogram_bin_edges(z, bins=min(MAX_BINS, max(2, int(np.sqrt(z.size)))))
+        width, sigma = edges[1] - edges[0], float(np.std(z))
+        if capped and width > COARSE_BIN * sigma:
+            warnings.warn(
+                f"histogram bins are {width * 1e9:.3g} nm wide ({width / sigma:.2g} sigma): the "
+                f"heights span {z.min() * 1e9:.4g} .. {z.max() * 1e9:.4g} nm "
+                f"({(z.max() - z.min()) / sigma:.0f} sigma), so outliers (spikes?) force coarse "
+                "bins and blur the distribution's shape; remove them from the map first",
+                stacklevel=2,
+            )
+    return edges
+
+
+def _check_choice(name: str, value: str, allowed) -> None:
+    if value not in allowed:
+        raise ParameterError(f"`{name}` must be one of {', '.join(allowed)}, got {value!r}")
+
+
+def ingest_file(
+    path: str | Path,
+    *,
+    unit: str | None = None,
+    pixel_size: float | tuple[float, float] | None = None,
+    route: str = "direct",
+    level: str = "plane",
+    heights: str = "summits",
+    R: float | None = None,
+    eta: float | None = None,
+    name: str | None = None,
+    channel: str | None = None,
+) -> IngestResult:
+    """Read a height map or a height histogram and derive a GW surface from it.
+
+    Parameters
+    ----------
+    path : path-like
+        Height map (``.gwy .ibw .nid .npy .xyz`` or a text matrix) or text histogram.
+    unit : str, optional
+        Height unit for files that store none (e.g. ``"nm"``).
+    pixel_size : float or (float, float), optional
+        Pixel size, m, for maps that store none.
+    route : {"direct", "spectral"}
+        Summit statistics written as ``sigma``, ``R``, ``eta`` (maps only).
+    level : str
+        A key of :data:`LEVELS`: ``"plane"`` (default), ``"none"`` (mean only),
+        ``"poly2"`` ... ``"poly5"``.
+    heights : {"summits", "map"}
+        Histogram of the direct-route summit heights (default) or of all pixels.
+    R : float, optional
+        Summit radius, m: required for a histogram input, refused for a map.
+    eta : float, optional
+        Summit density, m⁻²: required for a histogram input, refused for a map.
+    name : str, optional
+        Surface name; the file's stem by default.
+    channel : str, optional
+        Channel of a multi-channel map (see :func:`mcsim.topography.readers.read_height_map`).
+
+    Returns
+    -------
+    IngestResult
+        Its ``warnings`` include non-square pixels, direct and spectral routes more
+        than :data:`ROUTE_DISAGREEMENT` apart, and bins made coarse by outliers.
+
+    Raises
+    ------
+    MCSimError
+        Every problem, as one message that starts with the file name; a map too
+        large for the available memory is refused before its analysis, naming the
+        size that fits.
+    """
+    _check_choice("route", route, ROUTES)
+    _check_choice("level", level, tuple(LEVELS))
+    _check_choice("heights", heights, HEIGHTS)
+    path = Path(path)
+    if not path.exists():
+        raise ReaderError(f"{path}: no such file")
+    if not path.is_file():
+        raise ReaderError(f"{path}: not a file")
+    name = path.stem if name is None else name
+    if _is_histogram_file(path):
+        if channel is not None:
+            raise ParameterError(
+                f"{path}: a text histogram has no channels: --channel does not apply"
+            )
+        return _ingest_histogram(path, unit, R, eta, name)
+    if R is not None or eta is not None:
+        raise ParameterError(
+            f"{path}: R and eta come from the map's summits: give them only with a histogram file"
+        )
+    hmap = read_height_map(path, unit=unit, pixel_size=pixel_size, channel=channel)
+    _check_memory(path, hmap.heights.shape)
+    try:
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            if not math.isclose(hmap.dx, hmap.dy, rel_tol=1e-3):
+                warnings.warn(
+                    f"pixels are not square ({hmap.dx * 1e9:.4g} nm x {hmap.dy * 1e9:.4g} nm): the "
+                    "8-neighbour summits and curvatures mix both pitches; resample to square "
+                    "pixels for summit statistics you can compare",
+                    stacklevel=2,
+                )
+            topo = summit_statistics(hmap.heights, hmap.dx, hmap.dy, order=LEVELS[level])
+            _warn_route_disagreement(topo)
+            levelled = level_heights(hmap.heights, LEVELS[level])
+            peaks = summit_heights(levelled)
+            if peaks.size < 2:
+                raise ParameterError(f"found {peaks.size} summit(s): too few for a distribution")
+            sample = peaks if heights == "summits" else levelled[np.isfinite(levelled)]
+            edges = _histogram_bins(sample)
+        counts, _ = np.histogram(sample, bins=edges)
+        shape = Empirical.from_histogram(edges, counts, source=f"{path} ({heights})")
+        stats = getattr(topo, route)
+        if not (math.isfinite(stats.sigma_s) and stats.sigma_s > 0 and stats.R > 0):
+            raise ParameterError(
+                f"the {route} route gives sigma_s = {stats.sigma_s:.3g} m, R = {stats.R:.3g} m: "
+                "not a summit population (try --route direct or another --level)"
+            )
+        surface = Surface(sigma=stats.sigma_s, R=stats.R, eta=stats.eta, heights=shape, name=name)
+    except ReaderError:
+        raise
+    except MCSimError as err:
+        raise type(err)(f"{path}: {err}") from None
+    return IngestResult(
+        source=path,
+        format=_FORMAT_NAMES.get(path.suffix.lower(), "text matrix"),
+        channel=hmap.channel,
+        reader_notes=hmap.notes,
+        surface=surface,
+        edges=np.asarray(edges, dtype=float),
+        counts=counts.astype(float),
+        density=False,
+        heights_from=(
+            "direct-route summit heights"
+            if heights == "summits"
+            else "all heights of the levelled map"
+        ),
+        route=route,
+        level=level,
+        shape=hmap.shape,
+        dx=hmap.dx,
+        dy=hmap.dy,
+        n_nan=topo.n_nan,
+        map_heights=HeightSummary.of(levelled),
+        summit_heights=HeightSummary.of(peaks),
+        topography=topo,
+        warnings=tuple(str(w.message) for w in caught),
+    )
+
+
+def _warn_route_disagreement(topo: TopographyResult) -> None:
+    """Warn where the direct and spectral routes differ by more than :data:`ROUTE_DISAGREEMENT`."""
+    far = []
+    for key, label, unit, scale in (("eta", "eta", "um^-2", 1e-12), ("R", "R", "um", 1e6),
+                                    ("sigma_s", "sigma_s", "nm", 1e9)):  # fmt: skip
+        a, b = getattr(topo.direct, key), getattr(topo.spectral, key)
+        if a > 0 and b > 0 and max(a / b, b / a) > ROUTE_DISAGREEMENT:
+            far.append(f"{label} {a * scale:.3g} vs {b * scale:.3g} {unit}")
+    if far:
+        warnings.warn(
+            f"the direct and spectral routes disagree by more than a factor "
+            f"{ROUTE_DISAGREEMENT:g} ({'; '.join(far)}): the map is not a Gaussian "
+            "random surface at this sampling (features, noise or a coarse pixel size); "
+            "the --route choice matters here",
+            stacklevel=2,
+        )
+
+
+def available_memory() -> int:
+    """Bytes of memory available to a new allocation (``MemAvailable``; else free pages)."""
+    try:
+        with open("/proc/meminfo", encoding="ascii") as f:
+            for line in f:
+                if line.startswith("MemAvailable:"):
+                    return int(line.split()[1]) * 1024
+    except (OSError, ValueError, IndexError):
+        pass
+    try:
+        return os.sysconf("SC_AVPHYS_PAGES") * os.sysconf("SC_PAGE_SIZE")
+    except (ValueError, OSError, AttributeError):
+        return 1 << 62  # unknown: do not refuse
+
+
+def _check_memory(path: Path, shape: tuple[int, int]) -> None:
+    """Refuse a map whose analysis needs more memory than is available, naming what fits."""
+    need, have = shape[0] * shape[1] * BYTES_PER_PIXEL, available_memory()
+    if need > have:
+        side = math.isqrt(have // BYTES_PER_PIXEL)
+        raise ParameterError(
+            f"{path}: a {shape[1]} x {shape[0]} map needs about {need / 1e9:.3g} GB to analyse, "
+            f"{have / 1e9:.3g} GB are available: crop or downsample it to at most about "
+            f"{side} x {side} pixels"
+        )
+
+
+def _histogram_summary(edges, weights, density: bool, sigma: float) -> HeightSummary:
+    """Exact moments of the piecewise-uniform density of a histogram (as :mod:`mcsim.topography.empirical`)."""
+    width = np.diff(edges)
+    mass = weights * width if density else weights
+    p = mass / mass.sum()
+    c = (edges[:-1] + edges[1:]) / 2
+    mean = float(np.sum(p * c))
+    d = c - mean
+    # moments of a uniform density on [c − w/2, c + w/2] about the mean
+    m3 = np.sum(p * (d**3 + d * width**2 / 4))
+    m4 = np.sum(p * (d**4 + d**2 * width**2 / 2 + width**4 / 80))
+    occupied = np.flatnonzero(mass > 0)
+    return HeightSummary(
+        count=0 if density else round(float(mass.sum())),
+        mean=mean,
+        sigma=sigma,
+        skewness=float(m3 / sigma**3),
+        kurtosis=float(m4 / sigma**4),
+        minimum=float(edges[occupied[0]]),
+        maximum=float(edges[occupied[-1] + 1]),
+    )
+
+
+def _ingest_histogram(path: Path, unit, R, eta, name) -> IngestResult:
+    hist = read_histogram(path, unit=unit)
+    emp = hist.to_empirical()
+    if R is None or eta is None:
+        raise ParameterError(
+            f"{path}: a height histogram carries no summit radius or density: pass --R and --eta"
+        )
+    try:
+        surface = Surface(sigma=emp.sigma, R=R, eta=eta, heights=emp, name=name)
+    except MCSimError as err:
+        raise type(err)(f"{path}: {err}") from None
+    summary = _histogram_summary(hist.edges, hist.weights, hist.density, emp.sigma)
+    return IngestResult(
+        source=path,
+        format="text histogram",
+        channel="",
+        reader_notes=hist.notes,
+        surface=surface,
+        edges=hist.edges,
+        counts=np.asarray(hist.weights, dtype=float),
+        density=hist.density,
+        heights_from=f"histogram read from {path.name}",
+        route="user",
+        level="",
+        shape=None,
+        dx=math.nan,
+        dy=math.nan,
+        n_nan=0,
+        map_heights=None,
+        summit_heights=summary,
+        topography=None,
+    )

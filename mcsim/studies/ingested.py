@@ -1,0 +1,312 @@
+"""What ``mcsim ingest`` found: height and summit statistics, the surface, and its files.
+
+:class:`IngestResult` is returned by :func:`mcsim.studies.ingest.ingest_file`; its
+:meth:`~IngestResult.write_surface` writes the surface TOML file and the measured
+height histogram beside it (the layout is described in :mod:`mcsim.studies.ingest`).
+"""
+
+from __future__ import annotations
+
+import datetime as dt
+import json
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from mcsim._version import __version__
+from mcsim.model.errors import ParameterError
+from mcsim.model.params import Surface
+from mcsim.store.outputs import check_output, write_atomic
+from mcsim.topography.empirical import Empirical
+from mcsim.topography.summits import TopographyResult
+
+#: Levelling choices: name → degree of the subtracted polynomial (``none``: the mean only).
+LEVELS = {"none": 0, "plane": 1, **{f"poly{n}": n for n in range(2, 6)}}
+ROUTES = ("direct", "spectral")
+
+
+@dataclass(frozen=True)
+class HeightSummary:
+    """Moments and range of a set of heights.
+
+    Attributes
+    ----------
+    count : int
+        Number of heights.
+    mean, sigma : float
+        Mean and population standard deviation, m.
+    skewness : float
+        Third standardized moment (0 for a Gaussian).
+    kurtosis : float
+        Fourth standardized moment, Pearson's (3 for a Gaussian).
+    minimum, maximum : float
+        Range, m.
+    """
+
+    count: int
+    mean: float
+    sigma: float
+    skewness: float
+    kurtosis: float
+    minimum: float
+    maximum: float
+
+    @classmethod
+    def of(cls, z) -> HeightSummary:
+        """Summary of the finite values of ``z`` (m)."""
+        z = np.asarray(z, dtype=float)
+        z = z[np.isfinite(z)]
+        mean, sigma = float(np.mean(z)), float(np.std(z))
+        s = (z - mean) / sigma if sigma > 0 else np.zeros_like(z)
+        return cls(
+            count=int(z.size),
+            mean=mean,
+            sigma=sigma,
+            skewness=float(np.mean(s**3)),
+            kurtosis=float(np.mean(s**4)),
+            minimum=float(z.min()),
+            maximum=float(z.max()),
+        )
+
+    def line(self) -> str:
+        """One line, heights in nm."""
+        return (
+            f"mean {self.mean * 1e9:.4g} nm, sigma {self.sigma * 1e9:.4g} nm, "
+            f"skewness {self.skewness:.3g}, kurtosis {self.kurtosis:.3g} (Gaussian: 0, 3), "
+            f"min {self.minimum * 1e9:.4g} nm, max {self.maximum * 1e9:.4g} nm"
+        )
+
+
+@dataclass(frozen=True)
+class IngestResult:
+    """What :func:`ingest_file` read and derived.
+
+    Attributes
+    ----------
+    source : Path
+        The input file.
+    format : str
+        File format as read.
+    channel : str
+        Channel read ("" for single-channel formats and histograms).
+    reader_notes : tuple of str
+        What the reader assumed (units, scaling).
+    surface : Surface
+        The GW surface written by :meth:`write_surface`.
+    edges : ndarray
+        Edges of the written histogram, m (heights above the mean plane).
+    counts : ndarray
+        Counts (or densities per m, if ``density``) of the written histogram.
+    density : bool
+        Whether ``counts`` are densities (only for a histogram read as densities).
+    heights_from : str
+        What the histogram describes (``"direct-route summit heights"``, ...).
+    route : str
+        Route of ``R``, ``eta`` and ``sigma`` (``direct``, ``spectral``, or ``user``
+        for a histogram input).
+    level : str
+        Levelling applied to a map (a key of :data:`LEVELS`); "" for a histogram.
+    shape : tuple of int or None
+        (rows, columns) of a map.
+    dx, dy : float
+        Pixel size, m (NaN for a histogram).
+    n_nan : int
+        Non-finite pixels dropped.
+    map_heights : HeightSummary or None
+        Heights of the levelled map.
+    summit_heights : HeightSummary or None
+        Heights of the direct-route summits (or of the histogram input).
+    topography : TopographyResult or None
+        Both routes' summit statistics of a map.
+    warnings : tuple of str
+        Warnings raised while analysing (e.g. saturation).
+    """
+
+    source: Path
+    format: str
+    channel: str
+    reader_notes: tuple[str, ...]
+    surface: Surface
+    edges: np.ndarray
+    counts: np.ndarray
+    density: bool
+    heights_from: str
+    route: str
+    level: str
+    shape: tuple[int, int] | None
+    dx: float
+    dy: float
+    n_nan: int
+    map_heights: HeightSummary | None
+    summit_heights: HeightSummary | None
+    topography: TopographyResult | None
+    warnings: tuple[str, ...] = ()
+
+    @property
+    def distribution(self) -> Empirical:
+        """The measured height distribution (standardized, with its σ and mean in m)."""
+        return self.surface.heights
+
+    @property
+    def gaussian_surface(self) -> Surface:
+        """The same (σ, R, η) with Gaussian summit heights: the GW reference."""
+        s = self.surface
+        return Surface(sigma=s.sigma, R=s.R, eta=s.eta, name=f"{s.name} (Gaussian)")
+
+    def summary_lines(self) -> list[str]:
+        """What was read and derived, for a terminal (lengths in nm and µm)."""
+        s = self.surface
+        lines = [f"read       {self.source} ({self.format}{self._channel()})"]
+        lines += [f"reader     {note}" for note in self.reader_notes]
+        if self.topography is not None:
+            rows, cols = self.shape
+            lines += [
+                f"map        {cols} x {rows} pixels (x by y), {cols * self.dx * 1e6:.4g} um x "
+                f"{rows * self.dy * 1e6:.4g} um, pixel size {self.dx * 1e9:.4g} nm x {self.dy * 1e9:.4g} nm",
+                f"pixels     {self.n_nan} NaN of {rows * cols} dropped",
+                f"levelling  {self.level}: least-squares polynomial of degree {LEVELS[self.level]} "
+                "subtracted; heights from the mean plane",
+                f"heights    levelled map: {self.map_heights.line()}",
+                f"summits    direct route, {self.summit_heights.count} summits: "
+                f"{self.summit_heights.line()}",
+                "route        eta (um^-2)     R (um)  sigma_s (nm)  mean height (nm)   summits",
+            ]
+            for name in ROUTES:
+                r = getattr(self.topography, name)
+                lines.append(
+                    f"  {name:<9}  {r.eta * 1e-12:11.5g}  {r.R * 1e6:9.4g}  {r.sigma_s * 1e9:12.4g}"
+                    f"  {r.mean_height * 1e9:16.4g}  {r.count:8.6g}"
+                )
+            lines.append(
+                f"caveat     summit statistics depend strongly on the sampling interval "
+                f"(pixel size {self.dx * 1e9:.4g} nm) and the instrument bandwidth (tip, noise)"
+            )
+        else:
+            lines.append(f"histogram  {self.edges.size - 1} bins: {self.summit_heights.line()}")
+        lines += [f"warning    {w}" for w in self.warnings]
+        lines.append(
+            f"surface    sigma = {s.sigma * 1e9:.4g} nm, R = {s.R * 1e6:.4g} um, "
+            f"eta = {s.eta * 1e-12:.5g} um^-2 (route {self.route}); heights: {self.heights_from}, "
+            f"{self.edges.size - 1} bins"
+        )
+        return lines
+
+    def _channel(self) -> str:
+        return f", channel {self.channel!r}" if self.channel else ""
+
+    @staticmethod
+    def companion_paths(path: str | Path) -> dict[str, Path]:
+        """Files written next to the surface file ``path``: histogram CSV and figures."""
+        path = Path(path)
+        return {
+            "histogram": path.with_name(f"{path.stem}-heights.csv"),
+            "histogram_figure": path.with_name(f"{path.stem}-heights.png"),
+            "comparison_figure": path.with_name(f"{path.stem}-gw.png"),
+        }
+
+    def write_surface(
+        self, path: str | Path, *, overwrite: bool = False, command: str | None = None
+    ) -> list[Path]:
+        """Write the surface TOML file and its histogram CSV (module docstring).
+
+        Parameters
+        ----------
+        path : path-like
+            The ``.toml`` file; the histogram goes to ``<stem>-heights.csv`` beside it.
+        overwrite : bool
+            Replace existing files; otherwise an existing one is an error.
+        command : str, optional
+            Command line recorded in the comments.
+
+        Returns
+        -------
+        list of Path
+            The TOML file and the CSV file.
+
+        Raises
+        ------
+        MCSimError
+            Not a ``.toml`` path, a missing folder, an existing file without
+            ``overwrite``, the input file itself, or not a regular file
+            (:mod:`mcsim.store.outputs`).
+        """
+        path = Path(path)
+        if path.suffix != ".toml":
+            raise ParameterError(f"{path}: the surface file must end in .toml")
+        csv = self.companion_paths(path)["histogram"]
+        for p in (path, csv):  # both refused before either is written
+            check_output(p, inputs=[self.source], overwrite=overwrite)
+        header = self._provenance(command)
+        for p, text in (
+            (csv, self._histogram_text(header)),
+            (path, self._toml_text(header, csv.name)),
+        ):
+            write_atomic(p, lambda tmp, text=text: tmp.write_text(text, encoding="utf-8"),
+                         inputs=[self.source], overwrite=overwrite)  # fmt: skip
+        return [path, csv]
+
+    def _provenance(self, command: str | None) -> list[str]:
+        now = dt.datetime.now(dt.UTC).isoformat(timespec="seconds")
+        lines = [
+            f"written by mcsim {__version__} (mcsim ingest) on {now}",
+            f"source: {self.source.resolve()} ({self.format}{self._channel()})",
+        ]
+        if command:
+            lines.append(f"command: {command}")
+        if self.topography is not None:
+            rows, cols = self.shape
+            lines += [
+                f"map: {cols} x {rows} pixels, pixel size {self.dx * 1e9:.6g} nm x {self.dy * 1e9:.6g} nm, "
+                f"{self.n_nan} NaN pixels dropped, levelling {self.level} (degree {LEVELS[self.level]})",
+            ]
+        return lines
+
+    def _histogram_text(self, header: list[str]) -> str:
+        weight = "density [1/nm]" if self.density else "count"
+        out = [f"# {line}" for line in header]
+        out += [
+            f"# {self.heights_from}, heights above the mean plane",
+            f"left [nm], right [nm], {weight}",
+        ]
+        values = self.counts * 1e-9 if self.density else self.counts
+        for left, right, w in zip(self.edges[:-1] * 1e9, self.edges[1:] * 1e9, values):
+            out.append(f"{float(left)!r}, {float(right)!r}, {_number(w)}")
+        return "\n".join(out) + "\n"
+
+    def _toml_text(self, header: list[str], csv_name: str) -> str:
+        s = self.surface
+        out = [f"# {line}" for line in header]
+        if self.topography is not None:
+            out += [
+                f"# route: {self.route} (R, eta and sigma below); both routes, with this sampling:",
+                *(
+                    f"#   {name:<8}: eta = {r.eta * 1e-12:.6g} um^-2, R = {r.R * 1e6:.6g} um, "
+                    f"sigma_s = {r.sigma_s * 1e9:.6g} nm, {r.count:.6g} summits"
+                    for name in ROUTES
+                    for r in [getattr(self.topography, name)]
+                ),
+                "# Summit statistics depend strongly on the sampling interval (pixel size) and the",
+                "# instrument bandwidth: they describe the surface as sampled, not the surface alone.",
+            ]
+        else:
+            out.append("# R and eta: given by the user; sigma: the histogram's own")
+        out += [
+            f"# heights: {self.heights_from}, histogram in {csv_name} (path relative to this file)",
+            "# Use: mcsim analytic --surface THIS.toml --h=4:-1:51  (material: --material, default silicon)",
+            "",
+            "[surface]",
+            f"name = {json.dumps(s.name)}",
+            f'sigma = "{s.sigma * 1e9:.12g} nm"',
+            f'R = "{s.R * 1e6:.12g} um"',
+            f'eta = "{s.eta * 1e-12:.12g} um^-2"',
+            "",
+            "[surface.heights]",
+            f"file = {json.dumps(csv_name)}",
+            'unit = "nm"',
+        ]
+        return "\n".join(out) + "\n"
+
+
+def _number(w: float) -> str:
+    return str(int(w)) if float(w).is_integer() else repr(float(w))

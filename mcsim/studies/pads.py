@@ -1,0 +1,281 @@
+"""Stiction statistics of finite pads: the spread of pull-off force from pad to pad.
+
+A contact pad of area A holds N ~ ηA summits (tens to thousands for 1–100 µm²), so its
+pull-off force varies from device to device. Given the pull-off force of each of n
+pads (one realization of a ``--cycle`` Monte Carlo run each, :meth:`mcsim.store.results.Run.pull_off`),
+:func:`pad_statistics` reports
+
+* the mean and its standard error s/√n, the sample standard deviation s (ddof = 1);
+* the 5 %, 50 % and 95 % quantiles (linear interpolation between order statistics,
+  NumPy's default ``method="linear"``, Hyndman & Fan 1996 type 7);
+* with a restoring force F_r (a spring pulling the pad off), the probability that a
+  pad sticks, p = P(pull-off > F_r), estimated by k/n, with a 95 % interval: by
+  default the **Clopper–Pearson** exact interval (Clopper & Pearson 1934): the α/2
+  and 1 − α/2 quantiles of Beta(k, n − k + 1) and Beta(k + 1, n − k), with 0 and 1 at
+  k = 0 and k = n. It is the default because its coverage is never below 95 % for
+  any p and n, which matters in the tails where stiction probabilities of interest
+  lie (a few sticking pads out of hundreds). On request the **Wilson** score interval
+  (Wilson 1927, :func:`wilson`): shorter, with coverage close to 95 % on average but
+  below it for some p and n.
+
+:func:`analytic_pad_pull_off` gives the GW prediction of the mean for comparison:
+the analytic pull-off per nominal area (:func:`mcsim.physics.adhesion.adhesion_summary`,
+force/(A K)) times K A. It is the most tensile value of the *mean* retraction load,
+located to 1e-7 in h; a pad's pull-off is the most tensile value of its *own* load
+curve on the run's finite grid of separations. The two differ: the minimum of a
+noisy curve lies below the minimum of its mean (E[max] ≥ max E, so small pads pull
+off harder on average than the analytic value, by a relative amount of order
+N^(-1/2)), and a grid of spacing Δh misses the true minimum of each curve (a bias
+the other way, of order Δh² near a smooth minimum; larger where the load jumps).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from mcsim.model.errors import ParameterError
+
+#: Confidence level of the interval for the probability of sticking.
+CONFIDENCE = 0.95
+
+#: Quantiles reported, as fractions.
+QUANTILES = (0.05, 0.5, 0.95)
+
+#: Intervals of the probability of sticking, by name.
+INTERVALS = ("clopper-pearson", "wilson")
+
+
+@dataclass(frozen=True)
+class PadStatistics:
+    """Per-pad pull-off statistics (forces in N).
+
+    Attributes
+    ----------
+    pads : int
+        Number of pads n.
+    mean, se, std : float
+        Sample mean, its standard error std/√n and the standard deviation (ddof = 1;
+        NaN for one pad).
+    q05, q50, q95 : float
+        5 %, 50 % and 95 % quantiles.
+    restoring_force : float or None
+        F_r, N.
+    p_stick : float or None
+        Fraction of pads whose pull-off exceeds F_r.
+    p_stick_ci : tuple of float or None
+        95 % interval of the probability of sticking.
+    interval : str
+        Its kind, one of :data:`INTERVALS`.
+    """
+
+    pads: int
+    mean: float
+    se: float
+    std: float
+    q05: float
+    q50: float
+    q95: float
+    restoring_force: float | None = None
+    p_stick: float | None = None
+    p_stick_ci: tuple[float, float] | None = None
+    interval: str = "clopper-pearson"
+
+    def to_dict(self) -> dict:
+        """Keys ``pads, mean, se, std, q05, q50, q95`` and, with F_r, ``p_stick, p_stick_ci``."""
+        out = {k: getattr(self, k) for k in ("pads", "mean", "se", "std", "q05", "q50", "q95")}
+        if self.restoring_force is not None:
+            out |= {"p_stick": self.p_stick, "p_stick_ci": list(self.p_stick_ci)}
+        return out
+
+
+def _check_counts(k, n, confidence) -> None:
+    if not (isinstance(n, int | np.integer) and n >= 1):
+        raise ParameterError(f"n = {n!r}: the number of trials must be an integer >= 1")
+    if not (isinstance(k, int | np.integer) and 0 <= k <= n):
+        raise ParameterError(
+            f"k = {k!r}: the number of successes must be an integer in [0, n = {n}]"
+        )
+    if not 0 < confidence < 1:
+        raise ParameterError(f"confidence = {confidence!r}: allowed 0 < confidence < 1")
+
+
+def clopper_pearson(k: int, n: int, confidence: float = CONFIDENCE) -> tuple[float, float]:
+    """Clopper–Pearson exact interval of a binomial proportion from k successes in n trials.
+
+    Lower bound: the α/2 quantile of Beta(k, n − k + 1) (0 for k = 0); upper: the
+    1 − α/2 quantile of Beta(k + 1, n − k) (1 for k = n), α = 1 − confidence
+    (Clopper & Pearson 1934).
+
+    Raises
+    ------
+    ParameterError
+        Unless 0 ≤ k ≤ n, n ≥ 1 and 0 < confidence < 1.
+    """
+    from scipy.stats import beta
+
+    _check_counts(k, n, confidence)
+    alpha = 1 - confidence
+    lower = 0.0 if k == 0 else float(beta.ppf(alpha / 2, k, n - k + 1))
+    upper = 1.0 if k == n else float(beta.ppf(1 - alpha / 2, k + 1, n - k))
+    return lower, upper
+
+
+def wilson(k: int, n: int, confidence: float = CONFIDENCE) -> tuple[float, float]:
+    """Wilson score interval of a binomial proportion from k successes in n trials.
+
+    (p̂ + z²/(2n) ± z √(p̂(1 − p̂)/n + z²/(4n²))) / (1 + z²/n), p̂ = k/n, z the
+    1 − α/2 standard normal quantile, α = 1 − confidence (Wilson 1927; Brown,
+    Cai & DasGupta 2001, Sect. 4.1.1). Clipped to [0, 1] against rounding.
+
+    Raises
+    ------
+    ParameterError
+        Unless 0 ≤ k ≤ n, n ≥ 1 and 0 < confidence < 1.
+    """
+    from scipy.stats import norm
+
+    _check_counts(k, n, confidence)
+    z = float(norm.ppf(1 - (1 - confidence) / 2))
+    p = k / n
+    centre = (p + z * z / (2 * n)) / (1 + z * z / n)
+    half = z * math.sqrt(p * (1 - p) / n + z * z / (4 * n * n)) / (1 + z * z / n)
+    return max(0.0, centre - half), min(1.0, centre + half)
+
+
+def pad_statistics(
+    force, restoring_force: float | None = None, interval: str = "clopper-pearson"
+) -> PadStatistics:
+    """Statistics of per-pad pull-off forces (module docstring).
+
+    Parameters
+    ----------
+    force : array_like, shape (n,)
+        Pull-off force of each pad (a magnitude, N), n ≥ 1, finite and ≥ 0.
+    restoring_force : float, optional
+        F_r (N, ≥ 0): a pad sticks when its pull-off exceeds it.
+    interval : {"clopper-pearson", "wilson"}
+        Interval of the probability of sticking (:func:`clopper_pearson`, :func:`wilson`).
+
+    Returns
+    -------
+    PadStatistics
+
+    Raises
+    ------
+    ParameterError
+        An empty, non-finite or negative force, a negative or non-finite F_r, or an
+        unknown interval.
+    """
+    if interval not in INTERVALS:
+        raise ParameterError(f"interval = {interval!r}: allowed {', '.join(INTERVALS)}")
+    f = np.asarray(force, dtype=float).ravel()
+    if f.size == 0:
+        raise ParameterError("pull-off forces: no pads (need at least one)")
+    if not np.all(np.isfinite(f)) or np.any(f < 0):
+        raise ParameterError("pull-off forces: must be finite and >= 0 (magnitudes, N)")
+    n = f.size
+    std = float(np.std(f, ddof=1)) if n > 1 else math.nan
+    q = np.quantile(f, QUANTILES)
+    stick = {}
+    if restoring_force is not None:
+        fr = float(restoring_force)
+        if not (math.isfinite(fr) and fr >= 0):
+            raise ParameterError(
+                f"restoring force = {restoring_force!r} N: allowed finite and >= 0"
+            )
+        k = int(np.count_nonzero(f > fr))
+        ci = (wilson if interval == "wilson" else clopper_pearson)(k, n)
+        stick = {"restoring_force": fr, "p_stick": k / n, "p_stick_ci": ci}
+    return PadStatistics(pads=n, mean=float(np.mean(f)), se=std / math.sqrt(n), std=std,
+                         q05=float(q[0]), q50=float(q[1]), q95=float(q[2]), interval=interval, **stick)  # fmt: skip
+
+
+def analytic_pad_pull_off(spec) -> float:
+    """GW mean pull-off of one pad of a cycle run's inputs, N (see the module docstring).
+
+    The analytic pull-off force/(A K) after the run's closest approach (``spec.turn``)
+    times A K, times round(ηA)/(ηA) for a fixed summit count. The minimum of the mean
+    curve (continuous in h), not the mean of the per-pad minima on the run's grid.
+    """
+    import warnings
+
+    from mcsim.physics.adhesion import RegimeWarning, adhesion_summary
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RegimeWarning)
+        s = adhesion_summary(spec.surface, spec.material, spec.law, turn=spec.turn)
+    bias = spec.expected_summits / (spec.surface.eta * spec.area)
+    return s.pull_off * spec.material.K * spec.area * bias
+
+
+def pads_figure(force, analytic_mean: float | None = None, *, restoring_force: float | None = None,
+                title: str | None = None):  # fmt: skip
+    """Histogram and empirical CDF of per-pad pull-off forces (µN), analytic mean marked.
+
+    Parameters
+    ----------
+    force : array_like
+        Pull-off force of each pad, N.
+    analytic_mean : float, optional
+        GW mean pad pull-off (:func:`analytic_pad_pull_off`), N: a dashed line.
+    restoring_force : float, optional
+        F_r, N: a dotted line (pads to its right stick).
+    title : str, optional
+        Figure title.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        Built without pyplot (headless).
+    """
+    from matplotlib.figure import Figure
+
+    f = np.sort(np.asarray(force, dtype=float).ravel()) * 1e6
+    fig = Figure(figsize=(9, 3.8), layout="constrained")
+    hist, ecdf = fig.subplots(1, 2)
+    hist.hist(f, bins=max(10, min(60, int(np.sqrt(f.size)))), density=True, color="0.7",
+              edgecolor="0.4", label=f"Monte Carlo, {f.size} pads")  # fmt: skip
+    hist.set_ylabel("density (1/µN)")
+    ecdf.step(f, np.arange(1, f.size + 1) / f.size, where="post", color="k", label="empirical CDF")
+    ecdf.set_ylabel("fraction of pads with pull-off ≤ F")
+    for ax in (hist, ecdf):
+        ax.axvline(np.mean(f), color="C0", label=f"mean {np.mean(f):.4g} µN")
+        if analytic_mean is not None:
+            ax.axvline(analytic_mean * 1e6, color="C3", ls="--",
+                       label=f"GW analytic mean {analytic_mean * 1e6:.4g} µN")  # fmt: skip
+        if restoring_force is not None:
+            ax.axvline(restoring_force * 1e6, color="C2", ls=":",
+                       label=f"restoring force {restoring_force * 1e6:.4g} µN")  # fmt: skip
+        ax.set_xlabel("pad pull-off force F (µN)")
+    hist.legend(fontsize="small")
+    if title:
+        fig.suptitle(title)
+    return fig
+
+
+def moment_std(run) -> float:
+    """Across-pad standard deviation of pull-off predicted from the summit-level moments, N.
+
+    To first order a pad's pull-off is minus its total load at the row h* of the
+    retraction branch where the ensemble's mean load is most tensile; the variance of a
+    sum over summits is ηA E[x²] for a Poisson count and N Var(x) for a fixed one
+    (:mod:`mcsim.engine.statistics`), estimated by the mean over pads of Σx² (fixed:
+    Σx² − (Σx)²/N). Valid when many summits carry the pull-off (≳ 100); NaN when the
+    mean load is never tensile.
+    """
+    from mcsim.engine.kernels import sum_columns
+
+    spec = run.spec
+    if not spec.cycle or "load" not in spec.law_set.names:
+        raise ParameterError(f"moment_std needs a cycle run of a law set with a load; law = "
+                             f"{spec.law!r}, cycle = {spec.cycle}")  # fmt: skip
+    cols = sum_columns(spec.law_set)
+    retract = run.sums[:, spec.h.size :, :]
+    first, second = retract[..., cols.index("load")], retract[..., cols.index("loadload")]
+    if spec.count == "fixed":
+        second = second - first**2 / run.n_summits[:, None]
+    j = int(np.argmin(first.mean(axis=0)))
+    return float(np.sqrt(second[:, j].mean())) if first[:, j].mean() < 0 else math.nan

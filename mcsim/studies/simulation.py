@@ -1,0 +1,245 @@
+"""``simulate()``: the Monte Carlo engine, its statistics and storage joined, and the result.
+
+>>> from mcsim import simulate
+>>> from mcsim.model.presets import SURFACES, MATERIALS
+>>> run = simulate(SURFACES["smooth"], MATERIALS["silicon"], h=[2, 1, 0], area="1000 um^2",
+...                realizations=4, seed=1)                                  # doctest: +SKIP
+>>> run.compare()                                                           # doctest: +SKIP
+"""
+
+from __future__ import annotations
+
+import contextlib
+import functools
+import logging
+import shlex
+import sys
+from pathlib import Path
+
+import numpy as np
+
+from mcsim._version import __version__
+from mcsim.engine import interrupt
+from mcsim.engine.montecarlo import DEFAULT_CHUNK, MonteCarloSpec, default_workers, run_sums
+from mcsim.model.errors import ParameterError, RunFileError
+from mcsim.model.params import Material, Surface, check_range
+from mcsim.model.units import parse_quantity
+from mcsim.store import files, runfile
+from mcsim.store.results import Run, assemble
+
+log = logging.getLogger(__name__)
+
+#: Assumed speed of one worker, for the up-front estimate of a long run: contacting
+#: (summit, separation) pairs per second, and summits above h_min sampled per second
+#: (README, Performance, one worker: 1.7e8 pairs/s at h = 4 … −1; 2.3e5 summits
+#: sampled and summed in 0.021 s at h = 4 … 2, 1.1e7/s).
+PAIRS_PER_SECOND = 1.5e8
+SAMPLES_PER_SECOND = 1e7
+
+#: Runs expected to take longer (s) get an up-front estimate.
+ESTIMATE_ABOVE = 60.0
+
+
+def _duration(seconds: float) -> str:
+    for unit, size in (("days", 86400), ("h", 3600), ("min", 60)):
+        if seconds >= size:
+            return f"{seconds / size:.3g} {unit}"
+    return f"{seconds:.3g} s"
+
+
+def estimate(spec: MonteCarloSpec, workers: int) -> tuple[float, float, float]:
+    """Expected summits, evaluated (summit, row) pairs and seconds of a run.
+
+    The time assumes :data:`PAIRS_PER_SECOND` and :data:`SAMPLES_PER_SECOND` per worker.
+    """
+    heights = spec.surface.heights
+    summits = spec.realizations * spec.expected_summits
+    above = summits * float(heights.sf(spec.s_min))
+    pairs = summits * float(np.sum(heights.sf(spec.row_s)))
+    return summits, pairs, (pairs / PAIRS_PER_SECOND + above / SAMPLES_PER_SECOND) / workers
+
+
+def _api_command(**kwargs) -> str:
+    shown = ", ".join(f"{k}={v!r}" for k, v in kwargs.items())
+    return f"mcsim.simulate({shown})"
+
+
+def simulate(
+    surface: Surface,
+    material: Material,
+    h,
+    area: float | str,
+    *,
+    realizations: int = 1,
+    seed: int | None = None,
+    law: str = "seed",
+    count: str = "poisson",
+    cycle: bool = False,
+    device: str = "cpu",
+    workers: int | None = None,
+    scheduler=None,
+    chunk_size: int = DEFAULT_CHUNK,
+    keep_heights: bool = False,
+    out: str | Path | None = None,
+    overwrite: bool = False,
+    resume: bool = False,
+    checkpoint_every: float = 60.0,
+    progress: bool = False,
+    command: str | None = None,
+    extra_attrs: dict | None = None,
+) -> Run:
+    """Simulate ``realizations`` patches of area ``area`` and compare with the GW curves.
+
+    Parameters
+    ----------
+    surface, material : Surface, Material
+        Inputs (see :mod:`mcsim.model.presets` and :mod:`mcsim.store.config`).
+    h : array_like
+        Dimensionless separations d/σ.
+    area : float or str
+        Nominal patch area, m² or with a unit (``"100 um^2"``).
+    realizations : int
+        Independent patches.
+    seed : int or None
+        Root seed; None draws fresh entropy (recorded in the result), or, with
+        ``resume``, takes the one recorded in the file.
+    law : str
+        Law set (``"seed"``: the paper as written; see :data:`mcsim.physics.laws.LAW_SETS`).
+    count : {"poisson", "fixed"}
+        N ~ Poisson(ηA) or N = round(ηA).
+    cycle : bool
+        Approach over ``h`` (descending), then retraction back over the same ``h``
+        after the closest approach min(h); both branches are stored.
+    device : {"cpu", "cuda"}
+        Sample and sum on the CPU or on the GPU (``mcsim[gpu]``; other random streams,
+        so other numbers than the CPU's, equal in distribution); recorded in the run.
+    workers : int, optional
+        Local worker threads, all cores by default; or worker processes of a local
+        Dask cluster. The numbers do not depend on it.
+    scheduler : str or dask.distributed.Client, optional
+        Run on Dask: ``"local"`` (a local cluster of ``workers`` processes), the
+        address of an existing scheduler (``"tcp://host:8786"``) or a client.
+    chunk_size : int
+        Summits per task; the numbers do not depend on it.
+    keep_heights : bool
+        Keep the sampled heights (above h_min) in the result and file (no checkpoints).
+    out : path, optional
+        Write the complete run to this HDF5 file, atomically, when it ends. While it
+        runs, its checkpoint (an incomplete, resumable run) is
+        :func:`mcsim.store.files.checkpoint_path` (``<stem>.partial<suffix>`` beside
+        ``out``), written atomically after about 10 s of work, then every
+        ``checkpoint_every`` seconds, and on interruption; it is removed once the
+        complete run is in place. So ``out`` always holds nothing, the earlier file
+        or the new complete run. An existing file, or another run's checkpoint, is
+        refused unless ``overwrite``.
+    resume : bool
+        Continue from the checkpoint beside ``out``; the result is bit-identical to
+        an uninterrupted run. Without a checkpoint, the run starts from the
+        beginning (and logs a warning saying so).
+    checkpoint_every : float
+        Seconds between checkpoints.
+    progress : bool
+        Show a progress bar on stderr.
+    command : str, optional
+        Provenance string stored in the file (the CLI passes its command line).
+    extra_attrs : dict, optional
+        Further root attributes of the file and its checkpoints (numbers or strings),
+        e.g. ``{"load_control": '{"pressure": [...], "unit": "Pa"}'}`` (JSON) for the
+        nominal pressures that the separations balance (``mcsim simulate --pressure``).
+
+    Returns
+    -------
+    Run
+
+    Raises
+    ------
+    mcsim.engine.interrupt.Interrupted
+        On SIGINT (Ctrl-C) or SIGTERM, once the progress is saved (a ``KeyboardInterrupt``).
+    """
+    area_m2 = parse_quantity(area, "area", "area")
+    check_range("checkpoint_every", checkpoint_every, "s", low=0.0, low_open=False)
+    if resume and out is None:
+        raise ParameterError("resume needs the run file to continue (out=...)")
+    with interrupt.interruptible(), contextlib.ExitStack() as stack:
+        previous = partial = None
+        if out is not None:
+            out = files.check_output_path(out, overwrite=overwrite, resume=resume)
+            stack.enter_context(files.lock(out))
+            # Again under the lock: another writer may have finished in the meantime.
+            files.check_output_path(out, overwrite=overwrite, resume=resume)
+            partial = files.checkpoint_path(out)
+            if resume and partial.exists():
+                previous, attrs = runfile.read_state(partial)
+                if previous.complete:
+                    raise RunFileError(f"{partial}: damaged checkpoint: it holds a complete run")
+                if attrs.get("mcsim_version") != __version__:
+                    raise RunFileError(
+                        f"{partial}: written by mcsim {attrs.get('mcsim_version')}; resume it with that version"
+                    )
+                seed = previous.spec.entropy if seed is None else seed
+            elif resume:
+                log.warning("%s: nothing to resume (no checkpoint %s): starting the run from "
+                            "the beginning", out, partial.name)  # fmt: skip
+            else:
+                partial.unlink(missing_ok=True)  # --overwrite: start again
+        entropy = np.random.SeedSequence(seed).entropy
+        spec = MonteCarloSpec(
+            surface, material, h, area_m2, realizations, entropy, law, count, cycle, device
+        )
+        if previous is not None and previous.spec != spec:
+            raise ParameterError(
+                f"cannot resume {out}: {', '.join(previous.spec.differences(spec))} differ(s) from the recorded run"
+            )
+        if command is None:
+            command = _api_command(surface=surface.name or surface, material=material.name or material,
+                                   h=[float(x) for x in spec.h], area=area_m2, realizations=realizations,
+                                   seed=seed, law=law, count=count,
+                                   **({"cycle": True} if cycle else {}),
+                                   **({"device": device} if device != "cpu" else {}))  # fmt: skip
+        n_workers = workers if isinstance(workers, int) and workers > 0 else default_workers()
+        summits, pairs, seconds = estimate(spec, n_workers)
+        if seconds > ESTIMATE_ABOVE:
+            log.info("long run: %.3g summits, %.3g contacting (summit, h) pairs: about %s on %d "
+                     "worker(s) at an assumed %.2g pairs/s each; Ctrl-C stops it%s", summits, pairs,
+                     _duration(seconds), n_workers, PAIRS_PER_SECOND,
+                     " (progress is saved)" if out is not None and not keep_heights else "")  # fmt: skip
+        checkpoint = None
+        if out is not None and not keep_heights:
+            checkpoint = functools.partial(
+                runfile.write_checkpoint, partial, command=command, extra=extra_attrs
+            )
+        if progress:
+            from tqdm import tqdm
+
+            total = (
+                spec.realizations * spec.expected_summits * float(surface.heights.sf(spec.s_min))
+            )
+            bar = stack.enter_context(
+                tqdm(
+                    total=round(total),
+                    unit=" summits",
+                    unit_scale=True,
+                    file=sys.stderr,
+                    leave=False,
+                )
+            )
+        client = scheduler
+        if isinstance(scheduler, str):
+            from mcsim.engine.cluster import dask_client
+
+            client = stack.enter_context(dask_client(scheduler, workers))
+        ens = run_sums(spec, workers=workers, chunk_size=chunk_size, keep_heights=keep_heights,
+                       progress=bar.update if progress else None, client=client, resume=previous,
+                       checkpoint=checkpoint, checkpoint_every=checkpoint_every,
+                       interrupt=interrupt.check)  # fmt: skip
+        run = assemble(ens)
+        if out is None:
+            return run
+        run = runfile.write_run(out, run, command=command, extra=extra_attrs)
+        partial.unlink(missing_ok=True)  # after the complete run is in place
+        return run
+
+
+def cli_command() -> str:
+    """The current command line, quoted, for provenance."""
+    return " ".join(shlex.quote(a) for a in ["mcsim", *sys.argv[1:]])

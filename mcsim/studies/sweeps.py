@@ -1,0 +1,582 @@
+"""Parameter sweeps: analytic curves, adhesion summaries (and optionally Monte Carlo) on a grid.
+
+(The module is ``sweeps``, plural, so that the function :func:`mcsim.sweep` is never
+shadowed by a submodule of the same name once the module is imported.)
+
+>>> import mcsim
+>>> from mcsim.model.presets import SURFACES, MATERIALS
+>>> result = mcsim.sweep(SURFACES["smooth"], MATERIALS["silicon"], law="dmt",
+...                      vary={"sigma": "0.3nm:20nm:40:log", "gamma": "0.05:1:5"},
+...                      out="design.h5")                               # doctest: +SKIP
+>>> result.table()                # one row per grid point          # doctest: +SKIP
+>>> xarray.open_dataset("design.h5", engine="h5netcdf")             # doctest: +SKIP
+
+The grid is the outer product of the varied inputs, in the order given (C order: the
+last varies fastest). Every point is one independent task: the GW curves of
+:func:`mcsim.gw_curves` on approach over ``h``, the regime numbers of
+:mod:`mcsim.physics.adhesion` and, for a law set with a net load and a retraction branch,
+:func:`mcsim.physics.adhesion.adhesion_summary` (the numbers ``mcsim analytic`` and ``mcsim
+adhesion`` give for the same inputs, bit for bit); with ``mc``, one Monte Carlo run
+(:func:`mcsim.simulate`, in memory) whose seed derives from (``seed``, point index)
+alone. Points run on threads or on Dask; the numbers do not depend on where or in what
+order. A point that fails (an out-of-range combination, a root not found) is recorded
+with its message; its outputs from the steps before the failure are kept (e.g. the
+curves where only the adhesion summary fails), the others are NaN.
+
+The file's layout is described in :mod:`mcsim.store.sweepfile`.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import dataclasses
+import datetime as _dt
+import functools
+import json
+import logging
+import math
+import sys
+import time
+import warnings
+from collections.abc import Mapping
+from concurrent.futures import ThreadPoolExecutor
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from mcsim._version import __version__
+from mcsim.engine import interrupt
+from mcsim.engine.montecarlo import FIRST_CHECKPOINT, default_workers, in_order
+from mcsim.model import units
+from mcsim.model.errors import MCSimError, ParameterError, RunFileError
+from mcsim.model.params import Material, Surface, check_range, check_separations, plasticity_index
+from mcsim.model.units import parse_quantity
+from mcsim.physics.adhesion import (
+    RegimeWarning,
+    adhesion_parameter,
+    adhesion_summary,
+    choose_law,
+    maugis_parameter,
+    regime_warnings,
+    tabor_parameter,
+)
+from mcsim.physics.analytic import gw_curves, quantities
+from mcsim.physics.laws import get_law_set
+from mcsim.store import files, runfile
+from mcsim.store.sweepfile import (
+    INPUTS,
+    SCHEMA_VERSION,
+    SUMMARY,
+    Sweep,
+    dimension_name,
+    empty_sweep,
+    plain,
+    read_partial,
+    write_sweep,
+)
+
+log = logging.getLogger(__name__)
+
+
+#: Most points of one sweep.
+MAX_POINTS = 1_000_000
+
+#: Separations d/σ of the curves unless given.
+DEFAULT_H = tuple(np.linspace(4.0, -1.0, 51).tolist())
+
+_SURFACE_FIELDS = {"sigma", "R", "eta"}
+
+
+# --- the grid ----------------------------------------------------------------------------
+
+
+def parse_values(name: str, spec) -> np.ndarray:
+    """The values of one varied input: SI floats (strings for ``law``).
+
+    ``spec`` is a range ``"start:stop:num[:log]"`` (inclusive, start <= stop), a comma
+    list ``"0.3nm,1nm"``, or a sequence of numbers (SI) or quantity strings. A bare
+    number is SI, as in every other option (``gamma=0.05:1:5`` is in J/m²).
+    """
+    if name not in INPUTS:
+        raise ParameterError(f"vary: unknown input {name!r} (allowed: {', '.join(INPUTS)})")
+    dimension = INPUTS[name][0]
+    where = f"vary {name}"
+    if isinstance(spec, str):
+        text = spec.strip()
+        if not text:
+            raise ParameterError(f"{where}: empty list of values")
+        if ":" in text and name != "law":
+            values = units.parse_values(text, dimension, where, limit=MAX_POINTS, ascending=True)
+        else:
+            values = [x.strip() for x in text.split(",")]
+    else:
+        values = list(np.atleast_1d(spec)) if not isinstance(spec, list | tuple) else list(spec)
+        if not values:
+            raise ParameterError(f"{where}: empty list of values")
+    if name == "law":
+        laws = []
+        for v in values:
+            if v != "auto":
+                get_law_set(v)  # unknown: names the allowed ones
+            laws.append(str(v))
+        values = np.array(laws, dtype=str)
+    else:
+        values = np.array([parse_quantity(plain(v), dimension, where) for v in values])
+    if values.size > MAX_POINTS:
+        raise ParameterError(f"{where}: {values.size} values, more than a sweep's "
+                             f"{MAX_POINTS} points")  # fmt: skip
+    unique, counts = np.unique(values, return_counts=True)
+    if np.any(counts > 1):
+        raise ParameterError(f"{where}: value {unique[counts > 1][0]!r} appears more than once")
+    return values
+
+
+@dataclass(frozen=True)
+class _Point:
+    """One grid point: its flat index (C order) and its inputs."""
+
+    index: int
+    surface: Surface
+    material: Material
+    law: str
+    area: float | None
+
+
+@dataclass(frozen=True)
+class _Config:
+    """What every point shares."""
+
+    h: tuple[float, ...]
+    turn: float | None
+    mc: bool
+    realizations: int
+    entropy: int | None
+    device: str = "cpu"
+
+
+def _point(base_surface, base_material, law, area, names, values, index) -> _Point:
+    """The inputs at one point; a bad combination raises ParameterError (a failed point)."""
+    surface_changes, material_changes = {}, {}
+    for name, value in zip(names, values):
+        if name == "law":
+            law = str(value)
+        elif name == "area":
+            area = float(value)
+        else:
+            for f in INPUTS[name][1]:
+                (surface_changes if f in _SURFACE_FIELDS else material_changes)[f] = float(value)
+    return _Point(index, dataclasses.replace(base_surface, **surface_changes),
+                  dataclasses.replace(base_material, **material_changes), law, area)  # fmt: skip
+
+
+# --- one point -----------------------------------------------------------------------------
+
+
+def has_summary(law: str) -> bool:
+    """Whether ``law`` (or ``auto``) has a net load and a retraction branch."""
+    if law == "auto":
+        return True
+    laws = get_law_set(law)
+    return "load" in laws.names and laws.retract
+
+
+def _curve_names(law: str, material: Material) -> tuple[str, ...]:
+    return quantities("jkr" if law == "auto" else law, material)
+
+
+def evaluate(point: _Point, config: _Config) -> dict:
+    """Every output at one point (a dict of floats, arrays over h and strings).
+
+    Where a step fails, the outputs of the steps before it (curves, regime numbers,
+    adhesion summary, Monte Carlo, in that order) are kept and ``error`` says why.
+    """
+    out: dict = {}
+    try:
+        _evaluate(point, config, out)
+    except (MCSimError, ArithmeticError, ValueError, RuntimeError) as err:
+        out["error"] = f"{type(err).__name__}: {' '.join(str(err).split())}"
+    return out
+
+
+def _evaluate_quietly(point: _Point, config: _Config) -> dict:
+    """:func:`evaluate` on a Dask worker, without printing the regime warnings it records."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RegimeWarning)
+        return evaluate(point, config)
+
+
+def _evaluate(point: _Point, config: _Config, out: dict) -> None:
+    surface, material = point.surface, point.material
+    law = choose_law(surface, material)[0] if point.law == "auto" else point.law
+    out["law_used"] = law
+    curves = gw_curves(surface, material, np.asarray(config.h), law)
+    out |= curves.values
+    out["tabor"] = _number(tabor_parameter(surface, material))
+    out["maugis_lambda"] = _number(maugis_parameter(surface, material))
+    out["adhesion_parameter"] = adhesion_parameter(surface, material)
+    out["plasticity_index"] = _number(plasticity_index(surface, material))
+    out["regime_warning"] = "; ".join(regime_warnings(surface, material, law))
+    if has_summary(law):
+        summary = adhesion_summary(surface, material, law, turn=config.turn)
+        out |= {k: getattr(summary, k) for k in SUMMARY}
+    if config.mc:
+        from mcsim.studies.simulation import simulate
+
+        run = simulate(surface, material, np.asarray(config.h), point.area,
+                       realizations=config.realizations, seed=point_seed(config.entropy, point.index),
+                       law=law, device=config.device, workers=1, command="mcsim.sweep")  # fmt: skip
+        for q in run.quantities:
+            out[f"mc_{q}"] = run.summary.mean[q]
+            out[f"mc_{q}_se"] = run.summary.se[q]
+
+
+def _number(value: float | None) -> float:
+    return math.nan if value is None else float(value)
+
+
+def point_seed(entropy: int, index: int) -> int:
+    """Root seed of the Monte Carlo run at grid point ``index``: 128 bits drawn from
+    ``SeedSequence(entropy, spawn_key=(index,))``, the point's own child stream."""
+    a, b = np.random.SeedSequence(entropy, spawn_key=(index,)).generate_state(2, np.uint64)
+    return (int(a) << 64) | int(b)
+
+
+# --- the result ----------------------------------------------------------------------------
+
+
+# --- the sweep -----------------------------------------------------------------------------
+
+
+def sweep(
+    surface: Surface,
+    material: Material,
+    vary: Mapping,
+    *,
+    law: str | None = None,
+    h=DEFAULT_H,
+    turn: float | None = None,
+    mc: bool = False,
+    area: float | str | None = None,
+    realizations: int = 1,
+    seed: int | None = None,
+    device: str = "cpu",
+    workers: int | None = None,
+    scheduler=None,
+    out: str | Path | None = None,
+    overwrite: bool = False,
+    resume: bool = False,
+    checkpoint_every: float = 60.0,
+    progress: bool = False,
+    command: str | None = None,
+) -> Sweep:
+    """Analytic curves, adhesion summaries and regime numbers on a grid of inputs.
+
+    Parameters
+    ----------
+    surface, material : Surface, Material
+        The inputs at every point, before the varied ones are set.
+    vary : mapping of str to spec
+        Input name to its values, in grid order: ``sigma``, ``R``, ``eta`` (surface),
+        ``E`` (both E1 and E2), ``E1``, ``E2``, ``nu`` (both), ``nu1``, ``nu2``,
+        ``gamma``, ``z0``, ``tau``, ``H`` (material), ``law`` (law-set names or
+        ``auto``), ``area`` (pad area, m², with ``mc`` only). Values: a string
+        ``"start:stop:num[:log]"`` or ``"a,b,c"`` with optional units (a bare number
+        is SI), or a sequence (numbers in SI).
+    law : str, optional
+        Law set at every point (default ``"seed"``), or ``"auto"`` (chosen per point on
+        the adhesion map); not together with a varied ``law``.
+    h : array_like
+        Separations d/σ of the curves (default 4 … −1, 51 values).
+    turn : float, optional
+        Closest approach d/σ before retraction for the adhesion summary (default:
+        zero approach load, as ``mcsim adhesion``).
+    mc : bool
+        Also run :func:`mcsim.simulate` at each point (``realizations`` patches of
+        ``area``), storing the mean and standard error of each curve.
+    area : float or str, optional
+        Patch area of the Monte Carlo runs, m² or with a unit.
+    realizations : int
+        Patches per point.
+    seed : int, optional
+        Root seed of the Monte Carlo runs; point i uses :func:`point_seed` (seed, i).
+    device : {"cpu", "cuda"}
+        Where the Monte Carlo runs sample and sum (``"cuda"``: this machine's GPU, see
+        :func:`mcsim.simulate`; points then run one after another, not on Dask).
+    workers : int, optional
+        Local worker threads (all cores by default), or processes of ``"local"`` Dask.
+    scheduler : str or dask.distributed.Client, optional
+        ``"local"``, a scheduler address or a client, as in :func:`mcsim.simulate`.
+    out : path, optional
+        Write the sweep (HDF5, see the module docstring) atomically; completed points
+        are checkpointed in ``<stem>.partial<suffix>`` beside it.
+    overwrite : bool
+        Replace an existing file (and start again from scratch).
+    resume : bool
+        Continue from the checkpoint beside ``out``: completed points are not recomputed.
+    checkpoint_every : float
+        Seconds between checkpoints (the first after 10 s).
+    progress : bool
+        A progress bar over the points on stderr.
+    command : str, optional
+        Provenance string stored in the file (the CLI passes its command line).
+
+    Returns
+    -------
+    Sweep
+        Failed points are in ``Sweep.failed`` (and the ``error`` variable).
+
+    Raises
+    ------
+    ParameterError
+        Bad ``vary`` (unknown input, wrong unit, empty range, duplicate, ``area``
+        without ``mc``, more than :data:`MAX_POINTS` points) or other bad input.
+    mcsim.engine.interrupt.Interrupted
+        On SIGINT or SIGTERM, once the completed points are saved.
+    """
+    names, grid = _check_vary(vary, law, mc)
+    check_range("checkpoint_every", checkpoint_every, "s", low=0.0, low_open=False)
+    law = "seed" if law is None else law
+    if law != "auto":
+        get_law_set(law)
+    h = tuple(check_separations(h).tolist())
+    turn = None if turn is None else check_range("turn", turn, "1")
+    area_m2 = None
+    if mc:
+        if area is None and "area" not in names:
+            raise ParameterError("mc needs the patch area (area=..., --area)")
+        if area is not None:
+            if "area" in names:
+                raise ParameterError("area: given both as a value and as a varied input")
+            area_m2 = check_range("area", parse_quantity(area, "area", "area"), "m^2", low=0)
+        if isinstance(realizations, bool) or not isinstance(realizations, int) or realizations < 1:
+            raise ParameterError(f"realizations = {realizations!r} is out of range (allowed: integer >= 1)")  # fmt: skip
+        if device not in ("cpu", "cuda"):
+            raise ParameterError(f"device = {device!r} is not one of cpu, cuda")
+        if device == "cuda":
+            from mcsim.engine.cuda import require_gpu
+
+            require_gpu()
+            if scheduler is not None:
+                raise ParameterError(
+                    "device = 'cuda' runs on this machine's GPU: drop the Dask scheduler"
+                )
+            workers = 1  # one GPU; each point's run keeps it busy
+    elif device != "cpu":
+        raise ParameterError(
+            f"device = {device!r}: the device applies to the Monte Carlo runs only (add mc / --mc)"
+        )
+    elif area is not None:
+        raise ParameterError(
+            "area: the pad area applies to the Monte Carlo runs only (add mc / --mc)"
+        )
+    if resume and out is None:
+        raise ParameterError("resume needs the sweep file to continue (out=...)")
+    shape = tuple(len(v) for v in grid)
+    if math.prod(shape) > MAX_POINTS:
+        raise ParameterError(f"vary: the grid has {math.prod(shape)} points "
+                             f"({' x '.join(map(str, shape))}), more than the limit of {MAX_POINTS}")  # fmt: skip
+    _check_values(surface, material, names, grid)
+    dims = [dimension_name(n) for n in names]
+    with interrupt.interruptible(), contextlib.ExitStack() as stack:
+        previous = None
+        if out is not None:
+            out = files.check_output_path(out, overwrite=overwrite, resume=resume)
+            stack.enter_context(files.lock(out))
+            files.check_output_path(out, overwrite=overwrite, resume=resume)
+            partial = files.checkpoint_path(out)
+            if resume and partial.exists():
+                previous = read_partial(partial)
+                recorded = previous["attrs"].get("seed_entropy")
+                if seed is None and recorded:
+                    seed = int(recorded)
+            elif resume:
+                log.warning("%s: nothing to resume (no checkpoint %s): starting the sweep from "
+                            "the beginning", out, partial.name)  # fmt: skip
+            else:
+                partial.unlink(missing_ok=True)
+        entropy = np.random.SeedSequence(seed).entropy if mc else None
+        config = _Config(h, turn, mc, realizations, entropy, device)
+        laws = list(grid[names.index("law")]) if "law" in names else [law]
+        curve_names = _union(_curve_names(x, material) for x in laws)
+        if "tau" in names and material.tau is None:
+            curve_names = _union([curve_names, _curve_names(laws[0], dataclasses.replace(material, tau=1.0))])  # fmt: skip
+        summary = any(has_summary(x) for x in laws)
+        result = empty_sweep(dims, grid, h, curve_names, summary, mc)
+        if command is None:
+            command = (
+                f"mcsim.sweep(vary={ {n: _shown(v) for n, v in zip(names, grid)} }, law={law!r})"
+            )
+        attrs = _attrs(surface, material, law, dims, grid, config, area_m2, command)
+        key = attrs["definition"]
+        done = np.zeros(shape, dtype=bool)
+        if previous is not None:
+            if previous["attrs"].get("mcsim_version") != __version__:
+                raise RunFileError(f"{partial}: written by mcsim "
+                                   f"{previous['attrs'].get('mcsim_version')}; resume it with that version")  # fmt: skip
+            if previous["attrs"].get("definition") != key:
+                raise ParameterError(f"cannot resume {out}: the inputs differ from the recorded "
+                                     "sweep's (same surface, material, law, vary, h, turn, mc "
+                                     "options needed)")  # fmt: skip
+            done = previous["done"]
+            for k in result.data:
+                result.data[k][done] = previous["data"][k][done]
+        points = (
+            _point(surface, material, law, area_m2, names, values, index)
+            for index, values in enumerate(_product(grid))
+            if not done.flat[index]
+        )
+        checkpoint = None
+        if out is not None:
+            checkpoint = functools.partial(write_sweep, partial, result, attrs, complete=False)
+        # Recorded per point instead; restored only once the last point has stopped.
+        stack.enter_context(warnings.catch_warnings())
+        warnings.simplefilter("ignore", RegimeWarning)
+        _run(stack, points, config, result, done, workers, scheduler, progress, checkpoint,
+             checkpoint_every)  # fmt: skip
+        if out is None:
+            return dataclasses.replace(result, attrs=attrs)
+        write_sweep(out, result, attrs, complete=True)
+        partial.unlink(missing_ok=True)
+        return dataclasses.replace(result, attrs=attrs, path=out)
+
+
+def _shown(values: np.ndarray) -> list:
+    return [plain(v) for v in values]
+
+
+def _union(groups) -> tuple[str, ...]:
+    out: dict[str, None] = {}
+    for g in groups:
+        out |= dict.fromkeys(g)
+    return tuple(out)
+
+
+def _product(grid: list[np.ndarray]):
+    """Every combination of the grid's values, C order (the last varies fastest)."""
+    shape = tuple(len(v) for v in grid)
+    for idx in np.ndindex(*shape):
+        yield [v[i] for v, i in zip(grid, idx)]
+
+
+def _check_vary(vary: Mapping, law: str | None, mc: bool) -> tuple[list[str], list[np.ndarray]]:
+    if not isinstance(vary, Mapping) or not vary:
+        raise ParameterError("vary: give at least one input to vary (e.g. --vary sigma=0.3nm:20nm:40:log)")  # fmt: skip
+    names = list(vary)
+    fields: dict[str, str] = {}
+    for name in names:
+        if name not in INPUTS:
+            raise ParameterError(f"vary: unknown input {name!r} (allowed: {', '.join(INPUTS)})")
+        for f in INPUTS[name][1]:
+            if f in fields:
+                raise ParameterError(f"vary: {name!r} and {fields[f]!r} both set {f}: vary one of them")  # fmt: skip
+            fields[f] = name
+    if "law" in names and law is not None:
+        raise ParameterError("law: given both as --law and as a varied input (--vary law=...)")
+    if "area" in names and not mc:
+        raise ParameterError("vary area: the pad area applies to the Monte Carlo runs only (add --mc)")  # fmt: skip
+    return names, [parse_values(n, vary[n]) for n in names]
+
+
+def _check_values(surface: Surface, material: Material, names, grid) -> None:
+    """Each value on its own (with the other inputs at their base values) must be valid."""
+    for name, values in zip(names, grid):
+        if name in ("law", "area"):
+            if name == "area":
+                for v in values:
+                    check_range("vary area", v, "m^2", low=0)
+            continue
+        for v in values:
+            changes = dict.fromkeys(INPUTS[name][1], float(v))
+            base = surface if name in ("sigma", "R", "eta") else material
+            try:
+                dataclasses.replace(base, **changes)
+            except ParameterError as err:
+                raise ParameterError(f"vary {name}: {err}") from None
+
+
+def _attrs(surface, material, law, dims, grid, config: _Config, area, command) -> dict:
+    surface_json = json.dumps({"sigma": surface.sigma, "R": surface.R, "eta": surface.eta,
+                               "name": surface.name, "heights": runfile.heights_to_json(surface),
+                               "units": {"sigma": "m", "R": "m", "eta": "m^-2"}})  # fmt: skip
+    material_json = json.dumps({**{k: getattr(material, k) for k in ("E1", "E2", "nu1", "nu2", "gamma", "H", "z0", "tau", "name")},
+                                "units": {"E1": "Pa", "E2": "Pa", "nu1": "1", "nu2": "1", "gamma": "J/m^2",
+                                          "H": "Pa", "z0": "m", "tau": "Pa"}})  # fmt: skip
+    attrs = {
+        "sweep_schema_version": SCHEMA_VERSION,
+        "mcsim_version": __version__,
+        "command": command,
+        "law": "varied" if "law" in dims else law,
+        "varied": json.dumps(list(dims)),
+        "surface": surface_json,
+        "material": material_json,
+        "turn": math.nan if config.turn is None else config.turn,
+        "mc": config.mc,
+    }
+    if config.mc:
+        attrs |= {"area": math.nan if area is None else area, "area_unit": "m^2",
+                  "realizations": config.realizations, "seed_entropy": str(config.entropy),
+                  "device": config.device}  # fmt: skip
+    # What must match for a resume: everything but the time and the command line.
+    attrs["definition"] = json.dumps({k: (None if isinstance(v, float) and math.isnan(v) else v)
+                                      for k, v in attrs.items() if k != "command"}
+                                     | {"h": list(config.h), "values": [_shown(v) for v in grid]})  # fmt: skip
+    attrs["created"] = _dt.datetime.now(_dt.UTC).isoformat(timespec="seconds")
+    return attrs
+
+
+def _run(stack, points, config, result: Sweep, done, workers, scheduler, progress,
+         checkpoint, checkpoint_every) -> None:  # fmt: skip
+    """Evaluate the points on threads or Dask, storing each result as it arrives (in order)."""
+    n_workers = default_workers() if workers is None else workers
+    if isinstance(n_workers, bool) or not isinstance(n_workers, int) or n_workers < 1:
+        raise ParameterError(f"workers = {workers!r} is out of range (allowed: integer >= 1)")
+    bar = None
+    if progress:
+        from tqdm import tqdm
+
+        bar = stack.enter_context(tqdm(total=done.size, initial=int(done.sum()), unit=" points",
+                                       file=sys.stderr, leave=False))  # fmt: skip
+    client = scheduler
+    if isinstance(scheduler, str):
+        from mcsim.engine.cluster import dask_client
+
+        client = stack.enter_context(dask_client(scheduler, workers))
+    if client is None:
+        pool = ThreadPoolExecutor(max_workers=n_workers)
+        stack.callback(pool.shutdown, wait=True, cancel_futures=True)
+        submit = functools.partial(pool.submit, evaluate, config=config)
+        window = 2 * n_workers
+    else:
+        submit = functools.partial(client.submit, _evaluate_quietly, config=config, pure=False)
+        window = 2 * max(1, sum(client.nthreads().values()))
+    next_checkpoint = time.monotonic() + min(FIRST_CHECKPOINT, checkpoint_every)
+    unsaved = False
+    results = stack.enter_context(
+        contextlib.closing(in_order(submit, points, window, interrupt.check))
+    )
+    try:
+        for point, values in results:
+            _store(result, done, point.index, values)
+            unsaved = True
+            if bar is not None:
+                bar.update(1)
+            if checkpoint is not None and time.monotonic() > next_checkpoint:
+                checkpoint(done=done)
+                unsaved = False
+                next_checkpoint = time.monotonic() + checkpoint_every
+    except BaseException:
+        results.close()
+        if checkpoint is not None and unsaved:
+            checkpoint(done=done)
+        raise
+
+
+def _store(result: Sweep, done: np.ndarray, index: int, values: dict) -> None:
+    idx = np.unravel_index(index, done.shape)
+    for k, v in values.items():
+        result.data[k][idx] = v
+    done[idx] = True
+
+
+# --- the file -------------------------------------------------------------------------------

@@ -1,0 +1,1 @@
+"""Measured surfaces: AFM readers, levelling and summit identification, measured height distributions."""

@@ -1,0 +1,135 @@
+"""What every reader shares: the :class:`HeightMap` it returns, its error, unit helpers.
+
+Convention for every height map: ``heights[i, j]`` is row ``i`` (along y, pitch
+``dy``) and column ``j`` (along x, pitch ``dx``), in the order the file stores its
+rows: row 0 is the file's first row (Gwyddion, ASCII, .npy: the top row of the
+image as displayed by the instrument software; Igor, whose waves are stored
+x-fastest as ``w[x, y]``, is transposed to this layout). No reader flips rows, so
+summit statistics (which do not depend on orientation) and round trips are exact.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from mcsim.model.errors import MCSimError
+from mcsim.model.units import unit_factor
+
+#: Largest map a reader accepts, in pixels (16384 × 16384, 2 GiB as float64): a header that
+#: declares more is refused before anything is allocated.
+MAX_PIXELS = 2**28
+
+
+class ReaderError(MCSimError):
+    """A file cannot be read as a height map or a histogram; the message names the file.
+
+    The message is kept on one line: line breaks (from a file name or from text read
+    out of the file) are shown escaped, e.g. ``\\r``.
+    """
+
+    def __init__(self, message: str) -> None:
+        super().__init__(_LINE_BREAK.sub(lambda m: repr(m.group())[1:-1], str(message)))
+
+
+_LINE_BREAK = re.compile("[\n\r\v\f\x1c\x1d\x1e\x85\u2028\u2029]")
+
+
+@dataclass(frozen=True)
+class HeightMap:
+    """A measured height map in SI units.
+
+    Attributes
+    ----------
+    heights : ndarray
+        Heights, m, shape (rows along y, columns along x); NaN for missing pixels.
+    dx, dy : float
+        Pixel size along x (between columns) and y (between rows), m.
+    source : str
+        File the map was read from.
+    channel : str
+        Channel (data field) name inside the file.
+    notes : tuple of str
+        What the reader assumed or converted (units, scaling, chosen channel).
+    """
+
+    heights: np.ndarray
+    dx: float
+    dy: float
+    source: str
+    channel: str = ""
+    notes: tuple[str, ...] = field(default=())
+
+    def __post_init__(self):
+        for name in ("dx", "dy"):
+            value = getattr(self, name)
+            if not (isinstance(value, float) and math.isfinite(value) and value > 0):
+                raise ReaderError(
+                    f"{self.source}: pixel size {name} = {value!r} m: must be positive and finite"
+                )
+
+    @property
+    def shape(self) -> tuple[int, int]:
+        """(rows, columns)."""
+        return self.heights.shape
+
+    @property
+    def size(self) -> tuple[float, float]:
+        """Physical size (x, y) = (columns·dx, rows·dy), m."""
+        return self.heights.shape[1] * self.dx, self.heights.shape[0] * self.dy
+
+
+def length_factor(unit: str, path: Path | str, what: str) -> float:
+    """SI factor of a length unit read from a file or given by the caller."""
+    try:
+        return unit_factor(unit, "length")
+    except MCSimError as err:
+        raise ReaderError(f"{path}: {what}: {err}") from None
+
+
+def pixel_sizes(
+    path: Path | str, pixel_size: float | tuple[float, float] | None
+) -> tuple[float, float]:
+    """(dx, dy) in m from the caller's ``pixel_size``; raises if it is missing or bad."""
+    if pixel_size is None:
+        raise ReaderError(f"{path}: missing pixel size: pass --pixel-size")
+    dx, dy = (pixel_size, pixel_size) if np.ndim(pixel_size) == 0 else pixel_size
+    for value in (dx, dy):
+        if not (math.isfinite(value) and value > 0):
+            raise ReaderError(f"{path}: pixel size must be positive and finite, got {value!r} m")
+    return float(dx), float(dy)
+
+
+def check_heights(path: Path | str, z: np.ndarray) -> np.ndarray:
+    """A 2-D float array with at least 3×3 pixels and one finite value; ±inf become NaN."""
+    if np.iscomplexobj(z):
+        raise ReaderError(f"{path}: heights are complex numbers")
+    try:
+        z = np.asarray(z, dtype=float)
+    except (TypeError, ValueError):
+        raise ReaderError(f"{path}: heights are not numbers") from None
+    if z.ndim != 2 or min(z.shape) < 3:
+        raise ReaderError(f"{path}: a height map needs at least 3×3 pixels, got shape {z.shape}")
+    if z.size > MAX_PIXELS:
+        raise ReaderError(f"{path}: {z.size} pixels, more than the limit of {MAX_PIXELS}")
+    finite = np.isfinite(z)
+    if not np.any(finite):
+        raise ReaderError(f"{path}: the height map has no finite value")
+    return np.where(finite, z, np.nan)
+
+
+def head(path: Path, n: int = 64) -> bytes:
+    """The first ``n`` bytes of a file, for magic-byte checks."""
+    try:
+        with path.open("rb") as f:
+            return f.read(n)
+    except FileNotFoundError:
+        raise ReaderError(f"{path}: no such file") from None
+    except OSError as err:
+        raise ReaderError(f"{path}: cannot read ({err.strerror})") from None
+    except ValueError:  # a NUL byte in the name
+        raise ReaderError(f"{path!r}: not a valid file name") from None

@@ -1,0 +1,374 @@
+"""Summit statistics (σ_s, R, η) of a measured height map, by two routes.
+
+The map ``z[i, j]`` has rows along y (pitch ``dy``) and columns along x (pitch
+``dx``), heights in m (the :class:`~mcsim.topography.readers.HeightMap` convention). Steps:
+
+1. **Levelling**: a least-squares polynomial of total degree ``order`` in x and y
+   (default 1, a plane; 0 only removes the mean) is fitted to the finite pixels and
+   subtracted, so heights are measured from the mean plane.
+2. **NaN handling**: non-finite pixels are dropped from every average and counted;
+   a pixel is a summit candidate only if it and its 8 neighbours are finite.
+3. **Saturation**: if more than ``saturation_fraction`` of the pixels sit exactly at the
+   map's minimum or maximum (detector or scanner range clipped), a
+   :class:`SaturationWarning` is issued: clipped peaks bias every summit statistic.
+4. **Direct route** (Greenwood & Williamson 1966; PHYSICS.md): a summit is a pixel higher
+   than its 8 neighbours. Border pixels are never summits. Plateaus (equal neighbours)
+   are counted once: the pixel must be strictly higher than the 4 neighbours that come
+   before it in raster order (up-left, up, up-right, left) and at least as high as the
+   4 that come after (right, down-left, down, down-right), so of a connected flat top
+   only its first pixel in raster order counts. Curvature κ = −(z_xx + z_yy)/2 by
+   central differences; R = 1/⟨κ⟩ (not ⟨1/κ⟩); σ_s = population std of summit
+   heights; η = count / area of the candidate pixels.
+5. **Spectral route** (Nayak 1971; McCool 1986): m0 = ⟨z²⟩, m2 = ⟨z_x²⟩ (forward
+   differences), m4 = ⟨z_xx²⟩ (central second differences), each the average of the
+   x and y profiles (McCool's equivalent isotropic surface); α = m0 m4/m2²,
+   η = m4/(6π√3 m2), R = 0.375 √(π/m4), σ_s = √(1 − 0.8968/α) √m0, mean summit
+   height 4 √(m0/(πα)) above the mean plane.
+
+Both routes depend strongly on the pixel size and the instrument bandwidth: always
+report ``dx``, ``dy`` and ``order`` with the numbers (they are in the result).
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from dataclasses import dataclass
+
+import numpy as np
+
+from mcsim.model.errors import ParameterError
+
+
+class SaturationWarning(UserWarning):
+    """Many pixels sit at the map's extreme values: the scan was probably clipped."""
+
+
+@dataclass(frozen=True)
+class SummitStatistics:
+    """Summit statistics of one route.
+
+    Attributes
+    ----------
+    sigma_s : float
+        Standard deviation of summit heights, m.
+    R : float
+        Summit radius of curvature, m (1/mean curvature).
+    eta : float
+        Areal density of summits, m⁻².
+    mean_height : float
+        Mean summit height above the mean plane, m.
+    count : float
+        Number of summits found (direct route) or expected on the map's area (spectral).
+    """
+
+    sigma_s: float
+    R: float
+    eta: float
+    mean_height: float
+    count: float
+
+
+@dataclass(frozen=True)
+class SpectralMoments:
+    """Spectral moments of the levelled map (McCool 1986), averaged over x and y.
+
+    Attributes
+    ----------
+    m0 : float
+        ⟨z²⟩, m².
+    m2 : float
+        ⟨(∂z/∂x)²⟩, dimensionless.
+    m4 : float
+        ⟨(∂²z/∂x²)²⟩, m⁻².
+    alpha : float
+        Nayak's bandwidth parameter m0 m4 / m2² (dimensionless).
+    """
+
+    m0: float
+    m2: float
+    m4: float
+    alpha: float
+
+
+@dataclass(frozen=True)
+class TopographyResult:
+    """Summit statistics of a height map by both routes, with the sampling they depend on.
+
+    Attributes
+    ----------
+    direct : SummitStatistics
+        8-neighbour local maxima.
+    spectral : SummitStatistics
+        Nayak/McCool formulas from the spectral moments.
+    moments : SpectralMoments
+        The moments used by the spectral route.
+    rms : float
+        Rms height of the levelled map √m0, m.
+    dx, dy : float
+        Pixel size along x (columns) and y (rows), m.
+    shape : tuple of int
+        (rows, columns) of the map.
+    order : int
+        Degree of the levelling polynomial.
+    n_nan : int
+        Number of non-finite pixels dropped.
+    """
+
+    direct: SummitStatistics
+    spectral: SummitStatistics
+    moments: SpectralMoments
+    rms: float
+    dx: float
+    dy: float
+    shape: tuple[int, int]
+    order: int
+    n_nan: int
+
+
+#: Levelled heights this small relative to the raw ones are rounding noise of the fit.
+_ROUNDING = 1e-12
+
+
+def _check_map(z, dx: float, dy: float) -> np.ndarray:
+    z = np.asarray(z, dtype=float)
+    if z.ndim != 2 or min(z.shape) < 3:
+        raise ParameterError(
+            f"a height map must be 2-D with at least 3×3 pixels, got shape {z.shape}"
+        )
+    for name, value in (("dx", dx), ("dy", dy)):
+        if not (math.isfinite(value) and value > 0):
+            raise ParameterError(f"{name} = {value!r} m is out of range (allowed: > 0 m)")
+    if np.count_nonzero(np.isfinite(z)) < 9:
+        raise ParameterError("the height map has fewer than 9 finite pixels")
+    return z
+
+
+def level(z, order: int = 1) -> np.ndarray:
+    """Subtract the least-squares polynomial of total degree ``order`` in x and y.
+
+    Parameters
+    ----------
+    z : array_like
+        Height map (rows along y, columns along x), any unit; NaN pixels are ignored
+        by the fit and stay NaN.
+    order : int
+        0: subtract the mean; 1: a plane (default); n: all monomials x^p y^q, p+q ≤ n.
+
+    Returns
+    -------
+    ndarray
+        Levelled map, same unit, zero mean over its finite pixels.
+    """
+    if not (isinstance(order, int | np.integer) and order >= 0):
+        raise ParameterError(f"`order` must be a non-negative integer, got {order!r}")
+    z = np.asarray(z, dtype=float)
+    ny, nx = z.shape
+    y, x = np.meshgrid(np.linspace(-1, 1, ny), np.linspace(-1, 1, nx), indexing="ij")
+    ok = np.isfinite(z)
+    basis = np.stack(
+        [x[ok] ** p * y[ok] ** q for p in range(order + 1) for q in range(order + 1 - p)], axis=1
+    )
+    coef, *_ = np.linalg.lstsq(basis, z[ok], rcond=None)
+    out = np.full_like(z, np.nan)
+    out[ok] = z[ok] - basis @ coef
+    return out
+
+
+def _warn_saturation(z: np.ndarray, fraction: float) -> None:
+    finite = z[np.isfinite(z)]
+    lo, hi = finite.min(), finite.max()
+    for where, value in (("minimum", lo), ("maximum", hi)):
+        share = np.count_nonzero(finite == value) / finite.size
+        if share > fraction and lo != hi:
+            warnings.warn(
+                f"{share:.1%} of the pixels sit at the map's {where} ({value:.4g}): "
+                "the scan is probably saturated, and summit statistics are biased",
+                SaturationWarning,
+                stacklevel=3,
+            )
+
+
+def _peaks(z: np.ndarray):
+    """Interior pixels ``c``, a neighbour accessor, the candidate mask and the summit mask."""
+    c = z[1:-1, 1:-1]
+
+    def nb(di: int, dj: int) -> np.ndarray:
+        return z[1 + di : z.shape[0] - 1 + di, 1 + dj : z.shape[1] - 1 + dj]
+
+    before = [(-1, -1), (-1, 0), (-1, 1), (0, -1)]
+    after = [(0, 1), (1, -1), (1, 0), (1, 1)]
+    finite = np.isfinite(c)
+    for d in before + after:
+        finite &= np.isfinite(nb(*d))
+    with np.errstate(invalid="ignore"):
+        peak = finite.copy()
+        for d in before:
+            peak &= c > nb(*d)
+        for d in after:
+            peak &= c >= nb(*d)
+    return c, nb, finite, peak
+
+
+def summit_heights(z) -> np.ndarray:
+    """Heights of the direct-route summits (8-neighbour maxima, module docstring).
+
+    Parameters
+    ----------
+    z : array_like
+        Levelled height map (see :func:`level`), any unit; NaN allowed.
+
+    Returns
+    -------
+    ndarray
+        One height per summit, same unit, in raster order.
+    """
+    c, _, _, peak = _peaks(np.asarray(z, dtype=float))
+    return c[peak]
+
+
+def direct_summits(z: np.ndarray, dx: float, dy: float) -> SummitStatistics:
+    """Summits as 8-neighbour local maxima of a levelled map (rule in the module docstring).
+
+    Parameters
+    ----------
+    z : ndarray
+        Levelled height map, m (NaN allowed).
+    dx, dy : float
+        Pixel size along columns and rows, m.
+
+    Returns
+    -------
+    SummitStatistics
+        NaN fields where no summit is found.
+    """
+    c, nb, finite, peak = _peaks(z)
+    with np.errstate(invalid="ignore"):
+        # κ = −(z_xx + z_yy)/2, central second differences
+        z_xx = (nb(0, 1) - 2 * c + nb(0, -1)) / dx**2
+        z_yy = (nb(1, 0) - 2 * c + nb(-1, 0)) / dy**2
+    heights = c[peak]
+    kappa = -(z_xx[peak] + z_yy[peak]) / 2
+    area = np.count_nonzero(finite) * dx * dy
+    if heights.size == 0:
+        return SummitStatistics(math.nan, math.nan, 0.0, math.nan, 0)
+    return SummitStatistics(
+        sigma_s=float(np.std(heights)),
+        R=float(1.0 / np.mean(kappa)),
+        eta=heights.size / area,
+        mean_height=float(np.mean(heights)),
+        count=heights.size,
+    )
+
+
+def spectral_moments(z: np.ndarray, dx: float, dy: float) -> SpectralMoments:
+    """m0, m2, m4 of a levelled map by finite differences, averaged over x and y (McCool 1986).
+
+    Computed on the map divided by its largest |height| (the moments scale as its square),
+    so that tiny or huge heights do not underflow or overflow on the way.
+
+    Raises
+    ------
+    ParameterError
+        If the levelled map is flat (no slope or curvature), or its moments in m are
+        not positive normal floats (heights or pixel sizes far outside physical ones).
+    """
+    peak = float(np.nanmax(np.abs(z)))
+    if not (peak > 0 and math.isfinite(peak)):
+        raise ParameterError("the levelled height map is flat (all heights equal): no roughness")
+    u = z / peak
+    m0 = float(np.nanmean(u**2))
+    slopes, curvatures = [], []
+    for axis, step in ((1, dx), (0, dy)):
+        slopes.append(np.nanmean((np.diff(u, axis=axis) / step) ** 2))
+        curvatures.append(np.nanmean((np.diff(u, n=2, axis=axis) / step**2) ** 2))
+    m2, m4 = float(np.mean(slopes)), float(np.mean(curvatures))
+    if not (m2 > 0 and m4 > 0):
+        raise ParameterError(
+            "the levelled height map has no slope or curvature (flat within rounding): no roughness"
+        )
+    alpha = m0 * m4 / m2**2
+    moments = [m0 * peak**2, m2 * peak**2, m4 * peak**2]
+    if not all(np.finfo(float).tiny <= m < math.inf for m in moments) or not math.isfinite(alpha):
+        raise ParameterError(
+            f"the height map's spectral moments m0, m2, m4 = {moments[0]:.3g} m^2, {moments[1]:.3g}, "
+            f"{moments[2]:.3g} m^-2 are outside the floating-point range: heights (largest "
+            f"{peak:.3g} m) or pixel sizes ({dx:.3g} m, {dy:.3g} m) are not physical (wrong unit?)"
+        )
+    return SpectralMoments(m0=moments[0], m2=moments[1], m4=moments[2], alpha=alpha)
+
+
+def spectral_summits(moments: SpectralMoments, area: float) -> SummitStatistics:
+    """Nayak (1971) / McCool (1986) summit statistics from the spectral moments.
+
+    η = m4/(6π√3 m2), R = 0.375 √(π/m4), σ_s = √(1 − 0.8968/α) √m0 and mean summit
+    height 4 √(m0/(πα)) (McCool 1986, Eqs. for the equivalent isotropic surface).
+
+    Parameters
+    ----------
+    moments : SpectralMoments
+        From :func:`spectral_moments`.
+    area : float
+        Area of the map, m², for the expected ``count``.
+    """
+    m0, m2, m4, alpha = moments.m0, moments.m2, moments.m4, moments.alpha
+    eta = m4 / (6 * math.pi * math.sqrt(3) * m2)
+    return SummitStatistics(
+        sigma_s=math.sqrt(max(1 - 0.8968 / alpha, 0.0) * m0),
+        R=0.375 * math.sqrt(math.pi / m4),
+        eta=eta,
+        mean_height=4 * math.sqrt(m0 / (math.pi * alpha)),
+        count=eta * area,
+    )
+
+
+def summit_statistics(
+    z,
+    dx: float,
+    dy: float | None = None,
+    *,
+    order: int = 1,
+    saturation_fraction: float = 0.01,
+) -> TopographyResult:
+    """Level a height map and compute its summit statistics by both routes.
+
+    Parameters
+    ----------
+    z : array_like
+        Height map, m; rows along y, columns along x. NaN pixels are dropped.
+    dx : float
+        Pixel size along x (between columns), m.
+    dy : float, optional
+        Pixel size along y (between rows), m; ``dx`` if omitted.
+    order : int
+        Degree of the levelling polynomial (1: plane).
+    saturation_fraction : float
+        Share of pixels at the minimum or maximum above which a
+        :class:`SaturationWarning` is issued.
+
+    Returns
+    -------
+    TopographyResult
+    """
+    dy = dx if dy is None else dy
+    z = _check_map(z, dx, dy)
+    n_nan = int(np.count_nonzero(~np.isfinite(z)))
+    _warn_saturation(z, saturation_fraction)
+    levelled = level(z, order)
+    if np.nanmax(np.abs(levelled)) <= _ROUNDING * np.nanmax(np.abs(z)):
+        raise ParameterError(
+            "the height map is flat: after levelling only rounding noise is left (no roughness)"
+        )
+    moments = spectral_moments(levelled, dx, dy)
+    area = (np.size(z) - n_nan) * dx * dy
+    return TopographyResult(
+        direct=direct_summits(levelled, dx, dy),
+        spectral=spectral_summits(moments, area),
+        moments=moments,
+        rms=math.sqrt(moments.m0),
+        dx=float(dx),
+        dy=float(dy),
+        shape=(int(z.shape[0]), int(z.shape[1])),
+        order=int(order),
+        n_nan=n_nan,
+    )

@@ -1,0 +1,138 @@
+"""The fused kernel follows any law set: its outputs, edges, branches and array constants."""
+
+import dataclasses
+
+import numpy as np
+import pytest
+from lawset_toy import TOY
+
+from mcsim.engine.kernels import SUM_COLUMNS, block_sums, block_sums_numpy, sum_columns
+from mcsim.model.presets import MATERIALS, SURFACES
+from mcsim.physics.laws import LAW_SETS, SEED
+
+SMOOTH = SURFACES["smooth"]
+#: Silicon with every optional field a law set may require.
+MATERIAL = dataclasses.replace(MATERIALS["silicon"], H=12.5e9, z0=0.3e-9, tau=1e8)
+
+
+@pytest.fixture(autouse=True, scope="module")
+def _private_cache(law_set_cache):
+    """Test law sets compile into a throw-away cache, not the user's."""
+    mp = pytest.MonkeyPatch()
+    mp.setenv("MCSIM_CACHE_DIR", law_set_cache)
+    yield
+    mp.undo()
+
+
+def assert_sums_close(fast, ref, rtol=1e-12):
+    """Counts exactly; moments to ``rtol`` of each column's largest magnitude (signed
+    sums may cancel to zero, where a purely relative bound means nothing)."""
+    np.testing.assert_array_equal(fast[:, 0], ref[:, 0], err_msg="contact counts")
+    scale = np.maximum(np.max(np.abs(ref), axis=0, keepdims=True), np.finfo(float).tiny)
+    assert np.all(np.abs(fast - ref) <= rtol * scale), np.max(np.abs(fast - ref) / scale)
+
+
+def test_sum_columns_are_count_sums_squares_then_cross_products_in_lexicographic_order():
+    assert sum_columns(SEED) == SUM_COLUMNS
+    assert sum_columns(TOY) == (
+        "n_contact", "load", "area", "grip", "loadload", "areaarea", "gripgrip",
+        "loadarea", "loadgrip", "areagrip",
+    )  # fmt: skip
+
+
+def random_rows(rng, sigma):
+    """Approach rows (d_turn = d) and retraction rows from the lowest d, shuffled."""
+    h = rng.uniform(-3, 3, rng.integers(1, 30))
+    d = h * sigma
+    turn = np.full_like(d, d.min())
+    rows_d, rows_turn = np.concatenate([d, d]), np.concatenate([d, turn])
+    perm = rng.permutation(rows_d.size)
+    return rows_d[perm], rows_turn[perm]
+
+
+@pytest.mark.parametrize("branch", ["approach", "retract"])
+def test_fused_kernel_matches_the_reference_for_a_stateful_law_set_with_attraction(branch):
+    args = TOY.arguments(SMOOTH, MATERIAL)
+    edges = TOY.edges_for(SMOOTH, MATERIAL)
+    rng = np.random.default_rng(11)
+    for _ in range(6):
+        z = rng.standard_normal(rng.integers(1, 4000)) * SMOOTH.sigma
+        d = rng.uniform(-3, 3, rng.integers(1, 30)) * SMOOTH.sigma
+        turn = d if branch == "approach" else np.full_like(d, d.min() - 0.1 * SMOOTH.sigma)
+        fast = block_sums(z, d, TOY, args, d_turn=turn, edges=edges)
+        ref = block_sums_numpy(z, d, TOY, args, d_turn=turn, edges=edges)
+        assert_sums_close(fast, ref)
+
+
+def test_reference_counts_contacts_and_attraction_by_the_edges():
+    """One summit, one row each: in contact, attracted only, and held on retraction."""
+    args, edges = TOY.arguments(SMOOTH, MATERIAL), TOY.edges_for(SMOOTH, MATERIAL)
+    c = 0.3 * SMOOTH.sigma
+    z = np.array([0.0])
+    # approach at δ = -1.5c: attracted (load < 0), not in contact, no area
+    d = np.array([1.5 * c, 0.5 * c, 1.5 * c, 2.5 * c])
+    turn = np.array([1.5 * c, 0.5 * c, -0.1 * c, -0.1 * c])
+    for sums in (block_sums(z, d, TOY, args, d_turn=turn, edges=edges),
+                 block_sums_numpy(z, d, TOY, args, d_turn=turn, edges=edges)):  # fmt: skip
+        np.testing.assert_array_equal(sums[:, 0], [0, 0, 0, 0])  # δ ≤ jump-in / break-off
+        assert sums[0, 1] < 0 and sums[0, 2] == 0  # attraction only
+        assert sums[3, 1] == 0  # beyond the reach: nothing
+    z = np.array([0.0])
+    d, turn = np.array([-0.5 * c, 0.5 * c, 0.5 * c]), np.array([-0.5 * c, 0.5 * c, -0.1 * c])
+    for sums in (block_sums(z, d, TOY, args, d_turn=turn, edges=edges),
+                 block_sums_numpy(z, d, TOY, args, d_turn=turn, edges=edges)):  # fmt: skip
+        # in contact on approach; out of contact at δ = -0.5c on approach, in contact on
+        # retraction (δ_max > 0, δ > break-off = -c): hysteresis
+        np.testing.assert_array_equal(sums[:, 0], [1, 0, 1])
+        assert sums[2, 2] > 0 and sums[1, 2] == 0
+
+
+def test_fused_kernel_writes_each_row_to_its_own_position_whatever_the_row_order():
+    args, edges = TOY.arguments(SMOOTH, MATERIAL), TOY.edges_for(SMOOTH, MATERIAL)
+    rng = np.random.default_rng(5)
+    z = rng.standard_normal(3000) * SMOOTH.sigma
+    d, turn = random_rows(rng, SMOOTH.sigma)
+    fast = block_sums(z, d, TOY, args, d_turn=turn, edges=edges)
+    for j in range(d.size):
+        one = block_sums(z, d[j : j + 1], TOY, args, d_turn=turn[j : j + 1], edges=edges)
+        assert_sums_close(fast[j : j + 1], one)  # other rows change the summation order
+
+
+@pytest.mark.parametrize("name", sorted(LAW_SETS))
+@pytest.mark.parametrize("branch", ["approach", "retract"])
+def test_fused_kernel_matches_the_reference_for_every_registered_law_set(name, branch):
+    law = LAW_SETS[name]
+    if branch == "retract" and not law.retract:
+        pytest.skip(f"{name} has no retraction branch")
+    args, edges = law.arguments(SMOOTH, MATERIAL), law.edges_for(SMOOTH, MATERIAL)
+    rng = np.random.default_rng(3)
+    for _ in range(4):
+        z = rng.standard_normal(rng.integers(1, 4000)) * SMOOTH.sigma
+        d = rng.uniform(-3, 3, rng.integers(1, 30)) * SMOOTH.sigma
+        turn = d if branch == "approach" else np.full_like(d, d.min())
+        fast = block_sums(z, d, law, args, d_turn=turn, edges=edges)
+        ref = block_sums_numpy(z, d, law, args, d_turn=turn, edges=edges)
+        assert_sums_close(fast, ref)
+
+
+def test_the_seed_kernel_is_the_plain_prefix_loop_and_other_law_sets_count_contacts():
+    """The seed's generated loop is mcsim 0.1's (no δ_max, no contact test), which keeps
+    its vectorised summation order and so its bits; a law set with edges counts."""
+    from mcsim.engine.kernels import _sweep_source
+
+    seed_loop = _sweep_source(SEED, counting=False)
+    assert "delta_max" not in seed_loop and "nc = n_eval" in seed_loop
+    assert "law0(delta, *a0)" in seed_loop and "law2(delta, *a2)" in seed_loop
+    toy_loop = _sweep_source(TOY, counting=True)
+    assert "law0(delta, delta_max, a0[0], a0[1], a0[2], a0[3])" in toy_loop
+
+
+def test_outputs_sharing_a_parameter_read_it_from_one_tuple_so_shared_work_is_computed_once():
+    """Outside the legacy (seed) kernel, a parameter that several outputs take (TOY: R
+    and c) is passed from the first output's tuple: the same value to LLVM, which then
+    computes identical subexpressions of the outputs once."""
+    from mcsim.engine.kernels import _sweep_source
+
+    toy_loop = _sweep_source(TOY, counting=True)
+    assert "law1(delta, delta_max, a0[0], a0[2])" in toy_loop
+    assert "law2(delta, a0[0], a2[1])" in toy_loop

@@ -1,0 +1,306 @@
+"""HDF5 run files: content, provenance, round trip, atomic and non-destructive writes."""
+
+from pathlib import Path
+
+import h5py
+import numpy as np
+import pytest
+
+from mcsim import RunFileError
+from mcsim.model.presets import MATERIALS, SURFACES
+from mcsim.physics.analytic import QUANTITIES
+from mcsim.store.runfile import SCHEMA_VERSION, read_run
+from mcsim.studies.simulation import simulate
+
+H = [2.0, 1.0, 0.0]
+
+
+def make_run(path, **kw):
+    args = dict(realizations=3, seed=4, out=path)
+    return simulate(SURFACES["smooth"], MATERIALS["silicon"], H, "300 um^2", **{**args, **kw})
+
+
+def test_run_file_records_provenance_and_inputs_with_units(tmp_path):
+    make_run(tmp_path / "a.h5")
+    with h5py.File(tmp_path / "a.h5") as f:
+        assert f.attrs["schema_version"] == SCHEMA_VERSION
+        for key in (
+            "mcsim_version",
+            "created",
+            "command",
+            "seed_entropy",
+            "law",
+            "count",
+            "area",
+            "realizations",
+        ):
+            assert key in f.attrs, key
+        assert f.attrs["seed_entropy"] == "4"
+        assert f.attrs["area"] == pytest.approx(300e-12)
+        assert f["input/surface"].attrs["sigma"] == pytest.approx(1.4e-9)
+        assert "m^-2" in f["input/surface"].attrs["units"]
+        assert f["d"].attrs["unit"] == "m"
+        assert f["realizations/sums"].shape == (3, 3, 10)
+        for q in QUANTITIES:
+            assert f[f"realizations/{q}"].shape == (3, 3)
+            assert f[f"analytic/{q}"].shape == (3,)
+            assert f[f"summary/se/{q}"].attrs["unit"] == "1"
+
+
+def test_reader_returns_what_was_written(tmp_path):
+    run = make_run(tmp_path / "a.h5")
+    back = read_run(tmp_path / "a.h5")
+    assert back.spec.surface == run.spec.surface
+    assert back.spec.material == run.spec.material
+    np.testing.assert_array_equal(back.h, run.h)
+    np.testing.assert_array_equal(back.sums, run.sums)
+    for q in QUANTITIES:
+        np.testing.assert_array_equal(back.summary.mean[q], run.summary.mean[q])
+        np.testing.assert_array_equal(back.analytic[q], run.analytic[q])
+    assert back.compare().equals(run.compare())
+
+
+def test_same_seed_writes_identical_datasets(tmp_path):
+    make_run(tmp_path / "a.h5")
+    make_run(tmp_path / "b.h5", workers=2, chunk_size=1000)
+    with h5py.File(tmp_path / "a.h5") as a, h5py.File(tmp_path / "b.h5") as b:
+        names = []
+        a.visititems(
+            lambda name, obj: names.append(name) if isinstance(obj, h5py.Dataset) else None
+        )
+        assert len(names) > 20
+        for name in names:
+            np.testing.assert_array_equal(a[name][()], b[name][()], err_msg=name)
+
+
+def test_dataframe_has_one_row_per_source_realization_h_and_quantity(tmp_path):
+    df = read_run(make_run(tmp_path / "a.h5").path).to_dataframe()
+    assert list(df.columns) == ["source", "realization", "h", "d", "quantity", "value", "unit"]
+    # 3 realizations + mean, se, std, se_between, analytic; 3 separations; 5 quantities
+    assert len(df) == (3 + 5) * 3 * 5
+    assert not df.duplicated(["source", "realization", "h", "quantity"]).any()
+    one = df.query("source == 'realization' and realization == 1 and quantity == 'P' and h == 0.0")
+    assert one["unit"].item() == "P/(A K)"
+
+
+def test_existing_run_is_never_overwritten_without_asking(tmp_path):
+    path = tmp_path / "a.h5"
+    make_run(path)
+    before = path.read_bytes()
+    with pytest.raises(RunFileError, match="file exists"):
+        make_run(path, seed=5)
+    assert path.read_bytes() == before
+    make_run(path, seed=5, overwrite=True)
+    assert read_run(path).spec.entropy == 5
+
+
+def test_interrupted_run_leaves_no_partial_file_and_the_old_run_intact(tmp_path, monkeypatch):
+    path = tmp_path / "a.h5"
+    make_run(path)
+    before = path.read_bytes()
+
+    def interrupt(*args, **kwargs):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr("mcsim.store.runfile._dataset", interrupt)  # dies while writing
+    with pytest.raises(KeyboardInterrupt):
+        make_run(path, seed=6, overwrite=True)
+    assert path.read_bytes() == before
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["a.h5"], "no temporary file left"
+
+
+def test_reader_refuses_an_unknown_schema_version(tmp_path):
+    path = make_run(tmp_path / "a.h5").path
+    with h5py.File(path, "r+") as f:
+        f.attrs["schema_version"] = 99
+    with pytest.raises(RunFileError, match="schema version 99 is not supported"):
+        read_run(path)
+
+
+def test_reader_refuses_files_that_are_not_runs(tmp_path):
+    (tmp_path / "x.h5").write_bytes(b"not hdf5 at all")
+    with pytest.raises(RunFileError, match="not an HDF5 file"):
+        read_run(tmp_path / "x.h5")
+    with h5py.File(tmp_path / "y.h5", "w") as f:
+        f["a"] = 1
+    with pytest.raises(RunFileError, match="not an mcsim run file"):
+        read_run(tmp_path / "y.h5")
+    with pytest.raises(RunFileError, match="no such file"):
+        read_run(tmp_path / "missing.h5")
+
+
+def test_output_folder_must_exist_and_be_writable(tmp_path):
+    with pytest.raises(RunFileError, match="does not exist"):
+        make_run(tmp_path / "nope" / "a.h5")
+
+
+def test_output_folder_must_be_writable(tmp_path, monkeypatch):
+    monkeypatch.setattr(
+        "os.access", lambda path, mode: False
+    )  # as if not writable (root ignores modes)
+    with pytest.raises(RunFileError, match="is not writable"):
+        make_run(tmp_path / "a.h5")
+
+
+def test_kept_heights_are_stored_compressed(tmp_path):
+    run = make_run(tmp_path / "a.h5", keep_heights=True)
+    back = read_run(run.path)
+    assert len(back.heights) == 3
+    for a, b in zip(run.heights, back.heights):
+        np.testing.assert_array_equal(a, b)
+    with h5py.File(run.path) as f:
+        assert f["heights/0"].compression == "gzip"
+
+
+def test_an_edited_result_is_detected_on_open(tmp_path):
+    path = make_run(tmp_path / "a.h5").path
+    with h5py.File(path, "r+") as f:
+        f["summary/mean/P"][1] *= 1.0001
+    with pytest.raises(RunFileError, match="checksum mismatch"):
+        read_run(path)
+
+
+def test_an_edited_input_is_detected_on_open(tmp_path):
+    path = make_run(tmp_path / "a.h5").path
+    with h5py.File(path, "r+") as f:
+        f["input/surface"].attrs["sigma"] = 2e-9
+    with pytest.raises(RunFileError, match="checksum mismatch"):
+        read_run(path)
+
+
+def test_datasets_that_disagree_with_the_inputs_are_refused_even_with_a_valid_checksum(tmp_path):
+    from mcsim.store.files import checksum
+
+    path = make_run(tmp_path / "a.h5").path
+    with h5py.File(path, "r+") as f:
+        f.attrs["realizations"] = 5
+        f.attrs["checksum"] = checksum(f)
+    with pytest.raises(
+        RunFileError, match=r"realizations/N has shape \(3,\), the inputs ask for \(5,\)"
+    ):
+        read_run(path)
+
+
+@pytest.mark.parametrize("keep", [0.1, 0.5, 0.9, 0.999])
+def test_a_truncated_file_is_refused_with_a_clear_message(tmp_path, keep):
+    path = make_run(tmp_path / "a.h5").path
+    data = path.read_bytes()
+    path.write_bytes(data[: int(len(data) * keep)])
+    with pytest.raises(RunFileError, match=r"(not an HDF5 file, or truncated|damaged run file)"):
+        read_run(path)
+
+
+def test_an_incomplete_run_is_refused_unless_the_completed_part_is_asked_for(tmp_path):
+    from mcsim.engine.montecarlo import EnsembleSums, MonteCarloSpec, run_sums
+    from mcsim.store.runfile import write_checkpoint
+
+    spec = MonteCarloSpec(SURFACES["smooth"], MATERIALS["silicon"], np.array(H), 3e-10, 4, 9)
+    full = run_sums(spec)
+    partial = EnsembleSums.start(spec)
+    partial.sums[:2], partial.done_blocks[:2] = full.sums[:2], full.n_blocks[:2]
+    write_checkpoint(tmp_path / "p.h5", partial, command="test")
+    with pytest.raises(RunFileError, match=r"incomplete run \(2 of 4 realizations done\)"):
+        read_run(tmp_path / "p.h5")
+    run = read_run(tmp_path / "p.h5", allow_incomplete=True)
+    assert not run.complete and run.spec.realizations == 2
+    np.testing.assert_array_equal(run.sums, full.sums[:2])
+
+
+def test_run_files_written_before_the_named_axes_still_open():
+    """tests/data/run_schema1_before_axes.h5 was written by mcsim 0.1.0 (commit 58787dd),
+    before the dimension scales: 2 realizations, h = [1, 0], smooth on silicon, seed 7."""
+    old = read_run(Path(__file__).parents[1] / "data" / "run_schema1_before_axes.h5")
+    assert old.spec.surface == SURFACES["smooth"] and old.spec.realizations == 2
+    np.testing.assert_array_equal(old.h, [1.0, 0.0])
+    again = simulate(SURFACES["smooth"], MATERIALS["silicon"], [1.0, 0.0], "100 um^2",
+                     realizations=2, seed=7)  # fmt: skip
+    np.testing.assert_array_equal(old.sums, again.sums)
+    for q in QUANTITIES:
+        np.testing.assert_array_equal(old.summary.mean[q], again.summary.mean[q])
+
+
+# --- schema 2: any law set, cycles; schema 1 still read ----------------------------------
+
+SCHEMA1 = Path(__file__).parents[1] / "data" / "run_schema1.h5"
+
+
+def test_a_schema_1_run_file_still_opens_with_identical_results():
+    """tests/data/run_schema1.h5 was written by mcsim before schema 2 (commit 58787dd):
+    ``simulate(SURFACES["smooth"], MATERIALS["silicon"], [2.0, 1.0, 0.0, -0.5], 1e-10,
+    realizations=2, seed=5, out=...)``. It opens, and its stored numbers equal a fresh run
+    of the same inputs."""
+    old = read_run(SCHEMA1)
+    assert old.attrs["schema_version"] == 1
+    assert old.spec.law == "seed" and not old.spec.cycle
+    fresh = simulate(SURFACES["smooth"], MATERIALS["silicon"], [2.0, 1.0, 0.0, -0.5], 1e-10,
+                     realizations=2, seed=5)  # fmt: skip
+    np.testing.assert_array_equal(old.sums, fresh.sums)
+    for q in QUANTITIES:
+        for stat in ("mean", "se", "std", "se_between"):
+            np.testing.assert_array_equal(
+                getattr(old.summary, stat)[q], getattr(fresh.summary, stat)[q]
+            )
+        np.testing.assert_array_equal(old.analytic[q], fresh.analytic[q])
+        np.testing.assert_array_equal(old.realizations[q], fresh.realizations[q])
+    assert old.compare().equals(fresh.compare())
+
+
+@pytest.fixture
+def toy(monkeypatch, law_set_cache):
+    import dataclasses
+
+    from lawset_toy import TOY
+
+    from mcsim.physics.laws import LAW_SETS
+
+    monkeypatch.setenv("MCSIM_CACHE_DIR", law_set_cache)
+    monkeypatch.setitem(LAW_SETS, TOY.name, TOY)
+    return dataclasses.replace(MATERIALS["silicon"], tau=1e8, z0=0.3e-9)
+
+
+def test_schema_2_records_the_law_set_outputs_columns_branches_and_turn(tmp_path, toy):
+    import json
+
+    simulate(SURFACES["smooth"], toy, H, "300 um^2", realizations=2, seed=4, law="toy", cycle=True,
+             out=tmp_path / "a.h5")  # fmt: skip
+    with h5py.File(tmp_path / "a.h5") as f:
+        assert f.attrs["schema_version"] == 2
+        assert f.attrs["law"] == "toy" and bool(f.attrs["cycle"])
+        assert json.loads(f.attrs["law_outputs"]) == {"load": "N", "area": "m^2", "grip": "N"}
+        assert json.loads(f.attrs["branches"]) == ["approach", "retract"]
+        assert f.attrs["turn"] == 0.0
+        assert list(json.loads(f.attrs["quantities"])) == [
+            "contact_fraction", "load", "area", "grip", "friction", "mu"]  # fmt: skip
+        assert [b.decode() for b in f["branch"][()]] == ["approach"] * 3 + ["retract"] * 3
+        assert f["realizations/sums"].shape == (2, 6, 10)
+        assert list(f["realizations/sums"].attrs["columns"])[:4] == [
+            "n_contact",
+            "load",
+            "area",
+            "grip",
+        ]
+        assert f["summary/mean/area"].attrs["description"] == "area/A"
+        assert f["input/material"].attrs["tau"] == 1e8
+        assert f["input/material"].attrs["z0"] == 0.3e-9
+
+
+def test_a_cycle_run_of_another_law_set_reads_back_as_written(tmp_path, toy):
+    run = simulate(SURFACES["smooth"], toy, H, "300 um^2", realizations=2, seed=4, law="toy",
+                   cycle=True, out=tmp_path / "a.h5")  # fmt: skip
+    back = read_run(tmp_path / "a.h5")
+    assert back.spec == run.spec and back.spec.cycle and back.spec.material.tau == 1e8
+    np.testing.assert_array_equal(back.sums, run.sums)
+    for q in run.quantities:
+        np.testing.assert_array_equal(back.summary.mean[q], run.summary.mean[q])
+        np.testing.assert_array_equal(back.realizations[q], run.realizations[q])
+    np.testing.assert_array_equal(back.pull_off().force, run.pull_off().force)
+    table = back.compare()
+    assert list(table.columns[:3]) == ["h", "branch", "quantity"]
+    assert list(table.branch.unique()) == ["approach", "retract"]
+    df = back.to_dataframe()
+    assert "branch" in df.columns and set(df.quantity) == set(run.quantities)
+
+
+def test_the_seed_dataframe_columns_are_unchanged(tmp_path):
+    df = make_run(tmp_path / "a.h5").to_dataframe()
+    assert list(df.columns) == ["source", "realization", "h", "d", "quantity", "value", "unit"]
