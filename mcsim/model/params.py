@@ -14,6 +14,10 @@ import numpy as np
 
 from mcsim.model.distributions import GAUSSIAN, HeightDistribution
 from mcsim.model.errors import ParameterError
+from mcsim.model.units import SI_UNITS, parse_quantity
+
+#: Dimension of each SI unit a range is stated in (to read quantity strings).
+_DIMENSION = {unit: dimension for dimension, unit in SI_UNITS.items()}
 
 #: Accepted ranges (closed, SI) of the inputs: wide enough for any real solid and rough
 #: surface (soft gels to diamond; sub-ångström to centimetre roughness), narrow enough
@@ -47,7 +51,11 @@ def check_range(
     """Return ``value`` as a float if it is finite and inside the range, else raise.
 
     The message names the field, the value (with its SI unit) and the allowed range.
+    A string is read as a quantity with a unit (``"160 GPa"``, ``"1.4nm"``; a bare number
+    is SI), as on the command line and in TOML files (:func:`mcsim.model.units.parse_quantity`).
     """
+    if isinstance(value, str):
+        value = parse_quantity(value, _DIMENSION[unit], name)
     try:
         value = float(value)
     except (TypeError, ValueError):
@@ -104,9 +112,12 @@ def check_separations(h) -> np.ndarray:
 class Material:
     """Elastic and adhesive properties of a pair of contacting solids.
 
+    Every quantity may also be given as a string with a unit (``E1="160 GPa"``,
+    ``gamma="500 mJ/m^2"``, ``z0="0.3 nm"``); numbers are SI.
+
     Parameters
     ----------
-    E1, E2 : float
+    E1, E2 : float or str
         Young's moduli of the two solids, Pa, >= 1 (:data:`RANGES`); the derived K
         and G must stay <= 1e14 Pa (a huge E2 models a rigid counterface).
     nu1, nu2 : float
@@ -192,9 +203,12 @@ class Material:
 class Surface:
     """A Greenwood–Williamson population of spherical summits (the combined surface).
 
+    Every quantity may also be given as a string with a unit (``sigma="1.4 nm"``,
+    ``R="1.7 um"``, ``eta="17 um^-2"``); numbers are SI.
+
     Parameters
     ----------
-    sigma : float
+    sigma : float or str
         Standard deviation of the summit heights σ, m, in [1e-12, 1e-2] (:data:`RANGES`).
     R : float
         Summit radius of curvature, m, in [1e-10, 10].

@@ -16,6 +16,7 @@ from mcsim import (
 )
 from mcsim.model.errors import MCSimError
 from mcsim.model.presets import MATERIALS, PAPER_PAIRS, SURFACES
+from mcsim.model.units import parse_quantity
 
 SILICON = MATERIALS["silicon"]
 GPa = 1e9
@@ -236,8 +237,28 @@ def test_two_near_rigid_solids_are_refused_by_the_bound_on_K():
     ("make", "field"), [(surface, "sigma"), (surface, "eta"), (material, "E1"), (material, "H")]
 )
 def test_non_numeric_value_names_the_field(make, field):
-    with pytest.raises(ParameterError, match=f"^{field} must be a number, got 'thick'$"):
+    with pytest.raises(MCSimError, match=f"^{field}: cannot read 'thick' as a number with a unit"):
         make(**{field: "thick"})
+
+
+def test_the_python_api_accepts_the_unit_strings_of_the_command_line():
+    assert Material(E1="160 GPa", E2="160e9", nu1=0.22, nu2="0.22", gamma="500 mJ/m^2",
+                    H="12.5 GPa", z0="0.3 nm", tau="50 MPa") == dataclasses.replace(
+        SILICON, name="", tau=50e6)  # fmt: skip
+    # the same parser as the command line and TOML files: the same floats
+    si = {k: parse_quantity(v, d, k) for k, v, d in
+          [("sigma", "1.4 nm", "length"), ("R", "1.7 um", "length"), ("eta", "17 um^-2", "density")]}  # fmt: skip
+    assert Surface(sigma="1.4 nm", R="1.7 um", eta="17 um^-2") == Surface(**si)
+
+
+@pytest.mark.parametrize(
+    ("field", "value", "says"),
+    [("E1", "160 nm", "unknown unit 'nm' for a pressure"), ("sigma", "1.4 GPa", "for a length")],
+)
+def test_a_unit_of_the_wrong_dimension_is_refused_naming_the_field(field, value, says):
+    make = surface if field == "sigma" else material
+    with pytest.raises(MCSimError, match=f"^{field}: .*{says}"):
+        make(**{field: value})
 
 
 def test_combining_refuses_an_invalid_density():
