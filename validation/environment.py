@@ -23,8 +23,8 @@ import numpy as np
 from reporting import parser, save_figure, write_summary
 from scipy import integrate, stats
 
-from mcsim.analytic import gw_curves
-from mcsim.empirical import Empirical
+from mcsim.model.presets import MATERIALS, PAPER_SURFACES, SURFACES
+from mcsim.physics.analytic import gw_curves
 from mcsim.physics.environment import (
     Environment,
     capillary_pressure,
@@ -35,7 +35,7 @@ from mcsim.physics.environment import (
     vdw_pressure,
     vdw_work,
 )
-from mcsim.presets import MATERIALS, PAPER_SURFACES, SURFACES
+from mcsim.topography.empirical import Empirical
 
 A, D0, GAMMA = 1.6e-19, 0.2e-9, 0.072
 CEILING = 2 * GAMMA  # θ = 0

@@ -34,9 +34,9 @@ from typing import NamedTuple
 import numpy as np
 from scipy import special
 
-from mcsim.errors import ParameterError
-from mcsim.params import check_range
-from mcsim.units import parse_quantity
+from mcsim.model.errors import ParameterError
+from mcsim.model.params import check_range
+from mcsim.model.units import parse_quantity
 
 #: Molar gas constant R_g, J/(mol K) (CODATA 2018, exact).
 GAS_CONSTANT = 8.314462618

@@ -11,8 +11,8 @@ import numpy as np
 import pytest
 from scipy import integrate, stats
 
-from mcsim.empirical import Empirical
-from mcsim.errors import ParameterError, UnitError
+from mcsim.model.errors import ParameterError, UnitError
+from mcsim.model.presets import SURFACES
 from mcsim.physics.environment import (
     DEFAULT_CUTOFF,
     Environment,
@@ -25,7 +25,7 @@ from mcsim.physics.environment import (
     vdw_pressure,
     vdw_work,
 )
-from mcsim.presets import SURFACES
+from mcsim.topography.empirical import Empirical
 
 A = 1.6e-19  # J, silicon across air
 D0 = 0.2e-9  # m
