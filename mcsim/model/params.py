@@ -219,6 +219,17 @@ class Surface:
         standard deviation). Gaussian by default, as in the paper.
     name : str
         Label for output files and plots.
+    rq : float or str or None
+        Rms height of the combined surface about its mean plane, m, in [1e-12, 1e-2]:
+        only the environment (:mod:`mcsim.physics.environment`) uses it. None: estimated
+        from σ, R, η (Nayak's relations) where needed.
+    summit_offset : float or str or None
+        Height of the mean summit plane above the mean plane, m, in [0, 1e-2]: the GW
+        separation d is measured from the summit plane, the environment's gaps from the
+        mean plane. None: estimated with ``rq``.
+    map_heights : HeightDistribution or None
+        Shape of the heights of the whole surface about its mean plane in units of
+        ``rq`` (a measured map's height histogram); None: Gaussian.
     """
 
     sigma: float
@@ -226,10 +237,20 @@ class Surface:
     eta: float
     heights: HeightDistribution = field(default=GAUSSIAN)
     name: str = ""
+    rq: float | None = None
+    summit_offset: float | None = None
+    map_heights: HeightDistribution | None = None
 
     def __post_init__(self) -> None:
         for attr in ("sigma", "R", "eta"):
             object.__setattr__(self, attr, _in_range(attr, getattr(self, attr)))
+        if self.rq is not None:
+            object.__setattr__(self, "rq", _in_range("rq", self.rq, "sigma"))
+        if self.summit_offset is not None:
+            _, high, unit = RANGES["sigma"]
+            offset = check_range("summit_offset", self.summit_offset, unit, low=0.0, high=high,
+                                 low_open=False, high_open=False)  # fmt: skip
+            object.__setattr__(self, "summit_offset", offset)
 
     @property
     def A0(self) -> float:

@@ -564,3 +564,48 @@ def environment_works(D_t, heights, env: Environment) -> dict[str, np.ndarray]:
         "vdw": vdw_work(D_t, heights, env.hamaker, env.cutoff) if env.has_vdw else zero,
         "capillary": capillary_work(D_t, heights, *_env_args(env)) if env.has_capillary else zero,
     }
+
+
+class GapHeights(NamedTuple):
+    """What the environment needs of a surface (:func:`gap_heights`).
+
+    Attributes
+    ----------
+    heights : float or Empirical
+        Rq of Gaussian heights about the mean plane, m, or the measured height histogram
+        (an :class:`~mcsim.topography.empirical.Empirical` in m).
+    rq : float
+        Rms height about the mean plane, m.
+    summit_offset : float
+        Height of the mean summit plane above the mean plane y_s, m.
+    source : str
+        Where the numbers come from: ``"given"``, or ``"Nayak estimate (alpha = ...)"``.
+    """
+
+    heights: object
+    rq: float
+    summit_offset: float
+    source: str
+
+
+def gap_heights(surface) -> GapHeights:
+    """Heights about the mean plane and the summit offset of a surface, for the environment.
+
+    ``surface.rq`` and ``surface.summit_offset`` where given (a measured map gives both,
+    and its height histogram ``surface.map_heights``); otherwise both from the summits'
+    σ, R, η by :func:`nayak_heights` (an estimate: rough at the paper's low α).
+
+    Parameters
+    ----------
+    surface : mcsim.model.params.Surface
+    """
+    estimate = None
+    if surface.rq is None or surface.summit_offset is None:
+        estimate = nayak_heights(surface.sigma, surface.R, surface.eta)
+    rq = estimate.rq if surface.rq is None else surface.rq
+    offset = estimate.summit_offset if surface.summit_offset is None else surface.summit_offset
+    source = "given" if estimate is None else f"Nayak estimate (alpha = {estimate.alpha:.3g})"
+    heights, shape = rq, surface.map_heights
+    if shape is not None:  # a measured histogram in units of rq, made dimensional
+        heights = type(shape)(shape.edges, shape.densities, sigma=rq, source=shape.source)
+    return GapHeights(heights, rq, offset, source)
