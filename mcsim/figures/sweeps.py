@@ -9,7 +9,8 @@
   the adhesion summary against the input, what a designer reads: the pull-off force per
   nominal area (Pa) and the work of separation (J/m²), both on log axes, then μ at a few
   separations d/σ (with ``mc``: the Monte Carlo means ± 2 SE at the same separations).
-  For a σ sweep, the σ of the paper's four Table-1 surfaces are marked on the curves:
+  For a σ sweep, the σ of the paper's four Table-1 surfaces are marked (dotted lines, and
+  a ◆ on the curve where that σ is a point of the grid, e.g. ``sigma=0.42nm,1.4nm,...``):
   the seed paper's thesis (adhesion and friction grow as the surfaces get smoother) as
   a continuous curve. A law set without a net load (``seed``) has no pull-off: its
   panels are the adhesion term F̄ (Eq. 5), the friction T̄ (Eq. 7) and μ (Eq. 8) at
@@ -240,7 +241,10 @@ def _title(sweep, name: str) -> str:
     if sigma is not None and any(
         sigma.min() <= SURFACES[s].sigma <= sigma.max() for s in PAPER_SURFACES
     ):
-        title += "\n◆ and dotted lines: σ of the paper's Table-1 surfaces (at this R and η)"
+        title += (
+            "\ndotted lines: σ of the paper's Table-1 surfaces (at this R and η); "
+            "◆ where that σ is a grid point"
+        )
     if not sweep.attrs.get("complete", True):
         title += "\nincomplete sweep (checkpoint): the points not yet computed are blank"
     errors = [str(e) for e in np.asarray(sweep.data["error"]).ravel() if e]
@@ -355,7 +359,9 @@ def _legend_title(sweep, other, per_h) -> str | None:
 
 
 def _mark_table1(ax, sweep, lines, log_y: bool) -> None:
-    """The σ of the paper's four Table-1 surfaces, marked on the first line of the panel."""
+    """The σ of the paper's four Table-1 surfaces: a dotted line each, and a ◆ on the first
+    line of the panel where that σ is a point of the grid (the computed value there; between
+    grid points a marker would show an interpolation, not a computed value)."""
     sigma = sweep.coords["sigma"].astype(float)
     lo, hi = sigma.min(), sigma.max()
     _, y, *_ = lines[0]
@@ -364,11 +370,10 @@ def _mark_table1(ax, sweep, lines, log_y: bool) -> None:
         if not lo <= s <= hi:
             continue
         xs = s * 1e9
-        ok = np.isfinite(y) & ((y > 0) if log_y else True)
         ax.axvline(xs, color="0.55", lw=0.7, ls=":", zorder=0.5)
-        if ok.sum() >= 2 and sigma[ok].min() <= s <= sigma[ok].max():
-            yi = np.interp(np.log(s), np.log(sigma[ok]), np.log(y[ok]) if log_y else y[ok])
-            ax.plot(xs, math.exp(yi) if log_y else yi, "D", color="k", ms=5, zorder=5)
+        at = np.flatnonzero(np.isclose(sigma, s, rtol=1e-9, atol=0.0))
+        if at.size and np.isfinite(y[at[0]]) and (y[at[0]] > 0 or not log_y):
+            ax.plot(xs, y[at[0]], "D", color="k", ms=5, zorder=5)
         ax.text(xs, 0.99, f" {name}", transform=ax.get_xaxis_transform(), rotation=90,
                 va="top", ha="right", fontsize=7, color="0.35")  # fmt: skip
 
