@@ -3,7 +3,7 @@ PYTHON ?= python3
 VENV ?= .venv
 BIN := $(VENV)/bin
 
-.PHONY: run test lint bench clean
+.PHONY: run test test-portable lint bench clean
 
 $(BIN)/.installed: pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -16,6 +16,23 @@ run: $(BIN)/.installed
 
 test: $(BIN)/.installed
 	$(BIN)/python -m pytest -q
+	$(MAKE) --no-print-directory test-portable
+
+# NumPy's SIMD targets dispatched at run time on this CPU (numpy 2.4 on an AVX2 machine:
+# X86_V3, i.e. AVX2 + FMA3; on an AVX-512 one also X86_V4, AVX512_ICL...): all of them
+# disabled leaves NumPy's baseline build (X86_V2). Baseline features cannot be disabled.
+NPY_FOUND = import numpy; print(*numpy.show_config("dicts")["SIMD Extensions"]["found"])
+
+# The golden and run-file tests once more on another code path of this machine: numba
+# compiling for a generic x86-64 (no AVX, no FMA) into a fresh cache (never the native
+# kernels), NumPy's dispatch narrowed to its baseline (an ImportWarning, i.e. a value
+# NumPy refuses, is an error). The numbers then differ from the native ones by rounding,
+# within the tolerance table of tests/tolerances.py.
+test-portable: $(BIN)/.installed
+	cache=$$(mktemp -d) && trap 'rm -rf "$$cache"' EXIT && \
+	NUMBA_CPU_NAME=generic NUMBA_CACHE_DIR="$$cache" MCSIM_CACHE_DIR="$$cache" \
+	NPY_DISABLE_CPU_FEATURES="$$($(BIN)/python -c '$(NPY_FOUND)')" \
+	$(BIN)/python -W error::ImportWarning -m pytest -q tests/program/test_seed_golden.py tests/store/test_runfile.py
 
 lint: $(BIN)/.installed
 	$(BIN)/ruff check . && $(BIN)/ruff format --check .
