@@ -41,7 +41,30 @@ class _Parser(argparse.ArgumentParser):
 
     def error(self, message: str):
         text = " ".join(message.split())  # argparse's messages may wrap
-        self.exit(2, f"mcsim: error: {text} (see: {self.prog} --help)\n")
+        self.exit(2, f"mcsim: error: {text}{self._suggestion(text)} (see: {self.prog} --help)\n")
+
+    def _suggestion(self, text: str) -> str:
+        """'; did you mean ...?' for a misspelled option or choice, else ''."""
+        import difflib
+        import re
+
+        if m := re.match(r"unrecognized arguments: (\S+)", text):
+            word, known = m[1].split("=")[0], self._option_strings()
+        elif m := re.search(r"invalid choice: '([^']*)' \(choose from (.*)\)$", text):
+            word, known = m[1], re.findall(r"'([^']*)'", m[2])
+        else:
+            return ""
+        close = difflib.get_close_matches(word, known, n=1)
+        return f"; did you mean {close[0]!r}?" if close else ""
+
+    def _option_strings(self) -> list[str]:
+        """Every option of this parser and of its commands (argparse reports an unknown
+        option of a command from the top parser)."""
+        parsers = [self]
+        for action in self._actions:
+            if isinstance(action, argparse._SubParsersAction):
+                parsers += list(action.choices.values())
+        return [s for p in parsers for a in p._actions for s in a.option_strings]
 
 
 def build_parser() -> argparse.ArgumentParser:

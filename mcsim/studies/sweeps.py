@@ -31,6 +31,7 @@ from __future__ import annotations
 import contextlib
 import dataclasses
 import datetime as _dt
+import difflib
 import functools
 import json
 import logging
@@ -99,7 +100,9 @@ def parse_values(name: str, spec) -> np.ndarray:
     number is SI, as in every other option (``gamma=0.05:1:5`` is in J/m²).
     """
     if name not in INPUTS:
-        raise ParameterError(f"vary: unknown input {name!r} (allowed: {', '.join(INPUTS)})")
+        close = difflib.get_close_matches(name, INPUTS, n=1)
+        hint = f"; did you mean {close[0]!r}?" if close else ""
+        raise ParameterError(f"vary: unknown input {name!r} (allowed: {', '.join(INPUTS)}){hint}")
     dimension = INPUTS[name][0]
     where = f"vary {name}"
     if isinstance(spec, str):
@@ -466,7 +469,9 @@ def _check_vary(vary: Mapping, law: str | None, mc: bool) -> tuple[list[str], li
     fields: dict[str, str] = {}
     for name in names:
         if name not in INPUTS:
-            raise ParameterError(f"vary: unknown input {name!r} (allowed: {', '.join(INPUTS)})")
+            close = difflib.get_close_matches(name, INPUTS, n=1)
+        hint = f"; did you mean {close[0]!r}?" if close else ""
+        raise ParameterError(f"vary: unknown input {name!r} (allowed: {', '.join(INPUTS)}){hint}")
         for f in INPUTS[name][1]:
             if f in fields:
                 raise ParameterError(f"vary: {name!r} and {fields[f]!r} both set {f}: vary one of them")  # fmt: skip

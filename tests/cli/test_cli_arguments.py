@@ -73,3 +73,30 @@ def test_absurd_separation_specs_are_refused_at_once(capsys, spec, message):
     code = main(["analytic", "--surface", "smooth", h])
     err = capsys.readouterr().err
     assert code == 2 and err.count("\n") == 1 and re.search(message, err), err
+
+
+@pytest.mark.parametrize(
+    ("argv", "suggestion"),
+    [
+        (["adhesion", "--surface", "smooth", "--trun", "1"], "did you mean '--turn'?"),
+        (["adhesio", "--surface", "smooth"], "did you mean 'adhesion'?"),
+        (["adhesion", "--surface", "smooth", "--format", "jsn"], "did you mean 'json'?"),
+        (["adhesion", "--surface", "smooth", "--law", "jk"], "did you mean 'jkr'?"),
+        (["adhesion", "--surface", "smoth"], "did you mean 'smooth'?"),
+        (["adhesion", "--surface", "smooth", "--material", "silcon"], "did you mean 'silicon'?"),
+        (["sweep", "--surface", "smooth", "--vary", "sigm=1nm,2nm", "--out", "x.h5"],
+         "did you mean 'sigma'?"),
+    ],
+)  # fmt: skip
+def test_a_misspelled_option_command_choice_or_name_gets_a_did_you_mean(
+    capsys, tmp_path, monkeypatch, argv, suggestion
+):
+    monkeypatch.chdir(tmp_path)
+    assert suggestion in one_line_error(capsys, argv)
+    assert not list(tmp_path.iterdir())  # nothing written
+
+
+def test_an_option_far_from_every_known_one_gets_no_suggestion(capsys):
+    assert "did you mean" not in one_line_error(
+        capsys, ["adhesion", "--surface", "smooth", "--zzz"]
+    )
