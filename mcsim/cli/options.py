@@ -173,6 +173,11 @@ def integer(low: int):
 seed_type, count_type = integer(0), integer(1)
 
 
+#: The registered law sets, for the help texts (without importing them: ``--help`` stays
+#: instant); a test checks it against :data:`mcsim.physics.laws.LAW_SETS`.
+LAW_SET_NAMES = ("seed", "jkr", "dmt", "maugis-dugdale", "elastic-plastic")
+
+
 def add_inputs(p: argparse.ArgumentParser, separations: bool = True, law: str = "seed") -> None:
     p.add_argument(
         "--surface",
@@ -183,11 +188,14 @@ def add_inputs(p: argparse.ArgumentParser, separations: bool = True, law: str = 
         "--material",
         help="preset (silicon) or FILE.toml; default: the surface file's [material], else silicon",
     )
-    meaning = {
-        "seed": "the paper as written",
-        "auto": "chosen on the Johnson-Greenwood adhesion map",
+    why = {
+        "seed": "the paper's Eqs. 2, 4, 6 as written, whose curves this command reproduces",
+        "auto": "the seed law set has no net load and so no pull-off",
     }
-    p.add_argument("--law", default=law, help=f"law set or auto (default: {law}, {meaning[law]})")
+    p.add_argument("--law", default=law, metavar="LAW",
+                   help=f"law set: {', '.join(LAW_SET_NAMES)}, or auto (one of jkr, dmt, "
+                        "maugis-dugdale, chosen on the Johnson-Greenwood adhesion map); "
+                        f"default here: {law} ({why[law]})")  # fmt: skip
     if not separations:
         return
     p.add_argument("--h", required=True, metavar="SPEC",

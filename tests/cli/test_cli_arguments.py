@@ -100,3 +100,20 @@ def test_an_option_far_from_every_known_one_gets_no_suggestion(capsys):
     assert "did you mean" not in one_line_error(
         capsys, ["adhesion", "--surface", "smooth", "--zzz"]
     )
+
+
+@pytest.mark.parametrize(("command", "default"),
+                         [("analytic", "seed"), ("simulate", "seed"), ("sweep", "seed"),
+                          ("adhesion", "auto")])  # fmt: skip
+def test_every_law_option_lists_the_registered_law_sets_and_says_its_default(
+    capsys, command, default
+):
+    from mcsim.cli.options import LAW_SET_NAMES
+    from mcsim.physics.laws import LAW_SETS
+
+    assert set(LAW_SET_NAMES) == set(LAW_SETS)
+    assert main([command, "--help"]) == 0
+    text = " ".join(capsys.readouterr().out.split()).replace("- ", "-")
+    for name in LAW_SETS:
+        assert name in text
+    assert f"default here: {default} (" in text
