@@ -1,0 +1,107 @@
+"""The shipped sample inputs (examples/) are what examples/make_examples.py writes, and read back.
+
+The generator is rerun into a temporary folder and every file compared with the shipped
+one: text files exactly, maps through mcsim's readers. Binary maps are compared to
+1e-12 relative, not bit for bit: the Fourier filter's last bits may differ on another CPU
+(another SIMD width), which is not a change of the surface.
+"""
+
+from __future__ import annotations
+
+import importlib.util
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from mcsim.config import load_material, load_surface
+from mcsim.readers import read_height_map, read_histogram
+
+EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
+_spec = importlib.util.spec_from_file_location("make_examples", EXAMPLES / "make_examples.py")
+make_examples = importlib.util.module_from_spec(_spec)
+_spec.loader.exec_module(make_examples)
+
+#: How each map is read: the arguments its format needs beyond the file.
+MAPS = {
+    "scan.txt": {"unit": "nm", "pixel_size": make_examples.PIXEL_SIZE},
+    "scan.npy": {"unit": "m", "pixel_size": make_examples.PIXEL_SIZE},
+    "scan.gwy": {},
+    "scan.nid": {},
+}
+
+
+@pytest.fixture(scope="module")
+def regenerated(tmp_path_factory) -> Path:
+    pytest.importorskip("gwyfile", reason="gwyfile (test extra) writes scan.gwy")
+    folder = tmp_path_factory.mktemp("examples")
+    make_examples.main(folder)
+    return folder
+
+
+def test_generator_writes_exactly_the_shipped_files(regenerated):
+    shipped = {p.name for p in EXAMPLES.iterdir() if p.name != "make_examples.py"}
+    assert {p.name for p in regenerated.iterdir()} == shipped
+
+
+@pytest.mark.parametrize("name", ["hist-surface.toml", "gold.toml"])
+def test_regenerated_text_file_equals_the_shipped_one(regenerated, name):
+    assert (regenerated / name).read_text() == (EXAMPLES / name).read_text()
+
+
+def test_regenerated_histogram_equals_the_shipped_one(regenerated):
+    new, old = read_histogram(regenerated / "hist.csv"), read_histogram(EXAMPLES / "hist.csv")
+    np.testing.assert_array_equal(new.edges, old.edges)
+    # a height within an ulp of a bin edge could change bins on another CPU: one count
+    assert np.abs(new.weights - old.weights).sum() <= 2
+
+
+@pytest.mark.parametrize("name", MAPS)
+def test_regenerated_map_equals_the_shipped_one(regenerated, name):
+    new = read_height_map(regenerated / name, **MAPS[name])
+    old = read_height_map(EXAMPLES / name, **MAPS[name])
+    # the text matrix rounds to 1e-4 nm, the .nid to 2^-32 of its 1 µm range: the last
+    # digit may differ where the unrounded value lies within an ulp of a rounding boundary
+    step = {"scan.txt": 1e-13, "scan.nid": 1e-6 / 2**32}.get(name, 0.0)
+    np.testing.assert_allclose(new.heights, old.heights, rtol=1e-12, atol=step * 1.01)
+    assert (new.dx, new.dy, new.shape) == (old.dx, old.dy, old.shape)
+
+
+@pytest.mark.parametrize("name", MAPS)
+def test_every_format_holds_the_same_surface(name):
+    m = read_height_map(EXAMPLES / name, **MAPS[name])
+    reference = np.load(EXAMPLES / "scan.npy")
+    # stored precision: the text matrix's 4 decimals in nm (half a step 5e-14 m), the
+    # .nid's 32-bit integers (half a step 1e-6/2^33 m); .npy and .gwy store the doubles
+    tolerance = {"scan.txt": 5e-14, "scan.nid": 1e-6 / 2**33}.get(name, 0.0)
+    np.testing.assert_allclose(m.heights, reference, rtol=0, atol=tolerance * 1.01)
+    assert m.dx == m.dy == make_examples.PIXEL_SIZE
+    assert m.shape == (make_examples.PIXELS, make_examples.PIXELS)
+
+
+def test_scan_has_the_generator_statistics():
+    z = np.load(EXAMPLES / "scan.npy")
+    # the generator shifts to mean 0 and scales to the rms SIGMA: exact up to rounding, a
+    # few ulps of the largest height (about 3 SIGMA) in the sum over the pixels
+    assert abs(z.mean()) < 1e-13 * make_examples.SIGMA
+    assert z.std() == pytest.approx(make_examples.SIGMA, rel=1e-12)
+
+
+def test_backward_scan_differs_by_the_stated_noise():
+    forward = read_height_map(EXAMPLES / "scan.nid")
+    backward = read_height_map(EXAMPLES / "scan.nid", channel="Scan backward/Z-Axis")
+    noise = (backward.heights - forward.heights).ravel()
+    # the sample std of n normal values has relative standard error 1/sqrt(2(n - 1)); 5 of them
+    assert noise.std() == pytest.approx(make_examples.NOISE, rel=5 / np.sqrt(2 * (noise.size - 1)))
+
+
+def test_histogram_counts_every_pixel():
+    hist = read_histogram(EXAMPLES / "hist.csv")
+    assert hist.weights.sum() == make_examples.PIXELS**2
+    assert np.allclose(np.diff(hist.edges), make_examples.BIN)
+
+
+def test_toml_files_load():
+    assert load_material(str(EXAMPLES / "gold.toml")).E1 == 79e9
+    surface = load_surface(str(EXAMPLES / "hist-surface.toml"))
+    assert surface.R == pytest.approx(1.7e-6) and surface.eta == pytest.approx(17e12)

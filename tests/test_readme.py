@@ -1,0 +1,132 @@
+"""The README runs as written: every command of its ```bash blocks and every ```python block.
+
+They run in the README's order in a temporary copy of the repository's tracked files (a
+fresh clone, as a new user has it), with the ``mcsim`` of this interpreter's environment
+on PATH (``source .venv/bin/activate`` in the README). A command fails the test with its
+README line, the command and its stderr.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+import shutil
+import subprocess
+import sys
+import traceback
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+README = ROOT / "README.md"
+
+#: Set-up commands, not run: they build or use the environment this test already runs
+#: in (``make run`` and ``make test`` create .venv and would run the paper or this very
+#: suite again, ``make lint`` is CI's own step, ``source`` only puts .venv/bin on PATH,
+#: which the test does itself).
+SETUP = ("make run", "make test", "make lint", "source .venv/bin/activate")
+
+#: Smaller runs than the README shows, so that the test stays short: (README text, what
+#: runs instead). Each must occur exactly once in the README (checked): the table cannot rot.
+SMALLER = (
+    # the paper's Monte Carlo patches (0.1 mm² each) are what make run shows; the analytic
+    # figures go through the same command
+    ("mcsim paper --out runs/paper --seed 2026 --overwrite", "mcsim paper --out runs/paper --seed 2026 --overwrite --no-mc"),
+    # a 2-core machine: 8 Dask worker processes only compete for the cores
+    ("--dask local --workers 8", "--dask local --workers 2"),
+    # the sweeps on fewer points over the same ranges (each point is the same computation)
+    ("--vary sigma=0.3nm:20nm:40:log --vary gamma=0.05:1:5", "--vary sigma=0.3nm:20nm:8:log --vary gamma=0.05:1:2"),
+    ("--vary sigma=0.3nm:20nm:40:log --vary tau=100MPa \\\n    --mc --area 100um^2 --realizations 10",
+     "--vary sigma=0.3nm:20nm:8:log --vary tau=100MPa \\\n    --mc --area 100um^2 --realizations 2"),
+    ("--vary sigma=0.3nm:100nm:25:log \\\n    --vary gamma=0.002:5:13:log", "--vary sigma=0.3nm:100nm:5:log \\\n    --vary gamma=0.002:5:3:log"),
+    ('{"sigma": "0.3nm:20nm:40:log", "gamma": [0.1, 0.5]}', '{"sigma": "0.3nm:20nm:8:log", "gamma": [0.1, 0.5]}'),
+)  # fmt: skip
+
+_BLOCK = re.compile(r"^```(bash|python)\n(.*?)^```", re.MULTILINE | re.DOTALL)
+
+
+def readme_steps(text: str) -> list[tuple[str, int, str]]:
+    """(language, line, code): each bash command, and each python block, in README order."""
+    steps = []
+    for block in _BLOCK.finditer(text):
+        language, body = block.groups()
+        first = text.count("\n", 0, block.start(2)) + 1
+        if language == "python":
+            steps.append(("python", first, body))
+            continue
+        command, start = "", first
+        for number, line in enumerate(body.splitlines(), start=first):
+            if not command:
+                start = number
+                if not line.strip() or line.lstrip().startswith("#"):
+                    continue
+            command += line + "\n"
+            if not line.rstrip().endswith("\\"):
+                steps.append(("bash", start, command))
+                command = ""
+    return steps
+
+
+def _is_setup(command: str) -> bool:
+    return command.strip().split("#")[0].strip() in SETUP
+
+
+def _copy_tracked_files(destination: Path) -> None:
+    """The repository as a fresh clone has it: its tracked files only."""
+    listed = subprocess.run(
+        ["git", "ls-files", "-z"], cwd=ROOT, capture_output=True, check=True
+    ).stdout.decode()
+    for name in filter(None, listed.split("\0")):
+        source = ROOT / name
+        if source.is_file():  # a file deleted in the work tree is not in a fresh clone either
+            (destination / name).parent.mkdir(parents=True, exist_ok=True)
+            shutil.copy2(source, destination / name)
+
+
+def test_every_substitution_matches_the_readme_once():
+    text = README.read_text()
+    counts = {readme: text.count(readme) for readme, _ in SMALLER}
+    assert all(n == 1 for n in counts.values()), f"each SMALLER entry once in README.md: {counts}"
+
+
+def test_setup_lines_are_only_the_listed_ones():
+    skipped = [
+        c for lang, _, c in readme_steps(README.read_text()) if lang == "bash" and _is_setup(c)
+    ]
+    assert {c.split("#")[0].strip() for c in skipped} <= set(SETUP)
+    assert "source .venv/bin/activate" in {c.split("#")[0].strip() for c in skipped}
+
+
+@pytest.mark.slow
+def test_readme_runs_as_written(tmp_path, monkeypatch):
+    if shutil.which("git") is None or not (ROOT / ".git").exists():
+        pytest.skip("needs the git checkout (git ls-files) to copy the tracked files")
+    _copy_tracked_files(tmp_path)
+    text = README.read_text()
+    for readme, smaller in SMALLER:
+        text = text.replace(readme, smaller)
+    env = dict(os.environ, MPLBACKEND="Agg")
+    env["PATH"] = f"{Path(sys.executable).parent}{os.pathsep}{env.get('PATH', '')}"
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.setenv("MPLBACKEND", "Agg")
+    namespace: dict = {"__name__": "__readme__"}
+    for language, line, code in readme_steps(text):
+        if language == "bash":
+            if _is_setup(code):
+                continue
+            done = subprocess.run(
+                ["bash", "-e", "-o", "pipefail", "-c", code],
+                cwd=tmp_path, env=env, capture_output=True, text=True, timeout=600,
+            )  # fmt: skip
+            if done.returncode != 0:
+                pytest.fail(
+                    f"README.md:{line}: exit status {done.returncode}\n{code}\n{done.stderr}",
+                    pytrace=False,
+                )
+        else:
+            try:
+                exec(compile(code, f"README.md:{line}", "exec"), namespace)
+            except Exception:
+                pytest.fail(f"README.md:{line}: python block failed\n{traceback.format_exc()}",
+                            pytrace=False)  # fmt: skip
