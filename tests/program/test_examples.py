@@ -14,10 +14,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from mcsim.config import load_material, load_surface
-from mcsim.readers import read_height_map, read_histogram
+from mcsim.store.config import load_material, load_surface
+from mcsim.topography.readers import read_height_map, read_histogram
 
-EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
+EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 _spec = importlib.util.spec_from_file_location("make_examples", EXAMPLES / "make_examples.py")
 make_examples = importlib.util.module_from_spec(_spec)
 _spec.loader.exec_module(make_examples)
