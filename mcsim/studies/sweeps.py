@@ -92,6 +92,12 @@ _SURFACE_FIELDS = {"sigma", "R", "eta"}
 # --- the grid ----------------------------------------------------------------------------
 
 
+def _unknown_input(name: str) -> ParameterError:
+    close = difflib.get_close_matches(name, INPUTS, n=1)
+    hint = f"; did you mean {close[0]!r}?" if close else ""
+    return ParameterError(f"vary: unknown input {name!r} (allowed: {', '.join(INPUTS)}){hint}")
+
+
 def parse_values(name: str, spec) -> np.ndarray:
     """The values of one varied input: SI floats (strings for ``law``).
 
@@ -100,9 +106,7 @@ def parse_values(name: str, spec) -> np.ndarray:
     number is SI, as in every other option (``gamma=0.05:1:5`` is in J/m²).
     """
     if name not in INPUTS:
-        close = difflib.get_close_matches(name, INPUTS, n=1)
-        hint = f"; did you mean {close[0]!r}?" if close else ""
-        raise ParameterError(f"vary: unknown input {name!r} (allowed: {', '.join(INPUTS)}){hint}")
+        raise _unknown_input(name)
     dimension = INPUTS[name][0]
     where = f"vary {name}"
     if isinstance(spec, str):
@@ -469,9 +473,7 @@ def _check_vary(vary: Mapping, law: str | None, mc: bool) -> tuple[list[str], li
     fields: dict[str, str] = {}
     for name in names:
         if name not in INPUTS:
-            close = difflib.get_close_matches(name, INPUTS, n=1)
-        hint = f"; did you mean {close[0]!r}?" if close else ""
-        raise ParameterError(f"vary: unknown input {name!r} (allowed: {', '.join(INPUTS)}){hint}")
+            raise _unknown_input(name)
         for f in INPUTS[name][1]:
             if f in fields:
                 raise ParameterError(f"vary: {name!r} and {fields[f]!r} both set {f}: vary one of them")  # fmt: skip
