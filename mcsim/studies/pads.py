@@ -22,11 +22,10 @@ pads (one realization of a ``--cycle`` Monte Carlo run each, :meth:`mcsim.store.
 the analytic pull-off per nominal area (:func:`mcsim.physics.adhesion.adhesion_summary`,
 force/(A K)) times K A. It is the most tensile value of the *mean* retraction load,
 located to 1e-7 in h; a pad's pull-off is the most tensile value of its *own* load
-curve on the run's finite grid of separations. The two differ: the minimum of a
-noisy curve lies below the minimum of its mean (E[max] ≥ max E, so small pads pull
-off harder on average than the analytic value, by a relative amount of order
-N^(-1/2)), and a grid of spacing Δh misses the true minimum of each curve (a bias
-the other way, of order Δh² near a smooth minimum; larger where the load jumps).
+curve, also in continuous h (its summits drawn again from the run's seed,
+:mod:`mcsim.engine.padcurves`), whatever the run's grid. The two differ: the minimum of
+a noisy curve lies below the minimum of its mean (E[max] ≥ max E, so small pads pull
+off harder on average than the analytic value, by a relative amount of order N^(-1/2)).
 """
 
 from __future__ import annotations

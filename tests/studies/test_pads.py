@@ -150,10 +150,10 @@ def test_pads_with_a_restoring_force_adds_p_stick_and_its_interval(cycle_run, ca
     assert data["p_stick_ci"] == pytest.approx(list(clopper_pearson(k, 40)), rel=1e-15)
 
 
-def test_pads_table_names_the_analytic_mean_and_the_grid(cycle_run, capsys):
+def test_pads_table_names_the_analytic_mean_and_how_the_pull_off_was_found(cycle_run, capsys):
     code, out, _ = run_cli(capsys, "pads", cycle_run, "--restoring-force", "1nN")
     assert code == 0
-    assert "spacing 0.2 in h" in out and "p_stick_ci_high" in out
+    assert "continuous h" in out and "turn h = -1" in out and "p_stick_ci_high" in out
     assert "analytic_mean" in out and "Clopper-Pearson" in out
 
 
@@ -316,10 +316,13 @@ def test_pads_csv_has_one_row_per_pad_with_the_pull_off_in_newtons(cycle_run, ca
     code, out, err = run_cli(capsys, "pads", cycle_run, "--format", "csv")
     rows = list(csv.DictReader(io.StringIO(out)))
     pull_off = read_run(cycle_run).pull_off()
-    assert code == 0 and out.splitlines()[0] == "pad,pull_off_N,h_pull_off"
+    assert code == 0 and out.splitlines()[0] == ("pad,pull_off_N,h_pull_off,h_turn,turn_load_N,"
+                                                 "grid_pull_off_N,grid_h_pull_off")  # fmt: skip
     assert [int(r["pad"]) for r in rows] == list(range(40))
     assert [float(r["pull_off_N"]) for r in rows] == pull_off.force.tolist()
     assert [float(r["h_pull_off"]) for r in rows] == pull_off.h.tolist()
+    assert [float(r["h_turn"]) for r in rows] == [-1.0] * 40
+    assert [float(r["grid_pull_off_N"]) for r in rows] == pull_off.grid_force.tolist()
     assert "pull_off_N" in err and "N)" in err
 
 
