@@ -236,10 +236,17 @@ def turn_of(args, surface, material, law) -> tuple[float | None, float | None]:
         return parse_turn(args.turn), None
     if args.turn is not None:
         raise ParameterError("--turn and --preload: give one of them (the preload sets the turn)")
-    from mcsim.model.units import parse_quantity
     from mcsim.physics.loadcontrol import preload_turn
 
-    pressure = parse_quantity(args.preload, "pressure", "--preload")
-    if not pressure > 0:
-        raise ParameterError(f"--preload: {args.preload!r} (allowed: a pressure > 0, e.g. 1MPa)")
+    pressure = parse_preload(args.preload)
     return preload_turn(surface, material, pressure, law), pressure
+
+
+def parse_preload(text: str) -> float:
+    """``--preload``: a nominal pressure > 0, Pa."""
+    from mcsim.model.units import parse_quantity
+
+    pressure = parse_quantity(text, "pressure", "--preload")
+    if not pressure > 0:
+        raise ParameterError(f"--preload: {text!r} (allowed: a pressure > 0, e.g. 1MPa)")
+    return pressure

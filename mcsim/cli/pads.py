@@ -52,6 +52,14 @@ def run(args) -> int:
         print(f"mcsim: note: {run.path} is incomplete: statistics over its {stats.pads} completed "
               f"pad(s) of {run.attrs.get('realizations')}", file=sys.stderr)  # fmt: skip
     out = stats.to_dict()
+    turns = {}
+    if pull_off.preload is not None:
+        t = pull_off.h_turn
+        turns = {"preload": pull_off.preload, "h_turn_mean_field": run.attrs.get("preload_turn_mean_field"),
+                 "h_turn_min": float(np.min(t)), "h_turn_q50": float(np.median(t)),
+                 "h_turn_max": float(np.max(t))}  # fmt: skip
+    if pull_off.preload is not None:  # the analytic mean after the mean-field turn
+        analytic = analytic_pad_pull_off(run.spec, turns["h_turn_mean_field"])
     method = _method(pull_off)
     if args.format in ("json", "csv"):
         print(f"mcsim: note: analytic mean {analytic:.6g} N (GW pull-off x A K: minimum of the mean "
@@ -59,7 +67,7 @@ def run(args) -> int:
               + ("; p_stick_ci: " + interval if args.format == "json" else ""), file=sys.stderr)  # fmt: skip
     if args.format == "json":
         print(json.dumps({k: (None if isinstance(v, float) and not math.isfinite(v) else v)
-                          for k, v in out.items()}, indent=1, allow_nan=False))  # fmt: skip
+                          for k, v in (out | turns).items()}, indent=1, allow_nan=False))  # fmt: skip
     elif args.format == "csv":
         print("mcsim: note: columns: pad (realization index), pull_off_N (most tensile retraction "
               "load of the pad, a magnitude, N), h_pull_off (its separation d/sigma), h_turn (the "
@@ -84,6 +92,8 @@ def run(args) -> int:
             rows += [{"quantity": "p_stick_ci_low", "value": ci[0], "unit": "1"},
                      {"quantity": "p_stick_ci_high", "value": ci[1], "unit": "1"}]  # fmt: skip
         rows.append({"quantity": "analytic_mean", "value": analytic, "unit": "N"})
+        rows += [{"quantity": k, "value": v, "unit": "Pa" if k == "preload" else "1"}
+                 for k, v in turns.items()]  # fmt: skip
         spec = run.spec
         header = [f"run {run.path}: law {spec.law}, A = {spec.area * 1e12:.4g} um^2, E[N] = "
                   f"{spec.expected_summits:.4g} summits per pad, {stats.pads} pads",

@@ -192,11 +192,11 @@ def pad_statistics(
                          q05=float(q[0]), q50=float(q[1]), q95=float(q[2]), interval=interval, **stick)  # fmt: skip
 
 
-def analytic_pad_pull_off(spec) -> float:
+def analytic_pad_pull_off(spec, turn: float | None = None) -> float:
     """GW mean pull-off of one pad of a cycle run's inputs, N (see the module docstring).
 
-    The analytic pull-off force/(A K) after the run's closest approach (``spec.turn``)
-    times A K, times round(ηA)/(ηA) for a fixed summit count. The minimum of the mean
+    The analytic pull-off force/(A K) after the closest approach ``turn`` (d/σ; default the
+    run's, ``spec.turn``; under a preload its mean-field turn) times A K, times round(ηA)/(ηA) for a fixed summit count. The minimum of the mean
     curve (continuous in h), not the mean of the per-pad minima on the run's grid.
     """
     import warnings
@@ -205,7 +205,8 @@ def analytic_pad_pull_off(spec) -> float:
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RegimeWarning)
-        s = adhesion_summary(spec.surface, spec.material, spec.law, turn=spec.turn)
+        s = adhesion_summary(spec.surface, spec.material, spec.law,
+                             turn=spec.turn if turn is None else turn)  # fmt: skip
     bias = spec.expected_summits / (spec.surface.eta * spec.area)
     return s.pull_off * spec.material.K * spec.area * bias
 

@@ -337,3 +337,57 @@ def test_pads_partial_reads_the_completed_pads_of_a_checkpoint_and_says_how_many
     expected = pad_statistics(assemble(partial.completed()).pull_off().force).to_dict()
     assert code == 0 and json.loads(out) == pytest.approx(expected, rel=1e-15, nan_ok=True)
     assert json.loads(out)["pads"] == 2 and "2 completed pad(s) of 4" in err
+
+
+# --- force control: simulate --cycle --preload (issue 23) -------------------------------------
+
+
+@pytest.fixture(scope="module")
+def preload_run(tmp_path_factory):
+    path = tmp_path_factory.mktemp("preload") / "fc.h5"
+    code = main(["simulate", "--surface", "smooth", "--law", "jkr", "--area", "3um^2", "--h=3:-1:9",
+                 "--cycle", "--preload", "1MPa", "--realizations", "60", "--seed", "5",
+                 "--workers", "1", "--quiet", "--out", str(path)])  # fmt: skip
+    assert code == 0
+    return path
+
+
+def test_each_pad_turns_where_its_own_approach_load_reaches_the_preload(preload_run):
+    from mcsim.engine import padcurves
+    from mcsim.store.runfile import read_run
+
+    run = read_run(preload_run)
+    pull = run.pull_off()
+    spec, force = run.spec, 1e6 * 3e-12
+    assert run.attrs["preload"] == 1e6 and pull.preload == 1e6
+    assert np.all(pull.turn_load >= force) and np.ptp(pull.h_turn) > 0.1
+    for r in range(3):
+        z = padcurves.patch_heights(spec, r)
+        above = (pull.h_turn[r] + 1e-6) * spec.surface.sigma
+        assert padcurves.pad_load(spec, z, [above])[0] < force
+
+
+def test_pad_turns_scatter_about_the_mean_field_turn(preload_run):
+    from mcsim.store.runfile import read_run
+
+    run = read_run(preload_run)
+    t = run.pull_off().h_turn
+    # To first order h_t - h_mean = (P A - F_a)/F_a' has mean zero (PHYSICS.md, finite pads).
+    z = (t.mean() - run.attrs["preload_turn_mean_field"]) / (t.std(ddof=1) / math.sqrt(t.size))
+    assert abs(z) < 5
+
+
+def test_pads_of_a_preloaded_run_report_the_preload_and_the_turns(preload_run, capsys):
+    code, out, err = run_cli(capsys, "pads", preload_run, "--format", "json")
+    data = json.loads(out)
+    assert code == 0 and data["preload"] == 1e6 and "force control" in err
+    assert data["h_turn_min"] <= data["h_turn_mean_field"] <= data["h_turn_max"]
+
+
+def test_a_preload_without_a_cycle_or_beyond_the_grid_is_a_one_line_error(tmp_path, capsys):
+    base = ["simulate", "--surface", "smooth", "--law", "jkr", "--area", "3um^2",
+            "--preload", "1MPa", "--out", str(tmp_path / "x.h5")]  # fmt: skip
+    err = one_line_error(capsys, *base, "--h=3:-1:5")
+    assert "--cycle" in err
+    err = one_line_error(capsys, *base, "--h=3:2.5:3", "--cycle")
+    assert "extend --h down" in err
