@@ -6,7 +6,7 @@ import json
 import math
 
 from mcsim.cli.display import contact_inputs, cutoff_notes, describe_inputs, print_lines, print_rows
-from mcsim.cli.options import add_inputs, inputs_of, parse_turn, resolve_law
+from mcsim.cli.options import add_inputs, add_preload, inputs_of, resolve_law, turn_of
 from mcsim.model.errors import ParameterError
 
 #: Keys of ``mcsim adhesion``, in order, with unit and meaning.
@@ -41,7 +41,8 @@ def run(args) -> int:
         check_output(args.plot, overwrite=args.overwrite)  # before the work, not after it
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RegimeWarning)  # printed once below
-        summary = adhesion_summary(surface, material, law, turn=parse_turn(args.turn))
+        turn, preload = turn_of(args, surface, material, law)
+        summary = adhesion_summary(surface, material, law, turn=turn)
         if args.plot:
             from mcsim.figures.adhesion import adhesion_figure
             from mcsim.figures.style import save
@@ -56,10 +57,12 @@ def run(args) -> int:
     turn_from = {"given": "given by --turn", "zero load on approach": "zero approach load"}.get(
         summary.turn_from, summary.turn_from
     )
+    if preload is not None:
+        turn_from = f"balances the preload {preload:.6g} Pa on the mean approach curve"
     print_lines(notes)
     if args.format == "json":
         out = {k: values[k] for k in ADHESION_KEYS}
-        out |= {"turn_from": turn_from, "law": summary.law}
+        out |= {"turn_from": turn_from, "preload": preload, "law": summary.law}
         clean = {k: (None if isinstance(v, float) and not math.isfinite(v) else v)
                  for k, v in out.items()}  # fmt: skip
         print(json.dumps(clean, indent=1, allow_nan=False))
@@ -81,6 +84,7 @@ def add_parser(sub) -> None:
     add_inputs(p, separations=False, law="auto")
     p.add_argument("--turn", metavar="H", help="closest approach d/sigma before retraction "
                    "(default: where the approach load is zero, resting under no external load)")  # fmt: skip
+    add_preload(p, "instead of --turn, the turn is the separation that balances it on approach")
     p.add_argument("--format", choices=("table", "json"), default="table")
     p.add_argument("--plot", metavar="FILE.png", help="also draw the approach and retraction load "
                    "curves with the pull-off marked and the work of separation shaded")  # fmt: skip

@@ -17,13 +17,14 @@ from mcsim.cli.options import (
     FORMATS,
     LOAD_UNITS,
     add_inputs,
+    add_preload,
     add_separations_or_loads,
     area_option,
     inputs_of,
     parse_h,
-    parse_turn,
     pressures_option,
     resolve_law,
+    turn_of,
 )
 from mcsim.model.errors import ParameterError
 
@@ -82,13 +83,22 @@ def run(args) -> int:
     surface, material = inputs_of(args)
     law, notes = resolve_law(args, surface, material)
     if args.h is None:
-        if args.branch != "approach" or args.turn is not None:
-            raise ParameterError("--branch/--turn: load control is on the approach branch only")
+        if args.branch != "approach" or args.turn is not None or args.preload is not None:
+            raise ParameterError(
+                "--branch/--turn/--preload: load control is on the approach branch only"
+            )
         return _load_control(args, surface, material, law, notes)
     if args.plot is not None:
         raise ParameterError("--plot applies to --pressure/--load only")
-    curves = gw_curves(surface, material, parse_h(args.h), law, branch=args.branch,
-                       turn=parse_turn(args.turn))  # fmt: skip
+    if args.preload is not None and args.branch != "retract":
+        raise ParameterError(
+            "--preload sets the turn of the retraction: use it with --branch retract"
+        )
+    turn, preload = turn_of(args, surface, material, law)
+    if preload is not None:
+        notes.append(f"note: retraction after h_turn = {turn!r}, the separation that "
+                     f"balances the preload {preload:.6g} Pa on the mean approach curve")  # fmt: skip
+    curves = gw_curves(surface, material, parse_h(args.h), law, branch=args.branch, turn=turn)
     notes += cutoff_notes(surface, material, curves.law, curves.h)
     table = curves.columns()
     area = area_option(args)
@@ -107,6 +117,8 @@ def run(args) -> int:
         turn = (
             "" if curves.turn is None else f" after the closest approach h_turn = {curves.turn:g}"
         )
+        if preload is not None:
+            turn += f" (balances the preload {preload:.6g} Pa on the mean approach curve)"
         header.append(f"law set {curves.law}, branch {curves.branch}{turn}")
     header.append(meaning)
     print_lines(notes)
@@ -138,5 +150,6 @@ def add_parser(sub) -> None:
                    help="approach from far away (default) or retraction after --turn")  # fmt: skip
     p.add_argument("--turn", metavar="H", help="closest approach d/sigma before retraction "
                    "(default: the lowest --h)")  # fmt: skip
+    add_preload(p, "with --branch retract, instead of --turn")
     p.add_argument("--format", choices=FORMATS, default="table")
     p.set_defaults(func=run)

@@ -226,3 +226,35 @@ def add_parallel(p, workers: str) -> None:
                    help="run on an existing Dask cluster, e.g. tcp://host:8786 (needs mcsim[dask])")  # fmt: skip
     p.add_argument("--dask", choices=("local",),
                    help="'local': start a local Dask cluster of --workers processes")  # fmt: skip
+
+
+def add_preload(p, what: str) -> None:
+    """``--preload P``: the closest approach is where the mean approach load balances P."""
+    p.add_argument("--preload", metavar="P", help="nominal pressure pressing the surfaces before "
+                   f"retraction (Pa unless a unit is given, e.g. 1MPa): {what}")  # fmt: skip
+
+
+def turn_of(args, surface, material, law) -> tuple[float | None, float | None]:
+    """The closest approach from ``--turn`` or ``--preload`` (one of them), and the preload (Pa).
+
+    With ``--preload P`` the turn is the approach separation that balances P on the mean
+    curve (:func:`mcsim.physics.loadcontrol.preload_turn`, as ``analytic --pressure P``).
+    """
+    if args.preload is None:
+        return parse_turn(args.turn), None
+    if args.turn is not None:
+        raise ParameterError("--turn and --preload: give one of them (the preload sets the turn)")
+    from mcsim.physics.loadcontrol import preload_turn
+
+    pressure = parse_preload(args.preload)
+    return preload_turn(surface, material, pressure, law), pressure
+
+
+def parse_preload(text: str) -> float:
+    """``--preload``: a nominal pressure > 0, Pa."""
+    from mcsim.model.units import parse_quantity
+
+    pressure = parse_quantity(text, "pressure", "--preload")
+    if not pressure > 0:
+        raise ParameterError(f"--preload: {text!r} (allowed: a pressure > 0, e.g. 1MPa)")
+    return pressure

@@ -16,6 +16,8 @@ _INTERVAL_NAMES = {"clopper-pearson": "Clopper-Pearson", "wilson": "Wilson"}
 
 
 def run(args) -> int:
+    import numpy as np
+
     from mcsim.model.units import parse_quantity
     from mcsim.store.runfile import read_run
     from mcsim.studies.pads import analytic_pad_pull_off, pad_statistics
@@ -42,23 +44,44 @@ def run(args) -> int:
     stats = pad_statistics(pull_off.force, fr, args.interval)
     analytic = analytic_pad_pull_off(run.spec)
     interval = f"{_INTERVAL_NAMES[args.interval]} 95 %"
+    if pull_off.past_grid_top:
+        print(f"mcsim: note: {pull_off.past_grid_top} of {stats.pads} pad(s) pull off beyond the top "
+              f"of the run's grid (h = {pull_off.top:g}), where its most tensile point was wrong; "
+              "the pull-off here retracts each pad until every summit has let go", file=sys.stderr)  # fmt: skip
     if not run.complete:
         print(f"mcsim: note: {run.path} is incomplete: statistics over its {stats.pads} completed "
               f"pad(s) of {run.attrs.get('realizations')}", file=sys.stderr)  # fmt: skip
     out = stats.to_dict()
+    turns = {}
+    if pull_off.preload is not None:
+        t = pull_off.h_turn
+        turns = {"preload": pull_off.preload, "h_turn_mean_field": run.attrs.get("preload_turn_mean_field"),
+                 "h_turn_min": float(np.min(t)), "h_turn_q50": float(np.median(t)),
+                 "h_turn_max": float(np.max(t))}  # fmt: skip
+    if pull_off.preload is not None:  # the analytic mean after the mean-field turn
+        analytic = analytic_pad_pull_off(run.spec, turns["h_turn_mean_field"])
+    method = _method(pull_off)
     if args.format in ("json", "csv"):
         print(f"mcsim: note: analytic mean {analytic:.6g} N (GW pull-off x A K: minimum of the mean "
-              f"curve); per-pad pull-off on the run's grid, spacing {pull_off.resolution:.3g} in h"
+              f"curve); per-pad pull-off: {method}"
               + ("; p_stick_ci: " + interval if args.format == "json" else ""), file=sys.stderr)  # fmt: skip
     if args.format == "json":
         print(json.dumps({k: (None if isinstance(v, float) and not math.isfinite(v) else v)
-                          for k, v in out.items()}, indent=1, allow_nan=False))  # fmt: skip
+                          for k, v in (out | turns).items()}, indent=1, allow_nan=False))  # fmt: skip
     elif args.format == "csv":
         print("mcsim: note: columns: pad (realization index), pull_off_N (most tensile retraction "
-              "load of the pad, a magnitude, N), h_pull_off (its separation d/sigma)", file=sys.stderr)  # fmt: skip
-        rows = [{"pad": i, "pull_off_N": float(f), "h_pull_off": float(h)}
-                for i, (f, h) in enumerate(zip(pull_off.force, pull_off.h))]  # fmt: skip
-        print_rows(rows, ["pad", "pull_off_N", "h_pull_off"], "csv")
+              "load of the pad, a magnitude, N), h_pull_off (its separation d/sigma), h_turn (the "
+              "pad's closest approach d/sigma), turn_load_N (approach load reached there under a "
+              "preload, N), grid_pull_off_N and grid_h_pull_off (the most tensile point of the "
+              "run's grid)", file=sys.stderr)  # fmt: skip
+        columns = ["pad", "pull_off_N", "h_pull_off", "h_turn", "turn_load_N", "grid_pull_off_N",
+                   "grid_h_pull_off"]  # fmt: skip
+        turn_load = (pull_off.turn_load if pull_off.turn_load is not None
+                     else np.full(pull_off.force.shape, math.nan))  # fmt: skip
+        rows = [dict(zip(columns, (i, *map(float, row)))) for i, row in enumerate(zip(
+            pull_off.force, pull_off.h, pull_off.h_turn, turn_load, pull_off.grid_force,
+            pull_off.grid_h))]  # fmt: skip
+        print_rows(rows, columns, "csv")
     else:
         ci = out.pop("p_stick_ci", None)
         rows_fr = [] if fr is None else [{"quantity": "restoring_force", "value": fr, "unit": "N"}]
@@ -69,11 +92,12 @@ def run(args) -> int:
             rows += [{"quantity": "p_stick_ci_low", "value": ci[0], "unit": "1"},
                      {"quantity": "p_stick_ci_high", "value": ci[1], "unit": "1"}]  # fmt: skip
         rows.append({"quantity": "analytic_mean", "value": analytic, "unit": "N"})
+        rows += [{"quantity": k, "value": v, "unit": "Pa" if k == "preload" else "1"}
+                 for k, v in turns.items()]  # fmt: skip
         spec = run.spec
         header = [f"run {run.path}: law {spec.law}, A = {spec.area * 1e12:.4g} um^2, E[N] = "
                   f"{spec.expected_summits:.4g} summits per pad, {stats.pads} pads",
-                  "pull-off per pad: most tensile retraction load on the run's grid "
-                  f"(spacing {pull_off.resolution:.3g} in h); p_stick = P(pull-off > restoring force), "
+                  f"pull-off per pad: {method}; p_stick = P(pull-off > restoring force), "
                   f"{interval} interval",
                   "analytic_mean: GW pull-off x A K (minimum of the mean curve, not the mean of "
                   "the per-pad minima on the grid)"]  # fmt: skip
@@ -87,6 +111,21 @@ def run(args) -> int:
         save(fig, args.plot, overwrite=args.overwrite, inputs=[args.run])
         print(f"wrote {args.plot}", file=sys.stderr)
     return 0
+
+
+def _method(pull_off) -> str:
+    """How the per-pad pull-off was found, for the notes and the table's header."""
+    import numpy as np
+
+    if not pull_off.exact:
+        return (f"most tensile point of the run's grid (spacing {pull_off.resolution:.3g} in h; a "
+                "GPU run's heights cannot be drawn again)")  # fmt: skip
+    if pull_off.preload is not None:
+        turn = (f"each pad's own turn under force control, preload {pull_off.preload:.6g} Pa "
+                f"(h_turn {np.min(pull_off.h_turn):.4g} to {np.max(pull_off.h_turn):.4g})")  # fmt: skip
+    else:
+        turn = f"the run's turn h = {pull_off.h_turn[0]:g}"
+    return f"minimum of its own retraction curve in continuous h (1e-7) after {turn}"
 
 
 def add_parser(sub) -> None:

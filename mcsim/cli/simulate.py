@@ -10,13 +10,17 @@ from mcsim.cli.display import log_notes
 from mcsim.cli.options import (
     add_inputs,
     add_parallel,
+    add_preload,
     add_separations_or_loads,
     balancing_h,
     count_type,
     inputs_of,
     parse_h,
+    parse_preload,
+    resolve_law,
     seed_type,
 )
+from mcsim.model.errors import ParameterError
 
 
 def _default_run_path(surface) -> Path:
@@ -43,6 +47,10 @@ def run(args) -> int:
             h, pressure = balancing_h(args, surface, material)
         else:
             h = parse_h(args.h)
+        extra = {} if pressure is None else {"load_control": json.dumps(
+            {"pressure": pressure.tolist(), "unit": "Pa"})}  # fmt: skip
+        if args.preload is not None:
+            extra |= _preload(args, surface, material, h)
         out = Path(args.out) if args.out else _default_run_path(surface)
         show_progress = not args.quiet and sys.stderr.isatty()
         t0 = time.perf_counter()
@@ -53,8 +61,7 @@ def run(args) -> int:
                 chunk_size=args.chunk_size, keep_heights=args.keep_heights, out=out, overwrite=args.overwrite,
                 resume=args.resume, checkpoint_every=args.checkpoint_every, progress=show_progress,
                 command=cli_command(),
-                extra_attrs=None if pressure is None else {"load_control": json.dumps(
-                    {"pressure": pressure.tolist(), "unit": "Pa"})},
+                extra_attrs=extra or None,
             )  # fmt: skip
         except Interrupted as stop:
             partial = checkpoint_path(out)
@@ -71,6 +78,29 @@ def run(args) -> int:
                   f"N = {n.mean():.6g} summits per patch on average, {elapsed:.2f} s")  # fmt: skip
             print(f"next: mcsim compare {run.path}   |   mcsim plot {run.path}")
     return 0
+
+
+def _preload(args, surface, material, h) -> dict:
+    """Run attributes of force control: the preload (Pa) and its mean-field turn d/σ.
+
+    Each pad's own turn (the largest h where its approach load reaches P·A) is found when the
+    run is read (:meth:`mcsim.store.results.Run.pull_off`) from its summits drawn again; the
+    grid must reach below the turns, since no summit below its lowest separation is drawn.
+    """
+    from mcsim.physics.loadcontrol import preload_turn
+
+    if not args.cycle:
+        raise ParameterError(
+            "--preload: force control presses each pad before retraction; add --cycle"
+        )
+    pressure = parse_preload(args.preload)
+    law, _ = resolve_law(args, surface, material)
+    turn = preload_turn(surface, material, pressure, law)
+    if min(h) > turn:
+        raise ParameterError(f"--preload {args.preload}: the mean approach curve balances it at h = "
+                             f"{turn:.4g}, below the lowest --h {min(h):g}; extend --h down "
+                             "(pads under force control turn around there, some lower)")  # fmt: skip
+    return {"preload": pressure, "preload_unit": "Pa", "preload_turn_mean_field": turn}
 
 
 def add_parser(sub) -> None:
@@ -105,6 +135,9 @@ def add_parser(sub) -> None:
         help="approach over the --h grid (descending), then retraction back over the same grid "
         "from its lowest value; both branches stored",
     )
+    add_preload(p, "with --cycle, force control: each pad is pressed until its own approach "
+                "load reaches P*area and retracted from there (found from its summits when the run "
+                "is read, `mcsim pads`; the stored curves keep the grid's common turn)")  # fmt: skip
     p.add_argument(
         "--device",
         choices=("cpu", "cuda"),

@@ -210,3 +210,21 @@ def load_control(
     values = {k: np.where(found, v, np.nan) for k, v in curves.values.items()}
     curves = AnalyticCurves(h, values, surface, material, laws.name)
     return LoadControl(p, h, jump, found, curves, quantity)
+
+
+def preload_turn(surface: Surface, material: Material, pressure: float, law: str | LawSet) -> float:
+    """Closest approach h_turn = d/σ reached under a preload on the mean curve.
+
+    The separation on the approach branch that balances the nominal pressure ``pressure``
+    (Pa, > 0), as :func:`load_control` finds it: an actuator pressing the surfaces with
+    P·A_n from far away stops there, and retraction starts from it.
+
+    Raises
+    ------
+    ParameterError
+        A pressure that is not finite and > 0, or that no separation carries.
+    """
+    p = float(pressure)
+    if not (np.isfinite(p) and p > 0):
+        raise ParameterError(f"preload = {pressure!r} Pa: allowed a finite pressure > 0")
+    return float(load_control(surface, material, [p], law).h[0])

@@ -52,21 +52,50 @@ class PullOff:
     Attributes
     ----------
     force : ndarray, shape (R,)
-        Magnitude of the most tensile total load of each patch over the retraction
-        rows, N (0 where no row is tensile).
+        Magnitude of the most tensile total load of each patch on retraction, N (0 where
+        it is nowhere tensile): exact, the minimum of the pad's own curve in continuous h
+        (:func:`mcsim.engine.padcurves.pull_off`, to 1e-7 in h, retracted until every
+        summit has let go), or where ``exact`` is False the minimum over the run's grid.
     normalised : ndarray, shape (R,)
         The same divided by A K (the ``load`` normalisation).
     h : ndarray, shape (R,)
-        d/σ of the row where it occurs.
+        d/σ where it occurs (NaN where ``force`` is 0).
     resolution : float
-        Largest spacing of the swept grid in d/σ: the pull-off is the minimum over the
-        grid, so it is located to within this and underestimates the true one.
+        Largest spacing of the swept grid in d/σ (of ``grid_force``).
+    grid_force, grid_h : ndarray, shape (R,)
+        The most tensile load on the run's grid of retraction rows (N, a magnitude) and
+        its d/σ: biased low, and stuck at the grid's top where the pad is still tensile there.
+    top : float
+        The grid's largest separation d/σ.
+    h_turn : ndarray, shape (R,)
+        Each pad's closest approach d/σ: the run's min(h), a given common turn, or under
+        force control the pad's own (:func:`mcsim.engine.padcurves.force_turn`).
+    turn_load : ndarray, shape (R,) or None
+        Under force control, the approach load each pad reached at its turn, N.
+    preload : float or None
+        The nominal pressure P (Pa) of force control: each pad pressed with P·A.
+    exact : bool
+        False for a GPU run (its heights cannot be drawn again): ``force`` is the grid's.
     """
 
     force: np.ndarray
     normalised: np.ndarray
     h: np.ndarray
     resolution: float
+    grid_force: np.ndarray
+    grid_h: np.ndarray
+    h_turn: np.ndarray
+    turn_load: np.ndarray | None = None
+    preload: float | None = None
+    exact: bool = True
+
+    top: float = np.inf
+
+    @property
+    def past_grid_top(self) -> int:
+        """Pads whose pull-off lies beyond ``top``, the run's largest separation: the grid
+        could not hold their minimum (its value there is wrong, often 0)."""
+        return int(np.count_nonzero(self.h > self.top))
 
 
 @dataclass(frozen=True)
@@ -171,21 +200,54 @@ class Run:
             compare_table(self.summary, self.analytic, self.spec.row_h, self.spec.row_branch)
         )
 
-    def pull_off(self) -> PullOff:
-        """Per-patch pull-off of a cycle run (the law set must have a signed ``load``)."""
+    def pull_off(self, turn: float | None = None) -> PullOff:
+        """Per-patch pull-off of a cycle run (the law set must have a signed ``load``).
+
+        Each pad's summits are drawn again from the seed (:mod:`mcsim.engine.padcurves`;
+        checked against the stored approach sums) and its pull-off located on its own
+        curve. The closest approach: ``turn`` (d/σ, common to all pads, ≥ min(h)) if
+        given; else each pad's own under force control where the run was pressed with a
+        preload (attribute ``preload``, Pa); else the run's min(h).
+        """
+        from mcsim.engine import padcurves
+
         spec = self.spec
         if not spec.cycle or "load" not in spec.law_set.names:
             raise ParameterError(
                 f"pull-off needs a cycle run (--cycle) of a law set with a signed load; "
                 f"this run has law = {spec.law!r}, cycle = {spec.cycle}"
             )
-        M = spec.h.size
-        load = self.sums[:, M:, sum_columns(spec.law_set).index("load")]
-        j = np.argmin(load, axis=1)
-        force = np.maximum(-load[np.arange(load.shape[0]), j], 0.0)
+        if turn is not None and not turn >= spec.turn:
+            raise ParameterError(f"turn = {turn!r}: allowed >= the run's lowest separation "
+                                 f"h = {spec.turn:g} (no summit below it is drawn)")  # fmt: skip
+        M, R, sigma = spec.h.size, self.sums.shape[0], spec.surface.sigma
+        load = self.sums[:, :, sum_columns(spec.law_set).index("load")]
+        j = np.argmin(load[:, M:], axis=1)
+        grid_force = np.maximum(-load[np.arange(R), M + j], 0.0)
         grid = np.unique(spec.h)
-        return PullOff(force=force, normalised=force / (spec.area * spec.material.K), h=spec.h[j],
-                       resolution=float(np.max(np.diff(grid))) if grid.size > 1 else np.inf)  # fmt: skip
+        preload = self.attrs.get("preload") if turn is None else None
+        preload = None if preload is None or not np.isfinite(preload) else float(preload)
+        force, h, h_turn = grid_force.copy(), spec.h[j].astype(float), np.full(R, spec.turn)
+        turn_load = np.full(R, np.nan) if preload is not None else None
+        exact = spec.device == "cpu"
+        if turn is not None:
+            h_turn[:] = turn
+        if exact:
+            for r in range(R):
+                z = padcurves.patch_heights(spec, r)
+                _check_regenerated(spec, r, z, load[r, :M])
+                if preload is not None:
+                    d_t, turn_load[r] = padcurves.force_turn(spec, z, preload * spec.area)
+                    h_turn[r] = d_t / sigma
+                force[r], d_off = padcurves.pull_off(spec, z, h_turn[r] * sigma)
+                h[r] = d_off / sigma
+        elif preload is not None:
+            raise ParameterError("force control (preload) needs the pads' heights, which a GPU "
+                                 "run cannot draw again")  # fmt: skip
+        return PullOff(force=force, normalised=force / (spec.area * spec.material.K), h=h,
+                       resolution=float(np.max(np.diff(grid))) if grid.size > 1 else np.inf,
+                       grid_force=grid_force, grid_h=spec.h[j], h_turn=h_turn,
+                       turn_load=turn_load, preload=preload, exact=exact, top=float(grid[-1]))  # fmt: skip
 
     def to_dataframe(self):
         """Tidy table: one row per (source, realization, h, quantity).
@@ -217,6 +279,17 @@ class Run:
             frames += [frame(stat, -1, q, getattr(self.summary, stat)[q]) for stat in STATS]
             frames.append(frame("analytic", -1, q, self.analytic[q]))
         return pd.concat(frames, ignore_index=True)
+
+
+def _check_regenerated(spec: MonteCarloSpec, r: int, z: np.ndarray, stored: np.ndarray) -> None:
+    """Refuse heights drawn again that do not give the run's own approach sums (1e-9 relative)."""
+    from mcsim.engine.padcurves import pad_load
+
+    again = pad_load(spec, z, spec.d)
+    scale = np.max(np.abs(stored), initial=0.0)
+    if not np.allclose(again, stored, rtol=1e-9, atol=1e-9 * scale):
+        raise ParameterError(f"realization {r}: the summit heights drawn again from the seed do "
+                             "not reproduce the run's sums (another NumPy version's sampler?)")  # fmt: skip
 
 
 def assemble(ens: EnsembleSums, **kwargs) -> Run:

@@ -22,11 +22,10 @@ pads (one realization of a ``--cycle`` Monte Carlo run each, :meth:`mcsim.store.
 the analytic pull-off per nominal area (:func:`mcsim.physics.adhesion.adhesion_summary`,
 force/(A K)) times K A. It is the most tensile value of the *mean* retraction load,
 located to 1e-7 in h; a pad's pull-off is the most tensile value of its *own* load
-curve on the run's finite grid of separations. The two differ: the minimum of a
-noisy curve lies below the minimum of its mean (E[max] ≥ max E, so small pads pull
-off harder on average than the analytic value, by a relative amount of order
-N^(-1/2)), and a grid of spacing Δh misses the true minimum of each curve (a bias
-the other way, of order Δh² near a smooth minimum; larger where the load jumps).
+curve, also in continuous h (its summits drawn again from the run's seed,
+:mod:`mcsim.engine.padcurves`), whatever the run's grid. The two differ: the minimum of
+a noisy curve lies below the minimum of its mean (E[max] ≥ max E, so small pads pull
+off harder on average than the analytic value, by a relative amount of order N^(-1/2)).
 """
 
 from __future__ import annotations
@@ -193,11 +192,11 @@ def pad_statistics(
                          q05=float(q[0]), q50=float(q[1]), q95=float(q[2]), interval=interval, **stick)  # fmt: skip
 
 
-def analytic_pad_pull_off(spec) -> float:
+def analytic_pad_pull_off(spec, turn: float | None = None) -> float:
     """GW mean pull-off of one pad of a cycle run's inputs, N (see the module docstring).
 
-    The analytic pull-off force/(A K) after the run's closest approach (``spec.turn``)
-    times A K, times round(ηA)/(ηA) for a fixed summit count. The minimum of the mean
+    The analytic pull-off force/(A K) after the closest approach ``turn`` (d/σ; default the
+    run's, ``spec.turn``; under a preload its mean-field turn) times A K, times round(ηA)/(ηA) for a fixed summit count. The minimum of the mean
     curve (continuous in h), not the mean of the per-pad minima on the run's grid.
     """
     import warnings
@@ -206,7 +205,8 @@ def analytic_pad_pull_off(spec) -> float:
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RegimeWarning)
-        s = adhesion_summary(spec.surface, spec.material, spec.law, turn=spec.turn)
+        s = adhesion_summary(spec.surface, spec.material, spec.law,
+                             turn=spec.turn if turn is None else turn)  # fmt: skip
     bias = spec.expected_summits / (spec.surface.eta * spec.area)
     return s.pull_off * spec.material.K * spec.area * bias
 

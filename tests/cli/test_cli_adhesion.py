@@ -204,3 +204,49 @@ def test_dmt_outputs_report_the_fraction_of_attraction_its_tail_cutoff_drops(cap
     assert code == 0 and f"{expected.min():.3g} to {expected.max():.3g}" in note
     code, _, err = run_cli(capsys, "analytic", "--surface", "smooth", "--law", "jkr", "--h=1")
     assert "tail" not in err
+
+
+# --- a preload sets the turn (issue 23) ------------------------------------------------------
+
+
+def test_adhesion_preload_equals_turn_at_the_separation_that_balances_it(capsys):
+    from mcsim.physics.loadcontrol import load_control
+
+    h = float(load_control(SURFACES["smooth"], MATERIALS["silicon"], [1e6], "jkr").h[0])
+    code, out, _ = run_cli(capsys, "adhesion", "--surface", "smooth", "--law", "jkr",
+                           "--preload", "1MPa", "--format", "json")  # fmt: skip
+    by_preload = json.loads(out)
+    code2, out2, _ = run_cli(capsys, "adhesion", "--surface", "smooth", "--law", "jkr",
+                             f"--turn={h!r}", "--format", "json")  # fmt: skip
+    by_turn = json.loads(out2)
+    assert code == code2 == 0 and by_preload["turn"] == h and by_preload["preload"] == 1e6
+    assert "preload" in by_preload["turn_from"] and by_turn["preload"] is None
+    same = ("turn_from", "preload")
+    assert {k: v for k, v in by_preload.items() if k not in same} == {
+        k: v for k, v in by_turn.items() if k not in same
+    }
+
+
+def test_analytic_retraction_after_a_preload_is_the_retraction_after_its_turn(capsys):
+    from mcsim.physics.loadcontrol import preload_turn
+
+    surface, material = SURFACES["smooth"], MATERIALS["silicon"]
+    h = preload_turn(surface, material, 2e5, "jkr")
+    code, out, err = run_cli(capsys, "analytic", "--surface", "smooth", "--law", "jkr", "--branch",
+                             "retract", "--preload", "200kPa", "--h=1.5,2.5", "--format", "json")  # fmt: skip
+    expected = gw_curves(surface, material, [1.5, 2.5], "jkr", branch="retract", turn=h).load
+    assert code == 0 and [r["load"] for r in json.loads(out)] == expected.tolist()
+    assert f"h_turn = {h!r}" in err and "200000 Pa" in err
+
+
+@pytest.mark.parametrize(
+    "args, match",
+    [
+        (["adhesion", "--preload", "1MPa", "--turn", "0"], "--turn and --preload"),
+        (["adhesion", "--preload", "-1MPa"], "--preload"),
+        (["analytic", "--preload", "1MPa", "--h=1,2"], "--branch retract"),
+    ],
+)
+def test_bad_preloads_are_one_line_errors(capsys, args, match):
+    code, _, err = run_cli(capsys, *args, "--surface", "smooth", "--law", "jkr")
+    assert code != 0 and match in err and len(err.strip().splitlines()) == 1

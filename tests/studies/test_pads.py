@@ -150,10 +150,10 @@ def test_pads_with_a_restoring_force_adds_p_stick_and_its_interval(cycle_run, ca
     assert data["p_stick_ci"] == pytest.approx(list(clopper_pearson(k, 40)), rel=1e-15)
 
 
-def test_pads_table_names_the_analytic_mean_and_the_grid(cycle_run, capsys):
+def test_pads_table_names_the_analytic_mean_and_how_the_pull_off_was_found(cycle_run, capsys):
     code, out, _ = run_cli(capsys, "pads", cycle_run, "--restoring-force", "1nN")
     assert code == 0
-    assert "spacing 0.2 in h" in out and "p_stick_ci_high" in out
+    assert "continuous h" in out and "turn h = -1" in out and "p_stick_ci_high" in out
     assert "analytic_mean" in out and "Clopper-Pearson" in out
 
 
@@ -316,10 +316,13 @@ def test_pads_csv_has_one_row_per_pad_with_the_pull_off_in_newtons(cycle_run, ca
     code, out, err = run_cli(capsys, "pads", cycle_run, "--format", "csv")
     rows = list(csv.DictReader(io.StringIO(out)))
     pull_off = read_run(cycle_run).pull_off()
-    assert code == 0 and out.splitlines()[0] == "pad,pull_off_N,h_pull_off"
+    assert code == 0 and out.splitlines()[0] == ("pad,pull_off_N,h_pull_off,h_turn,turn_load_N,"
+                                                 "grid_pull_off_N,grid_h_pull_off")  # fmt: skip
     assert [int(r["pad"]) for r in rows] == list(range(40))
     assert [float(r["pull_off_N"]) for r in rows] == pull_off.force.tolist()
     assert [float(r["h_pull_off"]) for r in rows] == pull_off.h.tolist()
+    assert [float(r["h_turn"]) for r in rows] == [-1.0] * 40
+    assert [float(r["grid_pull_off_N"]) for r in rows] == pull_off.grid_force.tolist()
     assert "pull_off_N" in err and "N)" in err
 
 
@@ -334,3 +337,57 @@ def test_pads_partial_reads_the_completed_pads_of_a_checkpoint_and_says_how_many
     expected = pad_statistics(assemble(partial.completed()).pull_off().force).to_dict()
     assert code == 0 and json.loads(out) == pytest.approx(expected, rel=1e-15, nan_ok=True)
     assert json.loads(out)["pads"] == 2 and "2 completed pad(s) of 4" in err
+
+
+# --- force control: simulate --cycle --preload (issue 23) -------------------------------------
+
+
+@pytest.fixture(scope="module")
+def preload_run(tmp_path_factory):
+    path = tmp_path_factory.mktemp("preload") / "fc.h5"
+    code = main(["simulate", "--surface", "smooth", "--law", "jkr", "--area", "3um^2", "--h=3:-1:9",
+                 "--cycle", "--preload", "1MPa", "--realizations", "60", "--seed", "5",
+                 "--workers", "1", "--quiet", "--out", str(path)])  # fmt: skip
+    assert code == 0
+    return path
+
+
+def test_each_pad_turns_where_its_own_approach_load_reaches_the_preload(preload_run):
+    from mcsim.engine import padcurves
+    from mcsim.store.runfile import read_run
+
+    run = read_run(preload_run)
+    pull = run.pull_off()
+    spec, force = run.spec, 1e6 * 3e-12
+    assert run.attrs["preload"] == 1e6 and pull.preload == 1e6
+    assert np.all(pull.turn_load >= force) and np.ptp(pull.h_turn) > 0.1
+    for r in range(3):
+        z = padcurves.patch_heights(spec, r)
+        above = (pull.h_turn[r] + 1e-6) * spec.surface.sigma
+        assert padcurves.pad_load(spec, z, [above])[0] < force
+
+
+def test_pad_turns_scatter_about_the_mean_field_turn(preload_run):
+    from mcsim.store.runfile import read_run
+
+    run = read_run(preload_run)
+    t = run.pull_off().h_turn
+    # To first order h_t - h_mean = (P A - F_a)/F_a' has mean zero (PHYSICS.md, finite pads).
+    z = (t.mean() - run.attrs["preload_turn_mean_field"]) / (t.std(ddof=1) / math.sqrt(t.size))
+    assert abs(z) < 5
+
+
+def test_pads_of_a_preloaded_run_report_the_preload_and_the_turns(preload_run, capsys):
+    code, out, err = run_cli(capsys, "pads", preload_run, "--format", "json")
+    data = json.loads(out)
+    assert code == 0 and data["preload"] == 1e6 and "force control" in err
+    assert data["h_turn_min"] <= data["h_turn_mean_field"] <= data["h_turn_max"]
+
+
+def test_a_preload_without_a_cycle_or_beyond_the_grid_is_a_one_line_error(tmp_path, capsys):
+    base = ["simulate", "--surface", "smooth", "--law", "jkr", "--area", "3um^2",
+            "--preload", "1MPa", "--out", str(tmp_path / "x.h5")]  # fmt: skip
+    err = one_line_error(capsys, *base, "--h=3:-1:5")
+    assert "--cycle" in err
+    err = one_line_error(capsys, *base, "--h=3:2.5:3", "--cycle")
+    assert "extend --h down" in err

@@ -1,0 +1,178 @@
+"""One pad's own load curves, exactly: its summits regenerated from the run's seed.
+
+A ``--cycle`` run stores sums on a grid of separations, so the most tensile grid value
+of a pad's retraction load is biased (the grid misses the minimum between its points,
+and ends somewhere). Its summits, though, are a pure function of the seed: realization
+r draws its counts from the stream ``(r, 0)`` and block b its heights from ``(r, 1 + b)``
+(:func:`mcsim.engine.montecarlo.plan_patch`, :func:`~mcsim.engine.montecarlo.sample_block`).
+:func:`patch_heights` draws them again, the same numbers the run summed, and the load of
+the pad at any separation is the compiled kernel's sum of the law set's per-summit
+``load`` (:func:`mcsim.engine.kernels.block_sums`) over those heights. On them:
+
+* :func:`pull_off`: the pad's pull-off after the closest approach d_t, −min over d ≥ d_t
+  of F_r(d) = Σ f_r(z_i − d; z_i − d_t) (PHYSICS.md, "Finite pads"). The curve is smooth
+  between the separations where a summit crosses an edge of its law set (break-off,
+  jump-in, reach, breakpoints: d = z_i − e). Every such interval is evaluated at its two
+  one-sided ends (:data:`EDGE` inside it: the load jumps there, e.g. JKR's break-off at
+  δ_c, where the most tensile value is the limit from inside) and at :data:`SUB` interior
+  points; the lowest interior points of the :data:`REFINE` lowest intervals are refined,
+  all at once, by zooming: :data:`ZOOM` points between the lowest point's neighbours, the
+  lowest of them, and again, until the bracket is within :data:`XTOL` in h. The retraction runs until every summit has
+  left the range of its law, whatever the run's grid.
+* :func:`force_turn`: the pad's own closest approach under force control, the largest d
+  with Σ f_a(z_i − d) ≥ F (an actuator pressing the pad with F = P·A from far away),
+  bracketed on the same intervals of the approach curve and bisected to :data:`XTOL` in h.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from mcsim.engine.kernels import block_sums, sum_columns
+from mcsim.engine.montecarlo import MonteCarloSpec, plan_patch, sample_block
+from mcsim.model.errors import ParameterError
+
+#: Interior points at which each smooth interval of a pad's curve is evaluated.
+SUB = 3
+#: Intervals whose lowest interior point is refined.
+REFINE = 4
+#: Points of each refining step between the neighbours of the lowest point (the bracket
+#: shrinks by (ZOOM + 1)/2 per step).
+ZOOM = 15
+#: Tolerance of the pull-off and turn separations, in h = d/σ.
+XTOL = 1e-7
+#: One-sided limits at an interval's ends are evaluated this far inside it, in h
+#: (a summit's load at its break-off is then within ~1e-6 relative of the limit even
+#: where it has a square-root singularity, as JKR's at δ_c).
+EDGE = 1e-13
+
+
+def patch_heights(spec: MonteCarloSpec, r: int) -> np.ndarray:
+    """The heights (m) that realization ``r`` of ``spec`` summed: every summit above s_min.
+
+    Raises
+    ------
+    ParameterError
+        For a run on the GPU (its heights come from other streams).
+    """
+    if spec.device != "cpu":
+        raise ParameterError(f"device = {spec.device!r}: the summit heights of a GPU run cannot "
+                             "be drawn again on the CPU (other random streams)")  # fmt: skip
+    plan = plan_patch(spec, r)
+    blocks = [sample_block(spec, plan, r, b) for b in range(plan.n_blocks)]
+    return np.concatenate(blocks) if blocks else np.empty(0)
+
+
+def pad_load(spec: MonteCarloSpec, z: np.ndarray, d, d_turn=None) -> np.ndarray:
+    """Total ``load`` (N, compressive positive) of the summits ``z`` (m) at separations ``d`` (m).
+
+    On approach without ``d_turn``; on retraction after the closest approach ``d_turn`` (m).
+    """
+    d = np.atleast_1d(np.asarray(d, dtype=float))
+    turn = None if d_turn is None else np.full_like(d, d_turn)
+    column = sum_columns(spec.law_set).index("load")
+    sums = block_sums(z, d, spec.law_set, spec.arguments, d_turn=turn, edges=spec.edges)
+    return sums[:, column]
+
+
+def _intervals(spec: MonteCarloSpec, z: np.ndarray, low: float, high: float) -> np.ndarray:
+    """Sorted separations (m) cutting [low, high] where a summit crosses an edge of its law."""
+    e = spec.edges
+    in_delta = np.unique([0.0, e.reach, e.jump_in, e.break_off, *e.breakpoints])
+    cuts = (z[:, None] - in_delta[None, :]).ravel()
+    return np.unique(np.concatenate([[low, high], cuts[(cuts > low) & (cuts < high)]]))
+
+
+def _points(cuts: np.ndarray, sigma: float) -> np.ndarray:
+    """Per interval of ``cuts``: its two one-sided ends and :data:`SUB` interior points."""
+    a, b = cuts[:-1, None], cuts[1:, None]
+    inside = np.minimum(EDGE * sigma, (b - a) / 4)
+    frac = (np.arange(1, SUB + 1) / (SUB + 1))[None, :]
+    return np.hstack([a + inside, a + (b - a) * frac, b - inside])  # (intervals, SUB + 2)
+
+
+def pull_off(spec: MonteCarloSpec, z: np.ndarray, d_turn: float) -> tuple[float, float]:
+    """A pad's pull-off (N, a magnitude) and its separation (m) after the closest approach ``d_turn``.
+
+    See the module docstring. (0, NaN) when the retraction load is nowhere tensile.
+    """
+    sigma = spec.surface.sigma
+    e = spec.edges
+    if z.size == 0:
+        return 0.0, math.nan
+    top = float(z.max()) - min(e.reach, e.break_off, 0.0)  # no summit reaches beyond
+    if top <= d_turn:
+        return 0.0, math.nan
+    cuts = _intervals(spec, z, d_turn, top)
+    points = _points(cuts, sigma)
+    values = pad_load(spec, z, points.ravel(), d_turn).reshape(points.shape)
+    best = int(np.argmin(values))
+    force, at = float(values.flat[best]), float(points.flat[best])
+    # Zoom on the lowest interior point of the REFINE lowest intervals, all at once: a
+    # grid of ZOOM points between its neighbours, the lowest again, until within XTOL.
+    rows = np.argsort(values[:, 1:-1].min(axis=1))[:REFINE]
+    j = 1 + np.argmin(values[rows, 1:-1], axis=1)
+    lo, hi = points[rows, j - 1], points[rows, j + 1]
+    frac = np.linspace(0.0, 1.0, ZOOM + 2)[None, :]
+    while np.max(hi - lo) > XTOL * sigma:
+        x = lo[:, None] + (hi - lo)[:, None] * frac
+        v = pad_load(spec, z, x.ravel(), d_turn).reshape(x.shape)
+        k = np.clip(np.argmin(v, axis=1), 1, ZOOM)
+        i = np.arange(k.size)
+        lo, hi = x[i, k - 1], x[i, k + 1]
+        if v.min() < force:
+            force, at = float(v.min()), float(x.flat[np.argmin(v)])
+    return (-force, at) if force < 0 else (0.0, math.nan)
+
+
+def force_turn(spec: MonteCarloSpec, z: np.ndarray, force: float) -> tuple[float, float]:
+    """A pad's closest approach under force control: the largest d (m) with approach load ≥ ``force``.
+
+    Parameters
+    ----------
+    spec : MonteCarloSpec
+        The run; its lowest separation min(h) bounds the search (summits below s_min are
+        not drawn).
+    z : ndarray
+        The pad's summit heights, m (:func:`patch_heights`).
+    force : float
+        Applied compressive force P·A, N (> 0).
+
+    Returns
+    -------
+    d_turn, load : float
+        The turn (m) and the approach load reached there (N; ≥ ``force``, above it only
+        where the load jumps past it, as when a summit jumps into contact).
+
+    Raises
+    ------
+    ParameterError
+        If the pad's approach load stays below ``force`` down to min(h).
+    """
+    sigma = spec.surface.sigma
+    bottom = float(spec.h.min()) * sigma
+    top = max(float(z.max()) - min(spec.edges.reach, 0.0), bottom) if z.size else bottom
+    cuts = _intervals(spec, z, bottom, top)
+    points = np.unique(np.concatenate([[bottom, top], _points(cuts, sigma).ravel()]))[::-1]
+    values = pad_load(spec, z, points)
+    reached = np.flatnonzero(values >= force)
+    if reached.size == 0:
+        raise ParameterError(
+            f"preload force {force:.4g} N: the pad's approach load is {values[-1]:.4g} N at the "
+            f"grid's lowest separation h = {spec.h.min():g}; extend the separations (--h) down"
+        )
+    i = int(reached[0])
+    if i == 0:
+        return float(points[0]), float(values[0])
+    # Bisection keeping load(lo) >= force > load(hi): exact also where the load jumps.
+    lo, hi, load = float(points[i]), float(points[i - 1]), float(values[i])
+    while hi - lo > XTOL * sigma:
+        mid = 0.5 * (lo + hi)
+        at = float(pad_load(spec, z, [mid])[0])
+        if at >= force:
+            lo, load = mid, at
+        else:
+            hi = mid
+    return lo, load
