@@ -6,7 +6,7 @@ import json
 import sys
 from pathlib import Path
 
-from mcsim.cli.display import log_notes
+from mcsim.cli.display import file_state, log_notes
 from mcsim.cli.options import (
     add_inputs,
     add_parallel,
@@ -45,6 +45,7 @@ def run(args) -> int:
             h = parse_h(args.h)
         out = Path(args.out) if args.out else _default_run_path(surface)
         show_progress = not args.quiet and sys.stderr.isatty()
+        before = file_state(out)
         t0 = time.perf_counter()
         try:
             run = simulate(
@@ -65,6 +66,8 @@ def run(args) -> int:
                 print(f"mcsim: interrupted ({stop}); no output written", file=sys.stderr)
             return stop.exit_status
         elapsed = time.perf_counter() - t0
+        if before is not None and file_state(out) == before:
+            return 0  # --resume of this finished run: its notice was the only output
         if not args.quiet:
             n = run.n_summits
             print(f"wrote {run.path}: {run.spec.realizations} realizations x {len(h)} separations, "
