@@ -131,7 +131,7 @@ def add_parser(sub) -> None:
         "--resume",
         action="store_true",
         help="continue from the checkpoint beside --out (same arguments); "
-        "without one, start from the beginning",
+        "without one, start from the beginning; if --out holds this finished run, do nothing",
     )
     p.add_argument("--checkpoint-every", type=float, default=60.0, metavar="SECONDS",
                    help="save progress beside --out (RUN.partial.h5) after 10 s, then this often (default: 60 s)")  # fmt: skip

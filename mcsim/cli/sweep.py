@@ -117,7 +117,8 @@ def add_parser(sub) -> None:
     add_parallel(p, "worker threads, or processes of --dask local")
     p.add_argument("--overwrite", action="store_true", help="replace an existing sweep file")
     p.add_argument("--resume", action="store_true", help="continue from the checkpoint beside --out "
-                   "(same arguments): completed points are not recomputed")  # fmt: skip
+                   "(same arguments): completed points are not recomputed; if --out holds this "
+                   "finished sweep, do nothing")  # fmt: skip
     p.add_argument("--checkpoint-every", type=float, default=60.0, metavar="SECONDS",
                    help="save the completed points beside --out (FILE.partial.h5) after 10 s, then this "
                    "often (default: 60 s)")  # fmt: skip

@@ -315,6 +315,9 @@ def sweep(
         Replace an existing file (and start again from scratch).
     resume : bool
         Continue from the checkpoint beside ``out``: completed points are not recomputed.
+        If ``out`` already holds this finished sweep (the same ``definition``; without
+        ``seed``, any seed), it is returned untouched with a notice; a finished sweep of
+        other inputs is refused, naming the first that differs.
     checkpoint_every : float
         Seconds between checkpoints (the first after 10 s).
     progress : bool
