@@ -283,7 +283,8 @@ def test_a_kill_between_the_final_sweep_write_and_the_checkpoints_removal_is_fin
     assert sorted(p.name for p in tmp_path.iterdir()) == ["s.h5"]
 
 
-def test_resume_refuses_a_sweep_checkpoint_of_other_inputs_naming_the_input(tmp_path, monkeypatch):
+def interrupt_sweep_at_point_1(path, monkeypatch):
+    """Run SWEEP into ``path`` until a Ctrl-C at its second point: its checkpoint holds one point."""
     import mcsim.studies.sweeps as sweeps
 
     evaluate = sweeps.evaluate
@@ -293,11 +294,15 @@ def test_resume_refuses_a_sweep_checkpoint_of_other_inputs_naming_the_input(tmp_
             raise KeyboardInterrupt
         return evaluate(point, config)
 
-    path = tmp_path / "s.h5"
     monkeypatch.setattr(sweeps, "evaluate", stop_at_point_1)
     with pytest.raises(KeyboardInterrupt):
         sweep(**SWEEP, workers=1, out=path)
     monkeypatch.undo()
+
+
+def test_resume_refuses_a_sweep_checkpoint_of_other_inputs_naming_the_input(tmp_path, monkeypatch):
+    path = tmp_path / "s.h5"
+    interrupt_sweep_at_point_1(path, monkeypatch)
     expected = (f"cannot resume {path}: its checkpoint s.partial.h5 holds a sweep with a different "
                 "law (file: 'seed', asked: 'dmt')")  # fmt: skip
     with pytest.raises(ParameterError, match=f"^{re.escape(expected)}$"):
@@ -316,3 +321,14 @@ def test_resume_of_a_finished_run_of_another_mcsim_version_is_refused(finished):
     named = f"mcsim version (file: '0.0.1', asked: {__version__!r})"
     with pytest.raises(RunFileError, match=re.escape(f"a different {named}")):
         simulate(**RUN, out=path, resume=True)
+
+
+def test_resume_refuses_an_unfinished_sweep_at_the_output_path(tmp_path, monkeypatch):
+    """A checkpoint copied onto the output path is not a finished sweep."""
+    path = tmp_path / "s.h5"
+    interrupt_sweep_at_point_1(path, monkeypatch)
+    (tmp_path / "s.partial.h5").rename(path)
+    with pytest.raises(
+        RunFileError, match=f"^{re.escape(str(path))}: damaged sweep file: it holds"
+    ):
+        sweep(**SWEEP, out=path, resume=True)
