@@ -103,6 +103,19 @@ def dimensional(curves, area: float) -> dict:
             for k, v in forces.items()}  # fmt: skip
 
 
+def file_state(path) -> tuple | None:
+    """Device, inode, size and modification time of ``path`` (None if absent): the same
+    before and after a command exactly when the command left the file alone (the
+    writers replace a file by renaming a new one onto it)."""
+    import os
+
+    try:
+        st = os.stat(path)
+    except FileNotFoundError:
+        return None
+    return st.st_dev, st.st_ino, st.st_size, st.st_mtime_ns
+
+
 @contextlib.contextmanager
 def log_notes(quiet: bool):
     """Print the library's log records (notices, estimates) as ``mcsim: ...`` lines on stderr."""

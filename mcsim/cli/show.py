@@ -26,7 +26,7 @@ def run(args) -> int:
     state, a = read_state(args.run)
     spec = state.spec
     print(f"run file      {args.run}")
-    status = "complete" if state.complete else (
+    status = "complete" if a["complete"] else (
         f"INCOMPLETE: {int(state.done_blocks.sum())} of {int(state.n_blocks.sum())} blocks done, "
         f"{int(np.sum(state.done_blocks == state.n_blocks))} of {spec.realizations} realizations complete; "
         "finish it with the same `mcsim simulate` command plus --resume"
@@ -56,7 +56,7 @@ def run(args) -> int:
     z = read_run(args.run, allow_incomplete=True).compare()["z"].to_numpy()
     finite = z[np.isfinite(z)]
     if finite.size:
-        part = "" if state.complete else " (completed realizations only)"
+        part = "" if a["complete"] else " (completed realizations only)"
         print(f"vs GW         max |z| = {np.max(np.abs(finite)):.2f} over {finite.size} (h, quantity) pairs "
               f"with enough contacts{part}; details: mcsim compare {args.run}")  # fmt: skip
     return 0

@@ -6,7 +6,7 @@ import json
 import sys
 from pathlib import Path
 
-from mcsim.cli.display import log_notes
+from mcsim.cli.display import file_state, log_notes
 from mcsim.cli.options import (
     add_inputs,
     add_parallel,
@@ -53,6 +53,7 @@ def run(args) -> int:
             extra |= _preload(args, surface, material, h)
         out = Path(args.out) if args.out else _default_run_path(surface)
         show_progress = not args.quiet and sys.stderr.isatty()
+        before = file_state(out)
         t0 = time.perf_counter()
         try:
             run = simulate(
@@ -72,6 +73,8 @@ def run(args) -> int:
                 print(f"mcsim: interrupted ({stop}); no output written", file=sys.stderr)
             return stop.exit_status
         elapsed = time.perf_counter() - t0
+        if before is not None and file_state(out) == before:
+            return 0  # --resume of this finished run: its notice was the only output
         if not args.quiet:
             n = run.n_summits
             print(f"wrote {run.path}: {run.spec.realizations} realizations x {len(h)} separations, "
@@ -161,7 +164,7 @@ def add_parser(sub) -> None:
         "--resume",
         action="store_true",
         help="continue from the checkpoint beside --out (same arguments); "
-        "without one, start from the beginning",
+        "without one, start from the beginning; if --out holds this finished run, do nothing",
     )
     p.add_argument("--checkpoint-every", type=float, default=60.0, metavar="SECONDS",
                    help="save progress beside --out (RUN.partial.h5) after 10 s, then this often (default: 60 s)")  # fmt: skip

@@ -5,7 +5,7 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
-from mcsim.cli.display import log_notes
+from mcsim.cli.display import file_state, log_notes
 from mcsim.cli.options import (
     add_inputs,
     add_parallel,
@@ -47,6 +47,7 @@ def run(args) -> int:
             raise ParameterError("--area, --realizations, --seed and --device apply to the Monte Carlo runs only (add --mc)")  # fmt: skip
         surface, material = inputs_of(args)
         out = Path(args.out)
+        before = file_state(out)
         try:
             result = sweep(
                 surface, material, vary, law=args.law, h=parse_h(args.h), turn=parse_turn(args.turn),
@@ -61,6 +62,8 @@ def run(args) -> int:
             print(f"mcsim: interrupted ({stop}); {saved if partial.exists() else 'no output written'}",
                   file=sys.stderr)  # fmt: skip
             return stop.exit_status
+        if before is not None and file_state(out) == before:
+            return 0  # --resume of this finished sweep: its notice was the only output
         warned = result.data["regime_warning"]
         n_warned = int((warned != "").sum())
         if n_warned:
@@ -114,7 +117,8 @@ def add_parser(sub) -> None:
     add_parallel(p, "worker threads, or processes of --dask local")
     p.add_argument("--overwrite", action="store_true", help="replace an existing sweep file")
     p.add_argument("--resume", action="store_true", help="continue from the checkpoint beside --out "
-                   "(same arguments): completed points are not recomputed")  # fmt: skip
+                   "(same arguments): completed points are not recomputed; if --out holds this "
+                   "finished sweep, do nothing")  # fmt: skip
     p.add_argument("--checkpoint-every", type=float, default=60.0, metavar="SECONDS",
                    help="save the completed points beside --out (FILE.partial.h5) after 10 s, then this "
                    "often (default: 60 s)")  # fmt: skip

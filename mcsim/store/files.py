@@ -9,6 +9,7 @@ reader verifies.
 from __future__ import annotations
 
 import contextlib
+import dataclasses
 import glob
 import hashlib
 import os
@@ -30,8 +31,10 @@ def checkpoint_path(path: str | Path) -> Path:
 def check_output_path(path: str | Path, overwrite: bool = False, resume: bool = False) -> Path:
     """Fail early (before any work) if ``path`` cannot receive this run.
 
-    An existing run at ``path``, or an unfinished run's checkpoint beside it (unless
-    ``resume`` continues it), is replaced only with ``overwrite``.
+    An existing file at ``path``, or an unfinished run's checkpoint beside it, is
+    replaced only with ``overwrite``. With ``resume`` both pass: the caller continues
+    the checkpoint, or checks that the file holds the run asked for (see
+    :func:`first_difference`), in which case there is nothing to do.
     """
     path = Path(path)
     folder = path.parent
@@ -39,21 +42,44 @@ def check_output_path(path: str | Path, overwrite: bool = False, resume: bool = 
         raise RunFileError(f"{path}: output folder {folder} does not exist")
     if not os.access(folder, os.W_OK):
         raise RunFileError(f"{path}: output folder {folder} is not writable")
-    if overwrite:
+    if overwrite or resume:
         return path
-    if path.exists() and resume and not checkpoint_path(path).exists():
-        raise RunFileError(
-            f"{path}: file exists and no checkpoint {checkpoint_path(path).name} is beside it: "
-            "nothing to resume (pass --overwrite to run again)"
-        )
     if path.exists():
         raise RunFileError(f"{path}: file exists (pass --overwrite / overwrite=True to replace it)")
-    if checkpoint_path(path).exists() and not resume:
+    if checkpoint_path(path).exists():
         raise RunFileError(
             f"{path}: an unfinished run's checkpoint {checkpoint_path(path).name} is beside it "
             "(pass --resume to continue it, or --overwrite to start again)"
         )
     return path
+
+
+def first_difference(recorded: dict, asked: dict) -> str | None:
+    """The first of the ``asked`` inputs whose value differs from the ``recorded`` one, as
+    ``"name (file: a, asked: b)"``; None when all are equal.
+
+    Dataclasses (a surface, a material) and dicts are compared field by field, so the
+    innermost field that differs is named (``"surface sigma"``).
+    """
+    for name in [*asked, *(k for k in recorded if k not in asked)]:
+        old, value = recorded.get(name), asked.get(name)
+        if old == value:
+            continue
+        if dataclasses.is_dataclass(old) and type(old) is type(value):
+            old, value = (
+                {f.name: getattr(x, f.name) for f in dataclasses.fields(x)} for x in (old, value)
+            )
+        inner = isinstance(old, dict) and isinstance(value, dict) and first_difference(old, value)
+        if inner:
+            return f"{name} {inner}"
+        return f"{name} (file: {_short(old)}, asked: {_short(value)})"
+    return None
+
+
+def _short(value) -> str:
+    """A value on one short line, for messages."""
+    text = " ".join(repr(value).split())
+    return text if len(text) <= 60 else text[:57] + "..."
 
 
 @contextlib.contextmanager

@@ -386,7 +386,9 @@ def _read_state(path: Path, f) -> EnsembleSums:
         )
     state = EnsembleSums(spec, f["realizations/N"][()], f["realizations/sums"][()],
                          f["progress/n_blocks"][()], f["progress/done_blocks"][()])  # fmt: skip
-    if state.complete != bool(attrs["complete"]):
+    # A checkpoint may have every block done (saved after the last task, before the run
+    # file was written); a complete run must.
+    if bool(attrs["complete"]) and not state.complete:
         raise RunFileError(f"{path}: damaged run file: progress disagrees with the 'complete' flag")
     return state
 
@@ -436,7 +438,7 @@ def read_run(path: str | Path, *, allow_incomplete: bool = False):
         _verified(path, f)
         state = _read_state(path, f)
         attrs = {k: (v.item() if hasattr(v, "item") else v) for k, v in f.attrs.items()}
-        if not state.complete:
+        if not attrs["complete"]:
             if not allow_incomplete:
                 done = int(np.sum(state.done_blocks == state.n_blocks))
                 raise RunFileError(

@@ -135,7 +135,10 @@ def simulate(
     resume : bool
         Continue from the checkpoint beside ``out``; the result is bit-identical to
         an uninterrupted run. Without a checkpoint, the run starts from the
-        beginning (and logs a warning saying so).
+        beginning (and logs a warning saying so). If ``out`` already holds this
+        finished run (same inputs, mcsim version and ``keep_heights``; without
+        ``seed``, any seed), it is returned untouched with a notice; a finished run
+        of other inputs is refused, naming the first that differs.
     checkpoint_every : float
         Seconds between checkpoints.
     progress : bool
@@ -161,16 +164,20 @@ def simulate(
     if resume and out is None:
         raise ParameterError("resume needs the run file to continue (out=...)")
     with interrupt.interruptible(), contextlib.ExitStack() as stack:
-        previous = partial = None
+        previous = partial = finished = None
+        seed_given = seed is not None
         if out is not None:
             out = files.check_output_path(out, overwrite=overwrite, resume=resume)
             stack.enter_context(files.lock(out))
             # Again under the lock: another writer may have finished in the meantime.
             files.check_output_path(out, overwrite=overwrite, resume=resume)
             partial = files.checkpoint_path(out)
-            if resume and partial.exists():
+            if resume and not overwrite and out.exists():
+                finished = runfile.read_run(out)  # checksum verified: damage is refused
+                seed = finished.spec.entropy if seed is None else seed
+            elif resume and partial.exists():
                 previous, attrs = runfile.read_state(partial)
-                if previous.complete:
+                if attrs.get("complete"):
                     raise RunFileError(f"{partial}: damaged checkpoint: it holds a complete run")
                 if attrs.get("mcsim_version") != __version__:
                     raise RunFileError(
@@ -186,10 +193,17 @@ def simulate(
         spec = MonteCarloSpec(
             surface, material, h, area_m2, realizations, entropy, law, count, cycle, device
         )
-        if previous is not None and previous.spec != spec:
-            raise ParameterError(
-                f"cannot resume {out}: {', '.join(previous.spec.differences(spec))} differ(s) from the recorded run"
+        if finished is not None:
+            return _already_finished(out, finished, spec, keep_heights, extra_attrs, seed_given)
+        if previous is not None:
+            recorded = {k: attrs.get(k) for k in extra_attrs or {}}
+            differs = files.first_difference(
+                _inputs(previous.spec, recorded), _inputs(spec, extra_attrs or {})
             )
+            if differs:
+                raise ParameterError(
+                    f"cannot resume {out}: its checkpoint {partial.name} holds a run with a different {differs}"
+                )
         if command is None:
             command = _api_command(surface=surface.name or surface, material=material.name or material,
                                    h=[float(x) for x in spec.h], area=area_m2, realizations=realizations,
@@ -238,6 +252,39 @@ def simulate(
         run = runfile.write_run(out, run, command=command, extra=extra_attrs)
         partial.unlink(missing_ok=True)  # after the complete run is in place
         return run
+
+
+def _inputs(spec: MonteCarloSpec, extra: dict) -> dict:
+    """What defines a run, as a resume compares it: the inputs of ``spec`` (its entropy
+    named ``seed``) and the ``extra`` root attributes."""
+    named = {("seed" if k == "entropy" else k): v for k, v in spec.fields().items()}
+    return named | extra
+
+
+def _already_finished(out: Path, finished: Run, spec: MonteCarloSpec, keep_heights: bool,
+                      extra: dict | None, seed_given: bool) -> Run:  # fmt: skip
+    """``finished``, the complete run at ``out``, if it is the run asked for: resuming it
+    is then a no-op (the file is not touched; a checkpoint left beside it by a kill
+    after the final write is removed). Otherwise refuse, naming the first input that
+    differs. The mcsim version and whether heights are kept count as inputs."""
+    recorded = _inputs(finished.spec, {k: finished.attrs.get(k) for k in extra or {}}) | {
+        "keep_heights": finished.heights is not None,
+        "mcsim version": finished.attrs.get("mcsim_version"),
+    }
+    asked = _inputs(spec, extra or {}) | {
+        "keep_heights": keep_heights,
+        "mcsim version": __version__,
+    }
+    differs = files.first_difference(recorded, asked)
+    if differs:
+        raise RunFileError(f"{out}: already holds a finished run with a different {differs}; "
+                           "use --overwrite to replace it or another --out")  # fmt: skip
+    partial = files.checkpoint_path(out)
+    if partial.exists() and runfile.read_state(partial)[0].spec == finished.spec:
+        partial.unlink()  # the finished run's own checkpoint: killed before removing it
+    seed = "" if seed_given else f" (no seed given: taken as the file's, {spec.entropy})"
+    log.warning("%s: already holds this finished run%s: nothing to do", out, seed)
+    return finished
 
 
 def cli_command() -> str:

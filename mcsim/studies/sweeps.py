@@ -74,6 +74,7 @@ from mcsim.store.sweepfile import (
     empty_sweep,
     plain,
     read_partial,
+    read_sweep,
     write_sweep,
 )
 
@@ -321,6 +322,9 @@ def sweep(
         Replace an existing file (and start again from scratch).
     resume : bool
         Continue from the checkpoint beside ``out``: completed points are not recomputed.
+        If ``out`` already holds this finished sweep (the same ``definition``; without
+        ``seed``, any seed), it is returned untouched with a notice; a finished sweep of
+        other inputs is refused, naming the first that differs.
     checkpoint_every : float
         Seconds between checkpoints (the first after 10 s).
     progress : bool
@@ -386,13 +390,19 @@ def sweep(
     _check_values(surface, material, names, grid)
     dims = [dimension_name(n) for n in names]
     with interrupt.interruptible(), contextlib.ExitStack() as stack:
-        previous = None
+        previous = finished = None
+        seed_given = seed is not None
         if out is not None:
             out = files.check_output_path(out, overwrite=overwrite, resume=resume)
             stack.enter_context(files.lock(out))
             files.check_output_path(out, overwrite=overwrite, resume=resume)
             partial = files.checkpoint_path(out)
-            if resume and partial.exists():
+            if resume and not overwrite and out.exists():
+                finished = read_sweep(out)  # checksum verified: damage is refused
+                recorded = finished.attrs.get("seed_entropy")
+                if seed is None and recorded:
+                    seed = int(recorded)
+            elif resume and partial.exists():
                 previous = read_partial(partial)
                 recorded = previous["attrs"].get("seed_entropy")
                 if seed is None and recorded:
@@ -415,16 +425,19 @@ def sweep(
                 f"mcsim.sweep(vary={ {n: _shown(v) for n, v in zip(names, grid)} }, law={law!r})"
             )
         attrs = _attrs(surface, material, law, dims, grid, config, area_m2, command)
-        key = attrs["definition"]
+        if finished is not None:
+            return _already_finished(out, finished, attrs, seed_given)
         done = np.zeros(shape, dtype=bool)
         if previous is not None:
             if previous["attrs"].get("mcsim_version") != __version__:
                 raise RunFileError(f"{partial}: written by mcsim "
                                    f"{previous['attrs'].get('mcsim_version')}; resume it with that version")  # fmt: skip
-            if previous["attrs"].get("definition") != key:
-                raise ParameterError(f"cannot resume {out}: the inputs differ from the recorded "
-                                     "sweep's (same surface, material, law, vary, h, turn, mc "
-                                     "options needed)")  # fmt: skip
+            differs = files.first_difference(
+                _inputs(partial, previous["attrs"]), _inputs(out, attrs)
+            )
+            if differs:
+                raise ParameterError(f"cannot resume {out}: its checkpoint {partial.name} holds a "
+                                     f"sweep with a different {differs}")  # fmt: skip
             done = previous["done"]
             for k in result.data:
                 result.data[k][done] = previous["data"][k][done]
@@ -446,6 +459,45 @@ def sweep(
         write_sweep(out, result, attrs, complete=True)
         partial.unlink(missing_ok=True)
         return dataclasses.replace(result, attrs=attrs, path=out)
+
+
+#: The names a resume's message gives the entries of a sweep's ``definition``.
+_INPUT_NAMES = {"seed_entropy": "seed", "mcsim_version": "mcsim version",
+                "sweep_schema_version": "schema version", "values": "varied values"}  # fmt: skip
+
+
+def _inputs(path: Path, attrs: dict) -> dict:
+    """What defines the sweep of ``attrs`` (its ``definition``: everything but the time
+    and the command line), as a resume compares it; ``path`` names a damaged file."""
+    try:
+        inputs = json.loads(attrs["definition"])
+        for k in ("surface", "material", "varied"):
+            inputs[k] = json.loads(inputs[k])
+        if inputs.get("seed_entropy") is not None:
+            inputs["seed_entropy"] = int(inputs["seed_entropy"])
+    except (KeyError, TypeError, ValueError):
+        raise RunFileError(f"{path}: damaged sweep file: its definition is not readable") from None
+    return {_INPUT_NAMES.get(k, k): v for k, v in inputs.items()}
+
+
+def _already_finished(out: Path, finished: Sweep, attrs: dict, seed_given: bool) -> Sweep:
+    """``finished``, the complete sweep at ``out``, if it is the sweep asked for (the same
+    ``definition`` as ``attrs``): resuming it is then a no-op (the file is not touched;
+    a checkpoint left beside it by a kill after the final write is removed). Otherwise
+    refuse, naming the first input that differs."""
+    if not finished.attrs.get("complete"):
+        raise RunFileError(f"{out}: damaged sweep file: it holds an unfinished sweep")
+    differs = files.first_difference(_inputs(out, finished.attrs), _inputs(out, attrs))
+    if differs:
+        raise RunFileError(f"{out}: already holds a finished sweep with a different {differs}; "
+                           "use --overwrite to replace it or another --out")  # fmt: skip
+    partial = files.checkpoint_path(out)
+    if partial.exists() and read_partial(partial)["attrs"].get("definition") == attrs["definition"]:
+        partial.unlink()  # the finished sweep's own checkpoint: killed before removing it
+    seed = attrs.get("seed_entropy")
+    note = f" (no seed given: taken as the file's, {seed})" if seed and not seed_given else ""
+    log.warning("%s: already holds this finished sweep%s: nothing to do", out, note)
+    return finished
 
 
 def _shown(values: np.ndarray) -> list:

@@ -80,7 +80,8 @@ def test_sigkill_leaves_nothing_or_a_complete_run_and_resume_completes_it(
     if out.exists():
         assert read_state(out)[0].complete, "the path never holds an incomplete run"
     else:
-        assert not read_state(checkpoint_path(out))[0].complete  # readable: never torn
+        # Readable (never torn), and never a complete run (it may have every block done).
+        assert not read_state(checkpoint_path(out))[1]["complete"]
         assert main([*ARGS, "--out", str(out), "--resume"]) == 0
     run = read_run(out)
     reference = long_run_reference  # the uninterrupted run of ARGS
@@ -220,7 +221,10 @@ def test_resume_refuses_other_arguments(tmp_path, capsys):
     changed = [a if a != "1e-8" else "2e-8" for a in state_args]
     assert main([*changed, "--resume"]) == 2
     err = capsys.readouterr().err
-    assert "cannot resume" in err and "area differ(s) from the recorded run" in err
+    assert err == (
+        f"mcsim: error: cannot resume {out}: its checkpoint t.partial.h5 holds a run "
+        "with a different area (file: 1e-08, asked: 2e-08)\n"
+    )
     with pytest.raises(RunFileError, match="incomplete run"):
         read_run(checkpoint_path(out))
 
@@ -236,13 +240,6 @@ def test_resume_with_nothing_to_resume_starts_from_the_beginning_and_says_so(
         "from the beginning\n"
     )
     np.testing.assert_array_equal(read_run(out).sums, short_reference.sums)
-
-
-def test_a_run_file_at_the_path_is_not_resumed_over_without_overwrite(tmp_path, capsys):
-    out = tmp_path / "t.h5"
-    assert main([*SMALL, "--out", str(out)]) == 0
-    assert main([*SMALL, "--out", str(out), "--resume"]) == 2
-    assert "nothing to resume (pass --overwrite to run again)" in capsys.readouterr().err
 
 
 def interrupt_after(monkeypatch, calls: int) -> None:
@@ -273,7 +270,7 @@ def test_an_interrupted_overwrite_keeps_the_earlier_run_until_the_new_one_comple
     monkeypatch.undo()
     assert not read_state(checkpoint_path(out))[0].complete
     assert main([*SHORT, "--out", str(out), "--resume"]) == 2  # replacing needs --overwrite
-    assert "file exists" in capsys.readouterr().err
+    assert "already holds a finished run with a different surface" in capsys.readouterr().err
     assert out.read_bytes() == before
     assert main([*args, "--resume"]) == 0
     np.testing.assert_array_equal(read_run(out).sums, short_reference.sums)

@@ -93,7 +93,7 @@ def check_step(name, code, err, folder, out):
     assert names <= {out.name, checkpoint_path(out).name}, names
     assert not (out.exists() and checkpoint_path(out).exists()), names
     if checkpoint_path(out).exists():
-        assert not read_state(checkpoint_path(out))[0].complete
+        assert not read_state(checkpoint_path(out))[1]["complete"]  # all blocks may be done
 
 
 @pytest.fixture(scope="module")
