@@ -100,7 +100,8 @@ def _vdw_sums(z, D, cutoff, scale, out):
 
 @functools.cache
 def _vdw_kernel():
-    """:func:`_vdw_sums` compiled by numba (once per process; about 20× NumPy's speed)."""
+    """:func:`_vdw_sums` compiled by numba, once per process (measured 8–10× faster than the
+    same sums in NumPy temporaries)."""
     import numba
 
     return numba.njit(nogil=True, error_model="numpy")(_vdw_sums)

@@ -225,7 +225,9 @@ class Run:
 
     def compare(self):
         """DataFrame ``h, branch, quantity, mc_mean, mc_se, analytic, z, note``, one row
-        per separation, branch and quantity (see :mod:`mcsim.engine.statistics`)."""
+        per separation, branch and quantity (see :mod:`mcsim.engine.statistics`); with an
+        environment, also ``vdw`` and ``capillary`` (pressure/K, as the loads are
+        force/(A K)) against :func:`mcsim.physics.environment.environment_curves`."""
         import pandas as pd
 
         spec = self.spec
