@@ -21,7 +21,12 @@ def run(args) -> int:
     out = Path(args.out) if args.out else Path(f"{Path(args.file).stem}.toml")
     extra = IngestResult.companion_paths(out)
     figures = [extra["histogram_figure"]] + ([extra["comparison_figure"]] if args.plot else [])
-    for path in [out, extra["histogram"], *figures]:  # all refused before any work or writing
+    for path in [
+        out,
+        extra["histogram"],
+        extra["map_histogram"],
+        *figures,
+    ]:  # all refused before any work or writing
         check_output(path, inputs=[args.file], overwrite=args.overwrite)
     material = None
     if args.plot:

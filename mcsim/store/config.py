@@ -8,6 +8,9 @@
     R = "1.7 um"              # summit radius
     eta = "17 um^-2"          # summit density
     heights = "gaussian"      # optional: "gaussian" (default) or a histogram file
+    rq = "1.6 nm"             # optional: rms height about the mean plane (the environment)
+    summit_offset = "1.5 nm"  # optional: mean summit plane above the mean plane
+    map_heights = "gaussian"  # optional: the whole map's height histogram (the environment)
 
     [material]                # optional in a surface file; E and nu set both solids
     E = "160 GPa"
@@ -30,6 +33,13 @@ to the TOML file's folder), or a table with the file or the bins inline:
 With a measured histogram, ``sigma`` is optional and defaults to the histogram's
 own standard deviation (of its piecewise-uniform density,
 :class:`~mcsim.topography.empirical.Empirical`); a given ``sigma`` rescales its shape.
+
+``rq``, ``summit_offset`` and ``map_heights`` are used only by the environment
+(:func:`mcsim.physics.environment.gap_heights`; Nayak estimates where absent).
+``map_heights`` takes the same forms as ``heights`` (``[surface.map_heights] file =
+"map-heights.csv"``, as ``mcsim ingest`` writes it): the heights of every point about the
+mean plane, whose shape is kept and scaled by ``rq``; ``rq`` defaults to its own standard
+deviation.
 
 Dimensional quantities in a file must carry their unit (``sigma = "1.4 nm"``): a bare
 number is refused, since ``sigma = 1.4`` would otherwise be read as 1.4 m. (The
@@ -55,6 +65,10 @@ _SURFACE_KEYS = {
     "sigma": ("length", "std of summit heights, e.g. '1.4 nm'"),
     "R": ("length", "summit radius, e.g. '1.7 um'"),
     "eta": ("density", "summit density, e.g. '17 um^-2'"),
+}
+_GAP_KEYS = {
+    "rq": ("length", "rms height about the mean plane, e.g. '1.6 nm'"),
+    "summit_offset": ("length", "mean summit plane above the mean plane, e.g. '1.5 nm'"),
 }
 _HEIGHTS_KEYS = {"file", "edges", "counts", "densities", "unit"}
 _MATERIAL_KEYS = {
@@ -243,11 +257,17 @@ def surface_from_table(
         heights = _heights_from_value(
             table.pop("heights", "gaussian"), where, base_dir, units_required
         )
-        if heights is None:
-            return Surface(**_quantities(table, _SURFACE_KEYS, where, **strict), name=name)
-        values = _quantities(table, _SURFACE_KEYS, where, optional=("sigma",), **strict)
-        values.setdefault("sigma", heights.sigma)
-        return Surface(**values, heights=heights, name=name)
+        map_heights = _heights_from_value(
+            table.pop("map_heights", "gaussian"), f"{where}: map_heights", base_dir, units_required
+        )
+        optional = ("rq", "summit_offset") if heights is None else ("sigma", "rq", "summit_offset")
+        values = _quantities(table, _SURFACE_KEYS | _GAP_KEYS, where, optional=optional, **strict)
+        if heights is not None:
+            values.setdefault("sigma", heights.sigma)
+            values["heights"] = heights
+        if map_heights is not None:
+            values.setdefault("rq", map_heights.sigma)
+        return Surface(**values, map_heights=map_heights, name=name)
     except ParameterError as err:
         if str(err).startswith(where):
             raise

@@ -11,9 +11,11 @@ import inspect
 import types
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import NamedTuple
 
 import numpy as np
 
+from mcsim.engine.cells import CellEstimates, CellSums, estimates
 from mcsim.engine.kernels import sum_columns
 from mcsim.engine.montecarlo import EnsembleSums, MonteCarloSpec
 from mcsim.engine.statistics import (
@@ -26,6 +28,7 @@ from mcsim.engine.statistics import (
 )
 from mcsim.model.errors import ParameterError
 from mcsim.physics.analytic import gw_curves
+from mcsim.physics.environment import environment_curves
 
 #: Normalisation of each dimensionless quantity, spelled out (the ``unit`` of tables and files).
 NORMALISED = {
@@ -99,6 +102,42 @@ class PullOff:
 
 
 @dataclass(frozen=True)
+class EnvironmentRun:
+    """The environment's part of a run (:mod:`mcsim.engine.cells`).
+
+    Attributes
+    ----------
+    cells : CellSums
+        The inputs (environment, cell heights, summit offset) and the raw cell sums.
+    estimates : CellEstimates
+        Means, standard errors and per-patch curves, divided by K.
+    analytic : dict of ndarray
+        The proximity model's pressures for the same inputs
+        (:func:`mcsim.physics.environment.environment_curves`) divided by K, per row.
+    """
+
+    cells: CellSums
+    estimates: CellEstimates
+    analytic: dict
+
+
+def environment_run(spec: MonteCarloSpec, cells: CellSums) -> EnvironmentRun:
+    """Estimates of ``cells`` beside the analytic curves, at every row of ``spec``."""
+    est = estimates(spec, cells)
+    gap = cells.gap
+    curves = environment_curves(spec.row_h, spec.surface.sigma, gap.heights, gap.summit_offset,
+                                cells.environment)  # fmt: skip
+    return EnvironmentRun(cells, est, {t: curves[t] / spec.material.K for t in est.mean})
+
+
+class Estimate(NamedTuple):
+    """A curve's estimate and standard error, one value per row (dimensionless)."""
+
+    mean: np.ndarray
+    se: np.ndarray
+
+
+@dataclass(frozen=True)
 class Run:
     """A Monte Carlo run with its statistics and the GW expectation for the same inputs.
 
@@ -120,6 +159,9 @@ class Run:
         Sampled heights above h_min (m), when kept.
     complete : bool
         False for the completed part of an unfinished run.
+    environment : EnvironmentRun or None
+        The van der Waals and capillary pressures sampled over each patch's cells, when
+        the run had an environment.
     """
 
     ensemble: EnsembleSums
@@ -130,6 +172,25 @@ class Run:
     path: Path | None = None
     heights: list | None = field(default=None, repr=False)
     complete: bool = True
+    environment: EnvironmentRun | None = None
+
+    def _term(self, term: str) -> Estimate:
+        env = self.environment
+        if env is None or term not in env.estimates.mean:
+            raise ParameterError(
+                f"this run has no {term} term (no environment, or it does not act)"
+            )
+        return Estimate(env.estimates.mean[term], env.estimates.se[term])
+
+    @property
+    def vdw(self) -> Estimate:
+        """Van der Waals pressure across the gaps, p_vdW/K per row (attractive positive)."""
+        return self._term("vdw")
+
+    @property
+    def capillary(self) -> Estimate:
+        """Capillary pressure of the condensate, p_cap/K per row (attractive positive)."""
+        return self._term("capillary")
 
     @property
     def spec(self) -> MonteCarloSpec:
@@ -193,12 +254,21 @@ class Run:
 
     def compare(self):
         """DataFrame ``h, branch, quantity, mc_mean, mc_se, analytic, z, note``, one row
-        per separation, branch and quantity (see :mod:`mcsim.engine.statistics`)."""
+        per separation, branch and quantity (see :mod:`mcsim.engine.statistics`); with an
+        environment, also ``vdw`` and ``capillary`` (pressure/K, as the loads are
+        force/(A K)) against :func:`mcsim.physics.environment.environment_curves`."""
         import pandas as pd
 
-        return pd.DataFrame(
-            compare_table(self.summary, self.analytic, self.spec.row_h, self.spec.row_branch)
-        )
+        spec = self.spec
+        rows = compare_table(self.summary, self.analytic, spec.row_h, spec.row_branch)
+        if self.environment is not None:
+            est = self.environment.estimates
+            for term in est.mean:  # few-cell rows: no normal approximation, as for contacts
+                summary = Summary({term: est.mean[term]}, {term: est.se[term]}, {}, {},
+                                  est.expected_cells[term])  # fmt: skip
+                rows += compare_table(summary, self.environment.analytic, spec.row_h,
+                                      spec.row_branch)  # fmt: skip
+        return pd.DataFrame(rows)
 
     def pull_off(self, turn: float | None = None) -> PullOff:
         """Per-patch pull-off of a cycle run (the law set must have a signed ``load``).
@@ -292,10 +362,12 @@ def _check_regenerated(spec: MonteCarloSpec, r: int, z: np.ndarray, stored: np.n
                              "not reproduce the run's sums (another NumPy version's sampler?)")  # fmt: skip
 
 
-def assemble(ens: EnsembleSums, **kwargs) -> Run:
-    """Statistics and GW expectations of a complete ensemble, as a :class:`Run`."""
+def assemble(ens: EnsembleSums, cells: CellSums | None = None, **kwargs) -> Run:
+    """Statistics and GW expectations of a complete ensemble, as a :class:`Run`; with
+    ``cells``, the environment's too."""
     spec = ens.spec
     return Run(
+        environment=None if cells is None else environment_run(spec, cells),
         ensemble=ens,
         realizations=per_realization(ens),
         summary=summarize(ens),

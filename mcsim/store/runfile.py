@@ -25,6 +25,16 @@ attribute, dimensionless ones ``"1"`` with the normalisation in ``description``)
     /summary/expected_contacts
     /analytic/<q>          (rows,) GW curves for the same inputs (expected values)
     /heights/<r>           optional: sampled heights above s_min [m]
+    -- runs with an environment only (mcsim.engine.cells; absent otherwise) --
+    /environment           attrs: hamaker [J], cutoff [m], rh, contact_angle [rad],
+                           temperature [K], surface_tension [J/m^2], molar_volume
+                           [m^3/mol], kelvin_radius [m], units (JSON), rq [m],
+                           summit_offset [m], gap_source (given or the Nayak estimate),
+                           map_heights (JSON: "gaussian" or the histogram), cell_model
+    /environment/n_cells   cells per patch (one per summit)
+    /environment/sums      (R, rows, 4) Σp_vdW, Σp_vdW², Σp_cap, Σp_cap² over the cells
+    /environment/realizations/<t>, /environment/summary/{mean,se}/<t>,
+    /environment/analytic/<t>   (R, rows) or (rows,) pressures / K, t in vdw, capillary
 
 Schema 1 (mcsim 0.1: the seed law set, approach only, no law_outputs, quantities,
 cycle, branches, turn, z0, tau or /branch) is still read, with identical results.
@@ -63,15 +73,17 @@ from pathlib import Path
 import numpy as np
 
 from mcsim._version import __version__
+from mcsim.engine.cells import CELL_COLUMNS, CELL_UNITS, CellSums
 from mcsim.engine.kernels import sum_columns, sum_units
 from mcsim.engine.montecarlo import BLOCK, EnsembleSums, MonteCarloSpec
 from mcsim.engine.statistics import Summary, quantities
 from mcsim.model.distributions import GAUSSIAN
 from mcsim.model.errors import MCSimError, RunFileError
 from mcsim.model.params import Material, Surface
+from mcsim.physics.environment import Environment, GapHeights
 from mcsim.physics.laws import get_law_set
 from mcsim.store.files import atomic_write, checksum
-from mcsim.store.results import STATS, Run, assemble
+from mcsim.store.results import STATS, Run, assemble, environment_run
 
 SCHEMA_VERSION = 2
 
@@ -118,6 +130,7 @@ AXES = {
     "row": ("1", "d/sigma of each row of a cycle: approach, then retraction (see branch)"),
     "realization": ("1", "realization index"),
     "column": ("1", "column of realizations/sums"),
+    "cell_column": ("1", "column of environment/sums"),
 }
 
 
@@ -135,9 +148,10 @@ def _axis(group, axis: str, size: int):
             "row": lambda: group.file["row"][()],
             "realization": lambda: np.arange(size),
             "column": lambda: np.array(sum_columns(get_law_set(group.file.attrs["law"])), "S"),
+            "cell_column": lambda: np.array(CELL_COLUMNS, "S"),
         }[axis]()
         scale = _dataset(group, axis, values, *AXES[axis])
-        if axis == "column":
+        if axis in ("column", "cell_column"):
             scale.attrs["_Encoding"] = "utf-8"  # netCDF readers decode the names to text
         scale.make_scale(axis)
     return group[axis]
@@ -266,8 +280,87 @@ def write_run(path: str | Path, run, *, command: str, extra: dict | None = None)
                     shuffle=True,
                 )
 
+        if run.environment is not None:
+            _write_environment(f, run)
+
     atomic_write(path, fill)
     return dataclasses.replace(run, path=path, attrs=attrs)
+
+
+#: Fields of the Environment as stored, with their units.
+_ENVIRONMENT_UNITS = {"hamaker": "J", "cutoff": "m", "rh": "1", "contact_angle": "rad",
+                      "temperature": "K", "surface_tension": "J/m^2", "molar_volume": "m^3/mol"}  # fmt: skip
+
+
+def _write_environment(f, run) -> None:
+    """The /environment group (see the module docstring)."""
+    part = run.environment
+    env, gap = part.cells.environment, part.cells.gap
+    g = f.create_group("environment")
+    g.attrs.update(
+        {k: np.nan if getattr(env, k) is None else getattr(env, k) for k in _ENVIRONMENT_UNITS}
+    )
+    g.attrs.update(kelvin_radius=env.kelvin_radius, rq=gap.rq, summit_offset=gap.summit_offset,
+                   gap_source=gap.source, cell_model=CELL_MODEL,
+                   map_heights=json.dumps("gaussian" if isinstance(gap.heights, float)
+                                          else gap.heights.to_dict()))  # fmt: skip
+    g.attrs["units"] = json.dumps(
+        _ENVIRONMENT_UNITS | {"kelvin_radius": "m", "rq": "m", "summit_offset": "m"}
+    )
+    rows = (_row_axis(run.spec),)
+    _dataset(
+        f, "environment/n_cells", part.cells.n_cells, "1", "cells in the patch", ("realization",)
+    )
+    sums = _dataset(f, "environment/sums", part.cells.sums, "per column, see units",
+                    "per-row sums over the cells", ("realization", rows[0], "cell_column"))  # fmt: skip
+    sums.attrs["columns"], sums.attrs["units"] = list(CELL_COLUMNS), list(CELL_UNITS)
+    est = part.estimates
+    for t in est.mean:
+        norm = f"p_{t}/K"
+        _dataset(
+            f,
+            f"environment/realizations/{t}",
+            est.realizations[t],
+            "1",
+            norm,
+            ("realization", rows[0]),
+        )
+        _dataset(f, f"environment/summary/mean/{t}", est.mean[t], "1", norm, rows)
+        _dataset(f, f"environment/summary/se/{t}", est.se[t], "1", norm, rows)
+        _dataset(f, f"environment/analytic/{t}", part.analytic[t], "1", norm, rows)
+
+
+#: The cell model of the environment pass, as recorded in run files.
+CELL_MODEL = ("one cell of area A/N per summit, heights iid from the map_heights (or Gaussian) "
+              "distribution scaled by rq, uncorrelated with each other and with the summits")  # fmt: skip
+
+
+def _read_environment(path: Path, f, spec: MonteCarloSpec) -> CellSums | None:
+    """The environment's cell sums of a run file, or None if it has none."""
+    if "environment" not in f:
+        return None
+    a = f["environment"].attrs
+    values = {k: float(a[k]) for k in _ENVIRONMENT_UNITS}
+    values["hamaker"] = None if np.isnan(values["hamaker"]) else values["hamaker"]
+    env = Environment(**values)
+    shape = json.loads(a["map_heights"])
+    rq = float(a["rq"])
+    heights = rq
+    if shape != "gaussian":
+        from mcsim.topography.empirical import Empirical
+
+        heights = Empirical.from_dict(shape)
+    gap = GapHeights(heights, rq, float(a["summit_offset"]), str(a["gap_source"]))
+    R, rows = spec.realizations, spec.row_h.size
+    for name, want in (
+        ("environment/n_cells", (R,)),
+        ("environment/sums", (R, rows, len(CELL_COLUMNS))),
+    ):
+        if f[name].shape != want:
+            raise RunFileError(
+                f"{path}: damaged run file: {name} has shape {f[name].shape}, the inputs ask for {want}"
+            )
+    return CellSums(env, gap, f["environment/n_cells"][()], f["environment/sums"][()])
 
 
 # --- reading --------------------------------------------------------------------------
@@ -453,7 +546,9 @@ def read_run(path: str | Path, *, allow_incomplete: bool = False):
             if "heights" in f
             else None
         )
+        cells = _read_environment(path, f, state.spec)
         return Run(
+            environment=None if cells is None else environment_run(state.spec, cells),
             ensemble=state,
             realizations={q: f[f"realizations/{q}"][()] for q in names},
             summary=Summary(**stats, expected_contacts=f["summary/expected_contacts"][()]),

@@ -18,6 +18,10 @@ What the surface file holds
   by a path relative to the TOML file's folder (``[surface.heights] file = ...``), so
   the two files move together. The histogram is standardized when read; ``sigma``
   sets its scale (:mod:`mcsim.store.config`).
+* For the environment (:mod:`mcsim.physics.environment`), measured: ``rq``, the rms of the
+  levelled map about its mean plane; ``summit_offset``, the mean height of the
+  direct-route summits above that plane; and the map's own height histogram, written to
+  ``<stem>-map-heights.csv`` and named by ``[surface.map_heights] file = ...``.
 * Comments with the provenance: source file and channel, creation time, mcsim
   version, command line, route, levelling, pixel size, both routes' numbers and the
   caveat that they depend on the sampling interval.
@@ -208,17 +212,24 @@ def ingest_file(
             peaks = summit_heights(levelled)
             if peaks.size < 2:
                 raise ParameterError(f"found {peaks.size} summit(s): too few for a distribution")
-            sample = peaks if heights == "summits" else levelled[np.isfinite(levelled)]
+            pixels = levelled[np.isfinite(levelled)]
+            sample = peaks if heights == "summits" else pixels
             edges = _histogram_bins(sample)
+            map_edges = _histogram_bins(pixels)
         counts, _ = np.histogram(sample, bins=edges)
         shape = Empirical.from_histogram(edges, counts, source=f"{path} ({heights})")
+        map_counts, _ = np.histogram(pixels, bins=map_edges)
+        map_shape = Empirical.from_histogram(map_edges, map_counts, source=f"{path} (map)")
         stats = getattr(topo, route)
         if not (math.isfinite(stats.sigma_s) and stats.sigma_s > 0 and stats.R > 0):
             raise ParameterError(
                 f"the {route} route gives sigma_s = {stats.sigma_s:.3g} m, R = {stats.R:.3g} m: "
                 "not a summit population (try --route direct or another --level)"
             )
-        surface = Surface(sigma=stats.sigma_s, R=stats.R, eta=stats.eta, heights=shape, name=name)
+        plane = float(np.mean(pixels))
+        surface = Surface(sigma=stats.sigma_s, R=stats.R, eta=stats.eta, heights=shape, name=name,
+                          rq=float(np.sqrt(np.mean((pixels - plane) ** 2))),
+                          summit_offset=float(np.mean(peaks)) - plane, map_heights=map_shape)  # fmt: skip
     except ReaderError:
         raise
     except MCSimError as err:
@@ -231,6 +242,8 @@ def ingest_file(
         surface=surface,
         edges=np.asarray(edges, dtype=float),
         counts=counts.astype(float),
+        map_edges=np.asarray(map_edges, dtype=float),
+        map_counts=map_counts.astype(float),
         density=False,
         heights_from=(
             "direct-route summit heights"

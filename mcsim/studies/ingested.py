@@ -121,6 +121,9 @@ class IngestResult:
         Both routes' summit statistics of a map.
     warnings : tuple of str
         Warnings raised while analysing (e.g. saturation).
+    map_edges, map_counts : ndarray or None
+        Histogram of all heights of the levelled map (edges in m, counts), for the
+        environment (``surface.map_heights``); None for a histogram input.
     """
 
     source: Path
@@ -142,6 +145,8 @@ class IngestResult:
     summit_heights: HeightSummary | None
     topography: TopographyResult | None
     warnings: tuple[str, ...] = ()
+    map_edges: np.ndarray | None = None
+    map_counts: np.ndarray | None = None
 
     @property
     def distribution(self) -> Empirical:
@@ -185,6 +190,13 @@ class IngestResult:
         else:
             lines.append(f"histogram  {self.edges.size - 1} bins: {self.summit_heights.line()}")
         lines += [f"warning    {w}" for w in self.warnings]
+        if s.rq is not None:
+            lines.append(
+                f"gaps       rq = {s.rq * 1e9:.4g} nm (levelled map about its mean plane), "
+                f"summit_offset = {s.summit_offset * 1e9:.4g} nm (mean direct-route summit "
+                f"height above it), map heights: {self.map_edges.size - 1} bins (measured; "
+                "for the environment)"
+            )
         lines.append(
             f"surface    sigma = {s.sigma * 1e9:.4g} nm, R = {s.R * 1e6:.4g} um, "
             f"eta = {s.eta * 1e-12:.5g} um^-2 (route {self.route}); heights: {self.heights_from}, "
@@ -201,6 +213,7 @@ class IngestResult:
         path = Path(path)
         return {
             "histogram": path.with_name(f"{path.stem}-heights.csv"),
+            "map_histogram": path.with_name(f"{path.stem}-map-heights.csv"),
             "histogram_figure": path.with_name(f"{path.stem}-heights.png"),
             "comparison_figure": path.with_name(f"{path.stem}-gw.png"),
         }
@@ -234,17 +247,21 @@ class IngestResult:
         path = Path(path)
         if path.suffix != ".toml":
             raise ParameterError(f"{path}: the surface file must end in .toml")
-        csv = self.companion_paths(path)["histogram"]
-        for p in (path, csv):  # both refused before either is written
-            check_output(p, inputs=[self.source], overwrite=overwrite)
+        companions = self.companion_paths(path)
+        csv, map_csv = companions["histogram"], companions["map_histogram"]
         header = self._provenance(command)
-        for p, text in (
-            (csv, self._histogram_text(header)),
-            (path, self._toml_text(header, csv.name)),
-        ):
+        files = {csv: self._histogram_text(header)}
+        if self.map_edges is not None:
+            files[map_csv] = self._histogram_text(
+                header, self.map_edges, self.map_counts, "all heights of the levelled map"
+            )
+        files[path] = self._toml_text(header, csv.name, map_csv.name)
+        for p in files:  # all refused before any is written
+            check_output(p, inputs=[self.source], overwrite=overwrite)
+        for p, text in files.items():
             write_atomic(p, lambda tmp, text=text: tmp.write_text(text, encoding="utf-8"),
                          inputs=[self.source], overwrite=overwrite)  # fmt: skip
-        return [path, csv]
+        return [path, *(p for p in files if p != path)]
 
     def _provenance(self, command: str | None) -> list[str]:
         now = dt.datetime.now(dt.UTC).isoformat(timespec="seconds")
@@ -262,19 +279,23 @@ class IngestResult:
             ]
         return lines
 
-    def _histogram_text(self, header: list[str]) -> str:
-        weight = "density [1/nm]" if self.density else "count"
+    def _histogram_text(self, header: list[str], edges=None, counts=None, what=None) -> str:
+        """The summit histogram as CSV text, or the one given (counts)."""
+        density = self.density and counts is None
+        edges = self.edges if edges is None else edges
+        counts = self.counts if counts is None else counts
+        weight = "density [1/nm]" if density else "count"
         out = [f"# {line}" for line in header]
         out += [
-            f"# {self.heights_from}, heights above the mean plane",
+            f"# {what or self.heights_from}, heights above the mean plane",
             f"left [nm], right [nm], {weight}",
         ]
-        values = self.counts * 1e-9 if self.density else self.counts
-        for left, right, w in zip(self.edges[:-1] * 1e9, self.edges[1:] * 1e9, values):
+        values = counts * 1e-9 if density else counts
+        for left, right, w in zip(edges[:-1] * 1e9, edges[1:] * 1e9, values):
             out.append(f"{float(left)!r}, {float(right)!r}, {_number(w)}")
         return "\n".join(out) + "\n"
 
-    def _toml_text(self, header: list[str], csv_name: str) -> str:
+    def _toml_text(self, header: list[str], csv_name: str, map_csv_name: str) -> str:
         s = self.surface
         out = [f"# {line}" for line in header]
         if self.topography is not None:
@@ -301,9 +322,26 @@ class IngestResult:
             f'R = "{s.R * 1e6:.12g} um"',
             f'eta = "{s.eta * 1e-12:.12g} um^-2"',
             "",
+            *(
+                [
+                    "# For the environment (van der Waals, capillary), measured on the levelled map:",
+                    "# rq about its mean plane, the mean direct-route summit height above it, and",
+                    f"# the map's height histogram in {map_csv_name}.",
+                    f'rq = "{s.rq * 1e9:.12g} nm"',
+                    f'summit_offset = "{s.summit_offset * 1e9:.12g} nm"',
+                ]
+                if s.rq is not None
+                else []
+            ),
+            "",
             "[surface.heights]",
             f"file = {json.dumps(csv_name)}",
             'unit = "nm"',
+            *(
+                ["", "[surface.map_heights]", f"file = {json.dumps(map_csv_name)}", 'unit = "nm"']
+                if s.map_heights is not None
+                else []
+            ),
         ]
         return "\n".join(out) + "\n"
 

@@ -20,10 +20,12 @@ import numpy as np
 
 from mcsim._version import __version__
 from mcsim.engine import interrupt
+from mcsim.engine.cells import run_cell_sums
 from mcsim.engine.montecarlo import DEFAULT_CHUNK, MonteCarloSpec, default_workers, run_sums
 from mcsim.model.errors import ParameterError, RunFileError
 from mcsim.model.params import Material, Surface, check_range
 from mcsim.model.units import parse_quantity
+from mcsim.physics.environment import Environment, gap_heights
 from mcsim.store import files, runfile
 from mcsim.store.results import Run, assemble
 
@@ -87,6 +89,7 @@ def simulate(
     progress: bool = False,
     command: str | None = None,
     extra_attrs: dict | None = None,
+    environment: Environment | None = None,
 ) -> Run:
     """Simulate ``realizations`` patches of area ``area`` and compare with the GW curves.
 
@@ -149,6 +152,13 @@ def simulate(
         Further root attributes of the file and its checkpoints (numbers or strings),
         e.g. ``{"load_control": '{"pressure": [...], "unit": "Pa"}'}`` (JSON) for the
         nominal pressures that the separations balance (``mcsim simulate --pressure``).
+    environment : Environment, optional
+        Van der Waals and capillary condensation across the gaps: each patch's pressures
+        are sampled over its cells (:mod:`mcsim.engine.cells`: one cell per summit, heights
+        from ``surface.rq``/``map_heights`` or the Nayak estimate,
+        :func:`mcsim.physics.environment.gap_heights`) in a pass after the contact sums
+        (local threads, not checkpointed: a resumed run redoes it). The contact sums are
+        the same as without it. None: no such pass, and the file is as before.
 
     Returns
     -------
@@ -209,7 +219,8 @@ def simulate(
                                    h=[float(x) for x in spec.h], area=area_m2, realizations=realizations,
                                    seed=seed, law=law, count=count,
                                    **({"cycle": True} if cycle else {}),
-                                   **({"device": device} if device != "cpu" else {}))  # fmt: skip
+                                   **({"device": device} if device != "cpu" else {}),
+                                   **({"environment": environment} if environment is not None else {}))  # fmt: skip
         n_workers = workers if isinstance(workers, int) and workers > 0 else default_workers()
         summits, pairs, seconds = estimate(spec, n_workers)
         if seconds > ESTIMATE_ABOVE:
@@ -246,7 +257,11 @@ def simulate(
                        progress=bar.update if progress else None, client=client, resume=previous,
                        checkpoint=checkpoint, checkpoint_every=checkpoint_every,
                        interrupt=interrupt.check)  # fmt: skip
-        run = assemble(ens)
+        cells = None
+        if environment is not None:
+            cells = run_cell_sums(spec, ens.n_summits, environment, gap_heights(surface),
+                                  workers=n_workers, interrupt=interrupt.check)  # fmt: skip
+        run = assemble(ens, cells)
         if out is None:
             return run
         run = runfile.write_run(out, run, command=command, extra=extra_attrs)

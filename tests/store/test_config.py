@@ -279,7 +279,7 @@ def test_unknown_surface_key_names_file_key_and_allowed_keys(tmp_path):
     where = re.escape(f"{path} [surface]")
     with pytest.raises(
         ParameterError,
-        match=rf"^{where}: unknown key\(s\) sigma_rms \(allowed: sigma, R, eta, name\)$",
+        match=rf"^{where}: unknown key\(s\) sigma_rms \(allowed: sigma, R, eta, rq, summit_offset, name\)$",
     ):
         load_surface(path)
 
@@ -446,3 +446,25 @@ def test_material_file_accepts_the_equilibrium_spacing_and_shear_strength(tmp_pa
 def test_material_file_refuses_a_bad_equilibrium_spacing_or_shear_strength(tmp_path, line, match):
     with pytest.raises((ParameterError, UnitError), match=match):
         load_material(write(tmp_path, SILICON_TOML + line + "\n"))
+
+
+def test_surface_file_gives_rq_summit_offset_and_map_heights(tmp_path):
+    text = SMOOTH_TOML + 'rq = "1.6 nm"\nsummit_offset = "1.5 nm"\n'
+    text += '[surface.map_heights]\nedges = [-2, 0, 1, 3]\ncounts = [1, 4, 2]\nunit = "nm"\n'
+    surface = load_surface(write(tmp_path, text))
+    assert (surface.rq, surface.summit_offset) == (pytest.approx(1.6e-9), pytest.approx(1.5e-9))
+    # the histogram's shape, standardized: P(z > 0) = 2/7 of its mass lies above 1 nm (edge 1)
+    z_edge = (1e-9 - surface.map_heights.mean) / surface.map_heights.sigma
+    assert float(surface.map_heights.sf(z_edge)) == pytest.approx(2 / 7)
+
+
+def test_rq_defaults_to_the_map_histograms_own_rms(tmp_path):
+    text = SMOOTH_TOML + '[surface.map_heights]\nedges = [-1, 0, 1]\ncounts = [1, 1]\nunit = "nm"\n'
+    surface = load_surface(write(tmp_path, text))
+    assert surface.rq == pytest.approx(2e-9 / 12**0.5)  # uniform on [-1, 1] nm
+    assert surface.summit_offset is None
+
+
+def test_bare_rq_in_a_file_is_refused(tmp_path):
+    with pytest.raises(UnitError, match=r"rq = 1.6 has no unit"):
+        load_surface(write(tmp_path, SMOOTH_TOML + "rq = 1.6\n"))
