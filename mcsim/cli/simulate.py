@@ -6,13 +6,15 @@ import json
 import sys
 from pathlib import Path
 
-from mcsim.cli.display import log_notes
+from mcsim.cli.display import environment_notes, log_notes, print_lines
 from mcsim.cli.options import (
+    add_environment,
     add_inputs,
     add_parallel,
     add_separations_or_loads,
     balancing_h,
     count_type,
+    environment_of,
     inputs_of,
     parse_h,
     seed_type,
@@ -38,9 +40,14 @@ def run(args) -> int:
         from mcsim.studies.simulation import cli_command, simulate
 
         surface, material = inputs_of(args)
+        environment = environment_of(args)
+        if not args.quiet:
+            print_lines(environment_notes(surface, environment))
+        # Only with an environment, so that the run is exactly as before without one.
+        with_environment = {} if environment is None else {"environment": environment}
         pressure = None
         if args.h is None:
-            h, pressure = balancing_h(args, surface, material)
+            h, pressure = balancing_h(args, surface, material, environment)
         else:
             h = parse_h(args.h)
         out = Path(args.out) if args.out else _default_run_path(surface)
@@ -54,7 +61,7 @@ def run(args) -> int:
                 resume=args.resume, checkpoint_every=args.checkpoint_every, progress=show_progress,
                 command=cli_command(),
                 extra_attrs=None if pressure is None else {"load_control": json.dumps(
-                    {"pressure": pressure.tolist(), "unit": "Pa"})},
+                    {"pressure": pressure.tolist(), "unit": "Pa"})}, **with_environment,
             )  # fmt: skip
         except Interrupted as stop:
             partial = checkpoint_path(out)
@@ -82,6 +89,7 @@ def add_parser(sub) -> None:
                        "load and area.")  # fmt: skip
     add_inputs(p, separations=False)
     add_separations_or_loads(p, "the run's separations balance them")
+    add_environment(p)
     p.add_argument(
         "--area", required=True, help="patch area: m^2 or with a unit ('100um^2', '0.01mm^2')"
     )
