@@ -5,8 +5,23 @@ from __future__ import annotations
 import json
 import math
 
-from mcsim.cli.display import contact_inputs, cutoff_notes, describe_inputs, print_lines, print_rows
-from mcsim.cli.options import add_inputs, add_preload, inputs_of, resolve_law, turn_of
+from mcsim.cli.display import (
+    contact_inputs,
+    cutoff_notes,
+    describe_inputs,
+    environment_notes,
+    print_lines,
+    print_rows,
+)
+from mcsim.cli.options import (
+    add_environment,
+    add_inputs,
+    add_preload,
+    environment_of,
+    inputs_of,
+    resolve_law,
+    turn_of,
+)
 from mcsim.model.errors import ParameterError
 
 #: Keys of ``mcsim adhesion``, in order, with unit and meaning.
@@ -23,6 +38,19 @@ ADHESION_KEYS = {
     "turn": ("1", "closest approach h_turn = d_turn/sigma before retraction"),
 }
 
+#: Keys added with an environment (--hamaker, --rh, ...), with unit and meaning.
+ENVIRONMENT_KEYS = {
+    "work_of_separation_contact": (
+        "J/m^2",
+        "contact part of work_of_separation (tensile contact load)",
+    ),
+    "work_of_separation_vdw": ("J/m^2", "van der Waals work from the turn to infinity"),
+    "work_of_separation_capillary": ("J/m^2", "capillary work from the turn to infinity"),
+    "kelvin_radius": ("m", "Kelvin radius r_K = gamma_L V_m/(R T ln(1/RH))"),
+    "rq": ("m", "rms height about the mean plane used by the environment"),
+    "summit_offset": ("m", "mean summit plane above the mean plane used by the environment"),
+}
+
 
 def run(args) -> int:
     import warnings
@@ -31,6 +59,11 @@ def run(args) -> int:
 
     surface, material = inputs_of(args)
     law, notes = resolve_law(args, surface, material)
+    environment = environment_of(args)
+    notes += environment_notes(surface, environment)
+    if environment is not None and args.plot:
+        raise ParameterError("--plot: the figure shows the contact load only; drop the "
+                             "environment options or --plot")  # fmt: skip
     if args.plot:
         from mcsim.store.outputs import check_output
 
@@ -41,8 +74,9 @@ def run(args) -> int:
         check_output(args.plot, overwrite=args.overwrite)  # before the work, not after it
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RegimeWarning)  # printed once below
-        turn, preload = turn_of(args, surface, material, law)
-        summary = adhesion_summary(surface, material, law, turn=turn)
+        turn, preload = turn_of(args, surface, material, law, environment)
+        summary = adhesion_summary(surface, material, law, turn=turn,
+                                   environment=environment)  # fmt: skip
         if args.plot:
             from mcsim.figures.adhesion import adhesion_figure
             from mcsim.figures.style import save
@@ -60,15 +94,23 @@ def run(args) -> int:
     if preload is not None:
         turn_from = f"balances the preload {preload:.6g} Pa on the mean approach curve"
     print_lines(notes)
+    keys = dict(ADHESION_KEYS)
+    if environment is not None:
+        keys |= ENVIRONMENT_KEYS
+        keys["work_of_separation"] = ("J/m^2", "contact + vdw + capillary parts below")
+        keys["pull_off"] = ("1", "pull-off/(A_n K): most tensile net load on retraction, contact "
+                            "minus vdw and capillary attraction (magnitude)")  # fmt: skip
     if args.format == "json":
-        out = {k: values[k] for k in ADHESION_KEYS}
+        out = {k: values[k] for k in keys}
         out |= {"turn_from": turn_from, "preload": preload, "law": summary.law}
+        if environment is not None:
+            out["heights_source"] = summary.heights_source
         clean = {k: (None if isinstance(v, float) and not math.isfinite(v) else v)
                  for k, v in out.items()}  # fmt: skip
         print(json.dumps(clean, indent=1, allow_nan=False))
         return 0
     rows = [{"quantity": k, "value": values[k], "unit": u, "meaning": m}
-            for k, (u, m) in ADHESION_KEYS.items()]  # fmt: skip
+            for k, (u, m) in keys.items()]  # fmt: skip
     rows = [{**r, "value": math.nan if r["value"] is None else float(r["value"])} for r in rows]
     header = [*describe_inputs(surface, material), contact_inputs(material), f"law set {summary.law}; turn h_turn = "
               f"{summary.turn:.6g} ({turn_from})"]  # fmt: skip
@@ -80,8 +122,13 @@ def add_parser(sub) -> None:
     p = sub.add_parser("adhesion", help="pull-off force, work of separation, regime numbers",
                        description="Adhesion summary from the analytic curves: pull-off force and its separation, "
                        "work of separation and hysteresis of an approach-retraction cycle, and the Tabor, "
-                       "Maugis, Fuller-Tabor and plasticity numbers.")  # fmt: skip
+                       "Maugis, Fuller-Tabor and plasticity numbers. With an environment (--hamaker, --rh, ... or an "
+                       "[environment] table) the net load includes the van der Waals and capillary attraction: "
+                       "the turn, the pull-off and the work of separation include them, and the output adds "
+                       "work_of_separation_contact, _vdw and _capillary (J/m^2), kelvin_radius, rq and "
+                       "summit_offset (m).")  # fmt: skip
     add_inputs(p, separations=False, law="auto")
+    add_environment(p)
     p.add_argument("--turn", metavar="H", help="closest approach d/sigma before retraction "
                    "(default: where the approach load is zero, resting under no external load)")  # fmt: skip
     add_preload(p, "instead of --turn, the turn is the separation that balances it on approach")

@@ -10,16 +10,19 @@ from mcsim.cli.display import (
     cutoff_notes,
     describe_inputs,
     dimensional,
+    environment_notes,
     print_lines,
     print_rows,
 )
 from mcsim.cli.options import (
     FORMATS,
     LOAD_UNITS,
+    add_environment,
     add_inputs,
     add_preload,
     add_separations_or_loads,
     area_option,
+    environment_of,
     inputs_of,
     parse_h,
     pressures_option,
@@ -29,7 +32,7 @@ from mcsim.cli.options import (
 from mcsim.model.errors import ParameterError
 
 
-def _load_control(args, surface, material, law: str, notes: list[str]) -> int:
+def _load_control(args, surface, material, law: str, notes: list[str], environment) -> int:
 
     from mcsim.physics.loadcontrol import load_control
 
@@ -44,7 +47,7 @@ def _load_control(args, surface, material, law: str, notes: list[str]) -> int:
             )
         check_output(args.plot, inputs=inputs, overwrite=args.overwrite)
     pressure = pressures_option(args, area)
-    result = load_control(surface, material, pressure, law)
+    result = load_control(surface, material, pressure, law, environment)
     if result.equilibrium.any():
         notes += cutoff_notes(surface, material, law, result.h[result.equilibrium])
     table = result.columns()
@@ -82,23 +85,26 @@ def run(args) -> int:
 
     surface, material = inputs_of(args)
     law, notes = resolve_law(args, surface, material)
+    environment = environment_of(args)
+    notes += environment_notes(surface, environment)
     if args.h is None:
         if args.branch != "approach" or args.turn is not None or args.preload is not None:
             raise ParameterError(
                 "--branch/--turn/--preload: load control is on the approach branch only"
             )
-        return _load_control(args, surface, material, law, notes)
+        return _load_control(args, surface, material, law, notes, environment)
     if args.plot is not None:
         raise ParameterError("--plot applies to --pressure/--load only")
     if args.preload is not None and args.branch != "retract":
         raise ParameterError(
             "--preload sets the turn of the retraction: use it with --branch retract"
         )
-    turn, preload = turn_of(args, surface, material, law)
+    turn, preload = turn_of(args, surface, material, law, environment)
     if preload is not None:
         notes.append(f"note: retraction after h_turn = {turn!r}, the separation that "
                      f"balances the preload {preload:.6g} Pa on the mean approach curve")  # fmt: skip
-    curves = gw_curves(surface, material, parse_h(args.h), law, branch=args.branch, turn=turn)
+    curves = gw_curves(surface, material, parse_h(args.h), law, branch=args.branch, turn=turn,
+                       environment=environment)  # fmt: skip
     notes += cutoff_notes(surface, material, curves.law, curves.h)
     table = curves.columns()
     area = area_option(args)
@@ -111,6 +117,10 @@ def run(args) -> int:
     else:
         meaning = ("dimensionless: load = net force/(A_n K), > 0 compressive; area = A_r/A_n; "
                    "friction = tau A_r/(A_n K); mu = friction/load, undefined where load <= 0")  # fmt: skip
+    if environment is not None:
+        meaning += ("; vdw, capillary = attraction per nominal area/K (> 0 attractive); load = "
+                    + ("P - vdw - capillary" if curves.law == "seed" else "contact - vdw - capillary")
+                    + ", the net load")  # fmt: skip
     header = describe_inputs(surface, material)
     if curves.law != "seed":
         header.append(contact_inputs(material))
@@ -137,9 +147,14 @@ def add_parser(sub) -> None:
         "load non-monotone the stable separation (reached by raising the load from zero) is reported "
         "and a jump on the way is flagged; a tensile load beyond the pull-off has no equilibrium. "
         "Units: pressure Pa; h, contact_fraction, load, area, friction, mu dimensionless as with --h; "
-        "with --area also N_c, force_N (applied), load_N, friction_N, P_N, F_N, T_N (N) and area_m2 (m^2).",
+        "with --area also N_c, force_N (applied), load_N, friction_N, P_N, F_N, T_N (N) and area_m2 (m^2). "
+        "With an environment (--hamaker, --rh, ... or an [environment] table) also vdw and capillary, "
+        "the attraction per nominal area/K (> 0 attractive), and load is the net load: for the seed a "
+        "column P - vdw - capillary, for the other law sets contact - vdw - capillary; --pressure and "
+        "--load then balance this net load.",
     )
     add_inputs(p, separations=False)
+    add_environment(p)
     add_separations_or_loads(p, "the curves' separations balance them")
     p.add_argument("--area", metavar="AREA", help="nominal area A_n, e.g. 1mm^2 (m^2 unless a unit "
                    "is given): adds dimensional columns (forces in N)")  # fmt: skip

@@ -135,3 +135,29 @@ def log_notes(quiet: bool):
         logger.removeHandler(handler)
         logger.setLevel(level)
         logger.propagate = propagate
+
+
+def environment_notes(surface, environment) -> list[str]:
+    """The environment's inputs, the heights it uses (given or estimated) and why no liquid
+    condenses, if none does: one line each (empty without an environment)."""
+    if environment is None:
+        return []
+    import math
+
+    from mcsim.physics.environment import gap_heights
+
+    env, gap = environment, gap_heights(surface)
+    hamaker = "none" if not env.has_vdw else f"{env.hamaker:.4g} J"
+    lines = [f"environment: Hamaker A = {hamaker}, cutoff D0 = {env.cutoff * 1e9:.4g} nm, RH = "
+             f"{env.rh:.4g}, contact angle = {math.degrees(env.contact_angle):.4g} deg, T = "
+             f"{env.temperature:.5g} K, gamma_L = {env.surface_tension:.4g} J/m^2, V_m = "
+             f"{env.molar_volume:.4g} m^3/mol, Kelvin radius = {env.kelvin_radius * 1e9:.4g} nm",
+             f"environment heights: rq = {gap.rq * 1e9:.4g} nm, summit_offset = "
+             f"{gap.summit_offset * 1e9:.4g} nm ({gap.source})"]  # fmt: skip
+    if gap.source != "given":
+        lines[-1] += (
+            ": estimates from sigma, R, eta; give rq and summit_offset to use measured values"
+        )
+    if not env.is_dry and not env.has_capillary:
+        lines.append(env.no_condensation_reason)
+    return lines

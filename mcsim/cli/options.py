@@ -100,7 +100,8 @@ LOAD_UNITS = {
     "pressure": "Pa", "h": "1 (d/sigma)", "contact_fraction": "1 (N_c/N)",
     "load": "1 (force/(A_n K))", "area": "1 (A_r/A_n)", "friction": "1 (tau A_r/(A_n K))",
     "P": "1 (P/(A_n K), Eq. 3)", "F": "1 (F/(A_n K), Eq. 5)", "T": "1 (T/(A_n K), Eq. 7)",
-    "mu": "1", "jump": "bool", "equilibrium": "bool", "force_N": "N", "N_c": "1 (count)",
+    "mu": "1", "vdw": "1 (p_vdW/K)", "capillary": "1 (p_cap/K)", "vdw_N": "N", "capillary_N": "N",
+    "jump": "bool", "equilibrium": "bool", "force_N": "N", "N_c": "1 (count)",
     "load_N": "N", "area_m2": "m^2", "friction_N": "N", "P_N": "N", "F_N": "N", "T_N": "N",
 }  # fmt: skip
 
@@ -132,7 +133,7 @@ def pressures_option(args, area: float | None):
     return pressure
 
 
-def balancing_h(args, surface, material):
+def balancing_h(args, surface, material, environment=None):
     """Separations that balance ``--pressure`` (or ``--load`` over the patch ``--area``)
     on the analytic approach branch (:func:`mcsim.physics.loadcontrol.load_control`), and the
     pressures (Pa)."""
@@ -142,7 +143,7 @@ def balancing_h(args, surface, material):
         raise ParameterError("--pressure/--load: load control is on the approach branch only "
                              "(not with --cycle)")  # fmt: skip
     pressure = pressures_option(args, area_option(args))
-    result = load_control(surface, material, pressure, args.law)
+    result = load_control(surface, material, pressure, args.law, environment)
     if not args.quiet:
         jumped = int(result.jump.sum())
         print(f"mcsim: load control ({result.quantity} = p/K on the approach branch): "
@@ -234,7 +235,7 @@ def add_preload(p, what: str) -> None:
                    f"retraction (Pa unless a unit is given, e.g. 1MPa): {what}")  # fmt: skip
 
 
-def turn_of(args, surface, material, law) -> tuple[float | None, float | None]:
+def turn_of(args, surface, material, law, environment=None) -> tuple[float | None, float | None]:
     """The closest approach from ``--turn`` or ``--preload`` (one of them), and the preload (Pa).
 
     With ``--preload P`` the turn is the approach separation that balances P on the mean
@@ -247,7 +248,7 @@ def turn_of(args, surface, material, law) -> tuple[float | None, float | None]:
     from mcsim.physics.loadcontrol import preload_turn
 
     pressure = parse_preload(args.preload)
-    return preload_turn(surface, material, pressure, law), pressure
+    return preload_turn(surface, material, pressure, law, environment), pressure
 
 
 def parse_preload(text: str) -> float:
@@ -258,3 +259,46 @@ def parse_preload(text: str) -> float:
     if not pressure > 0:
         raise ParameterError(f"--preload: {text!r} (allowed: a pressure > 0, e.g. 1MPa)")
     return pressure
+
+
+def add_environment(p) -> None:
+    """The environment's options (van der Waals across the gaps, capillary condensation),
+    named as the keys of an ``[environment]`` table in kebab case
+    (:data:`mcsim.store.config.ENVIRONMENT_KEYS`)."""
+    g = p.add_argument_group(
+        "environment", "van der Waals attraction across the gaps and capillary condensation "
+        "(proximity model over the height distribution); also an [environment] table in the "
+        "surface or material file, which these options override. None given: contact only.",
+    )  # fmt: skip
+    g.add_argument("--hamaker", metavar="A", help="Hamaker constant across the gaps, >= 0 (J "
+                   "unless a unit is given: '1.6e-19 J', '0.16 aJ'); silicon in air ~1.6-2.0e-19 J")  # fmt: skip
+    g.add_argument("--cutoff", metavar="D0", help="gap below which the surfaces touch, > 0 (m "
+                   "unless a unit is given: '0.2 nm'; default 0.165 nm)")  # fmt: skip
+    g.add_argument("--rh", metavar="RH", help="relative humidity of the vapour, 0 <= RH < 1 "
+                   "(default 0: dry)")  # fmt: skip
+    g.add_argument("--contact-angle", metavar="THETA", help="contact angle of the liquid, in "
+                   "[0, 180) deg: degrees when bare ('20'), or with a unit ('0.35 rad'); >= 90 deg: "
+                   "no condensation (default 0)")  # fmt: skip
+    g.add_argument("--temperature", metavar="T", help="temperature, > 0 (K unless a unit is "
+                   "given; kelvin only; default 298.15 K)")  # fmt: skip
+    g.add_argument("--liquid-surface-tension", metavar="GAMMA_L", help="surface tension of the "
+                   "liquid, > 0 (J/m^2 unless a unit is given: '72 mJ/m^2'; default water, 0.072)")  # fmt: skip
+    g.add_argument("--molar-volume", metavar="V_M", help="molar volume of the liquid, > 0 "
+                   "(m^3/mol unless a unit is given: '18 cm^3/mol'; default water, 1.80e-5)")  # fmt: skip
+
+
+def environment_of(args):
+    """The :class:`~mcsim.physics.environment.Environment` of the options over the
+    ``[environment]`` tables of the surface and material files, or None if none gives one."""
+    from mcsim.store.config import ENVIRONMENT_KEYS, environment_from_values, environment_in_file
+
+    values = {}
+    for spec in (args.surface, args.material):
+        if spec is not None:
+            values |= environment_in_file(spec)
+    given = {k: getattr(args, k) for k in ENVIRONMENT_KEYS if getattr(args, k) is not None}
+    for key, value in given.items():  # each option on its own, named as written
+        environment_from_values({key: value}, f"--{key.replace('_', '-')}")
+    if not values and not given:
+        return None
+    return environment_from_values(values | given)

@@ -6,14 +6,16 @@ import json
 import sys
 from pathlib import Path
 
-from mcsim.cli.display import file_state, log_notes
+from mcsim.cli.display import environment_notes, file_state, log_notes, print_lines
 from mcsim.cli.options import (
+    add_environment,
     add_inputs,
     add_parallel,
     add_preload,
     add_separations_or_loads,
     balancing_h,
     count_type,
+    environment_of,
     inputs_of,
     parse_h,
     parse_preload,
@@ -42,15 +44,20 @@ def run(args) -> int:
         from mcsim.studies.simulation import cli_command, simulate
 
         surface, material = inputs_of(args)
+        environment = environment_of(args)
+        if not args.quiet:
+            print_lines(environment_notes(surface, environment))
+        # Only with an environment, so that the run is exactly as before without one.
+        with_environment = {} if environment is None else {"environment": environment}
         pressure = None
         if args.h is None:
-            h, pressure = balancing_h(args, surface, material)
+            h, pressure = balancing_h(args, surface, material, environment)
         else:
             h = parse_h(args.h)
         extra = {} if pressure is None else {"load_control": json.dumps(
             {"pressure": pressure.tolist(), "unit": "Pa"})}  # fmt: skip
         if args.preload is not None:
-            extra |= _preload(args, surface, material, h)
+            extra |= _preload(args, surface, material, h, environment)
         out = Path(args.out) if args.out else _default_run_path(surface)
         show_progress = not args.quiet and sys.stderr.isatty()
         before = file_state(out)
@@ -62,7 +69,7 @@ def run(args) -> int:
                 chunk_size=args.chunk_size, keep_heights=args.keep_heights, out=out, overwrite=args.overwrite,
                 resume=args.resume, checkpoint_every=args.checkpoint_every, progress=show_progress,
                 command=cli_command(),
-                extra_attrs=extra or None,
+                extra_attrs=extra or None, **with_environment,
             )  # fmt: skip
         except Interrupted as stop:
             partial = checkpoint_path(out)
@@ -83,7 +90,7 @@ def run(args) -> int:
     return 0
 
 
-def _preload(args, surface, material, h) -> dict:
+def _preload(args, surface, material, h, environment) -> dict:
     """Run attributes of force control: the preload (Pa) and its mean-field turn d/σ.
 
     Each pad's own turn (the largest h where its approach load reaches P·A) is found when the
@@ -96,6 +103,9 @@ def _preload(args, surface, material, h) -> dict:
         raise ParameterError(
             "--preload: force control presses each pad before retraction; add --cycle"
         )
+    if environment is not None:
+        raise ParameterError("--preload with an environment: each pad's force control counts "
+                             "its contact loads only (not yet the environment's attraction)")  # fmt: skip
     pressure = parse_preload(args.preload)
     law, _ = resolve_law(args, surface, material)
     turn = preload_turn(surface, material, pressure, law)
@@ -115,6 +125,7 @@ def add_parser(sub) -> None:
                        "load and area.")  # fmt: skip
     add_inputs(p, separations=False)
     add_separations_or_loads(p, "the run's separations balance them")
+    add_environment(p)
     p.add_argument(
         "--area", required=True, help="patch area: m^2 or with a unit ('100um^2', '0.01mm^2')"
     )

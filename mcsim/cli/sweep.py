@@ -5,11 +5,13 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
-from mcsim.cli.display import file_state, log_notes
+from mcsim.cli.display import environment_notes, file_state, log_notes, print_lines
 from mcsim.cli.options import (
+    add_environment,
     add_inputs,
     add_parallel,
     count_type,
+    environment_of,
     inputs_of,
     parse_h,
     parse_turn,
@@ -46,12 +48,15 @@ def run(args) -> int:
         ):
             raise ParameterError("--area, --realizations, --seed and --device apply to the Monte Carlo runs only (add --mc)")  # fmt: skip
         surface, material = inputs_of(args)
+        environment = environment_of(args)
+        if not args.quiet:
+            print_lines(environment_notes(surface, environment))
         out = Path(args.out)
         before = file_state(out)
         try:
             result = sweep(
                 surface, material, vary, law=args.law, h=parse_h(args.h), turn=parse_turn(args.turn),
-                mc=args.mc, area=args.area, realizations=args.realizations or 1, seed=args.seed, device=args.device,
+                environment=environment, mc=args.mc, area=args.area, realizations=args.realizations or 1, seed=args.seed, device=args.device,
                 workers=args.workers, scheduler=args.scheduler or args.dask, out=out,
                 overwrite=args.overwrite, resume=args.resume, checkpoint_every=args.checkpoint_every,
                 progress=not args.quiet and sys.stderr.isatty(), command=cli_command(),
@@ -91,11 +96,13 @@ def add_parser(sub) -> None:
                        "point of the outer product of the --vary inputs; optionally a Monte Carlo run per point. "
                        "One netCDF-compatible HDF5 file: xarray.open_dataset(FILE, engine='h5netcdf').")  # fmt: skip
     add_inputs(p, separations=False)
+    add_environment(p)
     p.set_defaults(law=None)
     p.add_argument("--vary", action="append", required=True, metavar="NAME=SPEC",
                    help="input to vary (repeatable; the grid is their outer product, in this order): sigma, R, "
                    "eta, E (both solids), E1, E2, nu (both), nu1, nu2, gamma, z0, tau, H, law (a list, e.g. "
-                   "law=jkr,dmt,maugis-dugdale), area (pad area, with --mc). SPEC: start:stop:num[:log] or a "
+                   "law=jkr,dmt,maugis-dugdale), area (pad area, with --mc), and the environment's rh, hamaker (J), "
+                   "contact_angle (degrees when bare), cutoff (m), temperature (K). SPEC: start:stop:num[:log] or a "
                    "list a,b,c; each value with an optional unit, a bare number is SI "
                    "(sigma=0.3nm:20nm:40:log, gamma=0.05:1:5 in J/m^2)")  # fmt: skip
     p.add_argument("--out", required=True, metavar="FILE.h5", help="sweep file (HDF5)")

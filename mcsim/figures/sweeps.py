@@ -15,6 +15,9 @@
   a continuous curve. A law set without a net load (``seed``) has no pull-off: its
   panels are the adhesion term F̄ (Eq. 5), the friction T̄ (Eq. 7) and μ (Eq. 8) at
   those separations.
+* **relative humidity alone** (``rh``, with an adhesion summary): the work of separation
+  and its parts against RH with the capillary ceiling and the humidity regimes
+  (:func:`mcsim.figures.environment.humidity_figure`).
 * **two numeric inputs**: maps of the pull-off pressure and of the work of separation
   (seed: F̄ and T̄ at one separation) over the grid, with the regime boundaries of the
   Johnson–Greenwood (1997) adhesion map drawn on top: contours of Maugis' λ at
@@ -124,6 +127,10 @@ def sweep_figure(sweep, *, kind: str = "auto", h=DEFAULT_H):
             "select a slice with Sweep.to_xarray() and plot it yourself"
         )
     sweep = _squeezed(sweep, dims)
+    if dims == ["rh"] and kind != "map" and "work_of_separation_capillary" in sweep.data:
+        from mcsim.figures.environment import humidity_figure
+
+        return humidity_figure(sweep)
     numeric = [d for d in dims if d != "law"]
     if kind == "map" and len(numeric) != 2:
         raise ParameterError(f"plot: a map needs two numeric inputs; {name} varies "

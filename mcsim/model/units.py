@@ -31,6 +31,28 @@ _PRESSURE = {
 }  # fmt: skip
 _ENERGY_PER_AREA = {"J/m^2": 1.0, "mJ/m^2": 1e-3, "N/m": 1.0, "mN/m": 1e-3}
 _FORCE = {"N": 1.0, "mN": 1e-3, "uN": 1e-6, "µN": 1e-6, "μN": 1e-6, "nN": 1e-9, "pN": 1e-12}
+# Hamaker constants are ~1e-19 J = 0.1 aJ = 100 zJ.
+_ENERGY = {
+    "J": 1.0, "mJ": 1e-3, "uJ": 1e-6, "µJ": 1e-6, "μJ": 1e-6, "nJ": 1e-9, "pJ": 1e-12,
+    "fJ": 1e-15, "aJ": 1e-18, "zJ": 1e-21,
+}  # fmt: skip
+_ANGLE = {"rad": 1.0, "mrad": 1e-3, "deg": math.pi / 180, "°": math.pi / 180}
+# Kelvin only: a temperature in °C needs an offset, which a table of factors cannot hold.
+_TEMPERATURE = {"K": 1.0, "mK": 1e-3}
+_MOLAR_VOLUME = {
+    "m^3/mol": 1.0, "dm^3/mol": 1e-3, "L/mol": 1e-3, "l/mol": 1e-3, "cm^3/mol": 1e-6,
+    "mL/mol": 1e-6, "ml/mol": 1e-6,
+}  # fmt: skip
+#: Units of the dimensions that are a plain table of factors.
+_TABLES = {
+    "pressure": _PRESSURE,
+    "energy_per_area": _ENERGY_PER_AREA,
+    "force": _FORCE,
+    "energy": _ENERGY,
+    "angle": _ANGLE,
+    "temperature": _TEMPERATURE,
+    "molar_volume": _MOLAR_VOLUME,
+}
 
 #: SI unit of each dimension, as printed in messages and labels.
 SI_UNITS = {
@@ -40,6 +62,10 @@ SI_UNITS = {
     "pressure": "Pa",
     "energy_per_area": "J/m^2",
     "force": "N",
+    "energy": "J",
+    "angle": "rad",
+    "temperature": "K",
+    "molar_volume": "m^3/mol",
     "dimensionless": "1",
 }
 
@@ -60,8 +86,11 @@ def unit_factor(unit: str, dimension: str) -> float:
     ----------
     unit : str
         Unit as written, e.g. ``"nm"``, ``"um^-2"``, ``"µm²"``, ``"GPa"``, ``"J/m^2"``.
-    dimension : {"length", "area", "density", "pressure", "energy_per_area", "force", "dimensionless"}
-        The dimension the caller expects.
+    dimension : str
+        The dimension the caller expects: ``"length"``, ``"area"``, ``"density"``,
+        ``"pressure"``, ``"energy_per_area"``, ``"force"``, ``"energy"``, ``"angle"``,
+        ``"temperature"`` (kelvin only: no offset units), ``"molar_volume"`` or
+        ``"dimensionless"``.
 
     Returns
     -------
@@ -77,19 +106,13 @@ def unit_factor(unit: str, dimension: str) -> float:
         shown = repr(unit) if len(repr(unit)) <= 40 else repr(unit)[:40] + "..."
         raise UnitError(f"unknown unit {shown} for {_allowed(dimension)}")
     u = unit.strip().replace("⁻²", "^-2").replace("²", "^2").replace("⁻", "^-")
-    u = u.replace("^-^2", "^-2").replace(" ", "")
+    u = u.replace("³", "^3").replace("^-^2", "^-2").replace(" ", "")
     if dimension == "dimensionless":
         if u in ("", "1"):
             return 1.0
-    elif dimension == "pressure":
-        if u in _PRESSURE:
-            return _PRESSURE[u]
-    elif dimension == "energy_per_area":
-        if u in _ENERGY_PER_AREA:
-            return _ENERGY_PER_AREA[u]
-    elif dimension == "force":
-        if u in _FORCE:
-            return _FORCE[u]
+    elif dimension in _TABLES:
+        if u in _TABLES[dimension]:
+            return _TABLES[dimension][u]
     elif dimension in ("length", "area", "density"):
         want = {"length": 1, "area": 2, "density": -2}[dimension]
         m = _POWER.match(u)
@@ -112,11 +135,7 @@ def _suggestion(unit: str, dimension: str) -> str:
     if power is not None:
         known = [f"{u}{power}" for u in _LENGTH]
     else:
-        known = list(
-            {"pressure": _PRESSURE, "energy_per_area": _ENERGY_PER_AREA, "force": _FORCE}.get(
-                dimension, ()
-            )
-        )
+        known = list(_TABLES.get(dimension, ()))
     same_case = [k for k in known if k.lower() == unit.lower()]
     close = same_case or difflib.get_close_matches(unit, known, n=1, cutoff=0.75)
     return f"; did you mean {close[0]!r}?" if close else ""
@@ -147,6 +166,10 @@ def _examples(dimension: str) -> str:
         "pressure": "Pa, MPa, GPa, kPa",
         "energy_per_area": "J/m^2, mJ/m^2, N/m",
         "force": "N, mN, uN, µN, nN, pN",
+        "energy": "J, mJ, uJ, nJ, aJ, zJ",
+        "angle": "deg, °, rad, mrad",
+        "temperature": "K (no °C: give kelvin)",
+        "molar_volume": "m^3/mol, L/mol, cm^3/mol, mL/mol",
         "dimensionless": "no unit",
     }[dimension]
 

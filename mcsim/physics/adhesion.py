@@ -16,6 +16,16 @@ and on retraction after a closest approach h_turn:
   adhesion parameter θ = E* σ^{3/2}/(R^{1/2} w) (see :func:`adhesion_parameter`); the
   plasticity index ψ = (E*/H)√(σ/R) (Greenwood & Williamson 1966).
 
+With an environment (:mod:`mcsim.physics.environment`) the net load on both branches is
+the contact load minus the van der Waals and capillary attraction (:func:`mcsim.gw_curves`):
+the turn is where the net approach load is zero, the pull-off is the most tensile net
+retraction load (searched also above the summits, where the attraction alone acts), and the
+work of separation is the contact part (as above, from the turn) plus the works of the two
+attractions from the turn to infinity (:func:`mcsim.physics.environment.environment_works`
+at the mean-plane gap D_t = h_turn σ + summit_offset; each the integral of its whole
+pressure, −dW/dD = p). Hysteresis is unchanged in form: the equilibrium menisci and van der
+Waals act alike on both branches.
+
 Which law set fits is read off the Johnson–Greenwood (1997) adhesion map at the low
 loads that decide pull-off: DMT for λ < 0.1, JKR for λ > 5, Maugis–Dugdale between
 (:data:`DMT_BELOW`, :data:`JKR_ABOVE`). A law set used outside its zone, or an elastic
@@ -40,6 +50,12 @@ from scipy import optimize
 from mcsim.model.errors import ParameterError
 from mcsim.model.params import Material, Surface, check_range, plasticity_index
 from mcsim.physics.analytic import gw_curves
+from mcsim.physics.environment import (
+    Environment,
+    environment_curves,
+    environment_works,
+    gap_heights,
+)
 from mcsim.physics.laws import LawSet, get_law_set
 
 #: Johnson–Greenwood (1997) map at low load: DMT below this Maugis λ.
@@ -195,6 +211,17 @@ class AdhesionSummary:
         ψ = (E*/H)√(σ/R) (None without H).
     warnings : tuple of str
         Regime warnings (:func:`regime_warnings`).
+    work_of_separation_contact, work_of_separation_vdw, work_of_separation_capillary : float or None
+        With an environment: the parts of ``work_of_separation`` (J/m²): the contact
+        integral, and the van der Waals and capillary works from the turn to infinity;
+        None without.
+    kelvin_radius : float or None
+        Kelvin radius r_K of the environment, m (0 when dry); None without.
+    rq, summit_offset : float or None
+        Rms height and mean summit height above the mean plane used by the environment,
+        m (:func:`mcsim.physics.environment.gap_heights`); None without.
+    heights_source : str or None
+        Where ``rq`` and ``summit_offset`` come from: ``"given"`` or the Nayak estimate.
     """
 
     law: str
@@ -210,6 +237,13 @@ class AdhesionSummary:
     adhesion_parameter: float
     plasticity_index: float | None
     warnings: tuple[str, ...] = ()
+    work_of_separation_contact: float | None = None
+    work_of_separation_vdw: float | None = None
+    work_of_separation_capillary: float | None = None
+    kelvin_radius: float | None = None
+    rq: float | None = None
+    summit_offset: float | None = None
+    heights_source: str | None = None
 
     def to_dict(self) -> dict:
         """Plain dict (JSON-ready apart from NaN/inf, which the CLI writes as null)."""
@@ -247,7 +281,9 @@ def _kinks(surface, material, laws, turn: float, top: float) -> np.ndarray:
     return np.unique(h[(h > turn) & (h < top)])
 
 
-def zero_load_separation(surface: Surface, material: Material, law: str | LawSet) -> float:
+def zero_load_separation(
+    surface: Surface, material: Material, law: str | LawSet, environment: Environment | None = None
+) -> float:
     """Separation h where the approach load first turns compressive, coming from far away.
 
     The surfaces rest there under no external load (the stable zero of the load:
@@ -270,7 +306,7 @@ def zero_load_separation(surface: Surface, material: Material, law: str | LawSet
     # (doubling its span) until the load turns compressive, or up to |h| = 1e6.
     while True:
         h = np.linspace(top, bottom, GRID)
-        load = gw_curves(surface, material, h, laws).load
+        load = gw_curves(surface, material, h, laws, environment=environment).load
         tensile = np.flatnonzero(load < 0)
         if tensile.size == 0:
             raise NoAdhesiveRest(
@@ -289,13 +325,17 @@ def zero_load_separation(surface: Surface, material: Material, law: str | LawSet
     i = after[0]
 
     def f(x: float) -> float:
-        return float(gw_curves(surface, material, [x], laws).load[0])
+        return float(gw_curves(surface, material, [x], laws, environment=environment).load[0])
 
     return float(optimize.brentq(f, h[i], h[i - 1], xtol=1e-12, rtol=4 * np.finfo(float).eps))
 
 
 def adhesion_summary(
-    surface: Surface, material: Material, law: str | LawSet, turn: float | None = None
+    surface: Surface,
+    material: Material,
+    law: str | LawSet,
+    turn: float | None = None,
+    environment: Environment | None = None,
 ) -> AdhesionSummary:
     """Adhesion summary from the analytic curves (see the module docstring).
 
@@ -312,6 +352,9 @@ def adhesion_summary(
         under no load: the summary then has pull-off, work of separation and
         hysteresis 0, ``turn`` the top of the summit population and ``turn_from``
         saying so.
+    environment : Environment, optional
+        Van der Waals and capillary attraction across the gaps (see the module
+        docstring); None (default): the contact alone, exactly as without it.
 
     Returns
     -------
@@ -332,12 +375,15 @@ def adhesion_summary(
     laws.check_branch("retract")
     if turn is None:
         try:
-            turn, turn_from = zero_load_separation(surface, material, laws), "zero load on approach"
+            turn = zero_load_separation(surface, material, laws, environment)
+            turn_from = "zero load on approach"
         except NoAdhesiveRest:
             # Under no external load the surfaces never come together: nothing to pull off.
-            return _summary(surface, material, laws, _top(surface, laws, material),
+            top = _top(surface, laws, material)
+            return _summary(surface, material, laws, top,
                             "none: the approach load is never tensile, the surfaces rest apart",
-                            0.0, math.nan, 0.0, 0.0)  # fmt: skip
+                            0.0, math.nan, 0.0, 0.0,
+                            _environment_parts(surface, top, environment, 0.0, zero=True))  # fmt: skip
     else:
         turn, turn_from = check_range("turn", turn, "1"), "given"
     top = max(_top(surface, laws, material), turn)
@@ -368,9 +414,20 @@ def adhesion_summary(
     scale = material.K * surface.sigma  # load·K is force per nominal area; dd = σ dh
     work = scale * float(np.sum(weights * np.maximum(-retract, 0.0)))
     hysteresis = scale * float(np.sum(weights * (approach - retract)))
-    # Pull-off: bounded minimisation around the lowest of the nodes and panel edges.
+    # Pull-off: bounded minimisation around the lowest of the nodes and panel edges (and,
+    # with an environment, of a grid above the summits, where the attraction alone acts).
     grid = np.concatenate([cuts, nodes])
     values = np.concatenate([load(cuts, "retract"), retract])
+    if environment is not None:
+        grid = np.concatenate([grid, np.linspace(top, _environment_top(surface, environment),
+                                                 PANELS + 1)[1:]])  # fmt: skip
+        values = np.concatenate([values, load(grid[values.size :], "retract")])
+        values = values - _attraction(surface, material, environment, grid)
+        contact_load = load
+
+        def load(x, branch: str) -> np.ndarray:  # the net load
+            return contact_load(x, branch) - _attraction(surface, material, environment, x)
+
     order = np.argsort(grid)
     grid, values = grid[order], values[order]
     i = int(np.argmin(values))
@@ -383,11 +440,52 @@ def adhesion_summary(
         )  # fmt: skip
         x, value = (best.x, best.fun) if best.fun <= values[i] else (grid[i], values[i])
         pull_off, h_pull_off = -float(value), float(x)
+    parts = _environment_parts(surface, turn, environment, work)
+    if parts:
+        work = parts["work_of_separation_contact"] + parts["work_of_separation_vdw"]
+        work += parts["work_of_separation_capillary"]
     return _summary(surface, material, laws, turn, turn_from, pull_off, h_pull_off, work,
-                    hysteresis)  # fmt: skip
+                    hysteresis, parts)  # fmt: skip
 
 
-def _summary(surface, material, laws, turn, turn_from, pull_off, h_pull_off, work, hysteresis):
+def _attraction(surface: Surface, material: Material, environment: Environment, h) -> np.ndarray:
+    """Van der Waals plus capillary attraction per nominal area over K at separations h."""
+    gap = gap_heights(surface)
+    p = environment_curves(h, surface.sigma, gap.heights, gap.summit_offset, environment)
+    return (p["vdw"] + p["capillary"]) / material.K
+
+
+def _environment_top(surface: Surface, environment: Environment) -> float:
+    """Separation h above which every gap is open and wider than the condensation gap:
+    there the attraction only falls with h (beyond the highest heights, ~9 rq)."""
+    gap = gap_heights(surface)
+    heights = gap.heights
+    highest = float(heights.sigma * heights.edges[-1]) if hasattr(heights, "edges") else (
+        GAUSSIAN_TOP * gap.rq)  # fmt: skip
+    widest = max(environment.cutoff, environment.condensation_gap)
+    return (highest + widest - gap.summit_offset) / surface.sigma
+
+
+def _environment_parts(surface, turn, environment, contact_work, zero=False) -> dict:
+    """The environment's fields of the summary at the turn (empty without an environment);
+    ``zero``: the surfaces rest apart, no work."""
+    if environment is None:
+        return {}
+    gap = gap_heights(surface)
+    works = environment_works(turn * surface.sigma + gap.summit_offset, gap.heights, environment)
+    return {
+        "work_of_separation_contact": float(contact_work),
+        "work_of_separation_vdw": 0.0 if zero else float(works["vdw"]),
+        "work_of_separation_capillary": 0.0 if zero else float(works["capillary"]),
+        "kelvin_radius": environment.kelvin_radius,
+        "rq": gap.rq,
+        "summit_offset": gap.summit_offset,
+        "heights_source": gap.source,
+    }
+
+
+def _summary(surface, material, laws, turn, turn_from, pull_off, h_pull_off, work, hysteresis,
+             parts=None):  # fmt: skip
     notes = tuple(regime_warnings(surface, material, laws))
     for note in notes:
         warnings.warn(note, RegimeWarning, stacklevel=3)
@@ -405,4 +503,5 @@ def _summary(surface, material, laws, turn, turn_from, pull_off, h_pull_off, wor
         adhesion_parameter=adhesion_parameter(surface, material),
         plasticity_index=plasticity_index(surface, material),
         warnings=notes,
+        **(parts or {}),
     )

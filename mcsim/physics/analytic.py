@@ -20,10 +20,18 @@ integrals run panel by panel between the law's edges and breakpoints
 (:meth:`mcsim.model.distributions.HeightDistribution.gw_integrals` with ``breaks``). With a
 shear strength τ (Bowden–Tabor) friction = τ A_r/(A_n K) and μ = friction/load where
 the load is compressive (> 0); elsewhere μ is undefined (NaN).
+
+With an environment (:mod:`mcsim.physics.environment`: van der Waals across the gaps and
+capillary condensation) the curves gain ``vdw`` and ``capillary``, each attraction per
+nominal area divided by K (positive when attractive), and ``load`` becomes the net load
+contact − vdw − capillary: for the seed a new column P − vdw − capillary (P, F, T and μ of
+Eqs. 3–8 unchanged), for the other law sets the ``load`` column itself, with μ =
+friction/net load. Both branches carry the same environment terms (equilibrium menisci).
 """
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 from typing import ClassVar
 
@@ -31,6 +39,7 @@ import numpy as np
 
 from mcsim.model.errors import ParameterError
 from mcsim.model.params import Material, Surface, check_range, check_separations
+from mcsim.physics.environment import Environment, environment_curves, gap_heights
 from mcsim.physics.laws import Edges, LawSet, get_law_set
 
 #: Quantities of a GW curve, in output order, with their meaning.
@@ -53,19 +62,31 @@ CONTACT_QUANTITIES = {
     "mu": "friction/load where load > 0, else undefined",
 }
 
+#: Curves an environment adds (:func:`gw_curves` with ``environment``).
+ENVIRONMENT_QUANTITIES = {
+    "vdw": "van der Waals attraction across the gaps per nominal area/K, > 0 attractive",
+    "capillary": "capillary (Laplace) attraction per nominal area/K, > 0 attractive",
+    "load": "net load/(A_n K): contact minus vdw minus capillary, > 0 compressive",
+}
 
-def quantities(law: str | LawSet, material: Material) -> tuple[str, ...]:
+
+def quantities(law: str | LawSet, material: Material, environment: bool = False) -> tuple[str, ...]:
     """Names of the curves of a law set, in column order (after ``h``).
 
     The seed: ``contact_fraction, P, F, T, mu``. Other sets: ``contact_fraction``,
     their outputs (``load, area``), and ``friction, mu`` if the set has Bowden–Tabor
-    friction and the material gives τ.
+    friction and the material gives τ. With an ``environment``: then ``vdw, capillary``
+    (and, for the seed, the net ``load``).
     """
     laws = get_law_set(law)
     if laws.name == "seed":
-        return tuple(QUANTITIES)
-    friction = ("friction", "mu") if laws.friction and material.tau is not None else ()
-    return ("contact_fraction", *laws.names, *friction)
+        names = tuple(QUANTITIES)
+    else:
+        friction = ("friction", "mu") if laws.friction and material.tau is not None else ()
+        names = ("contact_fraction", *laws.names, *friction)
+    if environment:
+        names += tuple(q for q in ENVIRONMENT_QUANTITIES if q not in names)
+    return names
 
 
 @dataclass(frozen=True)
@@ -92,6 +113,8 @@ class AnalyticCurves:
         ``"approach"`` or ``"retract"``.
     turn : float or None
         Closest approach h_turn = d_turn/σ before retraction (None on approach).
+    environment : Environment or None
+        The environment whose ``vdw`` and ``capillary`` curves are included (None: none).
     """
 
     h: np.ndarray
@@ -101,6 +124,7 @@ class AnalyticCurves:
     law: str
     branch: str = "approach"
     turn: float | None = None
+    environment: Environment | None = None
 
     def __getattr__(self, name: str) -> np.ndarray:
         values = self.__dict__.get("values")
@@ -119,7 +143,7 @@ class AnalyticCurves:
         scale = area * self.material.K
         out = {"N_c": self.surface.eta * area * self.contact_fraction}
         for q, v in self.values.items():
-            if q in ("P", "F", "T", "load", "friction"):
+            if q in ("P", "F", "T", "load", "friction", "vdw", "capillary"):
                 out[q] = v * scale
             elif q == "area":
                 out[q] = v * area
@@ -136,6 +160,8 @@ class AnalyticCurves:
         "load": "load/(A_n K)",
         "area": "A_r/A_n",
         "friction": "τ A_r/(A_n K)",
+        "vdw": "p_vdW/K",
+        "capillary": "p_cap/K",
     }
 
     def columns(self) -> dict[str, np.ndarray]:
@@ -202,6 +228,7 @@ def gw_curves(
     law: str | LawSet = "seed",
     branch: str = "approach",
     turn: float | None = None,
+    environment: Environment | None = None,
 ) -> AnalyticCurves:
     """GW curves of a surface and material at separations ``h`` (= d/σ), vectorised.
 
@@ -221,6 +248,12 @@ def gw_curves(
     turn : float, optional
         Closest approach h_turn = d_turn/σ, retraction only; default the lowest ``h``.
         It must not lie above any ``h`` (retraction starts there).
+    environment : Environment, optional
+        Adds the curves ``vdw`` and ``capillary`` (attraction per nominal area over K,
+        > 0 attractive; :func:`mcsim.physics.environment.environment_curves` at the
+        mean-plane gap D = hσ + summit_offset of :func:`~mcsim.physics.environment.gap_heights`)
+        and makes ``load`` the net load (see the module docstring). None (default): the
+        contact curves alone, exactly as without this argument.
 
     Returns
     -------
@@ -240,7 +273,8 @@ def gw_curves(
     sigma = surface.sigma
     edges = laws.edges_for(surface, material)
     if laws.stateful or edges != Edges():
-        return _contact_curves(surface, material, h, laws, args, edges, branch, turn)
+        curves = _contact_curves(surface, material, h, laws, args, edges, branch, turn)
+        return curves if environment is None else _with_environment(curves, environment)
 
     def integrand(delta: np.ndarray) -> np.ndarray:
         return np.stack([f(sigma * delta, *a) for f, a in zip(laws.laws, args)])
@@ -254,7 +288,24 @@ def gw_curves(
             values["mu"] = np.where(denominator > 0, integral[2] / denominator, np.nan)
     else:
         values = {**values, **_friction(laws, material, values)}
-    return AnalyticCurves(h, values, surface, material, laws.name, branch, turn)
+    curves = AnalyticCurves(h, values, surface, material, laws.name, branch, turn)
+    return curves if environment is None else _with_environment(curves, environment)
+
+
+def _with_environment(curves: AnalyticCurves, environment: Environment) -> AnalyticCurves:
+    """The curves with ``vdw``, ``capillary`` (Pa/K) and the net ``load`` (and μ on it)."""
+    surface, material = curves.surface, curves.material
+    gap = gap_heights(surface)
+    pressures = environment_curves(curves.h, surface.sigma, gap.heights, gap.summit_offset,
+                                   environment)  # fmt: skip
+    vdw, capillary = pressures["vdw"] / material.K, pressures["capillary"] / material.K
+    values = dict(curves.values)
+    contact = values["P"] if curves.law == "seed" else values["load"]
+    values |= {"vdw": vdw, "capillary": capillary, "load": contact - vdw - capillary}
+    if curves.law != "seed" and "friction" in values:
+        with np.errstate(invalid="ignore", divide="ignore"):
+            values["mu"] = np.where(values["load"] > 0, values["friction"] / values["load"], np.nan)
+    return dataclasses.replace(curves, values=values, environment=environment)
 
 
 def _normalised(laws, surface, material, scale, integral) -> dict[str, np.ndarray]:

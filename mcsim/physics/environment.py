@@ -36,7 +36,7 @@ from scipy import special
 
 from mcsim.model.errors import ParameterError
 from mcsim.model.params import check_range
-from mcsim.model.units import parse_quantity
+from mcsim.model.units import has_unit, parse_quantity
 
 #: Molar gas constant R_g, J/(mol K) (CODATA 2018, exact).
 GAS_CONSTANT = 8.314462618
@@ -127,33 +127,34 @@ class Environment:
         surface_tension=0.072,
         molar_volume=1.80e-5,
     ) -> Environment:
-        """An environment from values as users write them.
+        """An environment from values as users write them (numbers SI, or strings with units).
 
-        ``cutoff`` is a length (``"0.2 nm"`` or SI), ``surface_tension`` an energy per
-        area (``"72 mJ/m^2"`` or SI), ``contact_angle`` a bare number in **degrees**;
-        ``rh``, ``hamaker`` (J), ``temperature`` (K) and ``molar_volume`` (m³/mol) bare
-        numbers (:mod:`mcsim.units` has no unit table for these yet).
+        Every field is parsed by :func:`mcsim.model.units.parse_quantity`: ``hamaker`` an
+        energy (``"1.6e-19 J"``, ``"0.16 aJ"``), ``cutoff`` a length (``"0.2 nm"``),
+        ``rh`` a bare fraction, ``contact_angle`` an angle (``"20 deg"``, ``"0.35 rad"``;
+        a bare number is in **degrees**), ``temperature`` in K (no °C), ``surface_tension``
+        an energy per area (``"72 mJ/m^2"``), ``molar_volume`` (``"18 cm^3/mol"``).
 
         Raises
         ------
         UnitError, ParameterError
             An unreadable value or unit, or a value out of range.
         """
-        degrees = parse_quantity(contact_angle, "dimensionless", "contact_angle")
-        if not 0 <= degrees < 180:
-            raise ParameterError(
-                f"contact_angle = {degrees!r} deg is out of range (allowed: [0, 180) deg)"
-            )
+        if has_unit(contact_angle):
+            angle = parse_quantity(contact_angle, "angle", "contact_angle")
+        else:  # a bare number is in degrees
+            angle = math.radians(parse_quantity(contact_angle, "dimensionless", "contact_angle"))
+        if not 0 <= angle < math.pi:
+            raise ParameterError(f"contact_angle = {math.degrees(angle)!r} deg is out of range "
+                                 "(allowed: [0, 180) deg)")  # fmt: skip
         return cls(
-            hamaker=None
-            if hamaker is None
-            else parse_quantity(hamaker, "dimensionless", "hamaker"),
+            hamaker=None if hamaker is None else parse_quantity(hamaker, "energy", "hamaker"),
             cutoff=parse_quantity(cutoff, "length", "cutoff"),
             rh=parse_quantity(rh, "dimensionless", "rh"),
-            contact_angle=math.radians(degrees),
-            temperature=parse_quantity(temperature, "dimensionless", "temperature"),
+            contact_angle=angle,
+            temperature=parse_quantity(temperature, "temperature", "temperature"),
             surface_tension=parse_quantity(surface_tension, "energy_per_area", "surface_tension"),
-            molar_volume=parse_quantity(molar_volume, "dimensionless", "molar_volume"),
+            molar_volume=parse_quantity(molar_volume, "molar_volume", "molar_volume"),
         )
 
     @property

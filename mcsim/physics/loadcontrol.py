@@ -34,6 +34,7 @@ from mcsim.model.params import MAX_ABS_H, Material, Surface
 from mcsim.model.units import parse_values
 from mcsim.physics.adhesion import _bottom, _top
 from mcsim.physics.analytic import AnalyticCurves, gw_curves
+from mcsim.physics.environment import Environment
 from mcsim.physics.laws import LawSet, get_law_set
 
 #: Points of the approach grid that brackets each root.
@@ -44,11 +45,12 @@ XTOL = 1e-12
 MAX_PRESSURES = 10_000
 
 
-def balanced_quantity(law: str | LawSet) -> str:
-    """Name of the curve that the applied load balances: ``P`` (seed, Eq. 3) or ``load``."""
+def balanced_quantity(law: str | LawSet, environment: bool = False) -> str:
+    """Name of the curve that the applied load balances: ``P`` (seed, Eq. 3) or ``load``
+    (with an environment always ``load``, the net load of contact and environment)."""
     laws = get_law_set(law)
     if laws.name == "seed":
-        return "P"
+        return "load" if environment else "P"
     if "load" not in laws.names:
         raise ParameterError(f"law set {laws.name!r} has no 'load' output to balance a pressure")
     return "load"
@@ -146,7 +148,11 @@ def solve_targets(load, grid: np.ndarray, targets: np.ndarray, xtol: float = XTO
 
 
 def load_control(
-    surface: Surface, material: Material, pressure, law: str | LawSet = "seed"
+    surface: Surface,
+    material: Material,
+    pressure,
+    law: str | LawSet = "seed",
+    environment: Environment | None = None,
 ) -> LoadControl:
     """Separations on the approach branch that balance nominal pressures, and the curves there.
 
@@ -160,6 +166,9 @@ def load_control(
         pressure is allowed only for a law set whose approach load is tensile somewhere.
     law : str or LawSet
         Law set; for ``seed`` the balanced load is P̄ (Eq. 3), else ``load``.
+    environment : Environment, optional
+        Van der Waals and capillary attraction (:func:`mcsim.gw_curves`): the pressure
+        then balances the net ``load`` = contact − vdw − capillary, for every law set.
 
     Returns
     -------
@@ -172,7 +181,7 @@ def load_control(
         no separation with |h| <= 1e6 reaches.
     """
     laws = get_law_set(law)
-    quantity = balanced_quantity(laws)
+    quantity = balanced_quantity(laws, environment is not None)
     if isinstance(pressure, str):
         pressure = parse_values(pressure, "pressure", "pressure", limit=MAX_PRESSURES)
     try:
@@ -185,7 +194,7 @@ def load_control(
     targets = p / material.K
 
     def load(h):
-        return gw_curves(surface, material, h, laws).values[quantity]
+        return gw_curves(surface, material, h, laws, environment=environment).values[quantity]
 
     top, bottom = _top(surface, laws, material), _bottom(surface)
     while True:
@@ -206,18 +215,21 @@ def load_control(
             "separation carries p <= 0)"
         )
     h, jump, found = solve_targets(load, grid, targets)
-    curves = gw_curves(surface, material, np.where(found, h, 0.0), laws)
+    curves = gw_curves(surface, material, np.where(found, h, 0.0), laws, environment=environment)
     values = {k: np.where(found, v, np.nan) for k, v in curves.values.items()}
-    curves = AnalyticCurves(h, values, surface, material, laws.name)
+    curves = AnalyticCurves(h, values, surface, material, laws.name, environment=environment)
     return LoadControl(p, h, jump, found, curves, quantity)
 
 
-def preload_turn(surface: Surface, material: Material, pressure: float, law: str | LawSet) -> float:
+def preload_turn(
+    surface: Surface, material: Material, pressure: float, law: str | LawSet, environment=None
+) -> float:
     """Closest approach h_turn = d/σ reached under a preload on the mean curve.
 
     The separation on the approach branch that balances the nominal pressure ``pressure``
     (Pa, > 0), as :func:`load_control` finds it: an actuator pressing the surfaces with
-    P·A_n from far away stops there, and retraction starts from it.
+    P·A_n from far away stops there, and retraction starts from it. With an
+    ``environment`` the net load (contact minus its attraction) balances P.
 
     Raises
     ------
@@ -227,4 +239,4 @@ def preload_turn(surface: Surface, material: Material, pressure: float, law: str
     p = float(pressure)
     if not (np.isfinite(p) and p > 0):
         raise ParameterError(f"preload = {pressure!r} Pa: allowed a finite pressure > 0")
-    return float(load_control(surface, material, [p], law).h[0])
+    return float(load_control(surface, material, [p], law, environment=environment).h[0])

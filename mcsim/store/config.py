@@ -20,6 +20,15 @@
     z0 = "0.3 nm"             # optional: equilibrium spacing (dmt, maugis-dugdale, Tabor)
     tau = "100 MPa"           # optional: interfacial shear strength (friction tau*A)
 
+    [environment]             # optional, in a surface or material file: van der Waals and humidity
+    hamaker = "1.6e-19 J"     # Hamaker constant across the gaps
+    cutoff = "0.2 nm"         # gaps below it are contact (default 0.165 nm)
+    rh = 0.6                  # relative humidity, 0 <= rh < 1
+    contact_angle = 20        # degrees when bare, or "0.35 rad"
+    temperature = "298.15 K"  # default 298.15 K
+    liquid_surface_tension = "72 mJ/m^2"   # default water
+    molar_volume = "18 cm^3/mol"           # default water
+
 The summit-height distribution is Gaussian unless ``heights`` names a measured
 histogram: a text file (read by :mod:`mcsim.topography.readers.histogram`, its path relative
 to the TOML file's folder), or a table with the file or the bins inline:
@@ -351,6 +360,58 @@ def load_material(spec: str | Path) -> Material:
         )
     table = _table(_read_toml(path), "material", path)
     return material_from_table(table, where=f"{path} [material]", units_required=True)
+
+
+#: Keys of an ``[environment]`` table (and of the command-line options, in kebab case): the
+#: field of :class:`~mcsim.physics.environment.Environment` each sets, its dimension and meaning.
+ENVIRONMENT_KEYS = {
+    "hamaker": ("hamaker", "energy", "Hamaker constant, e.g. '1.6e-19 J'"),
+    "cutoff": ("cutoff", "length", "cutoff gap D0, e.g. '0.2 nm'"),
+    "rh": ("rh", "dimensionless", "relative humidity, e.g. 0.6"),
+    "contact_angle": ("contact_angle", "angle", "contact angle, e.g. 20 (deg) or '0.35 rad'"),
+    "temperature": ("temperature", "temperature", "temperature, e.g. '298.15 K'"),
+    "liquid_surface_tension": ("surface_tension", "energy_per_area", "e.g. '72 mJ/m^2'"),
+    "molar_volume": ("molar_volume", "molar_volume", "e.g. '18 cm^3/mol'"),
+}
+
+
+def environment_from_values(values: dict[str, Any], where: str = "environment"):
+    """An :class:`~mcsim.physics.environment.Environment` from values keyed as in
+    :data:`ENVIRONMENT_KEYS` (numbers SI, a bare contact angle in degrees, or strings with
+    units); a bad value raises an MCSimError that names ``where`` and the key."""
+    from mcsim.physics.environment import Environment
+
+    fields = {ENVIRONMENT_KEYS[k][0]: v for k, v in values.items()}
+    try:
+        return Environment.from_user(**fields)
+    except MCSimError as err:
+        raise type(err)(f"{where}: {err}") from None
+
+
+def environment_in_file(spec: str | Path) -> dict[str, Any]:
+    """The ``[environment]`` table of a surface or material TOML file (empty if none).
+
+    Values as written (checked: known keys, units on dimensional values, in range), for
+    :func:`environment_from_values` after command-line options override them.
+    """
+    path = Path(spec)
+    if path.suffix != ".toml" or str(spec) in SURFACES or str(spec) in MATERIALS:
+        return {}
+    data = _read_toml(path)
+    if "environment" not in data:
+        return {}
+    table, where = _table(data, "environment", path), f"{path} [environment]"
+    unknown = set(table) - set(ENVIRONMENT_KEYS)
+    if unknown:
+        raise ParameterError(f"{where}: unknown key(s) {', '.join(sorted(unknown))} (allowed: "
+                             f"{', '.join(ENVIRONMENT_KEYS)})")  # fmt: skip
+    for key, value in table.items():
+        _, dimension, meaning = ENVIRONMENT_KEYS[key]
+        if dimension not in ("dimensionless", "angle") and _is_bare(value):
+            raise UnitError(f"{where}: {key} = {value!r} has no unit (a bare number in a file is "
+                            f"refused); write it with its unit, {meaning}")  # fmt: skip
+    environment_from_values(table, where)
+    return dict(table)
 
 
 def material_in_surface_file(spec: str | Path) -> Material | None:

@@ -11,12 +11,15 @@ every variable has ``units`` and ``long_name`` attributes; schema :data:`SCHEMA_
                             (d/sigma, the separations of the curves)
     curves (..., h)         contact_fraction and the law set's curves as in ``mcsim
                             analytic`` (seed: P, F, T, mu; others: load, area, and with
-                            tau friction, mu), dimensionless; NaN where a law set in the
-                            sweep lacks the curve
+                            tau friction, mu; with an environment vdw, capillary and the
+                            net load), dimensionless; NaN where a law set in the sweep
+                            lacks the curve
     summary (...)           pull_off, h_pull_off (1), pull_off_pressure (Pa),
                             work_of_separation, hysteresis (J/m^2), turn (1): present
                             when a law set of the sweep has a load and a retraction
-                            branch; NaN at the points of a law set without
+                            branch; NaN at the points of a law set without; with an
+                            environment also work_of_separation_contact, _vdw,
+                            _capillary (J/m^2), kelvin_radius, rq, summit_offset (m)
     regime (...)            tabor, maugis_lambda, adhesion_parameter, plasticity_index
                             (1; NaN where undefined: no z0, no H)
     strings (...)           law_used (the law set of the point, ``auto`` resolved),
@@ -28,7 +31,8 @@ every variable has ``units`` and ``long_name`` attributes; schema :data:`SCHEMA_
                             law, varied (JSON list of the dimension names), surface,
                             material (JSON of the inputs before variation, SI),
                             turn (NaN: zero approach load), mc, and with mc area,
-                            realizations, seed_entropy; complete; checksum
+                            realizations, seed_entropy; with an environment, environment
+                            (JSON of its inputs before variation, SI); complete; checksum
 
 Strings are fixed-length UTF-8 bytes with ``_Encoding = "utf-8"`` (netCDF readers give
 text). A sweep in progress keeps its completed points in ``<stem>.partial<suffix>``
@@ -68,7 +72,15 @@ INPUTS: dict[str, tuple[str, tuple[str, ...], str]] = {
     "H": ("pressure", ("H",), "hardness"),
     "law": ("", ("law",), "law set"),
     "area": ("area", ("area",), "nominal pad area of the Monte Carlo patches"),
+    "rh": ("dimensionless", ("rh",), "relative humidity of the environment"),
+    "hamaker": ("energy", ("hamaker",), "Hamaker constant across the gaps"),
+    "contact_angle": ("angle", ("contact_angle",), "contact angle of the condensing liquid"),
+    "cutoff": ("length", ("cutoff",), "cutoff gap D0 of the environment (contact below it)"),
+    "temperature": ("temperature", ("temperature",), "temperature of the environment"),
 }
+
+#: Inputs of :data:`INPUTS` that set the environment (:class:`mcsim.physics.environment.Environment`).
+ENVIRONMENT_INPUTS = ("rh", "hamaker", "contact_angle", "cutoff", "temperature")
 
 
 #: Dimension name of each input whose name is taken by an output.
@@ -83,6 +95,23 @@ SUMMARY = {
     "work_of_separation": ("J/m^2", "integral of the tensile load over d on retraction"),
     "hysteresis": ("J/m^2", "integral of (approach - retraction load) over d"),
     "turn": ("1", "closest approach h_turn = d_turn/sigma before retraction"),
+}
+
+
+#: Adhesion-summary variables of a sweep with an environment: unit and meaning.
+ENVIRONMENT_SUMMARY = {
+    "work_of_separation_contact": ("J/m^2", "contact part of work_of_separation"),
+    "work_of_separation_vdw": (
+        "J/m^2",
+        "van der Waals work of separation from the turn to infinity",
+    ),
+    "work_of_separation_capillary": (
+        "J/m^2",
+        "capillary work of separation from the turn to infinity",
+    ),
+    "kelvin_radius": ("m", "Kelvin radius r_K = gamma_L V_m/(R T ln(1/RH))"),
+    "rq": ("m", "rms height about the mean plane used by the environment"),
+    "summit_offset": ("m", "mean summit plane above the mean plane used by the environment"),
 }
 
 
@@ -113,6 +142,8 @@ CURVES = {
     "load": "net normal force/(A_n K), positive when compressive",
     "area": "real contact area A_r/A_n",
     "friction": "friction tau A_r/(A_n K) (Bowden-Tabor)",
+    "vdw": "van der Waals attraction across the gaps per nominal area/K, > 0 attractive",
+    "capillary": "capillary attraction per nominal area/K, > 0 attractive",
 }
 
 
@@ -238,7 +269,8 @@ def _describe_values(values: np.ndarray, unit: str) -> str:
     return f"{values.size} values from {values.min():.4g} to {values.max():.4g}{u}"
 
 
-def empty_sweep(dims, grid, h, curve_names, summary: bool, mc: bool) -> Sweep:
+def empty_sweep(dims, grid, h, curve_names, summary: bool, mc: bool,
+                environment: bool = False) -> Sweep:  # fmt: skip
     shape = tuple(len(v) for v in grid)
     curve_shape = (*shape, len(h))
     coords = {d: v for d, v in zip(dims, grid)} | {"h": np.asarray(h)}
@@ -255,7 +287,7 @@ def empty_sweep(dims, grid, h, curve_names, summary: bool, mc: bool) -> Sweep:
     for q in curve_names:
         add(q, "1", CURVES.get(q, q), per_h=True)
     if summary:
-        for k, (u, m) in SUMMARY.items():
+        for k, (u, m) in (SUMMARY | (ENVIRONMENT_SUMMARY if environment else {})).items():
             add(k, u, m)
     for k, m in REGIME.items():
         add(k, "1", m)

@@ -63,9 +63,12 @@ from mcsim.physics.adhesion import (
     tabor_parameter,
 )
 from mcsim.physics.analytic import gw_curves, quantities
+from mcsim.physics.environment import Environment
 from mcsim.physics.laws import get_law_set
 from mcsim.store import files, runfile
 from mcsim.store.sweepfile import (
+    ENVIRONMENT_INPUTS,
+    ENVIRONMENT_SUMMARY,
     INPUTS,
     SCHEMA_VERSION,
     SUMMARY,
@@ -104,12 +107,16 @@ def parse_values(name: str, spec) -> np.ndarray:
 
     ``spec`` is a range ``"start:stop:num[:log]"`` (inclusive, start <= stop), a comma
     list ``"0.3nm,1nm"``, or a sequence of numbers (SI) or quantity strings. A bare
-    number is SI, as in every other option (``gamma=0.05:1:5`` is in J/m²).
+    number is SI, as in every other option (``gamma=0.05:1:5`` is in J/m²), except in a
+    string for ``contact_angle``, where it is in degrees, as ``--contact-angle``
+    (``contact_angle=0:80:9``; ``"0.5 rad"`` with its unit).
     """
     if name not in INPUTS:
         raise _unknown_input(name)
     dimension = INPUTS[name][0]
     where = f"vary {name}"
+    if name == "contact_angle" and isinstance(spec, str):
+        spec = _in_degrees(spec)
     if isinstance(spec, str):
         text = spec.strip()
         if not text:
@@ -140,6 +147,19 @@ def parse_values(name: str, spec) -> np.ndarray:
     return values
 
 
+def _in_degrees(spec: str) -> str:
+    """A contact-angle spec with ``deg`` after each bare number (its values, or a range's
+    start and stop): a bare angle is in degrees, as on the command line."""
+
+    def unit(x: str) -> str:
+        return x if units.has_unit(x) else f"{x.strip()} deg"
+
+    if ":" in spec:
+        parts = spec.split(":")
+        return ":".join([unit(parts[0]), unit(parts[1]), *parts[2:]])
+    return ",".join(unit(x) for x in spec.split(","))
+
+
 @dataclass(frozen=True)
 class _Point:
     """One grid point: its flat index (C order) and its inputs."""
@@ -149,6 +169,7 @@ class _Point:
     material: Material
     law: str
     area: float | None
+    environment: Environment | None = None
 
 
 @dataclass(frozen=True)
@@ -163,19 +184,26 @@ class _Config:
     device: str = "cpu"
 
 
-def _point(base_surface, base_material, law, area, names, values, index) -> _Point:
+def _point(base_surface, base_material, base_environment, law, area, names, values,
+           index) -> _Point:  # fmt: skip
     """The inputs at one point; a bad combination raises ParameterError (a failed point)."""
-    surface_changes, material_changes = {}, {}
+    surface_changes, material_changes, environment_changes = {}, {}, {}
     for name, value in zip(names, values):
         if name == "law":
             law = str(value)
         elif name == "area":
             area = float(value)
+        elif name in ENVIRONMENT_INPUTS:
+            environment_changes[name] = float(value)
         else:
             for f in INPUTS[name][1]:
                 (surface_changes if f in _SURFACE_FIELDS else material_changes)[f] = float(value)
+    environment = base_environment
+    if environment_changes:
+        environment = dataclasses.replace(environment, **environment_changes)
     return _Point(index, dataclasses.replace(base_surface, **surface_changes),
-                  dataclasses.replace(base_material, **material_changes), law, area)  # fmt: skip
+                  dataclasses.replace(base_material, **material_changes), law, area,
+                  environment)  # fmt: skip
 
 
 # --- one point -----------------------------------------------------------------------------
@@ -189,8 +217,8 @@ def has_summary(law: str) -> bool:
     return "load" in laws.names and laws.retract
 
 
-def _curve_names(law: str, material: Material) -> tuple[str, ...]:
-    return quantities("jkr" if law == "auto" else law, material)
+def _curve_names(law: str, material: Material, environment: bool = False) -> tuple[str, ...]:
+    return quantities("jkr" if law == "auto" else law, material, environment)
 
 
 def evaluate(point: _Point, config: _Config) -> dict:
@@ -218,7 +246,10 @@ def _evaluate(point: _Point, config: _Config, out: dict) -> None:
     surface, material = point.surface, point.material
     law = choose_law(surface, material)[0] if point.law == "auto" else point.law
     out["law_used"] = law
-    curves = gw_curves(surface, material, np.asarray(config.h), law)
+    environment = point.environment
+    # The environment only where there is one: without, every call is as before it existed.
+    with_environment = {} if environment is None else {"environment": environment}
+    curves = gw_curves(surface, material, np.asarray(config.h), law, **with_environment)
     out |= curves.values
     out["tabor"] = _number(tabor_parameter(surface, material))
     out["maugis_lambda"] = _number(maugis_parameter(surface, material))
@@ -226,14 +257,17 @@ def _evaluate(point: _Point, config: _Config, out: dict) -> None:
     out["plasticity_index"] = _number(plasticity_index(surface, material))
     out["regime_warning"] = "; ".join(regime_warnings(surface, material, law))
     if has_summary(law):
-        summary = adhesion_summary(surface, material, law, turn=config.turn)
+        summary = adhesion_summary(surface, material, law, turn=config.turn, **with_environment)
         out |= {k: getattr(summary, k) for k in SUMMARY}
+        if environment is not None:
+            out |= {k: getattr(summary, k) for k in ENVIRONMENT_SUMMARY}
     if config.mc:
         from mcsim.studies.simulation import simulate
 
         run = simulate(surface, material, np.asarray(config.h), point.area,
                        realizations=config.realizations, seed=point_seed(config.entropy, point.index),
-                       law=law, device=config.device, workers=1, command="mcsim.sweep")  # fmt: skip
+                       law=law, device=config.device, workers=1, command="mcsim.sweep",
+                       **with_environment)  # fmt: skip
         for q in run.quantities:
             out[f"mc_{q}"] = run.summary.mean[q]
             out[f"mc_{q}_se"] = run.summary.se[q]
@@ -264,6 +298,7 @@ def sweep(
     law: str | None = None,
     h=DEFAULT_H,
     turn: float | None = None,
+    environment: Environment | None = None,
     mc: bool = False,
     area: float | str | None = None,
     realizations: int = 1,
@@ -288,7 +323,9 @@ def sweep(
         Input name to its values, in grid order: ``sigma``, ``R``, ``eta`` (surface),
         ``E`` (both E1 and E2), ``E1``, ``E2``, ``nu`` (both), ``nu1``, ``nu2``,
         ``gamma``, ``z0``, ``tau``, ``H`` (material), ``law`` (law-set names or
-        ``auto``), ``area`` (pad area, m², with ``mc`` only). Values: a string
+        ``auto``), ``area`` (pad area, m², with ``mc`` only), and the environment's
+        ``rh``, ``hamaker`` (J), ``contact_angle`` (rad; degrees when bare in a
+        string), ``cutoff`` (m), ``temperature`` (K). Values: a string
         ``"start:stop:num[:log]"`` or ``"a,b,c"`` with optional units (a bare number
         is SI), or a sequence (numbers in SI).
     law : str, optional
@@ -299,6 +336,12 @@ def sweep(
     turn : float, optional
         Closest approach d/σ before retraction for the adhesion summary (default:
         zero approach load, as ``mcsim adhesion``).
+    environment : Environment, optional
+        Van der Waals and capillary attraction at every point, before the varied
+        environment inputs are set (those alone start from the defaults of
+        :class:`~mcsim.physics.environment.Environment`: no Hamaker constant, dry). With
+        one, the curves gain ``vdw``, ``capillary`` and the net ``load`` and the summary
+        the works of the attraction, as ``mcsim analytic`` and ``mcsim adhesion``.
     mc : bool
         Also run :func:`mcsim.simulate` at each point (``realizations`` patches of
         ``area``), storing the mean and standard error of each curve.
@@ -387,7 +430,9 @@ def sweep(
     if math.prod(shape) > MAX_POINTS:
         raise ParameterError(f"vary: the grid has {math.prod(shape)} points "
                              f"({' x '.join(map(str, shape))}), more than the limit of {MAX_POINTS}")  # fmt: skip
-    _check_values(surface, material, names, grid)
+    if environment is None and any(n in ENVIRONMENT_INPUTS for n in names):
+        environment = Environment()
+    _check_values(surface, material, environment, names, grid)
     dims = [dimension_name(n) for n in names]
     with interrupt.interruptible(), contextlib.ExitStack() as stack:
         previous = finished = None
@@ -415,16 +460,17 @@ def sweep(
         entropy = np.random.SeedSequence(seed).entropy if mc else None
         config = _Config(h, turn, mc, realizations, entropy, device)
         laws = list(grid[names.index("law")]) if "law" in names else [law]
-        curve_names = _union(_curve_names(x, material) for x in laws)
+        with_env = environment is not None
+        curve_names = _union(_curve_names(x, material, with_env) for x in laws)
         if "tau" in names and material.tau is None:
-            curve_names = _union([curve_names, _curve_names(laws[0], dataclasses.replace(material, tau=1.0))])  # fmt: skip
+            curve_names = _union([curve_names, _curve_names(laws[0], dataclasses.replace(material, tau=1.0), with_env)])  # fmt: skip
         summary = any(has_summary(x) for x in laws)
-        result = empty_sweep(dims, grid, h, curve_names, summary, mc)
+        result = empty_sweep(dims, grid, h, curve_names, summary, mc, with_env)
         if command is None:
             command = (
                 f"mcsim.sweep(vary={ {n: _shown(v) for n, v in zip(names, grid)} }, law={law!r})"
             )
-        attrs = _attrs(surface, material, law, dims, grid, config, area_m2, command)
+        attrs = _attrs(surface, material, environment, law, dims, grid, config, area_m2, command)
         if finished is not None:
             return _already_finished(out, finished, attrs, seed_given)
         done = np.zeros(shape, dtype=bool)
@@ -442,7 +488,7 @@ def sweep(
             for k in result.data:
                 result.data[k][done] = previous["data"][k][done]
         points = (
-            _point(surface, material, law, area_m2, names, values, index)
+            _point(surface, material, environment, law, area_m2, names, values, index)
             for index, values in enumerate(_product(grid))
             if not done.flat[index]
         )
@@ -537,7 +583,7 @@ def _check_vary(vary: Mapping, law: str | None, mc: bool) -> tuple[list[str], li
     return names, [parse_values(n, vary[n]) for n in names]
 
 
-def _check_values(surface: Surface, material: Material, names, grid) -> None:
+def _check_values(surface: Surface, material: Material, environment, names, grid) -> None:
     """Each value on its own (with the other inputs at their base values) must be valid."""
     for name, values in zip(names, grid):
         if name in ("law", "area"):
@@ -548,13 +594,15 @@ def _check_values(surface: Surface, material: Material, names, grid) -> None:
         for v in values:
             changes = dict.fromkeys(INPUTS[name][1], float(v))
             base = surface if name in ("sigma", "R", "eta") else material
+            if name in ENVIRONMENT_INPUTS:
+                base = environment
             try:
                 dataclasses.replace(base, **changes)
             except ParameterError as err:
                 raise ParameterError(f"vary {name}: {err}") from None
 
 
-def _attrs(surface, material, law, dims, grid, config: _Config, area, command) -> dict:
+def _attrs(surface, material, environment, law, dims, grid, config: _Config, area, command) -> dict:
     surface_json = json.dumps({"sigma": surface.sigma, "R": surface.R, "eta": surface.eta,
                                "name": surface.name, "heights": runfile.heights_to_json(surface),
                                "units": {"sigma": "m", "R": "m", "eta": "m^-2"}})  # fmt: skip
@@ -572,6 +620,10 @@ def _attrs(surface, material, law, dims, grid, config: _Config, area, command) -
         "turn": math.nan if config.turn is None else config.turn,
         "mc": config.mc,
     }
+    if environment is not None:
+        attrs["environment"] = json.dumps(dataclasses.asdict(environment) | {"units": {
+            "hamaker": "J", "cutoff": "m", "rh": "1", "contact_angle": "rad", "temperature": "K",
+            "surface_tension": "J/m^2", "molar_volume": "m^3/mol"}})  # fmt: skip
     if config.mc:
         attrs |= {"area": math.nan if area is None else area, "area_unit": "m^2",
                   "realizations": config.realizations, "seed_entropy": str(config.entropy),

@@ -188,3 +188,44 @@ def test_bad_value_specs_name_the_field_and_what_is_allowed(spec, kwargs, messag
     with pytest.raises(ParameterError, match=message) as err:
         parse_values(spec, "pressure", "p", limit=10, **kwargs)
     assert str(err.value).startswith("p: ")
+
+
+# --- the environment's dimensions -------------------------------------------------------
+
+
+@pytest.mark.parametrize(
+    ("text", "dimension", "si"),
+    [
+        ("1.6e-19 J", "energy", 1.6e-19),
+        ("0.16 aJ", "energy", 1.6e-19),
+        ("160 zJ", "energy", 1.6e-19),
+        ("2 uJ", "energy", 2e-6),
+        ("180 deg", "angle", math.pi),
+        ("90°", "angle", math.pi / 2),
+        ("0.5 rad", "angle", 0.5),
+        ("298.15 K", "temperature", 298.15),
+        ("18 cm^3/mol", "molar_volume", 18e-6),
+        ("18 cm³/mol", "molar_volume", 18e-6),
+        ("0.018 L/mol", "molar_volume", 18e-6),
+        ("1.8e-5 m^3/mol", "molar_volume", 1.8e-5),
+    ],
+)
+def test_environment_dimensions_convert_to_si(text, dimension, si):
+    assert parse_quantity(text, dimension, "x") == pytest.approx(si, rel=1e-15)
+
+
+@pytest.mark.parametrize(
+    ("text", "dimension"),
+    [("1 J/m^2", "energy"), ("20 K", "angle"), ("25 degC", "temperature"),
+     ("25 °C", "temperature"), ("18 cm^3", "molar_volume"), ("1 nm", "energy")],
+)  # fmt: skip
+def test_environment_dimensions_refuse_units_of_another_dimension(text, dimension):
+    with pytest.raises(
+        UnitError, match=rf"field: unknown unit .* for an? {dimension.replace('_', ' ')}"
+    ):
+        parse_quantity(text, dimension, "field")
+
+
+def test_temperature_message_says_kelvin_only():
+    with pytest.raises(UnitError, match=r"no °C: give kelvin"):
+        parse_quantity("25 °C", "temperature", "temperature")

@@ -1,0 +1,126 @@
+"""Figures of the environment: the work of separation against relative humidity.
+
+>>> from mcsim.figures.environment import humidity_figure
+>>> fig = humidity_figure(read_sweep("rh.h5"))                        # doctest: +SKIP
+
+From a sweep over ``rh`` (``mcsim sweep --vary rh=... --law auto`` or another law set
+with an adhesion summary): the work of separation and its parts, contact, van der Waals
+and capillary (J/m², log axis), against RH, with the ceiling of the capillary work
+2γ_L cos θ (flat surfaces in contact as RH → 1; DelRio et al., Appl. Phys. Lett. 90,
+163104, 2007) and three regimes (after DelRio et al., Langmuir 25, 11727, 2009), bounded
+here where the capillary work reaches :data:`DRY_BELOW` and :data:`SATURATED_ABOVE` of
+the ceiling (linear interpolation between the sweep's points):
+
+* dry: W_cap < 10 % of the ceiling, the van der Waals and contact works dominate;
+* transition: the menisci spread over the gaps as r_K grows;
+* saturated: W_cap > 90 % of the ceiling, the liquid fills almost every gap.
+"""
+
+from __future__ import annotations
+
+import itertools
+import json
+import math
+
+import numpy as np
+
+from mcsim.model.errors import ParameterError
+
+#: Fraction of the ceiling 2γ_L cos θ below which the capillary work counts as dry.
+DRY_BELOW = 0.1
+#: Fraction of the ceiling above which it counts as saturated.
+SATURATED_ABOVE = 0.9
+
+#: The parts drawn, with their legend labels and styles.
+PARTS = {
+    "work_of_separation": ("total", {"color": "k", "lw": 2.0}),
+    "work_of_separation_contact": ("contact (summits)", {"color": "#0072B2", "ls": "--"}),
+    "work_of_separation_vdw": ("van der Waals (gaps)", {"color": "#009E73", "ls": "-."}),
+    "work_of_separation_capillary": ("capillary (menisci)", {"color": "#D55E00", "ls": ":"}),
+}
+
+
+def regime_bounds(rh: np.ndarray, capillary: np.ndarray, ceiling: float) -> tuple[float, float]:
+    """RH where the capillary work first reaches 10 % and 90 % of the ceiling, by linear
+    interpolation between the sweep's points; NaN where the sweep does not reach it, −inf
+    where its first point is already past it (the bound lies below the sweep)."""
+
+    def first(fraction: float) -> float:
+        above = np.flatnonzero(capillary >= fraction * ceiling)
+        if above.size == 0:
+            return math.nan
+        i = above[0]
+        if i == 0:
+            return -math.inf
+        y0, y1 = capillary[i - 1], capillary[i]
+        return float(rh[i - 1] + (fraction * ceiling - y0) / (y1 - y0) * (rh[i] - rh[i - 1]))
+
+    return first(DRY_BELOW), first(SATURATED_ABOVE)
+
+
+def humidity_figure(sweep):
+    """Work of separation (total, contact, vdW, capillary) against RH from an ``rh`` sweep.
+
+    Parameters
+    ----------
+    sweep : mcsim.store.sweepfile.Sweep
+        A sweep whose only varied input is ``rh``, with an adhesion summary.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    Raises
+    ------
+    ParameterError
+        A sweep that does not vary ``rh`` alone or has no capillary work.
+    """
+    from matplotlib.figure import Figure
+
+    if [d for d in sweep.grid if sweep.coords[d].size > 1] != ["rh"]:
+        raise ParameterError("plot: the humidity figure needs a sweep that varies rh alone")
+    if "work_of_separation_capillary" not in sweep.data:
+        raise ParameterError("plot: the sweep has no capillary work (use a law set with an "
+                             "adhesion summary: --law auto, jkr, dmt, maugis-dugdale)")  # fmt: skip
+    env = json.loads(sweep.attrs["environment"])
+    ceiling = 2 * env["surface_tension"] * math.cos(env["contact_angle"])
+    rh = np.asarray(sweep.coords["rh"], dtype=float)
+    order = np.argsort(rh)
+    rh = rh[order]
+    data = {k: np.ravel(sweep.data[k])[order] for k in PARTS}
+    fig = Figure(figsize=(6.4, 4.6), layout="constrained")
+    ax = fig.subplots()
+    positive = np.concatenate([v[v > 0] for v in data.values()] + [[ceiling]])
+    low = max(positive.min(), ceiling * 1e-6)
+    for key, (label, style) in PARTS.items():
+        y = data[key]
+        ax.plot(100 * rh, np.where(y > 0, y, np.nan), marker="o", ms=3, label=label, **style)
+    ax.axhline(
+        ceiling, color="0.4", lw=1, label=rf"ceiling $2\gamma_L\cos\theta$ = {ceiling:.3g} J/m$^2$"
+    )
+    dry, saturated = regime_bounds(rh, data["work_of_separation_capillary"], ceiling)
+    left, right = 100 * rh[0], 100 * rh[-1]
+    edges = [left, *(left if v == -math.inf else right if v != v else 100 * v
+                     for v in (dry, saturated)), right]  # fmt: skip
+    for (a, b), name, shade in zip(itertools.pairwise(edges), ("dry", "transition", "saturated"),
+                                   ("#56B4E9", "#E69F00", "#CC79A7")):  # fmt: skip
+        if b > a:
+            ax.axvspan(a, b, color=shade, alpha=0.12, lw=0)
+            ax.text((a + b) / 2, 0.02, name, transform=ax.get_xaxis_transform(), ha="center",
+                    va="bottom", fontsize=9)  # fmt: skip
+    ax.set_yscale("log")
+    ax.set_ylim(low / 2, ceiling * 3)
+    ax.set_xlim(left, right)
+    ax.set_xlabel("Relative humidity RH (%)")
+    ax.set_ylabel(r"Work of separation (J/m$^2$)")
+
+    def bound(v: float) -> str:
+        if v == -math.inf:
+            return f"below RH = {left:.0f} %"
+        return f"at RH = {100 * v:.0f} %" if v == v else f"not reached by RH = {right:.0f} %"
+
+    bounds = f"10 % of the ceiling {bound(dry)}, 90 % {bound(saturated)}"
+    ax.set_title(f"Work of separation against humidity ({sweep.attrs.get('law', '')})\n"
+                 f"regimes: capillary work {bounds}", fontsize=9)  # fmt: skip
+    ax.legend(fontsize=8, loc="upper left")
+    return fig

@@ -1,0 +1,99 @@
+"""gw_curves and load control with an environment (issue 22): the vdw and capillary columns
+against an independent quadrature of the proximity model, the net load, and no environment
+leaving every curve as it was."""
+
+import dataclasses
+import math
+
+import numpy as np
+import pytest
+from scipy import integrate
+
+from mcsim import gw_curves
+from mcsim.model.params import Material, Surface
+from mcsim.model.presets import MATERIALS, SURFACES
+from mcsim.physics.environment import Environment, gap_heights
+from mcsim.physics.loadcontrol import load_control
+
+# Surfaces nobody tuned the code to: one with rq and summit_offset given, one estimated.
+GIVEN = Surface(sigma=2.3e-9, R=0.9e-6, eta=23e12, rq=3.1e-9, summit_offset=2.2e-9, name="given")
+ESTIMATED = Surface(sigma=4.1e-9, R=3.3e-6, eta=5e12, name="estimated")
+MATERIAL = Material(E1=150e9, E2=150e9, nu1=0.25, nu2=0.25, gamma=0.3, z0=0.3e-9)
+ENV = Environment(hamaker=1.3e-19, cutoff=0.21e-9, rh=0.73, contact_angle=math.radians(17))
+H = np.array([2.7, 1.1, 0.3, -0.6])
+
+
+def quad_pressures(D, rq, env):
+    """p_vdW and p_cap (Pa) at mean-plane gap D by scipy quad over Gaussian heights
+    (PHYSICS.md: (A/6π) E[g⁻³; g >= D0] and (γ_L/r_K) P(D0 <= g < g_K), g = D − z)."""
+
+    def density(z):
+        return math.exp(-0.5 * (z / rq) ** 2) / (rq * math.sqrt(2 * math.pi))
+
+    top = D - env.cutoff  # z below it: open gap
+    vdw, _ = integrate.quad(lambda z: (D - z) ** -3 * density(z), -12 * rq, top,
+                            epsabs=0, epsrel=1e-12, limit=400, points=[min(top - 1e-3 * rq, 0)])  # fmt: skip
+    r_k = env.kelvin_radius
+    g_k = 2 * r_k * math.cos(env.contact_angle)
+    filled, _ = integrate.quad(density, D - g_k, top, epsabs=0, epsrel=1e-12, limit=400)
+    return env.hamaker / (6 * math.pi) * vdw, env.surface_tension / r_k * max(filled, 0.0)
+
+
+@pytest.mark.parametrize("surface", [GIVEN, ESTIMATED], ids=lambda s: s.name)
+@pytest.mark.parametrize("law", ["seed", "dmt"])
+def test_vdw_and_capillary_columns_agree_with_quad(surface, law):
+    curves = gw_curves(surface, MATERIAL, H, law, environment=ENV)
+    gap = gap_heights(surface)
+    for i, h in enumerate(H):
+        vdw, cap = quad_pressures(h * surface.sigma + gap.summit_offset, gap.rq, ENV)
+        assert curves.vdw[i] * MATERIAL.K == pytest.approx(vdw, rel=2e-3), f"vdw at h = {h}"
+        assert curves.capillary[i] * MATERIAL.K == pytest.approx(cap, rel=2e-3), f"cap at h = {h}"
+
+
+def test_seed_keeps_its_columns_and_adds_the_net_load():
+    dry = gw_curves(GIVEN, MATERIAL, H)
+    wet = gw_curves(GIVEN, MATERIAL, H, environment=ENV)
+    assert list(wet.values) == ["contact_fraction", "P", "F", "T", "mu", "vdw", "capillary", "load"]
+    for q in dry.values:
+        np.testing.assert_array_equal(wet.values[q], dry.values[q], err_msg=q)
+    np.testing.assert_array_equal(wet.load, wet.P - wet.vdw - wet.capillary)
+
+
+def test_contact_law_load_is_net_of_the_attraction_and_mu_uses_it():
+    material = dataclasses.replace(MATERIAL, tau=50e6)
+    dry = gw_curves(GIVEN, material, H, "dmt")
+    wet = gw_curves(GIVEN, material, H, "dmt", environment=ENV)
+    np.testing.assert_array_equal(wet.load, dry.load - wet.vdw - wet.capillary)
+    np.testing.assert_array_equal(wet.friction, dry.friction)  # friction from the contacts
+    net = wet.load > 0
+    np.testing.assert_allclose(wet.mu[net], wet.friction[net] / wet.load[net], rtol=1e-15)
+    assert np.all(np.isnan(wet.mu[~net]))
+
+
+def test_without_environment_the_curves_are_the_same_objects_values():
+    for law in ("seed", "dmt", "jkr"):
+        a = gw_curves(SURFACES["rough"], MATERIALS["silicon"], H, law)
+        b = gw_curves(SURFACES["rough"], MATERIALS["silicon"], H, law, environment=None)
+        assert a.values.keys() == b.values.keys()
+        for q in a.values:
+            np.testing.assert_array_equal(a.values[q], b.values[q], err_msg=f"{law} {q}")
+
+
+def test_no_condensation_at_90_degrees_or_dry():
+    for env in (
+        dataclasses.replace(ENV, contact_angle=math.pi / 2),
+        dataclasses.replace(ENV, rh=0.0),
+    ):
+        curves = gw_curves(GIVEN, MATERIAL, H, environment=env)
+        assert np.all(curves.capillary == 0) and np.all(curves.vdw > 0)
+
+
+def test_load_control_balances_the_net_load():
+    pressure = np.array([1e3, 1e5, 1e7])
+    result = load_control(GIVEN, MATERIAL, pressure, "dmt", environment=ENV)
+    assert result.quantity == "load"
+    again = gw_curves(GIVEN, MATERIAL, result.h, "dmt", environment=ENV)
+    np.testing.assert_allclose(again.load * MATERIAL.K, pressure, rtol=1e-6)
+    seed = load_control(GIVEN, MATERIAL, pressure, "seed", environment=ENV)
+    assert seed.quantity == "load"
+    np.testing.assert_allclose(seed.curves.load * MATERIAL.K, pressure, rtol=1e-6)
