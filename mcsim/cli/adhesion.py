@@ -7,6 +7,7 @@ import math
 
 from mcsim.cli.display import (
     contact_inputs,
+    cutoff_flag,
     cutoff_notes,
     describe_inputs,
     environment_notes,
@@ -88,6 +89,12 @@ def run(args) -> int:
             )
     values = summary.to_dict()
     notes += cutoff_notes(surface, material, summary.law, summary.h_pull_off)
+    flag = cutoff_flag(surface, material, summary)
+    if flag:
+        notes.append(f"warning: the pull-off of {summary.pull_off_pressure:.3g} Pa is {flag}")
+    notes.append("note: the mean-field curves of an infinite surface (GW integrals); finite "
+                 "pads scatter around them and may stick where the mean does not: "
+                 "mcsim simulate --cycle + mcsim pads, or mcsim sweep --pads")  # fmt: skip
     turn_from = {"given": "given by --turn", "zero load on approach": "zero approach load"}.get(
         summary.turn_from, summary.turn_from
     )
@@ -102,7 +109,8 @@ def run(args) -> int:
                             "minus vdw and capillary attraction (magnitude)")  # fmt: skip
     if args.format == "json":
         out = {k: values[k] for k in keys}
-        out |= {"turn_from": turn_from, "preload": preload, "law": summary.law}
+        out |= {"turn_from": turn_from, "preload": preload, "law": summary.law,
+                "pull_off_flag": flag}  # fmt: skip
         if environment is not None:
             out["heights_source"] = summary.heights_source
         clean = {k: (None if isinstance(v, float) and not math.isfinite(v) else v)

@@ -74,6 +74,9 @@ def cutoff_notes(surface, material, law: str, h) -> list[str]:
     from mcsim.physics.laws import dmt
 
     h = np.atleast_1d(np.asarray(h, dtype=float))
+    h = h[np.isfinite(h)]  # no pull-off: no separation to speak of
+    if not h.size:
+        return []
     frac = dmt.truncated_fraction(surface, material, h)
     where = (f"at h = {h[0]:g}" if h.size == 1 else
              f"from {frac.min():.3g} to {frac.max():.3g} over h = {h.min():g} .. {h.max():g}")  # fmt: skip
@@ -81,6 +84,31 @@ def cutoff_notes(surface, material, law: str, h) -> list[str]:
         where = f"{frac[0]:.3g} {where}"
     return [f"note: dmt cuts the van der Waals tail at a gap of {dmt.DEFAULT_CUTOFF:g} z0: "
             f"it drops {where} of the attraction (mcsim.physics.laws.dmt.truncated_fraction)"]  # fmt: skip
+
+
+#: Share of the attraction the dmt tail cutoff may drop at a pull-off before the pull-off
+#: is the cutoff's (a numerical choice), not the law's: more than half of it.
+CUTOFF_DECIDES = 0.5
+
+
+def cutoff_flag(surface, material, summary) -> str | None:
+    """Why a dmt pull-off is decided by the tail cutoff, or None if it is not.
+
+    Far out in the tail of the heights the few summits' van der Waals tails make the mean
+    approach load tensile by a vanishing amount (1e-21 K on the intermediate surface);
+    where the cutoff drops most of the attraction there, the "pull-off" is the cutoff's.
+    """
+    if summary.law != "dmt" or not summary.pull_off > 0:
+        return None
+    from mcsim.physics.laws import dmt
+
+    frac = float(dmt.truncated_fraction(surface, material, summary.h_pull_off)[0])
+    if frac <= CUTOFF_DECIDES:
+        return None
+    return (
+        f"decided by the dmt tail cutoff, which drops {frac:.3g} of the attraction at h = "
+        f"{summary.h_pull_off:.6g}: no physical pull-off (treat it as none)"
+    )
 
 
 def print_lines(lines: list[str]) -> None:

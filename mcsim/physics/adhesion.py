@@ -381,7 +381,8 @@ def adhesion_summary(
             # Under no external load the surfaces never come together: nothing to pull off.
             top = _top(surface, laws, material)
             return _summary(surface, material, laws, top,
-                            "none: the approach load is never tensile, the surfaces rest apart",
+                            "none: the mean approach load is never tensile, so the mean curve of an "
+                            "infinite surface rests apart",
                             0.0, math.nan, 0.0, 0.0,
                             _environment_parts(surface, top, environment, 0.0, zero=True))  # fmt: skip
     else:

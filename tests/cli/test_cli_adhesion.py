@@ -250,3 +250,42 @@ def test_analytic_retraction_after_a_preload_is_the_retraction_after_its_turn(ca
 def test_bad_preloads_are_one_line_errors(capsys, args, match):
     code, _, err = run_cli(capsys, *args, "--surface", "smooth", "--law", "jkr")
     assert code != 0 and match in err and len(err.strip().splitlines()) == 1
+
+
+@pytest.mark.parametrize("law", ["seed", "jkr", "dmt", "maugis-dugdale", "elastic-plastic"])
+@pytest.mark.parametrize("surface", ["super-smooth", "smooth", "intermediate", "rough"])
+def test_adhesion_of_every_law_set_on_every_table_1_surface_leaks_no_warning(capsys, surface, law):
+    """Warnings as errors: a numerical warning (scipy's IntegrationWarning, NumPy's) escapes
+    ``main`` as an exception and fails here; mcsim's own findings are one line each."""
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        code, out, err = run_cli(capsys, "adhesion", "--surface", surface, "--law", law,
+                                 "--format", "json")  # fmt: skip
+    assert code in (0, 2), err
+    assert "Traceback" not in err and " nan" not in err
+    if code == 2:  # no net load or no retraction branch: refused in one line
+        assert err.count("mcsim: error:") == 1, err
+    else:
+        assert json.loads(out)["law"] == law
+
+
+def test_a_dmt_pull_off_decided_by_the_tail_cutoff_is_flagged(capsys):
+    code, out, err = run_cli(capsys, "adhesion", "--surface", "intermediate", "--law", "dmt",
+                             "--format", "json")  # fmt: skip
+    assert code == 0
+    flag = json.loads(out)["pull_off_flag"]
+    assert flag.startswith("decided by the dmt tail cutoff") and "treat it as none" in flag
+    assert "decided by the dmt tail cutoff" in err
+
+
+def test_a_physical_dmt_pull_off_is_not_flagged(capsys):
+    code, out, _ = run_cli(capsys, "adhesion", "--surface", "smooth", "--law", "dmt",
+                           "--format", "json")  # fmt: skip
+    assert code == 0 and json.loads(out)["pull_off_flag"] is None
+
+
+def test_adhesion_says_it_is_the_mean_field_of_an_infinite_surface_and_points_to_pads(capsys):
+    _, _, err = run_cli(capsys, "adhesion", "--surface", "rough", "--law", "jkr")
+    assert "mean-field curves of an infinite surface" in err and "mcsim pads" in err
