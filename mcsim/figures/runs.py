@@ -97,14 +97,8 @@ def run_figure(run):
     from mcsim.physics.analytic import gw_curves
 
     runs = [run] if hasattr(run, "spec") else list(run)
-    branched = [r for r in runs if r.spec.cycle or tuple(r.quantities) != PANELS]
-    if branched and len(runs) == 1:
-        return _branch_run_figure(run if hasattr(run, "spec") else runs[0])
-    if branched:
-        raise MCSimError(
-            "overlaying runs needs the seed law set without --cycle; "
-            f"plot {branched[0].path or 'that run'} on its own"
-        )
+    if any(r.spec.cycle or tuple(r.quantities) != PANELS for r in runs):
+        return branch_runs_figure(runs)
     lines, overlays, info = [], [], []
     for i, r in enumerate(runs):
         spec = r.spec
@@ -132,46 +126,88 @@ def run_figure(run):
     return panel_figure(lines, overlays, info)
 
 
-def _branch_run_figure(run):
-    """:func:`run_figure` of a run of any law set, approach and (for a cycle) retraction:
-    one panel per quantity on linear axes (the load is signed), analytic curves where
-    :func:`mcsim.gw_curves` gives them."""
+#: Axis labels of the law sets' quantities (the seed's are :data:`LABELS`).
+BRANCH_LABELS = {
+    "contact_fraction": LABELS["contact_fraction"],
+    "load": r"Net load $W/(A_n K)$ (compressive > 0)",
+    "area": r"Real contact area $A_r/A_n$",
+    "friction": r"Friction $\tau A_r/(A_n K)$ (Bowden–Tabor)",
+    "mu": r"Friction coefficient $\mu$ = friction/load",
+}
+
+#: A positive quantity whose values span more than this ratio is drawn on a log axis.
+DECADES_FOR_LOG = 100.0
+
+
+def _log_worthy(values) -> bool:
+    """Whether values (of one panel) are all >= 0 and their positive ones span decades."""
+    v = np.concatenate([np.ravel(np.asarray(x, dtype=float)) for x in values])
+    v = v[np.isfinite(v)]
+    positive = v[v > 0]
+    return bool(v.size and np.all(v >= 0) and positive.size
+                and positive.max() > DECADES_FOR_LOG * positive.min())  # fmt: skip
+
+
+def branch_runs_figure(runs):
+    """:func:`run_figure` of runs of any law set, approach and (for a cycle) retraction,
+    overlaid: one colour per run, a line style per branch (approach solid, retraction
+    dashed), analytic curves where :func:`mcsim.gw_curves` gives them. A quantity that
+    stays positive and spans decades is drawn on a log axis; the signed load on a linear
+    one with its zero marked."""
     from matplotlib.figure import Figure
 
     from mcsim.engine.statistics import MIN_CONTACTS, expected_values
     from mcsim.store.results import analytic_curves
 
-    spec = run.spec
-    fine = np.linspace(spec.h.max(), spec.h.min(), 200)
-    curves = analytic_curves(spec, fine)
-    few = run.summary.expected_contacts < MIN_CONTACTS
-    names = run.quantities
+    names = list(runs[0].quantities)
+    for r in runs[1:]:
+        if list(r.quantities) != names:
+            raise MCSimError(f"plot: {r.path or 'a run'} has the quantities {', '.join(r.quantities)}, "
+                             f"the first run {', '.join(names)}: overlay runs of one law set")  # fmt: skip
     fig = Figure(figsize=(12, 7), layout="constrained")
     axes = fig.subplots(2, math.ceil((len(names) + 1) / 2)).ravel()
-    pad = 0.03 * (fine[0] - fine[-1]) if fine[0] > fine[-1] else 0.5
-    M = spec.h.size
-    for k, branch in enumerate(spec.branches):
-        colour = _COLOURS[k]
-        analytic = expected_values(spec, curves[k])
-        rows = slice(k * M, (k + 1) * M)
-        for ax, q in zip(axes, names):
-            ax.plot(fine, analytic[q], lw=1.6, color=colour, label=f"analytic GW, {branch}")
-            _errorbars(ax, spec.h, run.summary.mean[q][rows], run.summary.se[q][rows], False,
-                       colour, label=f"Monte Carlo mean ± 2 SE, {branch}", few=few[rows])  # fmt: skip
+    drawn = {q: [] for q in names}
+    h_all = np.concatenate([r.spec.h for r in runs])
+    lo, hi = float(h_all.min()), float(h_all.max())
+    pad = 0.03 * (hi - lo) if hi > lo else 0.5
+    info = []
+    for i, run in enumerate(runs):
+        spec = run.spec
+        fine = np.linspace(spec.h.max(), spec.h.min(), 200)
+        curves = analytic_curves(spec, fine)
+        few = run.summary.expected_contacts < MIN_CONTACTS
+        colour = _COLOURS[i % len(_COLOURS)]
+        who = "" if len(runs) == 1 else f"{run.path.name if run.path else f'run {i + 1}'}, "
+        M = spec.h.size
+        for k, branch in enumerate(spec.branches):
+            analytic = expected_values(spec, curves[k])
+            rows = slice(k * M, (k + 1) * M)
+            style = {"color": colour if len(runs) > 1 else _COLOURS[k], "ls": ("-", "--")[k]}
+            for ax, q in zip(axes, names):
+                mean, se = run.summary.mean[q][rows], run.summary.se[q][rows]
+                drawn[q] += [analytic[q], mean]
+                ax.plot(fine, analytic[q], lw=1.6, label=f"analytic GW, {who}{branch}", **style)
+                _errorbars(ax, spec.h, mean, se, False, style["color"],
+                           label=f"Monte Carlo mean ± 2 SE, {who}{branch}", few=few[rows])  # fmt: skip
+        info += [
+            f"run: {run.path.name if run.path else '(not saved)'}",
+            *inputs_text(spec.surface, spec.material, spec.law),
+            f"patch $A$ = {spec.area * 1e12:.4g} µm$^2$, N ~ {spec.count}, E[N] = {spec.expected_summits:.4g}",
+            f"{spec.realizations} realization(s), seed entropy {spec.entropy}",
+            *([f"cycle: approach, then retraction from h = {spec.turn:g}"] if spec.cycle else []),
+        ]
     for ax, q in zip(axes, names):
-        ax.set_xlim(fine[0] + pad, fine[-1] - pad)
+        ax.set_xlim(hi + pad, lo - pad)
+        if _log_worthy(drawn[q]):
+            ax.set_yscale("log")
+        elif q == "load":
+            ax.axhline(0.0, color="0.4", lw=0.8, zorder=0.5)
         ax.set_xlabel(X_LABEL, fontsize=8)
-        ax.set_ylabel(f"{q} = {run.normalisation(q)}", fontsize=8)
+        ax.set_ylabel(BRANCH_LABELS.get(q, f"{q} = {runs[0].normalisation(q)}"), fontsize=8)
         ax.grid(True, alpha=0.4)
     axes[0].legend(fontsize=7)
     for ax in axes[len(names) :]:
         ax.axis("off")
-    info = [
-        f"run: {run.path.name if run.path else '(not saved)'}",
-        *inputs_text(spec.surface, spec.material, spec.law),
-        f"patch $A$ = {spec.area * 1e12:.4g} µm$^2$, N ~ {spec.count}, E[N] = {spec.expected_summits:.4g}",
-        f"{spec.realizations} realization(s), seed entropy {spec.entropy}",
-        *([f"cycle: approach, then retraction from h = {spec.turn:g}"] if spec.cycle else []),
-    ]
-    axes[-1].text(0, 1, "\n".join(info), va="top", fontsize=9, transform=axes[-1].transAxes)
+    axes[-1].text(0, 1, "\n".join(info), va="top", fontsize=8 if len(runs) > 1 else 9,
+                  transform=axes[-1].transAxes)  # fmt: skip
     return fig
