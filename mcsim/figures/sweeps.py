@@ -68,6 +68,7 @@ LABELS = {
     "pull_off_pressure": "Pull-off force per nominal area $F_{po}/A_n$ (Pa)",
     "work_of_separation": r"Work of separation $\Delta\gamma$ (J/m$^2$)",
     "mu": r"Friction coefficient $\mu$ (blank: load $\leq$ 0)",
+    "load": r"Net load $W/(A_n K)$ (compressive > 0)",
     "F": r"Adhesion term $\bar F = F/(A_n K)$ (Eq. 5)",
     "T": r"Friction force $\bar T = T/(A_n K)$ (Eq. 7)",
     "contact_fraction": r"Contact fraction $N_c/N$",
@@ -213,7 +214,10 @@ def _panels(sweep, name: str) -> list[str]:
     """Variables of the figure: the adhesion summary where it exists, else the seed's curves."""
     have = [k for k in ("pull_off_pressure", "work_of_separation") if _finite(sweep, k)]
     if have:
-        return [*have, *(["mu"] if "mu" in sweep.data else [])]
+        if "mu" in sweep.data:
+            return [*have, "mu"]
+        # without friction (no tau) the Monte Carlo curves are drawn on the net load
+        return [*have, *(["load"] if "mc_load" in sweep.data else [])]
     curves = [k for k in ("F", "T", "mu") if k in sweep.data]
     if not curves:
         raise ParameterError(f"plot: {name} has no pull_off_pressure, work_of_separation or "

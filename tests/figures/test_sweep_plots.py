@@ -237,3 +237,14 @@ def test_kind_is_refused_for_a_run_file(capsys, tmp_path):
         capsys, "plot", str(run), "--out", str(tmp_path / "r.png"), "--kind", "map"
     )
     assert code != 0 and "applies to sweep files" in err and len(err.strip().splitlines()) == 1
+
+
+def test_a_monte_carlo_sweep_without_friction_draws_its_points_on_the_net_load():
+    """Without tau there is no mu to carry the Monte Carlo points: they go on the load panel."""
+    result = sweep(SURFACES["smooth"], MATERIALS["silicon"], {"sigma": "1.5nm,2nm"}, law="jkr",
+                   h=[2.0, 1.0, 0.0], mc=True, area="3 um^2", realizations=2, seed=1)  # fmt: skip
+    fig = sweep_figure(result)
+    load = next(ax for ax in fig.axes if ax.get_ylabel().startswith("Net load"))
+    drawn = np.concatenate([c.lines[0].get_data()[1] for c in load.containers])
+    expected = np.asarray(result.data["mc_load"], dtype=float).ravel()  # every point and h
+    np.testing.assert_array_equal(np.sort(drawn), np.sort(expected[np.isfinite(expected)]))
