@@ -286,11 +286,15 @@ def _lines_figure(sweep, dims: list[str], rows: list[int], name: str):
         log_y = key in LOG_VARIABLES
         lines = _line_set(sweep, key, x_axis, other, rows if per_h else [None], per_h)
         zeros = sum(int(np.sum(y == 0)) for _, y, _, _ in lines)
+        shades = _shades(sweep, other) if len(lines) > MAX_LEGEND_LINES else None
         for i, (label, y, row, index) in enumerate(lines):
             style = {
                 "color": _COLOURS[i % len(_COLOURS)],
                 "linestyle": _LINESTYLES[i % len(_LINESTYLES)],
             }
+            if shades is not None:  # many lines: one colour scale, a colour bar for a legend
+                style = {"color": shades.to_rgba(_scaled(sweep, other)[index]), "linestyle": "-"}
+                label = None
             y = np.where(y > 0, y, np.nan) if log_y else y
             marker = "o" if categorical or x.size <= 12 else None
             if categorical:  # law sets: no line between them
@@ -326,11 +330,31 @@ def _lines_figure(sweep, dims: list[str], rows: list[int], name: str):
         ax.grid(True, which="major", alpha=0.4)
         if log_x or log_y:
             ax.grid(True, which="minor", alpha=0.12)
-        if len(lines) > 1 or f"mc_{key}" in sweep.data:
+        if shades is not None:
+            bar = fig.colorbar(shades, ax=ax, pad=0.01)
+            bar.set_label(axis_label(sweep, other), fontsize=8)
+        elif len(lines) > 1 or f"mc_{key}" in sweep.data:
             ax.legend(fontsize=7, title=_legend_title(sweep, other, per_h), title_fontsize=7,
                       loc="lower left")  # fmt: skip
     fig.suptitle(_title(sweep, name), fontsize=9)
     return fig
+
+
+#: Most lines of one panel told apart by a legend; beyond, a colour scale and a colour bar.
+MAX_LEGEND_LINES = 6
+
+
+def _shades(sweep, other):
+    """A colour scale (``ScalarMappable``) over the values of the second input, log-spaced
+    for a log grid; None for a categorical input (law sets: a legend stays readable)."""
+    from matplotlib import cm, colors
+
+    values = _scaled(sweep, other)
+    if values.dtype.kind in "US":
+        return None
+    log = is_log_grid(sweep.coords[other])
+    norm = (colors.LogNorm if log else colors.Normalize)(values.min(), values.max())
+    return cm.ScalarMappable(norm=norm, cmap="viridis")
 
 
 def _line_set(sweep, key, x_axis, other, rows, per_h):

@@ -248,3 +248,23 @@ def test_a_monte_carlo_sweep_without_friction_draws_its_points_on_the_net_load()
     drawn = np.concatenate([c.lines[0].get_data()[1] for c in load.containers])
     expected = np.asarray(result.data["mc_load"], dtype=float).ravel()  # every point and h
     np.testing.assert_array_equal(np.sort(drawn), np.sort(expected[np.isfinite(expected)]))
+
+
+def test_many_lines_get_a_colour_bar_instead_of_a_long_legend():
+    result = sweep(SURFACES["smooth"], MATERIALS["silicon"],
+                   {"sigma": "1nm,2nm", "gamma": "0.05:1:13"}, law="dmt", h=[1.0, 0.0])  # fmt: skip
+    fig = sweep_figure(result, kind="lines")
+    panels = [ax for ax in fig.axes if ax.get_label() != "<colorbar>"]
+    bars = [ax for ax in fig.axes if ax.get_label() == "<colorbar>"]
+    assert len(bars) == len(panels)  # one colour bar per panel
+    assert all(ax.get_legend() is None for ax in panels)
+    assert all("work of adhesion" in bar.get_ylabel() for bar in bars)
+    assert len(panels[0].get_lines()) >= 13  # every value of gamma is still drawn
+
+
+def test_a_few_lines_keep_their_legend():
+    result = sweep(SURFACES["smooth"], MATERIALS["silicon"],
+                   {"sigma": "1nm,2nm", "gamma": "0.1,0.5"}, law="dmt", h=[1.0, 0.0])  # fmt: skip
+    fig = sweep_figure(result, kind="lines")
+    assert all(ax.get_label() != "<colorbar>" for ax in fig.axes)
+    assert len(fig.axes[0].get_legend().get_texts()) == 2
