@@ -6,6 +6,7 @@ import json
 import math
 
 from mcsim.cli.display import (
+    announce,
     contact_inputs,
     cutoff_flag,
     cutoff_notes,
@@ -87,6 +88,8 @@ def run(args) -> int:
                 args.plot,
                 overwrite=args.overwrite,
             )
+    if args.plot:
+        announce(args.plot, "approach and retraction loads", quiet=args.quiet)
     values = summary.to_dict()
     notes += cutoff_notes(surface, material, summary.law, summary.h_pull_off)
     flag = cutoff_flag(surface, material, summary)
@@ -144,4 +147,5 @@ def add_parser(sub) -> None:
     p.add_argument("--plot", metavar="FILE.png", help="also draw the approach and retraction load "
                    "curves with the pull-off marked and the work of separation shaded")  # fmt: skip
     p.add_argument("--overwrite", action="store_true", help="replace an existing --plot file")
+    p.add_argument("--quiet", action="store_true", help="no 'wrote FILE' line")
     p.set_defaults(func=run)

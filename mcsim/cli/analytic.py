@@ -6,6 +6,7 @@ import json
 from pathlib import Path
 
 from mcsim.cli.display import (
+    announce,
     contact_inputs,
     cutoff_notes,
     describe_inputs,
@@ -77,6 +78,7 @@ def _load_control(args, surface, material, law: str, notes: list[str], environme
         from mcsim.figures.style import save
 
         save(load_control_figure(result), args.plot, overwrite=args.overwrite, inputs=inputs)
+        announce(args.plot, "A_r/A_n against p/E* and friction against load", quiet=args.quiet)
     return 0
 
 
@@ -167,4 +169,5 @@ def add_parser(sub) -> None:
                    "(default: the lowest --h)")  # fmt: skip
     add_preload(p, "with --branch retract, instead of --turn")
     p.add_argument("--format", choices=FORMATS, default="table")
+    p.add_argument("--quiet", action="store_true", help="no 'wrote FILE' line")
     p.set_defaults(func=run)

@@ -111,6 +111,13 @@ def cutoff_flag(surface, material, summary) -> str | None:
     )
 
 
+def announce(path, detail: str = "", *, quiet: bool = False) -> None:
+    """The one line every written file gets, on stderr: ``mcsim: wrote PATH (detail)``;
+    none with ``--quiet``. Standard output keeps the results."""
+    if not quiet:
+        print(f"mcsim: wrote {path}" + (f" ({detail})" if detail else ""), file=sys.stderr)
+
+
 def print_lines(lines: list[str]) -> None:
     for line in lines:
         print(f"mcsim: {line}", file=sys.stderr)

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from mcsim.cli.display import announce
 from mcsim.cli.options import parse_h
 from mcsim.model.errors import ParameterError
 
@@ -54,7 +55,8 @@ def run(args) -> int:
         s = result.surface
         fig = comparison_figure(s, result.gaussian_surface, material, parse_h("4:-1:51"))
         save(fig, figures[1], overwrite=args.overwrite, inputs=[args.file])
-    print(f"wrote {', '.join(str(p) for p in [*written, *figures])}")
+    for path in [*written, *figures]:
+        announce(path, quiet=args.quiet)
     print(f"next: mcsim analytic --surface {out} --h=4:-1:11")
     return 0
 
@@ -83,4 +85,5 @@ def add_parser(sub) -> None:
                    help="also plot the analytic curves against the Gaussian GW curves")  # fmt: skip
     p.add_argument("--material", default="silicon",
                    help="material of the --plot curves: preset or FILE.toml (default: silicon)")  # fmt: skip
+    p.add_argument("--quiet", action="store_true", help="no 'wrote FILE' line")
     p.set_defaults(func=run)

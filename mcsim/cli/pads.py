@@ -7,7 +7,7 @@ import math
 import sys
 from pathlib import Path
 
-from mcsim.cli.display import print_rows
+from mcsim.cli.display import announce, print_rows
 from mcsim.cli.options import FORMATS
 from mcsim.model.errors import ParameterError
 
@@ -109,7 +109,7 @@ def run(args) -> int:
         fig = pads_figure(pull_off.force, analytic, restoring_force=fr,
                           title=f"{Path(args.run).name}: pull-off of {stats.pads} pads")  # fmt: skip
         save(fig, args.plot, overwrite=args.overwrite, inputs=[args.run])
-        print(f"wrote {args.plot}", file=sys.stderr)
+        announce(args.plot, quiet=args.quiet)
     return 0
 
 
@@ -156,4 +156,5 @@ def add_parser(sub) -> None:
         help="histogram and CDF of the pad pull-off with the analytic mean",
     )
     p.add_argument("--overwrite", action="store_true", help="replace an existing --plot file")
+    p.add_argument("--quiet", action="store_true", help="no 'wrote FILE' line")
     p.set_defaults(func=run)

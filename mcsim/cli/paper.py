@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from mcsim.cli.display import announce
 from mcsim.cli.options import seed_type
 
 
@@ -18,9 +19,8 @@ def run(args) -> int:
     if not args.no_mc:
         mc = paper_monte_carlo(args.out, seed=args.seed, overwrite=args.overwrite)
     result = reproduce_paper(out_dir=args.out, mc=mc, overwrite=args.overwrite)
-    print(
-        f"wrote {len(result['figures'])} figures, {result['curves_csv'].name} and {result['mu_table_csv'].name} to {args.out}"
-    )
+    for path in [*result["figures"], result["curves_csv"], result["mu_table_csv"]]:
+        announce(path, quiet=args.quiet)
     return 0
 
 
@@ -37,4 +37,5 @@ def add_parser(sub) -> None:
     )
     p.add_argument("--overwrite", action="store_true",
                    help="replace the files of an earlier reproduction in --out")  # fmt: skip
+    p.add_argument("--quiet", action="store_true", help="no 'wrote FILE' line")
     p.set_defaults(func=run)

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from mcsim.cli.display import announce
 from mcsim.model.errors import ParameterError
 
 
@@ -42,7 +43,9 @@ def run(args) -> int:
             raise ParameterError("--versus load: plot one run at a time")
         check_output(out, inputs=args.run, overwrite=args.overwrite)
         save(load_run_figure(run), out, overwrite=args.overwrite, inputs=args.run)
-        print(f"wrote {out} (each patch's load and area or friction over the analytic curves)")
+        announce(
+            out, "each patch's load and area or friction over the analytic curves", quiet=args.quiet
+        )
         return 0
     other = None  # measured heights: also against the Gaussian GW curves
     if len(runs) == 1 and surface.heights != GAUSSIAN:
@@ -51,13 +54,17 @@ def run(args) -> int:
         check_output(path, inputs=args.run, overwrite=args.overwrite)
     figure = run_figure(runs if len(runs) > 1 else run)
     save(figure, out, overwrite=args.overwrite, inputs=args.run)
-    print(f"wrote {out}")
+    announce(out, quiet=args.quiet)
     if other:
         gaussian = dataclasses.replace(surface, heights=GAUSSIAN, name=f"{surface.name} (Gaussian)")
         h = np.linspace(run.h.max(), run.h.min(), 200)
         save(comparison_figure(surface, gaussian, run.spec.material, h, run=run), other,
              overwrite=args.overwrite, inputs=args.run)  # fmt: skip
-        print(f"wrote {other} (measured heights against the Gaussian of the same sigma, R, eta)")
+        announce(
+            other,
+            "measured heights against the Gaussian of the same sigma, R, eta",
+            quiet=args.quiet,
+        )
     return 0
 
 
@@ -78,7 +85,7 @@ def _plot_sweep(args, sweeps: list[str], out: Path) -> int:
     check_output(out, inputs=args.run, overwrite=args.overwrite)
     figure = sweep_figure(result, kind=args.kind)
     save(figure, out, overwrite=args.overwrite, inputs=args.run)
-    print(f"wrote {out}")
+    announce(out, quiet=args.quiet)
     return 0
 
 
@@ -105,4 +112,5 @@ def add_parser(sub) -> None:
                    help="x axis: the separation h, or the load (each patch's load against its area "
                         "and friction, both with SEs); default: load for a run made with --pressure "
                         "or --load, else h")  # fmt: skip
+    p.add_argument("--quiet", action="store_true", help="no 'wrote FILE' line")
     p.set_defaults(func=run)

@@ -6,7 +6,7 @@ import json
 import sys
 from pathlib import Path
 
-from mcsim.cli.display import environment_notes, file_state, log_notes, print_lines
+from mcsim.cli.display import announce, environment_notes, file_state, log_notes, print_lines
 from mcsim.cli.options import (
     add_environment,
     add_inputs,
@@ -84,9 +84,10 @@ def run(args) -> int:
             return 0  # --resume of this finished run: its notice was the only output
         if not args.quiet:
             n = run.n_summits
-            print(f"wrote {run.path}: {run.spec.realizations} realizations x {len(h)} separations, "
-                  f"N = {n.mean():.6g} summits per patch on average, {elapsed:.2f} s")  # fmt: skip
-            print(f"next: mcsim compare {run.path}   |   mcsim plot {run.path}")
+            announce(run.path, f"{run.spec.realizations} realizations x {len(h)} separations, "
+                     f"N = {n.mean():.6g} summits per patch on average, {elapsed:.2f} s")  # fmt: skip
+            print(f"mcsim: next: mcsim compare {run.path}   |   mcsim plot {run.path}",
+                  file=sys.stderr)  # fmt: skip
     return 0
 
 

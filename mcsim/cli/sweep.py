@@ -5,7 +5,7 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
-from mcsim.cli.display import environment_notes, file_state, log_notes, print_lines
+from mcsim.cli.display import announce, environment_notes, file_state, log_notes, print_lines
 from mcsim.cli.options import (
     add_environment,
     add_inputs,
@@ -83,9 +83,8 @@ def run(args) -> int:
         if len(failed) > MAX_FAILED_SHOWN:
             print(f"mcsim: ... and {len(failed) - MAX_FAILED_SHOWN} more failed points (variable "
                   f"error of {out})", file=sys.stderr)  # fmt: skip
-        if not args.quiet:
-            print(f"wrote {result.path}: {warned.size} points ({' x '.join(map(str, result.shape))}), "
-                  f"{len(result.failed)} failed")  # fmt: skip
+        announce(result.path, f"{warned.size} points ({' x '.join(map(str, result.shape))}), "
+                 f"{len(result.failed)} failed", quiet=args.quiet)  # fmt: skip
         return 1 if result.failed else 0
 
 

@@ -7,6 +7,7 @@ import os
 import subprocess
 import sys
 import time
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -52,9 +53,9 @@ def test_analytic_reads_a_surface_file_with_units(capsys, tmp_path):
 
 def test_simulate_then_compare_csv_rows_have_small_z(capsys, tmp_path):
     out = tmp_path / "t.h5"
-    code, text, _ = run_cli(capsys, "simulate", "--surface", "smooth", "--area", "1e-9", "--h=3:-1:9",
-                            "--realizations", "8", "--seed", "1", "--out", str(out))  # fmt: skip
-    assert code == 0 and out.exists() and "wrote" in text
+    code, _, err = run_cli(capsys, "simulate", "--surface", "smooth", "--area", "1e-9", "--h=3:-1:9",
+                           "--realizations", "8", "--seed", "1", "--out", str(out))  # fmt: skip
+    assert code == 0 and out.exists() and f"mcsim: wrote {out}" in err
     code, text, _ = run_cli(capsys, "compare", str(out), "--format", "csv")
     rows = list(csv.DictReader(io.StringIO(text)))
     assert list(rows[0]) == ["h", "branch", "quantity", "mc_mean", "mc_se", "analytic", "z"]
@@ -333,3 +334,43 @@ def test_cycle_with_a_law_set_without_retraction_is_a_one_line_error(
                            "--out", str(tmp_path / "t.h5"))  # fmt: skip
     assert code != 0 and len(err.strip().splitlines()) == 1
     assert "law set 'toy-approach' has no retraction branch" in err
+
+
+def _writing_commands(tmp_path, run_file):
+    """Every command that writes a file, with the file it writes."""
+    png = tmp_path / "f.png"
+    return [
+        (["analytic", "--surface", "smooth", "--law", "jkr", "--pressure", "1kPa,1MPa",
+          "--plot", png], png),
+        (["adhesion", "--surface", "smooth", "--law", "jkr", "--plot", png], png),
+        (["plot", run_file, "--out", png], png),
+        (["pads", run_file, "--plot", png], png),
+        (["simulate", "--surface", "smooth", "--law", "jkr", "--area", "2um^2", "--h=2:0:3",
+          "--cycle", "--realizations", "2", "--seed", "1", "--out", tmp_path / "s.h5"],
+         tmp_path / "s.h5"),
+        (["sweep", "--surface", "smooth", "--vary", "sigma=1nm,2nm", "--h=1,0",
+          "--out", tmp_path / "w.h5"], tmp_path / "w.h5"),
+        (["ingest", "examples/scan.txt", "--pixel-size", "10nm", "--unit", "nm",
+          "--out", tmp_path / "scan.toml"], tmp_path / "scan.toml"),
+    ]  # fmt: skip
+
+
+@pytest.mark.parametrize("index", range(7))
+def test_every_written_file_is_announced_on_stderr_and_quiet_silences_it(
+    capsys, tmp_path, monkeypatch, index
+):
+    import shutil
+
+    root = Path(__file__).resolve().parents[2]
+    shutil.copytree(root / "examples", tmp_path / "examples")
+    run_file = tmp_path / "c.h5"
+    assert run_cli(capsys, "simulate", "--surface", "smooth", "--law", "jkr", "--area", "2um^2",
+                   "--h=2:0:3", "--cycle", "--realizations", "3", "--seed", "1",
+                   "--out", run_file, "--quiet")[0] == 0  # fmt: skip
+    argv, written = _writing_commands(tmp_path, run_file)[index]
+    monkeypatch.chdir(tmp_path)
+    code, out, err = run_cli(capsys, *argv)
+    assert code == 0, err
+    assert f"mcsim: wrote {written}" in err and "wrote" not in out
+    code, out, err = run_cli(capsys, *argv, "--quiet", "--overwrite")
+    assert code == 0 and written.exists() and "wrote" not in err + out

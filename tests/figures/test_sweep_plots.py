@@ -87,8 +87,8 @@ def test_mcsim_plot_writes_a_png_of_a_sweep_and_refuses_to_overwrite_it_without_
     capsys, map_file, tmp_path
 ):
     out = tmp_path / "map.png"
-    code, stdout, _ = run_cli(capsys, "plot", str(map_file), "--out", str(out))
-    assert code == 0 and out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and f"wrote {out}" in stdout
+    code, _, stderr = run_cli(capsys, "plot", str(map_file), "--out", str(out))
+    assert code == 0 and out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and f"wrote {out}" in stderr
     before = out.read_bytes()
     code, _, err = run_cli(capsys, "plot", str(map_file), "--out", str(out))
     assert code != 0 and "file exists" in err and len(err.strip().splitlines()) == 1

@@ -299,8 +299,8 @@ def test_plot_of_a_load_controlled_run_shows_each_patch_and_both_standard_errors
             "--pressure", "1MPa,10MPa", "--area", "100um^2", "--realizations", "5", "--seed", "2",
             "--workers", "1", "--quiet", "--out", str(out)]  # fmt: skip
     assert run_cli(capsys, *argv)[0] == 0
-    code, text, _ = run_cli(capsys, "plot", str(out))
-    assert code == 0 and "each patch" in text
+    code, _, err = run_cli(capsys, "plot", str(out))
+    assert code == 0 and "each patch" in err
     assert out.with_suffix(".png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 
     from mcsim.figures.loadcontrol import load_run_figure

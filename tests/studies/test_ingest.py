@@ -453,8 +453,8 @@ def test_surface_file_round_trips_rq_summit_offset_and_the_map_histogram(gaussia
 
 
 def test_ingest_prints_the_measured_rq_and_summit_offset(gaussian_map, tmp_path):
-    code, out, _ = run_cli("ingest", gaussian_map, "--unit", "nm", "--pixel-size", "1 nm",
-                           "--out", tmp_path / "s.toml")  # fmt: skip
+    code, out, err = run_cli("ingest", gaussian_map, "--unit", "nm", "--pixel-size", "1 nm",
+                             "--out", tmp_path / "s.toml")  # fmt: skip
     assert code == 0
     assert "rq = " in out and "summit_offset = " in out
-    assert "s-map-heights.csv" in out
+    assert "s-map-heights.csv" in err  # announced as written
