@@ -53,7 +53,7 @@ GOLD = """\
 name = "gold"
 E = "79 GPa"         # Young's modulus of both solids
 nu = 0.42            # Poisson's ratio of both solids
-gamma = "0.3 J/m^2"  # work of adhesion
+w = "0.3 J/m^2"  # work of adhesion
 H = "1.5 GPa"        # hardness, only for the plasticity index
 z0 = "0.3 nm"        # equilibrium spacing (dmt, maugis-dugdale, Tabor parameter)
 """

@@ -15,7 +15,7 @@ def describe_inputs(surface, material) -> list[str]:
         f"surface {surface.name or '(file)'}: sigma = {surface.sigma * 1e9:.4g} nm, R = {surface.R * 1e6:.4g} um, "
         f"eta = {surface.eta * 1e-12:.4g} um^-2, heights {surface.heights.name}",
         f"material {material.name or '(file)'}: K = {material.K / 1e9:.4g} GPa, G = {material.G / 1e9:.4g} GPa, "
-        f"gamma = {material.gamma:.4g} J/m^2",
+        f"w = {material.gamma:.4g} J/m^2 (work of adhesion)",
         f"A0 = eta R sigma = {surface.A0:.4g}, B0 = gamma/(K sigma) = {surface_energy_parameter(surface, material):.4g}, "
         f"R0 = R/sigma = {surface.R0:.4g}",
     ]

@@ -174,6 +174,11 @@ class Material:
             object.__setattr__(self, "tau", check_range("tau", self.tau, "Pa", low=0))
 
     @property
+    def w(self) -> float:
+        """Work of adhesion w, J/m²: the field ``gamma`` by its name (the paper writes γ)."""
+        return self.gamma
+
+    @property
     def nu(self) -> float:
         """Poisson's ratio of the softer solid (the lower E), as used by Kogut & Etsion."""
         return self.nu1 if self.E1 <= self.E2 else self.nu2

@@ -85,7 +85,7 @@ _MATERIAL_KEYS = {
     "E2": ("pressure", "Young's modulus of solid 2, e.g. '160 GPa'"),
     "nu1": ("dimensionless", "Poisson's ratio of solid 1, e.g. 0.22"),
     "nu2": ("dimensionless", "Poisson's ratio of solid 2"),
-    "gamma": ("energy_per_area", "work of adhesion, e.g. '0.5 J/m^2'"),
+    "gamma": ("energy_per_area", "work of adhesion w (key w or gamma), e.g. '0.5 J/m^2'"),
     "H": ("pressure", "hardness (optional), e.g. '12.5 GPa'"),
     "z0": ("length", "equilibrium spacing (optional), e.g. '0.3 nm'"),
     "tau": ("pressure", "interfacial shear strength (optional), e.g. '100 MPa'"),
@@ -292,6 +292,12 @@ def material_from_table(
     """
     table = dict(table)
     written = {}
+    if "w" in table:  # the work of adhesion by its name; gamma is the paper's symbol for it
+        if "gamma" in table:
+            raise ParameterError(f"{where}: give either w or gamma (the same work of adhesion), "
+                                 "not both")  # fmt: skip
+        table["gamma"] = table.pop("w")
+        written["gamma"] = "w"
     for both, (one, two) in {"E": ("E1", "E2"), "nu": ("nu1", "nu2")}.items():
         if both in table and (one in table or two in table):
             raise ParameterError(f"{where}: give either {both} or {one} and {two}, not both")

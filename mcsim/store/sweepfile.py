@@ -67,6 +67,7 @@ INPUTS: dict[str, tuple[str, tuple[str, ...], str]] = {
     "nu1": ("dimensionless", ("nu1",), "Poisson's ratio of solid 1"),
     "nu2": ("dimensionless", ("nu2",), "Poisson's ratio of solid 2"),
     "gamma": ("energy_per_area", ("gamma",), "work of adhesion"),
+    "w": ("energy_per_area", ("gamma",), "work of adhesion"),
     "z0": ("length", ("z0",), "equilibrium spacing"),
     "tau": ("pressure", ("tau",), "interfacial shear strength"),
     "H": ("pressure", ("H",), "hardness"),

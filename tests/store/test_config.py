@@ -468,3 +468,19 @@ def test_rq_defaults_to_the_map_histograms_own_rms(tmp_path):
 def test_bare_rq_in_a_file_is_refused(tmp_path):
     with pytest.raises(UnitError, match=r"rq = 1.6 has no unit"):
         load_surface(write(tmp_path, SMOOTH_TOML + "rq = 1.6\n"))
+
+
+def test_the_work_of_adhesion_is_given_as_w_or_by_the_papers_gamma(tmp_path):
+    by_w = load_material(
+        write(tmp_path, '[material]\nE = "160 GPa"\nnu = 0.22\nw = "0.5 J/m^2"\n', "w.toml")
+    )
+    by_gamma = load_material(write(tmp_path, '[material]\nE = "160 GPa"\nnu = 0.22\ngamma = "0.5 J/m^2"\n', "g.toml"))  # fmt: skip
+    assert by_w == by_gamma and by_w.w == by_w.gamma == 0.5
+
+
+def test_w_and_gamma_together_are_refused(tmp_path):
+    path = write(
+        tmp_path, '[material]\nE = "160 GPa"\nnu = 0.22\nw = "0.5 J/m^2"\ngamma = "0.5 J/m^2"\n'
+    )
+    with pytest.raises(ParameterError, match="give either w or gamma"):
+        load_material(path)

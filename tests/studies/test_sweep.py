@@ -419,3 +419,10 @@ def test_monte_carlo_per_point_uses_the_points_own_seed_whatever_the_workers():
     assert one.units["pad_area"] == "m^2"
     other_seed = sweep(SMOOTH, SILICON, vary, workers=1, **{**kwargs, "seed": 8})
     assert not np.array_equal(other_seed.data["mc_P"], one.data["mc_P"])
+
+
+def test_varying_w_is_varying_the_work_of_adhesion_gamma():
+    by_w = sweep(SMOOTH, SILICON, {"w": "0.2,0.5"}, law="dmt", h=H)
+    by_gamma = sweep(SMOOTH, SILICON, {"gamma": "0.2,0.5"}, law="dmt", h=H)
+    for k in ("pull_off", "work_of_separation", "load"):
+        np.testing.assert_array_equal(by_w.data[k], by_gamma.data[k])
