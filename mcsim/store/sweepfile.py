@@ -27,7 +27,8 @@ every variable has ``units`` and ``long_name`` attributes; schema :data:`SCHEMA_
     pads (...)              with ``pads``: p_stick with its 95 % interval p_stick_low,
                             p_stick_high (1), the pads' pull_off_mean, pull_off_std,
                             pull_off_q05, pull_off_q50, pull_off_q95 and the GW
-                            pull_off_analytic (N), contacting_summits (1) (:data:`PADS`)
+                            pull_off_analytic (N), p_stick_model and contacting_summits (1)
+                            (:data:`PADS`)
     root attributes         sweep_schema_version, mcsim_version, created, command,
                             law, varied (JSON list of the dimension names), surface,
                             material (JSON of the inputs before variation, SI),
@@ -105,6 +106,10 @@ PADS = {
     "pull_off_analytic": (
         "N",
         "GW mean pull-off of one pad: pull_off x A K after the mean-field turn",
+    ),
+    "p_stick_model": (
+        "1",
+        "model p_stick: compound-Poisson pull-off, Lugannani-Rice saddlepoint tail (mcsim.studies.stiction)",
     ),
     "contacting_summits": (
         "1",

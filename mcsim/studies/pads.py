@@ -286,8 +286,8 @@ def moment_std(run) -> float:
 FEW_CONTACTS = 10
 
 
-def finite_pads(spec, restoring_force: float, *, preload: float | None = None,
-                turn: float) -> dict:  # fmt: skip
+def finite_pads(spec, restoring_force: float, *, preload: float | None = None, turn: float,
+                h_pull_off: float) -> dict:  # fmt: skip
     """Pull-off statistics of the ``spec.realizations`` pads of a cycle spec, as sweep variables.
 
     Each pad's summits are drawn from ``spec``'s seed as a ``--cycle`` run of the same spec
@@ -307,6 +307,9 @@ def finite_pads(spec, restoring_force: float, *, preload: float | None = None,
     turn : float
         The mean-field turn d/σ (under a preload, the one that balances P on the mean
         curve); the analytic mean and the contacting summits are evaluated there.
+    h_pull_off : float
+        Separation d/σ of the mean curve's pull-off after ``turn`` (NaN: none), for the
+        model estimate ``p_stick_model`` (:func:`mcsim.studies.stiction.p_stick_model`).
 
     Returns
     -------
@@ -320,6 +323,7 @@ def finite_pads(spec, restoring_force: float, *, preload: float | None = None,
         whose approach load stays below P·A down to it.
     """
     from mcsim.engine import padcurves
+    from mcsim.studies.stiction import p_stick_model
 
     if turn < spec.turn:
         raise ParameterError(f"pads turn at h = {turn:.4g}, below the lowest separation h = "
@@ -338,4 +342,6 @@ def finite_pads(spec, restoring_force: float, *, preload: float | None = None,
             "pull_off_mean": s.mean, "pull_off_std": s.std, "pull_off_q05": s.q05,
             "pull_off_q50": s.q50, "pull_off_q95": s.q95,
             "pull_off_analytic": analytic_pad_pull_off(spec, turn),
-            "contacting_summits": lam * float(spec.surface.heights.sf(turn))}  # fmt: skip
+            "contacting_summits": lam * float(spec.surface.heights.sf(turn)),
+            "p_stick_model": p_stick_model(spec, restoring_force, turn=turn, h_pull_off=h_pull_off,
+                                           preload=preload) if math.isfinite(h_pull_off) else 0.0}  # fmt: skip

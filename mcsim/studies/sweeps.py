@@ -245,10 +245,10 @@ def _evaluate(point: _Point, config: _Config, out: dict) -> None:
             out[f"mc_{q}"] = run.summary.mean[q]
             out[f"mc_{q}_se"] = run.summary.se[q]
     if config.pads:
-        out |= _pads(point, config, law, out.get("turn", math.nan))
+        out |= _pads(point, config, law, out.get("turn", math.nan), out.get("h_pull_off", math.nan))
 
 
-def _pads(point: _Point, config: _Config, law: str, turn: float) -> dict:
+def _pads(point: _Point, config: _Config, law: str, turn: float, h_pull_off: float) -> dict:
     """The pads of one point: ``config.pads`` pads of the point's area from its own stream."""
     from mcsim.engine.montecarlo import MonteCarloSpec
 
@@ -256,7 +256,8 @@ def _pads(point: _Point, config: _Config, law: str, turn: float) -> dict:
         raise ParameterError(f"pads need the adhesion summary's turn; law {law!r} has none")
     spec = MonteCarloSpec(point.surface, point.material, np.asarray(config.h), point.area,
                           config.pads, pads_seed(config.entropy, point.index), law, cycle=True)  # fmt: skip
-    return finite_pads(spec, config.restoring_force, preload=config.preload, turn=turn)
+    return finite_pads(spec, config.restoring_force, preload=config.preload, turn=turn,
+                       h_pull_off=h_pull_off)  # fmt: skip
 
 
 def pads_seed(entropy: int, index: int) -> int:

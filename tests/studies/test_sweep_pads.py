@@ -157,3 +157,17 @@ def test_cli_pads_sweep_warns_once_when_pads_touch_with_few_summits(tmp_path, ca
     assert code == 0, err
     few = [line for line in err.splitlines() if "fewer than 10 summits" in line]
     assert len(few) == 1 and "1 of 1 points" in few[0]
+
+
+@pytest.mark.filterwarnings("ignore::mcsim.physics.adhesion.RegimeWarning")
+def test_p_stick_model_agrees_with_brute_force_where_pads_touch_with_over_a_hundred_summits():
+    # σ = 1.4 nm, 30 µm², 5 MPa: ~125 summits touch each pad. 150 pads: the model lies within
+    # 5 binomial standard errors (at the model's p) of the Monte Carlo fraction.
+    surface = SURFACES["smooth"]
+    result = sweep(surface, SILICON, {"sigma": [surface.sigma]}, law="jkr", pads=150, seed=3,
+                   area="30um^2", restoring_force="150uN", preload="5MPa")  # fmt: skip
+    d = {k: float(v[0]) for k, v in result.data.items() if k in PADS}
+    assert d["contacting_summits"] > 100
+    p = d["p_stick_model"]
+    assert 1e-3 <= p <= 1 - 1e-3
+    assert abs(d["p_stick"] - p) < 5 * math.sqrt(p * (1 - p) / 150), d
