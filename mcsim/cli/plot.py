@@ -70,6 +70,7 @@ def run(args) -> int:
 
 def _plot_sweep(args, sweeps: list[str], out: Path) -> int:
     """``mcsim plot SWEEP.h5``: design curves or design maps (:mod:`mcsim.figures.sweeps`)."""
+    from mcsim.figures.stiction import is_pads_sweep, stiction_figure
     from mcsim.figures.style import save
     from mcsim.figures.sweeps import sweep_figure
     from mcsim.store.outputs import check_output
@@ -83,7 +84,10 @@ def _plot_sweep(args, sweeps: list[str], out: Path) -> int:
                              "mcsim sweep command plus --resume, or pass --partial to plot its "
                              "completed points")  # fmt: skip
     check_output(out, inputs=args.run, overwrite=args.overwrite)
-    figure = sweep_figure(result, kind=args.kind)
+    if is_pads_sweep(result):
+        figure = stiction_figure(result)
+    else:
+        figure = sweep_figure(result, kind=args.kind)
     save(figure, out, overwrite=args.overwrite, inputs=args.run)
     announce(out, quiet=args.quiet)
     return 0

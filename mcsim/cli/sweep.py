@@ -10,6 +10,7 @@ from mcsim.cli.options import (
     add_environment,
     add_inputs,
     add_parallel,
+    add_preload,
     count_type,
     environment_of,
     inputs_of,
@@ -40,13 +41,10 @@ def run(args) -> int:
             if name.strip() in vary:
                 raise ParameterError(f"--vary: {name.strip()!r} is given twice")
             vary[name.strip()] = spec
-        if not args.mc and (
-            args.area is not None
-            or args.realizations is not None
-            or args.seed is not None
-            or args.device != "cpu"
-        ):
-            raise ParameterError("--area, --realizations, --seed and --device apply to the Monte Carlo runs only (add --mc)")  # fmt: skip
+        if not args.mc and (args.realizations is not None or args.device != "cpu"):
+            raise ParameterError("--realizations and --device apply to the Monte Carlo runs only (add --mc)")  # fmt: skip
+        if not (args.mc or args.pads) and (args.area is not None or args.seed is not None):
+            raise ParameterError("--area and --seed apply to the Monte Carlo runs and pads only (add --mc or --pads N)")  # fmt: skip
         surface, material = inputs_of(args)
         environment = environment_of(args)
         if not args.quiet:
@@ -56,7 +54,7 @@ def run(args) -> int:
         try:
             result = sweep(
                 surface, material, vary, law=args.law, h=parse_h(args.h), turn=parse_turn(args.turn),
-                environment=environment, mc=args.mc, area=args.area, realizations=args.realizations or 1, seed=args.seed, device=args.device,
+                environment=environment, mc=args.mc, pads=args.pads, restoring_force=args.restoring_force, preload=args.preload, area=args.area, realizations=args.realizations or 1, seed=args.seed, device=args.device,
                 workers=args.workers, scheduler=args.scheduler or args.dask, out=out,
                 overwrite=args.overwrite, resume=args.resume, checkpoint_every=args.checkpoint_every,
                 progress=not args.quiet and sys.stderr.isatty(), command=cli_command(),
@@ -75,6 +73,7 @@ def run(args) -> int:
             first = next(str(w) for w in warned.ravel() if w)
             print(f"mcsim: warning: {n_warned} of {warned.size} points outside their law set's regime "
                   f"(variable regime_warning), e.g.: {first}", file=sys.stderr)  # fmt: skip
+        _warn_few_contacts(result)
         failed = result.failed
         for inputs, error in failed[:MAX_FAILED_SHOWN]:
             shown = ", ".join(f"{k} = {v:.6g}" if isinstance(v, float) else f"{k} = {v}"
@@ -86,6 +85,23 @@ def run(args) -> int:
         announce(result.path, f"{warned.size} points ({' x '.join(map(str, result.shape))}), "
                  f"{len(result.failed)} failed", quiet=args.quiet)  # fmt: skip
         return 1 if result.failed else 0
+
+
+def _warn_few_contacts(result) -> None:
+    """One line when the pads of some points touch with fewer than ~10 summits each."""
+    import numpy as np
+
+    from mcsim.studies.pads import FEW_CONTACTS
+
+    contacts = result.data.get("contacting_summits")
+    if contacts is None:
+        return
+    few = contacts < FEW_CONTACTS
+    if few.any():
+        print(f"mcsim: warning: at {int(few.sum())} of {few.size} points a pad touches with fewer "
+              f"than {FEW_CONTACTS} summits on average (variable contacting_summits, lowest "
+              f"{np.nanmin(contacts):.3g}): its tallest summits decide it; trust the Monte Carlo "
+              "p_stick there, not a model", file=sys.stderr)  # fmt: skip
 
 
 def add_parser(sub) -> None:
@@ -109,6 +125,18 @@ def add_parser(sub) -> None:
                    help="separations d/sigma of the curves (default 4:-1:51)")  # fmt: skip
     p.add_argument("--turn", metavar="H", help="closest approach d/sigma before retraction for the "
                    "adhesion summary (default: where the approach load is zero)")  # fmt: skip
+    add_preload(
+        p,
+        "the adhesion summary's turn balances it on the mean curve; with --pads each pad is "
+        "pressed with P*A under force control (not with --turn)",
+    )
+    p.add_argument("--pads", type=count_type, metavar="N",
+                   help="also N finite pads of --area per point through a cycle, from the point's own "
+                   "stream of --seed: p_stick with its 95%% Clopper-Pearson interval and the pads' pull-off "
+                   "statistics (N) beside the GW mean (as mcsim simulate --cycle + mcsim pads)")  # fmt: skip
+    p.add_argument("--restoring-force", metavar="F",
+                   help="with --pads: force pulling a pad off (N or with a unit, '20uN'); a pad sticks "
+                   "when its pull-off exceeds it")  # fmt: skip
     p.add_argument("--mc", action="store_true", help="also one Monte Carlo run per point (in memory): "
                    "mean and standard error of each curve")  # fmt: skip
     p.add_argument(

@@ -27,12 +27,19 @@ every variable has ``units`` and ``long_name`` attributes; schema :data:`SCHEMA_
                             error ("" or "ErrorType: message" of a failed point)
     Monte Carlo (..., h)    with ``mc``: mc_<q> and mc_<q>_se, the mean over the
                             realizations and its standard error, for every curve q
+    pads (...)              with ``pads``: p_stick with its 95 % interval p_stick_low,
+                            p_stick_high (1), the pads' pull_off_mean, pull_off_std,
+                            pull_off_q05, pull_off_q50, pull_off_q95 and the GW
+                            pull_off_analytic (N), p_stick_model and contacting_summits (1)
+                            (:data:`PADS`)
     root attributes         sweep_schema_version, mcsim_version, created, command,
                             law, varied (JSON list of the dimension names), surface,
                             material (JSON of the inputs before variation, SI),
                             turn (NaN: zero approach load), mc, and with mc area,
                             realizations, seed_entropy; with an environment, environment
-                            (JSON of its inputs before variation, SI); complete; checksum
+                            (JSON of its inputs before variation, SI); with a preload
+                            preload (Pa); with pads pads, restoring_force (N), area,
+                            seed_entropy, pads_streams; complete; checksum
 
 Strings are fixed-length UTF-8 bytes with ``_Encoding = "utf-8"`` (netCDF readers give
 text). A sweep in progress keeps its completed points in ``<stem>.partial<suffix>``
@@ -113,6 +120,30 @@ ENVIRONMENT_SUMMARY = {
     "kelvin_radius": ("m", "Kelvin radius r_K = gamma_L V_m/(R T ln(1/RH))"),
     "rq": ("m", "rms height about the mean plane used by the environment"),
     "summit_offset": ("m", "mean summit plane above the mean plane used by the environment"),
+}
+
+#: Per-point variables of a pads sweep (``mcsim sweep --pads``): unit and meaning.
+PADS = {
+    "p_stick": ("1", "fraction of the pads whose pull-off exceeds the restoring force"),
+    "p_stick_low": ("1", "lower end of the 95 % Clopper-Pearson interval of p_stick"),
+    "p_stick_high": ("1", "upper end of the 95 % Clopper-Pearson interval of p_stick"),
+    "pull_off_mean": ("N", "mean pull-off force of the pads"),
+    "pull_off_std": ("N", "standard deviation of the pads' pull-off force (ddof = 1)"),
+    "pull_off_q05": ("N", "5 % quantile of the pads' pull-off force"),
+    "pull_off_q50": ("N", "median of the pads' pull-off force"),
+    "pull_off_q95": ("N", "95 % quantile of the pads' pull-off force"),
+    "pull_off_analytic": (
+        "N",
+        "GW mean pull-off of one pad: pull_off x A K after the mean-field turn",
+    ),
+    "p_stick_model": (
+        "1",
+        "model p_stick: compound-Poisson pull-off, Lugannani-Rice saddlepoint tail (mcsim.studies.stiction)",
+    ),
+    "contacting_summits": (
+        "1",
+        "expected summits per pad above the mean-field turn, eta A S(h_turn)",
+    ),
 }
 
 
@@ -270,8 +301,10 @@ def _describe_values(values: np.ndarray, unit: str) -> str:
     return f"{values.size} values from {values.min():.4g} to {values.max():.4g}{u}"
 
 
-def empty_sweep(dims, grid, h, curve_names, summary: bool, mc: bool,
-                environment: bool = False) -> Sweep:  # fmt: skip
+def empty_sweep(
+    dims, grid, h, curve_names, summary: bool, mc: bool, environment: bool = False, *,
+    pads: bool = False
+) -> Sweep:  # fmt: skip
     shape = tuple(len(v) for v in grid)
     curve_shape = (*shape, len(h))
     coords = {d: v for d, v in zip(dims, grid)} | {"h": np.asarray(h)}
@@ -299,6 +332,9 @@ def empty_sweep(dims, grid, h, curve_names, summary: bool, mc: bool,
         for q in curve_names:
             add(f"mc_{q}", "1", f"Monte Carlo mean of {q}: {CURVES.get(q, q)}", per_h=True)
             add(f"mc_{q}_se", "1", f"standard error of mc_{q}", per_h=True)
+    if pads:
+        for k, (u, m) in PADS.items():
+            add(k, u, m)
     attrs = {"varied": json.dumps(list(dims))}
     return Sweep(coords, data, vdims, units, long_names, attrs)
 

@@ -279,3 +279,69 @@ def moment_std(run) -> float:
         second = second - first**2 / run.n_summits[:, None]
     j = int(np.argmin(first.mean(axis=0)))
     return float(np.sqrt(second[:, j].mean())) if first[:, j].mean() < 0 else math.nan
+
+
+#: Expected contacting summits per pad below which the Monte Carlo alone decides (PHYSICS.md,
+#: "Finite pads": the pad is then decided by its tallest summits).
+FEW_CONTACTS = 10
+
+
+def finite_pads(spec, restoring_force: float, *, preload: float | None = None, turn: float,
+                h_pull_off: float) -> dict:  # fmt: skip
+    """Pull-off statistics of the ``spec.realizations`` pads of a cycle spec, as sweep variables.
+
+    Each pad's summits are drawn from ``spec``'s seed as a ``--cycle`` run of the same spec
+    draws them (:func:`mcsim.engine.padcurves.patch_heights`), so ``mcsim simulate --cycle``
+    with that seed followed by ``mcsim pads`` gives the same pads.
+
+    Parameters
+    ----------
+    spec : MonteCarloSpec
+        A cycle spec: its realizations are the pads, its lowest separation bounds the turns.
+    restoring_force : float
+        F_r, N: a pad sticks when its pull-off exceeds it.
+    preload : float, optional
+        Nominal pressure P, Pa: each pad turns under force control where its own approach
+        load reaches P·A (:func:`mcsim.engine.padcurves.force_turn`). Without it every pad
+        turns at ``turn``.
+    turn : float
+        The mean-field turn d/σ (under a preload, the one that balances P on the mean
+        curve); the analytic mean and the contacting summits are evaluated there.
+    h_pull_off : float
+        Separation d/σ of the mean curve's pull-off after ``turn`` (NaN: none), for the
+        model estimate ``p_stick_model`` (:func:`mcsim.studies.stiction.p_stick_model`).
+
+    Returns
+    -------
+    dict
+        The keys of :data:`mcsim.store.sweepfile.PADS` (floats, SI).
+
+    Raises
+    ------
+    ParameterError
+        A turn below the spec's lowest separation (no summit below it is drawn), or a pad
+        whose approach load stays below P·A down to it.
+    """
+    from mcsim.engine import padcurves
+    from mcsim.studies.stiction import p_stick_model
+
+    if turn < spec.turn:
+        raise ParameterError(f"pads turn at h = {turn:.4g}, below the lowest separation h = "
+                             f"{spec.turn:g}; extend the separations (--h) down")  # fmt: skip
+    sigma = spec.surface.sigma
+    force = np.empty(spec.realizations)
+    for r in range(spec.realizations):
+        z = padcurves.patch_heights(spec, r)
+        d_turn = turn * sigma
+        if preload is not None:
+            d_turn, _ = padcurves.force_turn(spec, z, preload * spec.area)
+        force[r] = padcurves.pull_off(spec, z, d_turn)[0]
+    s = pad_statistics(force, restoring_force)
+    lam = spec.surface.eta * spec.area
+    return {"p_stick": s.p_stick, "p_stick_low": s.p_stick_ci[0], "p_stick_high": s.p_stick_ci[1],
+            "pull_off_mean": s.mean, "pull_off_std": s.std, "pull_off_q05": s.q05,
+            "pull_off_q50": s.q50, "pull_off_q95": s.q95,
+            "pull_off_analytic": analytic_pad_pull_off(spec, turn),
+            "contacting_summits": lam * float(spec.surface.heights.sf(turn)),
+            "p_stick_model": p_stick_model(spec, restoring_force, turn=turn, h_pull_off=h_pull_off,
+                                           preload=preload) if math.isfinite(h_pull_off) else 0.0}  # fmt: skip

@@ -65,6 +65,7 @@ from mcsim.physics.adhesion import (
 from mcsim.physics.analytic import gw_curves, quantities
 from mcsim.physics.environment import Environment
 from mcsim.physics.laws import get_law_set
+from mcsim.physics.loadcontrol import preload_turn
 from mcsim.store import files, runfile
 from mcsim.store.sweepfile import (
     ENVIRONMENT_INPUTS,
@@ -80,6 +81,7 @@ from mcsim.store.sweepfile import (
     read_sweep,
     write_sweep,
 )
+from mcsim.studies.pads import finite_pads
 
 log = logging.getLogger(__name__)
 
@@ -182,6 +184,9 @@ class _Config:
     realizations: int
     entropy: int | None
     device: str = "cpu"
+    pads: int | None = None
+    restoring_force: float | None = None
+    preload: float | None = None
 
 
 def _point(base_surface, base_material, base_environment, law, area, names, values,
@@ -257,7 +262,10 @@ def _evaluate(point: _Point, config: _Config, out: dict) -> None:
     out["plasticity_index"] = _number(plasticity_index(surface, material))
     out["regime_warning"] = "; ".join(regime_warnings(surface, material, law))
     if has_summary(law):
-        summary = adhesion_summary(surface, material, law, turn=config.turn, **with_environment)
+        turn = config.turn
+        if config.preload is not None:
+            turn = preload_turn(surface, material, config.preload, law, environment)
+        summary = adhesion_summary(surface, material, law, turn=turn, **with_environment)
         out |= {k: getattr(summary, k) for k in SUMMARY}
         if environment is not None:
             out |= {k: getattr(summary, k) for k in ENVIRONMENT_SUMMARY}
@@ -271,6 +279,28 @@ def _evaluate(point: _Point, config: _Config, out: dict) -> None:
         for q in run.quantities:
             out[f"mc_{q}"] = run.summary.mean[q]
             out[f"mc_{q}_se"] = run.summary.se[q]
+    if config.pads:
+        out |= _pads(point, config, law, out.get("turn", math.nan), out.get("h_pull_off", math.nan))
+
+
+def _pads(point: _Point, config: _Config, law: str, turn: float, h_pull_off: float) -> dict:
+    """The pads of one point: ``config.pads`` pads of the point's area from its own stream."""
+    from mcsim.engine.montecarlo import MonteCarloSpec
+
+    if not math.isfinite(turn):
+        raise ParameterError(f"pads need the adhesion summary's turn; law {law!r} has none")
+    spec = MonteCarloSpec(point.surface, point.material, np.asarray(config.h), point.area,
+                          config.pads, pads_seed(config.entropy, point.index), law, cycle=True)  # fmt: skip
+    return finite_pads(spec, config.restoring_force, preload=config.preload, turn=turn,
+                       h_pull_off=h_pull_off)  # fmt: skip
+
+
+def pads_seed(entropy: int, index: int) -> int:
+    """Root seed of the pads at grid point ``index``: 128 bits drawn from
+    ``SeedSequence(entropy, spawn_key=(index, 1))``, a stream apart from :func:`point_seed`'s
+    (``mcsim simulate --cycle --seed`` with it draws the same pads)."""
+    a, b = np.random.SeedSequence(entropy, spawn_key=(index, 1)).generate_state(2, np.uint64)
+    return (int(a) << 64) | int(b)
 
 
 def _number(value: float | None) -> float:
@@ -300,6 +330,9 @@ def sweep(
     turn: float | None = None,
     environment: Environment | None = None,
     mc: bool = False,
+    pads: int | None = None,
+    restoring_force: float | str | None = None,
+    preload: float | str | None = None,
     area: float | str | None = None,
     realizations: int = 1,
     seed: int | None = None,
@@ -345,8 +378,22 @@ def sweep(
     mc : bool
         Also run :func:`mcsim.simulate` at each point (``realizations`` patches of
         ``area``), storing the mean and standard error of each curve.
+    pads : int, optional
+        Also simulate this many pads of ``area`` through a cycle at each point, from
+        their own stream (:func:`pads_seed`), and store their pull-off statistics and
+        probability of sticking (:data:`mcsim.studies.pads.PAD_VARIABLES`). Each pad
+        retracts after its own turn under force control with ``preload``, else after the
+        adhesion summary's turn.
+    restoring_force : float or str, optional
+        With ``pads`` (required): F_r, N or with a unit; a pad sticks when its pull-off
+        exceeds it.
+    preload : float or str, optional
+        Nominal pressure P (Pa or with a unit, > 0): the adhesion summary's turn is the
+        approach separation that balances P on the mean curve
+        (:func:`mcsim.physics.loadcontrol.preload_turn`), and pads are pressed with P·A.
+        Not together with ``turn``.
     area : float or str, optional
-        Patch area of the Monte Carlo runs, m² or with a unit.
+        Patch area of the Monte Carlo runs and the pads, m² or with a unit.
     realizations : int
         Patches per point.
     seed : int, optional
@@ -388,7 +435,8 @@ def sweep(
     mcsim.engine.interrupt.Interrupted
         On SIGINT or SIGTERM, once the completed points are saved.
     """
-    names, grid = _check_vary(vary, law, mc)
+    names, grid = _check_vary(vary, law, mc or bool(pads))
+    restoring_force, preload = _check_pads(pads, restoring_force, preload, turn)
     check_range("checkpoint_every", checkpoint_every, "s", low=0.0, low_open=False)
     law = "seed" if law is None else law
     if law != "auto":
@@ -396,13 +444,14 @@ def sweep(
     h = tuple(check_separations(h).tolist())
     turn = None if turn is None else check_range("turn", turn, "1")
     area_m2 = None
-    if mc:
+    if mc or pads:
         if area is None and "area" not in names:
-            raise ParameterError("mc needs the patch area (area=..., --area)")
+            raise ParameterError(f"{'mc' if mc else 'pads'} needs the patch area (area=..., --area)")  # fmt: skip
         if area is not None:
             if "area" in names:
                 raise ParameterError("area: given both as a value and as a varied input")
             area_m2 = check_range("area", parse_quantity(area, "area", "area"), "m^2", low=0)
+    if mc:
         if isinstance(realizations, bool) or not isinstance(realizations, int) or realizations < 1:
             raise ParameterError(f"realizations = {realizations!r} is out of range (allowed: integer >= 1)")  # fmt: skip
         if device not in ("cpu", "cuda"):
@@ -420,9 +469,9 @@ def sweep(
         raise ParameterError(
             f"device = {device!r}: the device applies to the Monte Carlo runs only (add mc / --mc)"
         )
-    elif area is not None:
+    elif area is not None and not pads:
         raise ParameterError(
-            "area: the pad area applies to the Monte Carlo runs only (add mc / --mc)"
+            "area: the pad area applies to the Monte Carlo runs only, or the pads (add mc / --mc or pads / --pads)"
         )
     if resume and out is None:
         raise ParameterError("resume needs the sweep file to continue (out=...)")
@@ -457,15 +506,15 @@ def sweep(
                             "the beginning", out, partial.name)  # fmt: skip
             else:
                 partial.unlink(missing_ok=True)
-        entropy = np.random.SeedSequence(seed).entropy if mc else None
-        config = _Config(h, turn, mc, realizations, entropy, device)
+        entropy = np.random.SeedSequence(seed).entropy if mc or pads else None
+        config = _Config(h, turn, mc, realizations, entropy, device, pads, restoring_force, preload)
         laws = list(grid[names.index("law")]) if "law" in names else [law]
         with_env = environment is not None
         curve_names = _union(_curve_names(x, material, with_env) for x in laws)
         if "tau" in names and material.tau is None:
             curve_names = _union([curve_names, _curve_names(laws[0], dataclasses.replace(material, tau=1.0), with_env)])  # fmt: skip
         summary = any(has_summary(x) for x in laws)
-        result = empty_sweep(dims, grid, h, curve_names, summary, mc, with_env)
+        result = empty_sweep(dims, grid, h, curve_names, summary, mc, with_env, pads=bool(pads))
         if command is None:
             command = (
                 f"mcsim.sweep(vary={ {n: _shown(v) for n, v in zip(names, grid)} }, law={law!r})"
@@ -628,11 +677,51 @@ def _attrs(surface, material, environment, law, dims, grid, config: _Config, are
         attrs |= {"area": math.nan if area is None else area, "area_unit": "m^2",
                   "realizations": config.realizations, "seed_entropy": str(config.entropy),
                   "device": config.device}  # fmt: skip
+    attrs |= _pads_attrs(config, area)
     # What must match for a resume: everything but the time and the command line.
     attrs["definition"] = json.dumps({k: (None if isinstance(v, float) and math.isnan(v) else v)
                                       for k, v in attrs.items() if k != "command"}
                                      | {"h": list(config.h), "values": [_shown(v) for v in grid]})  # fmt: skip
     attrs["created"] = _dt.datetime.now(_dt.UTC).isoformat(timespec="seconds")
+    return attrs
+
+
+def _check_pads(pads, restoring_force, preload, turn) -> tuple[float | None, float | None]:
+    """Check the pads' options; the restoring force (N) and the preload (Pa), SI."""
+    if preload is not None:
+        if turn is not None:
+            raise ParameterError("turn and preload: give one of them (the preload sets the turn)")
+        preload = parse_quantity(plain(preload), "pressure", "preload")
+        if not (math.isfinite(preload) and preload > 0):
+            raise ParameterError(f"preload = {preload!r} Pa: allowed a finite pressure > 0")
+    if pads is None:
+        if restoring_force is not None:
+            raise ParameterError("restoring_force applies to the pads only (add pads=N, --pads N)")
+        return None, preload
+    if isinstance(pads, bool) or not isinstance(pads, int) or pads < 1:
+        raise ParameterError(f"pads = {pads!r} is out of range (allowed: integer >= 1)")
+    if restoring_force is None:
+        raise ParameterError(
+            "pads need the restoring force (restoring_force=..., --restoring-force)"
+        )
+    fr = parse_quantity(plain(restoring_force), "force", "restoring_force")
+    if not (math.isfinite(fr) and fr >= 0):
+        raise ParameterError(
+            f"restoring_force = {restoring_force!r}: allowed a finite force >= 0 N"
+        )
+    return fr, preload
+
+
+def _pads_attrs(config: _Config, area) -> dict:
+    """Root attributes of the pads and the preload (empty without them)."""
+    attrs = {}
+    if config.preload is not None:
+        attrs |= {"preload": config.preload, "preload_unit": "Pa"}
+    if config.pads:
+        attrs |= {"pads": config.pads, "restoring_force": config.restoring_force,
+                  "restoring_force_unit": "N", "area": math.nan if area is None else area,
+                  "area_unit": "m^2", "seed_entropy": str(config.entropy),
+                  "pads_streams": "point i: SeedSequence(seed_entropy, spawn_key=(i, 1))"}  # fmt: skip
     return attrs
 
 

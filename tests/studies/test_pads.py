@@ -144,7 +144,8 @@ def test_pads_with_a_restoring_force_adds_p_stick_and_its_interval(cycle_run, ca
     code, out, _ = run_cli(capsys, "pads", cycle_run, f"--restoring-force={fr * 1e6!r}uN",
                            "--format", "json")  # fmt: skip
     data = json.loads(out)
-    assert code == 0 and list(data) == [*KEYS, "p_stick", "p_stick_ci"]
+    assert code == 0 and list(data) == [*KEYS, "p_stick", "p_stick_ci", "p_stick_model"]
+    assert 0 <= data["p_stick_model"] <= 1
     k = int(np.count_nonzero(force > fr * 1e6 * 1e-6))
     assert data["p_stick"] == k / 40
     assert data["p_stick_ci"] == pytest.approx(list(clopper_pearson(k, 40)), rel=1e-15)

@@ -1,0 +1,121 @@
+"""Figures of a pads sweep (``mcsim sweep --pads``): the probability that a pad sticks.
+
+* One varied input: p_stick (points) with its 95 % Clopper-Pearson interval (bars) and the
+  model estimate ``p_stick_model`` (line) against the input, p on a log axis.
+* Two: p_stick over the map in log colour, with the contours of :data:`LEVELS` (1e-3, and
+  0.5: the stiction boundary); hatched where the Monte Carlo interval straddles a level, i.e.
+  where the data cannot tell on which side of it the point lies.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from mcsim.figures.sweeps import _edges, _scaled, _squeezed, axis_label, is_log_grid
+
+#: Probabilities drawn as contours on a 2-D map.
+LEVELS = (1e-3, 0.5)
+
+
+def is_pads_sweep(sweep) -> bool:
+    """Whether the sweep holds pads (``p_stick``)."""
+    return "p_stick" in sweep.data
+
+
+def stiction_figure(sweep):
+    """p_stick of a pads sweep against its one or two varied inputs (module docstring).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        Built without pyplot (headless).
+    """
+    from mcsim.model.errors import ParameterError
+
+    dims = [d for d in sweep.grid if sweep.coords[d].size > 1]
+    if not dims or len(dims) > 2:
+        raise ParameterError(f"plot: a pads sweep is drawn against one or two varied inputs, this one "
+                             f"varies {len(dims)} ({', '.join(sweep.grid)})")  # fmt: skip
+    sweep = _squeezed(sweep, dims)
+    return _line(sweep, dims[0]) if len(dims) == 1 else _map(sweep, dims)
+
+
+def _title(sweep) -> str:
+    a = sweep.attrs
+    text = (f"{a['pads']} pads of {a['area'] * 1e12:.4g} µm², restoring force "
+            f"{a['restoring_force'] * 1e6:.4g} µN")  # fmt: skip
+    if "preload" in a:
+        text += f", preload {a['preload'] / 1e6:.4g} MPa (force control)"
+    return text
+
+
+def _line(sweep, dim: str):
+    from matplotlib.figure import Figure
+
+    x = _scaled(sweep, dim)
+    d = sweep.data
+    floor = 0.5 / sweep.attrs["pads"]  # p = 0 drawn at half a pad, marked as an upper bound
+    p = np.maximum(d["p_stick"], floor)
+    fig = Figure(figsize=(7, 4.5), layout="constrained")
+    ax = fig.subplots()
+    ax.errorbar(x, p, yerr=[p - np.maximum(d["p_stick_low"], floor * 0.2), d["p_stick_high"] - p],
+                fmt="o", color="k", capsize=3, label="Monte Carlo p_stick, 95 % Clopper-Pearson interval")  # fmt: skip
+    if "p_stick_model" in d:
+        ax.plot(x, np.clip(d["p_stick_model"], 1e-12, None), color="C3",
+                label="model (compound Poisson, saddlepoint)")  # fmt: skip
+    few = d["contacting_summits"] < 10
+    if few.any():
+        ax.plot(
+            x[few],
+            p[few],
+            "x",
+            color="C1",
+            ms=10,
+            label="< 10 contacting summits: model unreliable",
+        )
+    for level in LEVELS:
+        ax.axhline(level, color="0.6", ls=":", lw=1)
+    ax.set_yscale("log")
+    ax.set_ylim(min(floor * 0.2, np.nanmin(p) / 2), 1.5)
+    if is_log_grid(sweep.coords[dim]):
+        ax.set_xscale("log")
+    ax.set_xlabel(axis_label(sweep, dim))
+    ax.set_ylabel("probability that a pad sticks, p_stick")
+    ax.set_title(_title(sweep), fontsize="medium")
+    ax.legend(fontsize="small")
+    return fig
+
+
+def _map(sweep, dims: list[str]):
+    from matplotlib.colors import LogNorm
+    from matplotlib.figure import Figure
+
+    (xd, yd), d = dims, sweep.data
+    x, y = _scaled(sweep, xd), _scaled(sweep, yd)
+    floor = 0.5 / sweep.attrs["pads"]
+    p = np.maximum(d["p_stick"], floor).T  # rows: y
+    fig = Figure(figsize=(7.5, 5.5), layout="constrained")
+    ax = fig.subplots()
+    logx, logy = is_log_grid(sweep.coords[xd]), is_log_grid(sweep.coords[yd])
+    mesh = ax.pcolormesh(_edges(x, logx), _edges(y, logy), p, norm=LogNorm(vmin=floor, vmax=1),
+                         cmap="viridis", shading="flat")  # fmt: skip
+    fig.colorbar(mesh, ax=ax, label="probability that a pad sticks, p_stick (Monte Carlo)")
+    if x.size > 1 and y.size > 1:
+        cs = ax.contour(x, y, p, levels=list(LEVELS), colors=["w", "r"], linewidths=1.5)
+        ax.clabel(
+            cs, fmt={LEVELS[0]: "1e-3", LEVELS[1]: "0.5: stiction boundary"}, fontsize="small"
+        )
+        low, high = d["p_stick_low"].T, d["p_stick_high"].T
+        for level in LEVELS:
+            unsure = ((low < level) & (high > level)).astype(float)
+            if unsure.any():
+                ax.contourf(x, y, unsure, levels=[0.5, 1.5], colors="none", hatches=["//"])
+    ax.set_xlabel(axis_label(sweep, xd))
+    ax.set_ylabel(axis_label(sweep, yd))
+    if logx:
+        ax.set_xscale("log")
+    if logy:
+        ax.set_yscale("log")
+    ax.set_title(_title(sweep) + "\nhatched: the 95 % interval straddles a contour level",
+                 fontsize="medium")  # fmt: skip
+    return fig

@@ -1,0 +1,140 @@
+"""A model of the probability that a pad sticks, from the per-summit statistics (rare events).
+
+A pad of area A holds N ~ Poisson(λ = ηA) summits with iid heights s (in σ); PHYSICS.md,
+"Finite pads: force control and rare events". To first order its pull-off X at a
+separation h (d/σ) after the mean-field turn h̄ is a compound-Poisson sum:
+
+* Force control: the pad turns at h_t ≈ h̄ + (P·A − F_a(h̄))/F̄_a′(h̄), so its retraction
+  load at h is F_r(h; h_t) ≈ Σ g(s_i) + c·P·A with g(s) = f_r(s − h; s − h̄) − c·f_a(s − h̄)
+  and c = ∂_{h_t}E[F_r(h; h_t)] / ∂_{h_t}E[F_a(h_t)] at h̄ (mean-field derivatives, by
+  central differences of the quadrature). Without a preload the turn is common: c = 0.
+* Y = Σ_{i≤N} g(s_i) has the cumulant generating function K(t) = λ(E[e^{tg}] − 1)
+  (PHYSICS.md), and p(h) = P(−Y − c·P·A > F_r) = P(Y < y0) is its lower tail at
+  y0 = −F_r − c·P·A, from the **Lugannani–Rice saddlepoint approximation** (Lugannani &
+  Rice 1980; Daniels 1987, Eq. 2.6): K′(t̂) = y0, w = sgn(t̂)√(2(t̂y0 − K(t̂))),
+  u = t̂√K″(t̂), P(Y ≤ y0) ≈ Φ(w) + φ(w)(1/w − 1/u). Chosen over a normal approximation
+  with a skewness (Edgeworth) correction because its error is *relative* and uniform far
+  into the tail (O(1/λ) for a compound-Poisson sum, Jensen 1995, Sect. 2.3), where the
+  Edgeworth series' absolute error of O(λ^{-1}) exceeds the probabilities 1e-4 … 1e-6 of
+  interest. Near the mean (|t̂| → 0) it has the limit 1/2 + κ₃/(6√(2π)κ₂^{3/2}).
+* The pull-off is the extremum of each pad's own curve, min over h, not its value at the
+  mean curve's h*: P(max_h X(h) > F_r) ≥ max_h P(X(h) > F_r). :func:`p_stick_model` takes
+  that lower bound over :data:`OFFSETS` around h* — first order in the extremum; the rest
+  of its bias (pads whose minimum lies between, or whose curves' shapes differ) remains
+  and is measured against brute force in ``validation/stiction_model.py``.
+
+E[·] over s are trapezoid sums of the height density on :data:`NODES` nodes between the
+lowest height that touches and s̄ + 8 (beyond, the density is below 1e-14 of its peak
+for the Gaussian).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from mcsim.engine.kernels import block_sums, sum_columns
+
+#: Height nodes of the quadrature over s.
+NODES = 4000
+#: Separations (d/σ) around the mean curve's pull-off over which the tail is maximised.
+OFFSETS = np.linspace(-0.3, 0.3, 13)
+#: Step (in h) of the central differences of the mean loads: several quadrature nodes wide (the
+#: retraction load changes with the turn through the summits that touch, a step in s).
+STEP = 0.01
+
+
+def _per_summit(spec, s, h, h_turn) -> np.ndarray:
+    """Load (N) of one summit of height s (σ) at separation h after the closest approach h_turn.
+
+    One summit at z = 0 and the rows d = −δ: the kernel's sum is the per-summit law.
+    """
+    sigma = spec.surface.sigma
+    d, d_turn = -(s - h) * sigma, -(s - h_turn) * sigma
+    column = sum_columns(spec.law_set).index("load")
+    return block_sums(np.zeros(1), d, spec.law_set, spec.arguments, d_turn=d_turn,
+                      edges=spec.edges)[:, column]  # fmt: skip
+
+
+def _quadrature(spec, low: float) -> tuple[np.ndarray, np.ndarray]:
+    """Nodes s (σ) and trapezoid weights of the height density, λ included, from ``low``."""
+    heights = spec.surface.heights
+    s = np.linspace(low, 8.0, NODES)
+    w = np.full(NODES, s[1] - s[0])
+    w[[0, -1]] /= 2
+    return s, w * heights.pdf(s) * spec.surface.eta * spec.area
+
+
+def _lugannani_rice(g: np.ndarray, w: np.ndarray, y0: float) -> float:
+    """P(Y ≤ y0) of the compound-Poisson Y = Σ g(s_i) with intensity weights w (module docstring)."""
+    from scipy.optimize import brentq
+    from scipy.stats import norm
+
+    def moments(t):
+        e = w * np.exp(t * g)
+        return np.sum(e) - np.sum(w), np.sum(e * g), np.sum(e * g * g)
+
+    k1, k2 = float(np.sum(w * g)), float(np.sum(w * g * g))
+    if k2 == 0:
+        return float(y0 >= 0)
+    scale = 1 / math.sqrt(k2)
+    if abs(y0 - k1) < 1e-6 * math.sqrt(k2):
+        k3 = float(np.sum(w * g**3))
+        return 0.5 + k3 / (6 * math.sqrt(2 * math.pi) * k2**1.5)
+    lo, hi = (-scale, 0.0) if y0 < k1 else (0.0, scale)
+    while (moments(lo)[1] - y0) > 0:
+        if lo < -1e6 * scale:
+            return 0.0  # below every reachable value
+        lo *= 2
+    while (moments(hi)[1] - y0) < 0:
+        if hi > 1e6 * scale:
+            return 1.0
+        hi *= 2
+    t = brentq(lambda x: moments(x)[1] - y0, lo, hi, xtol=1e-14 * scale, rtol=1e-12)
+    k, _, kpp = moments(t)
+    wv = math.copysign(math.sqrt(max(2 * (t * y0 - k), 0.0)), t)
+    u = t * math.sqrt(kpp)
+    return float(min(1.0, max(0.0, norm.cdf(wv) + norm.pdf(wv) * (1 / wv - 1 / u))))
+
+
+def p_stick_model(spec, restoring_force: float, *, turn: float, h_pull_off: float,
+                  preload: float | None = None) -> float:  # fmt: skip
+    """Model estimate of p_stick = P(pull-off > F_r) for the pads of ``spec`` (module docstring).
+
+    Parameters
+    ----------
+    spec : MonteCarloSpec
+        The pads (surface, material, law set, area; Poisson summit count).
+    restoring_force : float
+        F_r, N.
+    turn : float
+        Mean-field turn h̄ = d/σ (under a preload, the one that balances it).
+    h_pull_off : float
+        Separation d/σ of the mean curve's pull-off after ``turn``.
+    preload : float, optional
+        Nominal pressure P, Pa: force control (else a common turn, c = 0).
+
+    Returns
+    -------
+    float
+        The Lugannani–Rice tail, maximised over h* + :data:`OFFSETS`.
+    """
+    low = turn - 1.0
+    s, w = _quadrature(spec, low)
+    f_a = _per_summit(spec, s, turn, turn)
+    best = 0.0
+    for h in h_pull_off + OFFSETS:
+        if h < turn + STEP:
+            continue
+        f_r = _per_summit(spec, s, h, turn)
+        c, applied = 0.0, 0.0
+        if preload is not None:
+            up, down = _per_summit(spec, s, h, turn + STEP), _per_summit(spec, s, h, turn - STEP)
+            slope_r = np.sum(w * (up - down)) / (2 * STEP)
+            a_up = _per_summit(spec, s, turn + STEP, turn + STEP)
+            a_down = _per_summit(spec, s, turn - STEP, turn - STEP)
+            c, applied = slope_r / (np.sum(w * (a_up - a_down)) / (2 * STEP)), preload * spec.area
+        g = f_r - c * f_a
+        best = max(best, _lugannani_rice(g, w, -restoring_force - c * applied))
+    return best

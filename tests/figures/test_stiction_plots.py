@@ -1,0 +1,34 @@
+"""``mcsim plot`` of a pads sweep (issue 23): p_stick with its interval and the model, or a map."""
+
+import pytest
+from conftest import run_cli
+
+from mcsim.figures.stiction import stiction_figure
+from mcsim.model.presets import MATERIALS, SURFACES
+from mcsim.store.sweepfile import read_sweep
+from mcsim.studies.sweeps import sweep
+
+OPTIONS = {"law": "jkr", "pads": 8, "seed": 1, "area": "30um^2", "restoring_force": "20uN",
+           "preload": "1MPa"}  # fmt: skip
+
+
+@pytest.mark.filterwarnings("ignore::mcsim.physics.adhesion.RegimeWarning")
+def test_a_1d_pads_sweep_draws_p_stick_with_its_interval_and_the_model_on_a_log_axis():
+    result = sweep(SURFACES["smooth"], MATERIALS["silicon"], {"sigma": "1.5nm,2.5nm"}, **OPTIONS)
+    ax = stiction_figure(result).axes[0]
+    assert ax.get_yscale() == "log" and "p_stick" in ax.get_ylabel() and "(nm)" in ax.get_xlabel()
+    labels = [t.get_text() for t in ax.get_legend().get_texts()]
+    assert any("Clopper-Pearson" in t for t in labels) and any("model" in t for t in labels)
+
+
+@pytest.mark.filterwarnings("ignore::mcsim.physics.adhesion.RegimeWarning")
+def test_cli_plot_of_a_2d_pads_sweep_writes_a_map_with_a_log_colour_bar(tmp_path, capsys):
+    path = tmp_path / "map.h5"
+    sweep(SURFACES["smooth"], MATERIALS["silicon"], {"sigma": "1.5nm,2.5nm", "gamma": "0.1,0.3"},
+          out=path, **OPTIONS)  # fmt: skip
+    code, _, err = run_cli(capsys, "plot", path, "--out", tmp_path / "map.png")
+    assert code == 0, err
+    assert (tmp_path / "map.png").stat().st_size > 0
+    fig = stiction_figure(read_sweep(path))
+    colourbar = fig.axes[1]
+    assert colourbar.get_yscale() == "log" and "p_stick" in colourbar.get_ylabel()

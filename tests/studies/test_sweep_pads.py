@@ -1,0 +1,173 @@
+"""``mcsim sweep --pads`` (issue 23): finite pads at every grid point, each point from its own
+stream; ``sweep --preload``: the adhesion summary's turn balances the preload."""
+
+import dataclasses
+import json
+import math
+
+import numpy as np
+import pytest
+from conftest import run_cli
+
+from mcsim.model.errors import MCSimError, ParameterError
+from mcsim.model.presets import MATERIALS, SURFACES
+from mcsim.physics.adhesion import adhesion_summary
+from mcsim.physics.analytic import gw_curves
+from mcsim.physics.loadcontrol import preload_turn
+from mcsim.store.sweepfile import PADS, read_sweep
+from mcsim.studies.sweeps import pads_seed, sweep
+
+SMOOTH = dataclasses.replace(SURFACES["smooth"], sigma=2.5e-9)
+SILICON = MATERIALS["silicon"]
+#: Separations of the pads' specs (and of `simulate --h`): the turns lie near h = 2.
+H = "4:-1:51"
+PADS_OPTIONS = {"law": "jkr", "area": "30um^2", "restoring_force": "20uN", "preload": "1MPa"}
+
+
+@pytest.fixture(scope="module")
+def pads_sweep(tmp_path_factory):
+    """Two σ points, 60 pads of 30 µm² each under a 1 MPa preload, written to a file."""
+    path = tmp_path_factory.mktemp("pads") / "pads.h5"
+    result = sweep(SMOOTH, SILICON, {"sigma": "2.5nm,3nm"}, pads=60, seed=7, out=path, workers=1,
+                   **PADS_OPTIONS)  # fmt: skip
+    return result, path
+
+
+def _pads_json(capsys, tmp_path, seed, sigma, pads=60):
+    """`mcsim simulate --cycle --preload` + `mcsim pads --format json` at one point (σ, m)."""
+    surface, run = tmp_path / "smooth.toml", tmp_path / f"run{seed % 1000}.h5"
+    surface.write_text(
+        f'[surface]\nsigma = "{sigma!r} m"\nR = "{SMOOTH.R!r} m"\neta = "{SMOOTH.eta!r} m^-2"\n'
+    )
+    code, _, err = run_cli(capsys, "simulate", "--surface", surface, "--law", "jkr",
+                           "--h", H, "--area", "30um^2", "--realizations", pads, "--seed", seed,
+                           "--cycle", "--preload", "1MPa", "--out", run, "--quiet")  # fmt: skip
+    assert code == 0, err
+    code, out, err = run_cli(capsys, "pads", run, "--restoring-force", "20uN", "--format", "json")
+    assert code == 0, err
+    return json.loads(out)
+
+
+def test_the_sweep_stores_every_pads_variable_with_its_unit(pads_sweep):
+    result, path = pads_sweep
+    on_disk = read_sweep(path)
+    for name, (unit, _) in PADS.items():
+        assert on_disk.units[name] == unit and on_disk.data[name].shape == (2,)
+        assert np.all(np.isfinite(on_disk.data[name])), name
+    assert on_disk.attrs["pads"] == 60 and on_disk.attrs["restoring_force"] == pytest.approx(20e-6)
+    d = result.data
+    assert np.all((d["p_stick_low"] <= d["p_stick"]) & (d["p_stick"] <= d["p_stick_high"]))
+    assert np.all(
+        (d["pull_off_q05"] <= d["pull_off_q50"]) & (d["pull_off_q50"] <= d["pull_off_q95"])
+    )
+
+
+def test_a_points_pads_are_simulate_cycle_preload_and_pads_with_the_points_own_seed(
+    pads_sweep, tmp_path, capsys
+):
+    result, _ = pads_sweep
+    seed = pads_seed(int(result.attrs["seed_entropy"]), 0)
+    stats = _pads_json(capsys, tmp_path, seed, float(result.coords["sigma"][0]))
+    d = result.data
+    assert (stats["p_stick"], stats["mean"], stats["std"], stats["q50"]) == (
+        d["p_stick"][0], d["pull_off_mean"][0], d["pull_off_std"][0], d["pull_off_q50"][0])  # fmt: skip
+    assert stats["p_stick_ci"] == [d["p_stick_low"][0], d["p_stick_high"][0]]
+
+
+def test_simulate_cycle_preload_and_pads_with_another_seed_agree_within_the_statistics(
+    pads_sweep, tmp_path, capsys
+):
+    result, _ = pads_sweep
+    stats = _pads_json(capsys, tmp_path, 12345, float(result.coords["sigma"][0]))
+    d = result.data
+    # Independent samples of 60 pads: the difference of the means over its standard error,
+    # and of the fractions over the binomial one (pooled p), are each below 5 in magnitude.
+    se_mean = math.hypot(stats["se"], d["pull_off_std"][0] / math.sqrt(60))
+    assert abs(stats["mean"] - d["pull_off_mean"][0]) < 5 * se_mean
+    p = (stats["p_stick"] + d["p_stick"][0]) / 2
+    assert abs(stats["p_stick"] - d["p_stick"][0]) < 5 * math.sqrt(2 * p * (1 - p) / 60)
+
+
+def test_pads_do_not_depend_on_the_workers(pads_sweep):
+    result, _ = pads_sweep
+    again = sweep(
+        SMOOTH, SILICON, {"sigma": "2.5nm,3nm"}, pads=60, seed=7, workers=2, **PADS_OPTIONS
+    )
+    for name in PADS:
+        np.testing.assert_array_equal(again.data[name], result.data[name], err_msg=name)
+
+
+def test_an_interrupted_pads_sweep_resumes_to_the_uninterrupted_one(
+    pads_sweep, tmp_path, monkeypatch
+):
+    import mcsim.studies.sweeps as sweeps
+
+    evaluate, path = sweeps.evaluate, tmp_path / "resumed.h5"
+
+    def stop_at_point_1(point, config):
+        if point.index == 1:
+            raise KeyboardInterrupt
+        return evaluate(point, config)
+
+    monkeypatch.setattr(sweeps, "evaluate", stop_at_point_1)
+    with pytest.raises(KeyboardInterrupt):
+        sweep(SMOOTH, SILICON, {"sigma": "2.5nm,3nm"}, pads=60, seed=7, out=path, workers=1, **PADS_OPTIONS)  # fmt: skip
+    monkeypatch.setattr(sweeps, "evaluate", evaluate)
+    with pytest.raises(ParameterError, match="cannot resume"):  # other pads: another sweep
+        sweep(SMOOTH, SILICON, {"sigma": "2.5nm,3nm"}, pads=61, out=path, resume=True, **PADS_OPTIONS)  # fmt: skip
+    resumed = sweep(SMOOTH, SILICON, {"sigma": "2.5nm,3nm"}, pads=60, out=path, resume=True, **PADS_OPTIONS)  # fmt: skip
+    for name in PADS:
+        np.testing.assert_array_equal(resumed.data[name], pads_sweep[0].data[name], err_msg=name)
+
+
+@pytest.mark.filterwarnings("ignore::mcsim.physics.adhesion.RegimeWarning")
+def test_sweep_preload_turns_where_the_mean_approach_load_balances_it_at_every_point():
+    result = sweep(SMOOTH, SILICON, {"sigma": "1.4nm,2.5nm,5nm"}, law="jkr", preload="1MPa")
+    for i, sigma in enumerate(result.coords["sigma"]):
+        surface = dataclasses.replace(SMOOTH, sigma=float(sigma))
+        turn = result.data["turn"][i]
+        assert turn == preload_turn(surface, SILICON, 1e6, "jkr")
+        load = gw_curves(surface, SILICON, np.array([turn]), "jkr").values["load"][0]
+        assert load * SILICON.K == pytest.approx(1e6, rel=1e-6)  # load/(A K) times K: P
+        assert (
+            result.data["pull_off"][i] == adhesion_summary(surface, SILICON, "jkr", turn).pull_off
+        )
+    assert result.attrs["preload"] == 1e6
+
+
+@pytest.mark.parametrize(
+    "options, match",
+    [({"pads": 10, "area": "30um^2"}, "restoring force"),
+     ({"restoring_force": "1uN"}, "restoring_force applies to the pads only"),
+     ({"pads": 0, "area": "30um^2", "restoring_force": "1uN"}, "pads = 0"),
+     ({"pads": 10, "restoring_force": "1uN"}, "pads needs the patch area"),
+     ({"preload": "1MPa", "turn": 1.0}, "turn and preload"),
+     ({"preload": "-1MPa"}, "preload"),
+     ({"pads": 10, "area": "30um^2", "restoring_force": "-1uN"}, "restoring_force")],
+)  # fmt: skip
+def test_bad_pads_options_are_one_line_errors_naming_the_field(options, match):
+    with pytest.raises(MCSimError, match=match):
+        sweep(SMOOTH, SILICON, {"sigma": "2nm"}, law="jkr", **options)
+
+
+def test_cli_pads_sweep_warns_once_when_pads_touch_with_few_summits(tmp_path, capsys):
+    code, _, err = run_cli(capsys, "sweep", "--surface", "smooth", "--law", "jkr", "--vary", "sigma=3nm",
+                           "--pads", 5, "--area", "30um^2", "--restoring-force", "20uN", "--preload",
+                           "1MPa", "--seed", 1, "--out", tmp_path / "few.h5", "--quiet")  # fmt: skip
+    assert code == 0, err
+    few = [line for line in err.splitlines() if "fewer than 10 summits" in line]
+    assert len(few) == 1 and "1 of 1 points" in few[0]
+
+
+@pytest.mark.filterwarnings("ignore::mcsim.physics.adhesion.RegimeWarning")
+def test_p_stick_model_agrees_with_brute_force_where_pads_touch_with_over_a_hundred_summits():
+    # σ = 1.4 nm, 30 µm², 5 MPa: ~125 summits touch each pad. 150 pads: the model lies within
+    # 5 binomial standard errors (at the model's p) of the Monte Carlo fraction.
+    surface = SURFACES["smooth"]
+    result = sweep(surface, SILICON, {"sigma": [surface.sigma]}, law="jkr", pads=150, seed=3,
+                   area="30um^2", restoring_force="150uN", preload="5MPa")  # fmt: skip
+    d = {k: float(v[0]) for k, v in result.data.items() if k in PADS}
+    assert d["contacting_summits"] > 100
+    p = d["p_stick_model"]
+    assert 1e-3 <= p <= 1 - 1e-3
+    assert abs(d["p_stick"] - p) < 5 * math.sqrt(p * (1 - p) / 150), d
