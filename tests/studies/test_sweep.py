@@ -162,9 +162,9 @@ def test_cli_sweep_writes_the_file_and_refuses_to_replace_it_without_overwrite(t
     path = tmp_path / "s.h5"
     args = ["sweep", "--surface", "smooth", "--law", "dmt", "--vary", "sigma=1nm,2nm",
             "--h=2,0", "--out", str(path)]  # fmt: skip
-    code, out, _ = run_cli(capsys, *args)
+    code, _, err = run_cli(capsys, *args)
     assert code == 0 and path.is_file()
-    assert "2 points" in out
+    assert f"wrote {path} (2 points" in err
     code, _, err = run_cli(capsys, *args)
     assert code == 2
     assert "file exists" in err and len(err.strip().splitlines()) == 1
@@ -188,7 +188,7 @@ def test_a_failed_point_is_recorded_and_reported_with_its_inputs_and_the_others_
                            "gamma=0.1,0.5", "--h=2,0", "--out", str(path))  # fmt: skip
     assert code == 1
     assert path.is_file()
-    failed = [line for line in err.splitlines() if "failed" in line]
+    failed = [line for line in err.splitlines() if "failed:" in line]
     assert len(failed) == 1 and "gamma = 0.1" in failed[0] and "injected" in failed[0]
     xr = pytest.importorskip("xarray")
     with xr.open_dataset(path, engine="h5netcdf") as ds:
