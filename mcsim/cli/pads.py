@@ -51,53 +51,31 @@ def run(args) -> int:
     if not run.complete:
         print(f"mcsim: note: {run.path} is incomplete: statistics over its {stats.pads} completed "
               f"pad(s) of {run.attrs.get('realizations')}", file=sys.stderr)  # fmt: skip
-    out = stats.to_dict()
     turns = {}
-    if pull_off.preload is not None:
+    if pull_off.preload is not None:  # the analytic mean after the mean-field turn
         t = pull_off.h_turn
         turns = {"preload": pull_off.preload, "h_turn_mean_field": run.attrs.get("preload_turn_mean_field"),
                  "h_turn_min": float(np.min(t)), "h_turn_q50": float(np.median(t)),
                  "h_turn_max": float(np.max(t))}  # fmt: skip
-    if pull_off.preload is not None:  # the analytic mean after the mean-field turn
         analytic = analytic_pad_pull_off(run.spec, turns["h_turn_mean_field"])
+    model = (
+        None
+        if fr is None
+        else _model(run.spec, fr, pull_off.preload, turns.get("h_turn_mean_field"))
+    )
+    fields = _fields(stats, fr, model, analytic, turns)
     method = _method(pull_off)
-    if fr is not None:
-        out["p_stick_model"] = _model(
-            run.spec, fr, pull_off.preload, turns.get("h_turn_mean_field")
-        )
-    if args.format in ("json", "csv"):
-        print(f"mcsim: note: analytic mean {analytic:.6g} N (GW pull-off x A K: minimum of the mean "
-              f"curve); per-pad pull-off: {method}"
-              + ("; p_stick_ci: " + interval if args.format == "json" else ""), file=sys.stderr)  # fmt: skip
-    if args.format == "json":
-        print(json.dumps({k: (None if isinstance(v, float) and not math.isfinite(v) else v)
-                          for k, v in (out | turns).items()}, indent=1, allow_nan=False))  # fmt: skip
-    elif args.format == "csv":
-        print("mcsim: note: columns: pad (realization index), pull_off_N (most tensile retraction "
-              "load of the pad, a magnitude, N), h_pull_off (its separation d/sigma), h_turn (the "
-              "pad's closest approach d/sigma), turn_load_N (approach load reached there under a "
-              "preload, N), grid_pull_off_N and grid_h_pull_off (the most tensile point of the "
-              "run's grid)", file=sys.stderr)  # fmt: skip
-        columns = ["pad", "pull_off_N", "h_pull_off", "h_turn", "turn_load_N", "grid_pull_off_N",
-                   "grid_h_pull_off"]  # fmt: skip
-        turn_load = (pull_off.turn_load if pull_off.turn_load is not None
-                     else np.full(pull_off.force.shape, math.nan))  # fmt: skip
-        rows = [dict(zip(columns, (i, *map(float, row)))) for i, row in enumerate(zip(
-            pull_off.force, pull_off.h, pull_off.h_turn, turn_load, pull_off.grid_force,
-            pull_off.grid_h))]  # fmt: skip
-        print_rows(rows, columns, "csv")
+    if args.format == "json":  # the same fields as the table, with their units
+        clean = {k: (None if isinstance(v, float) and not math.isfinite(v) else v)
+                 for k, (v, _) in fields.items()}  # fmt: skip
+        clean |= {"interval": interval, "pull_off_method": method,
+                  "units": {k: u for k, (_, u) in fields.items()}}  # fmt: skip
+        print(json.dumps(clean, indent=1, allow_nan=False))
+    elif args.format == "csv":  # a row per pad; the statistics as a note
+        print(f"mcsim: note: {', '.join(f'{k} = {v:.6g} {u}' for k, (v, u) in fields.items() if v is not None)}; "
+              f"{interval} interval; per-pad pull-off: {method}", file=sys.stderr)  # fmt: skip
+        _print_pads(pull_off)
     else:
-        ci = out.pop("p_stick_ci", None)
-        rows_fr = [] if fr is None else [{"quantity": "restoring_force", "value": fr, "unit": "N"}]
-        rows = [{"quantity": k, "value": float(v), "unit": "1" if k in ("pads", "p_stick", "p_stick_model") else "N"}
-                for k, v in out.items()]  # fmt: skip
-        rows[7:7] = rows_fr
-        if ci is not None:
-            rows += [{"quantity": "p_stick_ci_low", "value": ci[0], "unit": "1"},
-                     {"quantity": "p_stick_ci_high", "value": ci[1], "unit": "1"}]  # fmt: skip
-        rows.append({"quantity": "analytic_mean", "value": analytic, "unit": "N"})
-        rows += [{"quantity": k, "value": v, "unit": "Pa" if k == "preload" else "1"}
-                 for k, v in turns.items()]  # fmt: skip
         spec = run.spec
         header = [f"run {run.path}: law {spec.law}, A = {spec.area * 1e12:.4g} um^2, E[N] = "
                   f"{spec.expected_summits:.4g} summits per pad, {stats.pads} pads",
@@ -105,6 +83,7 @@ def run(args) -> int:
                   f"{interval} interval",
                   "analytic_mean: GW pull-off x A K (minimum of the mean curve, not the mean of "
                   "the per-pad minima on the grid)"]  # fmt: skip
+        rows = [{"quantity": k, "value": v, "unit": u} for k, (v, u) in fields.items()]
         print_rows(rows, ["quantity", "value", "unit"], "table", header)
     if args.plot:
         from mcsim.figures.style import save
@@ -115,6 +94,42 @@ def run(args) -> int:
         save(fig, args.plot, overwrite=args.overwrite, inputs=[args.run])
         announce(args.plot, quiet=args.quiet)
     return 0
+
+
+def _fields(stats, fr, model, analytic, turns) -> dict[str, tuple[float, str]]:
+    """Every quantity ``pads`` reports, with its unit: the table and json carry the same."""
+    out = stats.to_dict()
+    ci = out.pop("p_stick_ci", None)
+    fields = {
+        k: (out[k], "1" if k == "pads" else "N")
+        for k in ("pads", "mean", "se", "std", "q05", "q50", "q95")
+    }
+    if fr is not None:
+        fields |= {"restoring_force": (fr, "N"), "p_stick": (out["p_stick"], "1"),
+                   "p_stick_ci_low": (ci[0], "1"), "p_stick_ci_high": (ci[1], "1"),
+                   "p_stick_model": (model, "1")}  # fmt: skip
+    fields["analytic_mean"] = (analytic, "N")
+    fields |= {k: (v, "Pa" if k == "preload" else "1") for k, v in turns.items()}
+    return fields
+
+
+def _print_pads(pull_off) -> None:
+    """``--format csv``: one row per pad."""
+    import numpy as np
+
+    print("mcsim: note: columns: pad (realization index), pull_off_N (most tensile retraction "
+          "load of the pad, a magnitude, N), h_pull_off (its separation d/sigma), h_turn (the "
+          "pad's closest approach d/sigma), turn_load_N (approach load reached there under a "
+          "preload, N), grid_pull_off_N and grid_h_pull_off (the most tensile point of the "
+          "run's grid)", file=sys.stderr)  # fmt: skip
+    columns = ["pad", "pull_off_N", "h_pull_off", "h_turn", "turn_load_N", "grid_pull_off_N",
+               "grid_h_pull_off"]  # fmt: skip
+    turn_load = (pull_off.turn_load if pull_off.turn_load is not None
+                 else np.full(pull_off.force.shape, math.nan))  # fmt: skip
+    rows = [dict(zip(columns, (i, *map(float, row)))) for i, row in enumerate(zip(
+        pull_off.force, pull_off.h, pull_off.h_turn, turn_load, pull_off.grid_force,
+        pull_off.grid_h))]  # fmt: skip
+    print_rows(rows, columns, "csv")
 
 
 def _model(spec, fr: float, preload: float | None, turn: float | None) -> float:

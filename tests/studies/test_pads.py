@@ -126,14 +126,16 @@ def cycle_run(tmp_path_factory):
 def test_pads_json_has_exactly_the_statistics_of_the_runs_per_pad_pull_off(cycle_run, capsys):
     from mcsim.store.runfile import read_run
 
-    code, out, err = run_cli(capsys, "pads", cycle_run, "--format", "json")
+    code, out, _ = run_cli(capsys, "pads", cycle_run, "--format", "json")
     data = json.loads(out)
-    assert code == 0 and list(data) == KEYS
+    extra = ["analytic_mean", "interval", "pull_off_method", "units"]
+    assert code == 0 and list(data) == [*KEYS, *extra]
     run = read_run(cycle_run)
     expected = pad_statistics(run.pull_off().force).to_dict()
-    assert data == pytest.approx(expected, rel=1e-15)
+    assert {k: data[k] for k in KEYS} == pytest.approx(expected, rel=1e-15)
     assert data["pads"] == 40 and data["mean"] > 0
-    assert "analytic mean" in err and "Clopper-Pearson" in err
+    assert data["analytic_mean"] == pytest.approx(analytic_pad_pull_off(run.spec), rel=1e-15)
+    assert data["interval"].startswith("Clopper-Pearson") and data["units"]["mean"] == "N"
 
 
 def test_pads_with_a_restoring_force_adds_p_stick_and_its_interval(cycle_run, capsys):
@@ -144,11 +146,14 @@ def test_pads_with_a_restoring_force_adds_p_stick_and_its_interval(cycle_run, ca
     code, out, _ = run_cli(capsys, "pads", cycle_run, f"--restoring-force={fr * 1e6!r}uN",
                            "--format", "json")  # fmt: skip
     data = json.loads(out)
-    assert code == 0 and list(data) == [*KEYS, "p_stick", "p_stick_ci", "p_stick_model"]
+    stick = ["restoring_force", "p_stick", "p_stick_ci_low", "p_stick_ci_high", "p_stick_model"]
+    assert code == 0 and list(data)[: len(KEYS) + 5] == [*KEYS, *stick]
     assert 0 <= data["p_stick_model"] <= 1
+    assert data["restoring_force"] == pytest.approx(fr, rel=1e-12)
     k = int(np.count_nonzero(force > fr * 1e6 * 1e-6))
     assert data["p_stick"] == k / 40
-    assert data["p_stick_ci"] == pytest.approx(list(clopper_pearson(k, 40)), rel=1e-15)
+    ci = [data["p_stick_ci_low"], data["p_stick_ci_high"]]
+    assert ci == pytest.approx(list(clopper_pearson(k, 40)), rel=1e-15)
 
 
 def test_pads_table_names_the_analytic_mean_and_how_the_pull_off_was_found(cycle_run, capsys):
@@ -299,8 +304,9 @@ def test_pads_interval_wilson_replaces_the_interval_and_names_it(cycle_run, caps
                              "--interval", "wilson", "--format", "json")  # fmt: skip
     data = json.loads(out)
     k = int(np.count_nonzero(force > fr))
-    assert code == 0 and data["p_stick_ci"] == pytest.approx(list(wilson(k, 40)), rel=1e-15)
-    assert "Wilson" in err and "Clopper" not in err
+    ci = [data["p_stick_ci_low"], data["p_stick_ci_high"]]
+    assert code == 0 and ci == pytest.approx(list(wilson(k, 40)), rel=1e-15)
+    assert data["interval"].startswith("Wilson") and "Clopper" not in err
     code, out, _ = run_cli(capsys, "pads", cycle_run, "--restoring-force=1nN", "--interval",
                            "wilson")  # fmt: skip
     assert code == 0 and "Wilson 95 % interval" in out
@@ -336,7 +342,10 @@ def test_pads_partial_reads_the_completed_pads_of_a_checkpoint_and_says_how_many
     code, out, err = run_cli(capsys, "pads", tmp_path / "p.partial.h5", "--partial", "--format",
                              "json")  # fmt: skip
     expected = pad_statistics(assemble(partial.completed()).pull_off().force).to_dict()
-    assert code == 0 and json.loads(out) == pytest.approx(expected, rel=1e-15, nan_ok=True)
+    data = json.loads(out)
+    assert code == 0 and {k: data[k] for k in KEYS} == pytest.approx(
+        expected, rel=1e-15, nan_ok=True
+    )
     assert json.loads(out)["pads"] == 2 and "2 completed pad(s) of 4" in err
 
 
@@ -381,7 +390,7 @@ def test_pad_turns_scatter_about_the_mean_field_turn(preload_run):
 def test_pads_of_a_preloaded_run_report_the_preload_and_the_turns(preload_run, capsys):
     code, out, err = run_cli(capsys, "pads", preload_run, "--format", "json")
     data = json.loads(out)
-    assert code == 0 and data["preload"] == 1e6 and "force control" in err
+    assert code == 0 and data["preload"] == 1e6 and "force control" in data["pull_off_method"]
     assert data["h_turn_min"] <= data["h_turn_mean_field"] <= data["h_turn_max"]
 
 

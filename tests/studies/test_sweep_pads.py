@@ -71,7 +71,10 @@ def test_a_points_pads_are_simulate_cycle_preload_and_pads_with_the_points_own_s
     d = result.data
     assert (stats["p_stick"], stats["mean"], stats["std"], stats["q50"]) == (
         d["p_stick"][0], d["pull_off_mean"][0], d["pull_off_std"][0], d["pull_off_q50"][0])  # fmt: skip
-    assert stats["p_stick_ci"] == [d["p_stick_low"][0], d["p_stick_high"][0]]
+    assert [stats["p_stick_ci_low"], stats["p_stick_ci_high"]] == [
+        d["p_stick_low"][0],
+        d["p_stick_high"][0],
+    ]
 
 
 def test_simulate_cycle_preload_and_pads_with_another_seed_agree_within_the_statistics(
