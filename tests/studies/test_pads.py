@@ -388,7 +388,7 @@ def test_pad_turns_scatter_about_the_mean_field_turn(preload_run):
 
 
 def test_pads_of_a_preloaded_run_report_the_preload_and_the_turns(preload_run, capsys):
-    code, out, err = run_cli(capsys, "pads", preload_run, "--format", "json")
+    code, out, _ = run_cli(capsys, "pads", preload_run, "--format", "json")
     data = json.loads(out)
     assert code == 0 and data["preload"] == 1e6 and "force control" in data["pull_off_method"]
     assert data["h_turn_min"] <= data["h_turn_mean_field"] <= data["h_turn_max"]
