@@ -86,10 +86,14 @@ def run(args) -> int:
         rows = [{"quantity": k, "value": v, "unit": u} for k, (v, u) in fields.items()]
         print_rows(rows, ["quantity", "value", "unit"], "table", header)
     if args.plot:
+        from mcsim.figures.stiction import pads_figure
         from mcsim.figures.style import save
-        from mcsim.studies.pads import pads_figure
 
-        fig = pads_figure(pull_off.force, analytic, restoring_force=fr,
+        stick = {}
+        if fr is not None:
+            stick = {"p_stick": fields["p_stick"][0], "interval_name": interval, "interval": (
+                fields["p_stick_ci_low"][0], fields["p_stick_ci_high"][0])}  # fmt: skip
+        fig = pads_figure(pull_off.force, analytic, restoring_force=fr, **stick,
                           title=f"{Path(args.run).name}: pull-off of {stats.pads} pads")  # fmt: skip
         save(fig, args.plot, overwrite=args.overwrite, inputs=[args.run])
         announce(args.plot, quiet=args.quiet)

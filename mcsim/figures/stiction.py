@@ -119,3 +119,61 @@ def _map(sweep, dims: list[str]):
     ax.set_title(_title(sweep) + "\nhatched: the 95 % interval straddles a contour level",
                  fontsize="medium")  # fmt: skip
     return fig
+
+
+def pads_figure(force, analytic_mean: float | None = None, *, restoring_force: float | None = None,
+                p_stick: float | None = None, interval: tuple[float, float] | None = None,
+                interval_name: str = "", title: str | None = None):  # fmt: skip
+    """Histogram and empirical CDF of per-pad pull-off forces (µN), analytic mean marked and,
+    with a restoring force, the probability of sticking and its interval.
+
+    Parameters
+    ----------
+    force : array_like
+        Pull-off force of each pad, N.
+    analytic_mean : float, optional
+        GW mean pad pull-off (:func:`mcsim.studies.pads.analytic_pad_pull_off`), N: a dashed line.
+    restoring_force : float, optional
+        F_r, N: a dotted line (pads to its right stick).
+    p_stick, interval : float and (float, float), optional
+        P(pull-off > F_r) and its interval: drawn on the CDF panel at F_r as 1 − p_stick
+        with the interval as an error bar, and written in its legend.
+    interval_name : str
+        Name of the interval (e.g. "Clopper-Pearson 95 %").
+    title : str, optional
+        Figure title.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        Built without pyplot (headless).
+    """
+    from matplotlib.figure import Figure
+
+    f = np.sort(np.asarray(force, dtype=float).ravel()) * 1e6
+    fig = Figure(figsize=(9, 3.8), layout="constrained")
+    hist, ecdf = fig.subplots(1, 2)
+    hist.hist(f, bins=max(10, min(60, int(np.sqrt(f.size)))), density=True, color="0.7",
+              edgecolor="0.4", label=f"Monte Carlo, {f.size} pads")  # fmt: skip
+    hist.set_ylabel("density (1/µN)")
+    ecdf.step(f, np.arange(1, f.size + 1) / f.size, where="post", color="k", label="empirical CDF")
+    ecdf.set_ylabel("fraction of pads with pull-off ≤ F")
+    for ax in (hist, ecdf):
+        ax.axvline(np.mean(f), color="C0", label=f"mean {np.mean(f):.4g} µN")
+        if analytic_mean is not None:
+            ax.axvline(analytic_mean * 1e6, color="C3", ls="--",
+                       label=f"GW analytic mean {analytic_mean * 1e6:.4g} µN")  # fmt: skip
+        if restoring_force is not None:
+            ax.axvline(restoring_force * 1e6, color="C2", ls=":",
+                       label=f"restoring force {restoring_force * 1e6:.4g} µN")  # fmt: skip
+        ax.set_xlabel("pad pull-off force F (µN)")
+    if restoring_force is not None and p_stick is not None:
+        low, high = interval if interval is not None else (p_stick, p_stick)
+        ecdf.errorbar([restoring_force * 1e6], [1 - p_stick], yerr=[[high - p_stick], [p_stick - low]],
+                      color="C2", marker="o", capsize=3,
+                      label=f"$p_{{stick}}$ = {p_stick:.3g} [{low:.3g}, {high:.3g}] {interval_name}")  # fmt: skip
+        ecdf.legend(fontsize="small", loc="lower right")
+    hist.legend(fontsize="small")
+    if title:
+        fig.suptitle(title)
+    return fig

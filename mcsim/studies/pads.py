@@ -211,51 +211,6 @@ def analytic_pad_pull_off(spec, turn: float | None = None) -> float:
     return s.pull_off * spec.material.K * spec.area * bias
 
 
-def pads_figure(force, analytic_mean: float | None = None, *, restoring_force: float | None = None,
-                title: str | None = None):  # fmt: skip
-    """Histogram and empirical CDF of per-pad pull-off forces (µN), analytic mean marked.
-
-    Parameters
-    ----------
-    force : array_like
-        Pull-off force of each pad, N.
-    analytic_mean : float, optional
-        GW mean pad pull-off (:func:`analytic_pad_pull_off`), N: a dashed line.
-    restoring_force : float, optional
-        F_r, N: a dotted line (pads to its right stick).
-    title : str, optional
-        Figure title.
-
-    Returns
-    -------
-    matplotlib.figure.Figure
-        Built without pyplot (headless).
-    """
-    from matplotlib.figure import Figure
-
-    f = np.sort(np.asarray(force, dtype=float).ravel()) * 1e6
-    fig = Figure(figsize=(9, 3.8), layout="constrained")
-    hist, ecdf = fig.subplots(1, 2)
-    hist.hist(f, bins=max(10, min(60, int(np.sqrt(f.size)))), density=True, color="0.7",
-              edgecolor="0.4", label=f"Monte Carlo, {f.size} pads")  # fmt: skip
-    hist.set_ylabel("density (1/µN)")
-    ecdf.step(f, np.arange(1, f.size + 1) / f.size, where="post", color="k", label="empirical CDF")
-    ecdf.set_ylabel("fraction of pads with pull-off ≤ F")
-    for ax in (hist, ecdf):
-        ax.axvline(np.mean(f), color="C0", label=f"mean {np.mean(f):.4g} µN")
-        if analytic_mean is not None:
-            ax.axvline(analytic_mean * 1e6, color="C3", ls="--",
-                       label=f"GW analytic mean {analytic_mean * 1e6:.4g} µN")  # fmt: skip
-        if restoring_force is not None:
-            ax.axvline(restoring_force * 1e6, color="C2", ls=":",
-                       label=f"restoring force {restoring_force * 1e6:.4g} µN")  # fmt: skip
-        ax.set_xlabel("pad pull-off force F (µN)")
-    hist.legend(fontsize="small")
-    if title:
-        fig.suptitle(title)
-    return fig
-
-
 def moment_std(run) -> float:
     """Across-pad standard deviation of pull-off predicted from the summit-level moments, N.
 

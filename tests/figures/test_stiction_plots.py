@@ -1,5 +1,6 @@
 """``mcsim plot`` of a pads sweep (issue 23): p_stick with its interval and the model, or a map."""
 
+import numpy as np
 import pytest
 from conftest import run_cli
 
@@ -32,3 +33,22 @@ def test_cli_plot_of_a_2d_pads_sweep_writes_a_map_with_a_log_colour_bar(tmp_path
     fig = stiction_figure(read_sweep(path))
     colourbar = fig.axes[1]
     assert colourbar.get_yscale() == "log" and "p_stick" in colourbar.get_ylabel()
+
+
+def test_the_pads_figure_shows_p_stick_and_its_interval_at_the_restoring_force():
+    from mcsim.figures.stiction import pads_figure
+    from mcsim.studies.pads import pad_statistics
+
+    force = np.random.default_rng(1).normal(5e-6, 1e-6, 200)
+    stats = pad_statistics(force, 5.5e-6)
+    low, high = stats.p_stick_ci
+    fig = pads_figure(force, 5e-6, restoring_force=5.5e-6, p_stick=stats.p_stick,
+                      interval=(low, high), interval_name="Clopper-Pearson 95 %")  # fmt: skip
+    ecdf = fig.axes[1]
+    (bars,) = ecdf.containers
+    x, y = bars.lines[0].get_data()
+    assert x[0] == pytest.approx(5.5) and y[0] == pytest.approx(1 - stats.p_stick)  # µN, CDF
+    (segment,) = bars.lines[2][0].get_segments()
+    assert sorted(segment[:, 1]) == pytest.approx([1 - high, 1 - low])
+    assert any("p_{stick}" in t.get_text() for t in ecdf.get_legend().get_texts())
+    assert ecdf.get_xlabel() == "pad pull-off force F (µN)"
