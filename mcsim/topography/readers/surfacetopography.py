@@ -21,7 +21,9 @@ Conventions, as checked against mcsim's own readers on real files (tests/test_su
 from __future__ import annotations
 
 import importlib.util
+import logging
 import math
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -37,6 +39,8 @@ from mcsim.topography.readers.base import (
 
 #: What to install for this reader, as said in error messages.
 INSTALL_HINT = "pip install 'mcsim[topography]'"
+
+log = logging.getLogger(__name__)
 
 
 def available() -> bool:
@@ -99,6 +103,9 @@ def read(
         ) from None
     if not path.is_file():
         raise ReaderError(f"{path}: no such file")
+    caught = warnings.catch_warnings(record=True)
+    seen = caught.__enter__()  # its readers' own warnings, while probing formats and reading
+    warnings.simplefilter("always")
     try:
         reader = SurfaceTopography.open_topography(str(path))
         info = _choose(path, reader.channels, channel)
@@ -137,6 +144,12 @@ def read(
             f"{path}: SurfaceTopography cannot read it ({type(err).__name__}"
             f"{': ' + first if first else ''})"
         ) from None
+    finally:
+        caught.__exit__(None, None, None)
+    if seen:  # read all the same: say so once, in words, instead of leaking them
+        first = " ".join(str(seen[0].message).split())[:200]
+        log.info("%s: SurfaceTopography warned %d time(s) while reading it (first: %s: %s)",
+                 path, len(seen), seen[0].category.__name__, first)  # fmt: skip
     if not z_unit:
         raise ReaderError(f"{path}: missing height unit: pass --unit")
     factor = length_factor(z_unit, path, f"channel {info.name!r} unit")
