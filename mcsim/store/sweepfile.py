@@ -368,8 +368,9 @@ def _read(path: Path, f) -> dict:
     attrs = {
         k: (v.item() if np.ndim(v) == 0 and hasattr(v, "item") else v) for k, v in f.attrs.items()
     }
-    attrs |= {k: schema.attribute(path, f, k, kind, WHAT) for k, kind in wanted.items()}
-    attrs["varied"] = json.dumps(grid := _grid(path, attrs["varied"]))
+    checked = {k: schema.attribute(path, f, k, kind, WHAT) for k, kind in wanted.items()}
+    grid = _grid(path, checked["varied"])
+    attrs |= {k: v for k, v in checked.items() if not isinstance(v, (dict, list))}  # JSON: as text
     coords = {
         d: schema.dataset(path, f, d, "S" if d == "law" else "f", None, WHAT)[()]
         for d in (*grid, "h")
