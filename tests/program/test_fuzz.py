@@ -1138,11 +1138,11 @@ def test_show_of_a_byte_flipped_run_is_one_line(run_files, tmp_path, capsys):
 # Cases: per HDF5 file kind (complete run, run checkpoint, complete sweep, sweep
 # checkpoint) HDF5_SAMPLE mutations drawn with a seeded RNG from the full list (several
 # hundred per kind) plus FLIPS byte-flipped copies, each run through the kind's 2-5
-# commands: (12 + 2) x (4 + 5 + 2 + 3) = 196 command runs; text inputs (surface and
+# commands: (8 + 2) x (4 + 5 + 2 + 3) = 140 command runs; text inputs (surface and
 # material TOML, histogram CSV, each AFM map format) TEXT_SAMPLE seeded mutations each,
 # each through its command: 10 x 9 = 90 runs. ``MCSIM_FUZZ_EXAMPLES`` scales both.
 
-HDF5_SAMPLE = max(12, EXAMPLES // 2)
+HDF5_SAMPLE = max(8, EXAMPLES // 3)
 FLIPS = 2
 TEXT_SAMPLE = max(10, EXAMPLES // 2)
 SIMULATE = ["simulate", "--surface", "smooth", "--law", "jkr", "--cycle", "--h=1,0", "--area",
@@ -1312,3 +1312,62 @@ def test_run_and_sweep_files_edited_elsewhere_are_refused_in_one_line(
         if code == 2:
             assert sorted(folder.iterdir()) == listing, f"{note}: wrote files"
             assert path.read_bytes() == before, f"{note}: changed the file"
+
+
+#: Text and AFM inputs: seed file (from ``seeds``), name and the command that reads it.
+TEXT_COMMANDS = {
+    "surface": (".toml", ["analytic", "--surface", "FILE", "--h=1,0"]),
+    "material": (".toml", ["analytic", "--surface", "smooth", "--material", "FILE", "--h=1,0"]),
+    "histogram": (".csv", ["ingest", "FILE", "--R", "1.7um", "--eta", "17um^-2"]),
+    **{
+        s: (s, ["ingest", "FILE", "--unit", "nm", "--pixel-size", "10nm"]) for s in (".npy", ".xyz")
+    },
+    **{s: (s, ["ingest", "FILE"]) for s in (".txt", ".gwy", ".ibw", ".nid")},
+}
+
+
+def text_mutation(raw: bytes, rng: random.Random) -> bytes:
+    """A line deleted, a value retyped (text, number, array, empty), a truncation or flips."""
+    lines = raw.split(b"\n")
+    at = rng.randrange(len(lines))
+    kind = rng.choice(["delete line", "retype", "truncate", "flips"])
+    if kind == "delete line":
+        del lines[at]
+    elif kind == "retype":
+        head, sep, _ = lines[at].partition(b"=")
+        value = rng.choice([b'"x"', b"1.5", b"[1, 2]", b'""', b"-1", b"nan", b"x", b""])
+        lines[at] = head + sep + b" " + value if sep else value
+    elif kind == "truncate":
+        return raw[: rng.randrange(len(raw))]
+    else:
+        return byte_flipped(raw, rng)
+    return b"\n".join(lines)
+
+
+@pytest.mark.parametrize("kind", sorted(TEXT_COMMANDS))
+def test_text_and_map_files_edited_elsewhere_are_refused_in_one_line(seeds, tmp_path, kind):
+    suffix, command = TEXT_COMMANDS[kind]
+    raw = seeds[suffix]
+    if kind == "surface":
+        raw = f"[surface]\n{SURFACE_TOML}".encode()
+    elif kind == "material":
+        raw = f"[material]\n{MATERIAL_TOML}".encode()
+    rng = random.Random(kind)
+    for case in range(TEXT_SAMPLE):
+        folder = tmp_path / str(case)
+        folder.mkdir()
+        path = folder / f"in{suffix}"
+        path.write_bytes(text_mutation(raw, rng))
+        argv = [str(path) if a == "FILE" else a for a in command]
+        if command[0] == "ingest":
+            argv += ["--out", str(folder / "out.toml")]
+        before, listing = path.read_bytes(), sorted(folder.iterdir())
+        code, out, err = quiet_cli(*argv)
+        note = f"{kind} case {case}, mcsim {' '.join(command)}"
+        try:
+            assert_refused_or_sane(folder, path, argv, code, out, err)
+        except AssertionError as failure:
+            raise AssertionError(f"{note}: {failure}") from None
+        if code == 2:
+            assert sorted(folder.iterdir()) == listing, f"{note}: wrote files"
+        assert path.read_bytes() == before, f"{note}: changed the file"
