@@ -418,7 +418,7 @@ def sweep(
                 raise ParameterError(f"cannot resume {out}: the inputs differ from the recorded "
                                      "sweep's (same surface, material, law, vary, h, turn, mc "
                                      "options needed)")  # fmt: skip
-            done = previous["done"]
+            done = _recorded(partial, previous, result, done.shape)
             for k in result.data:
                 result.data[k][done] = previous["data"][k][done]
         points = (
@@ -439,6 +439,19 @@ def sweep(
         write_sweep(out, result, attrs, complete=True)
         partial.unlink(missing_ok=True)
         return dataclasses.replace(result, attrs=attrs, path=out)
+
+
+def _recorded(partial: Path, previous: dict, result: Sweep, shape: tuple) -> np.ndarray:
+    """The completed points of a checkpoint, once its variables are those of ``result``
+    (a checkpoint rewritten elsewhere, checksum included, may lack some)."""
+    variables = {"done": (previous["done"], shape)}
+    variables |= {k: (previous["data"].get(k), v.shape) for k, v in result.data.items()}
+    for k, (values, wanted) in variables.items():
+        if values is None or values.shape != wanted:
+            found = "is missing" if values is None else f"has shape {values.shape}"
+            raise RunFileError(f"{partial}: damaged sweep file: dataset {k} {found}, "
+                               f"the inputs ask for {wanted}")  # fmt: skip
+    return previous["done"]
 
 
 def _shown(values: np.ndarray) -> list:

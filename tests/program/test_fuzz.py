@@ -1371,3 +1371,36 @@ def test_text_and_map_files_edited_elsewhere_are_refused_in_one_line(seeds, tmp_
         if code == 2:
             assert sorted(folder.iterdir()) == listing, f"{note}: wrote files"
         assert path.read_bytes() == before, f"{note}: changed the file"
+
+
+@pytest.mark.parametrize(
+    ("value", "message"),
+    [
+        ("{not json", "attribute varied is '{not json', not a JSON list"),
+        ('{"sigma": 1}', "attribute varied is '{\"sigma\": 1}', not a JSON list"),
+        ('["sigma", "nope"]', 'attribute varied is \'["sigma", "nope"]\', not a list of distinct'),
+        ('["sigma", "sigma"]', 'attribute varied is \'["sigma", "sigma"]\', not a list of'),
+        ("[1]", "attribute varied is '[1]', not a list of distinct names"),
+        ("[]", "attribute varied is '[]', not a list of distinct names"),
+    ],
+)
+@pytest.mark.parametrize("command", ["show", "plot"])
+def test_a_sweep_whose_varied_was_edited_and_resigned_is_refused(
+    written, tmp_path, value, message, command
+):
+    path = tmp_path / "sweep.h5"
+    path.write_bytes(written["sweep.h5"])
+    mutate_and_resign(path, "", "varied", "edited", value)
+    code, _, err = quiet_cli(command, path)  # used to raise KeyError, JSONDecodeError, ...
+    assert code == 2 and err.count("\n") == 1
+    assert f"{path}: damaged sweep file: {message}" in err
+
+
+def test_resuming_a_sweep_checkpoint_that_lacks_a_variable_is_refused(written, tmp_path):
+    path = tmp_path / "sweep.partial.h5"
+    path.write_bytes(written["sweep.partial.h5"])
+    mutate_and_resign(path, "load", None, "delete", None)
+    code, _, err = quiet_cli(*SWEEP, "--out", tmp_path / "sweep.h5", "--resume")
+    assert code == 2  # used to raise KeyError: 'load'
+    assert f"{path}: damaged sweep file: dataset load is missing" in err
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["sweep.partial.h5"]
