@@ -82,6 +82,7 @@ from mcsim.model.errors import MCSimError, RunFileError
 from mcsim.model.params import Material, Surface
 from mcsim.physics.environment import Environment, GapHeights
 from mcsim.physics.laws import get_law_set
+from mcsim.store import schema
 from mcsim.store.files import atomic_write, checksum
 from mcsim.store.results import STATS, Run, assemble, environment_run
 
@@ -89,6 +90,9 @@ SCHEMA_VERSION = 2
 
 #: Schema versions this mcsim reads.
 READABLE = (1, 2)
+
+#: The file kind, in messages.
+WHAT = "run file"
 
 
 # --- locking --------------------------------------------------------------------------
@@ -105,9 +109,9 @@ def heights_to_json(surface: Surface) -> str:
     return json.dumps({"name": heights.name, **heights.to_dict()})
 
 
-def _heights_from_json(text: str):
-    data = json.loads(text)
-    if data["name"] == "gaussian":
+def _heights_from_dict(data: dict):
+    """Inverse of :func:`heights_to_json`, from the parsed JSON object."""
+    if data.get("name") == "gaussian":
         return GAUSSIAN
     from mcsim.topography.empirical import Empirical
 
@@ -382,100 +386,136 @@ def _open(path: Path):
                 raise RunFileError(f"{path}: not an mcsim run file (no schema_version)")
             if not (np.ndim(version) == 0 and np.issubdtype(np.asarray(version).dtype, np.integer)):
                 raise RunFileError(
-                    f"{path}: damaged run file: schema_version is {_shown(version)}, not an integer"
+                    f"{path}: damaged run file: schema_version is {schema.shown(version)}, not an integer"
                 )
             if int(version) not in READABLE:
                 raise RunFileError(
                     f"{path}: run-file schema version {int(version)} is not supported "
                     f"(this mcsim {__version__} reads versions {', '.join(map(str, READABLE))})"
                 )
-            _check_sizes(path, f)
+            schema.check_sizes(path, f, WHAT)
     except BaseException:
         f.close()
         raise
     return f
 
 
-def _shown(value) -> str:
-    """A short one-line repr of a value read from a file, for messages."""
-    text = repr(value.tolist() if hasattr(value, "tolist") else value)
-    return text if len(text) <= 40 else text[:40] + "..."
+#: Root attributes a run file holds (every schema), and their kinds
+#: (:data:`mcsim.store.schema.KINDS`).
+ATTRIBUTES = {
+    "mcsim_version": "text",
+    "created": "text",
+    "command": "text",
+    "seed_entropy": "digits",
+    "law": "text",
+    "count": "text",
+    "area": "number",
+    "realizations": "integer",
+    "block_size": "integer",
+    "complete": "boolean",
+}
+
+#: Root attributes of schema 2 (optional ones: absent in files written before them).
+ATTRIBUTES_2 = {"law_outputs": "JSON object", "quantities": "JSON object", "cycle": "boolean",
+                "branches": "JSON list"}  # fmt: skip
+OPTIONAL = {"device": "text", "turn": "number", "load_control": "JSON object"}
+
+#: Attributes of /input/surface and /input/material (NaN: not given), and their kinds.
+SURFACE = {
+    "sigma": "number",
+    "R": "number",
+    "eta": "number",
+    "name": "text",
+    "heights": "JSON object",
+}
+MATERIAL = {k: "number" for k in ("E1", "E2", "nu1", "nu2", "gamma")} | {"name": "text"}
+MATERIAL_OPTIONAL = {k: "number" for k in ("H", "z0", "tau")}
 
 
-#: A run file's datasets hold at most this many times the file's size (gzip on sampled
-#: heights saves ~10 %; nothing in a run file compresses 64-fold).
-_MAX_EXPANSION = 64
+def _attributes(path: Path, f) -> dict:
+    """The root attributes a reader uses, checked against :data:`ATTRIBUTES`."""
+    version = int(f.attrs["schema_version"])  # checked by _open
+    wanted = ATTRIBUTES | (ATTRIBUTES_2 if version >= 2 else {})
+    wanted |= {k: kind for k, kind in OPTIONAL.items() if k in f.attrs}
+    attrs = {k: schema.attribute(path, f, k, kind, WHAT) for k, kind in wanted.items()}
+    if "load_control" in attrs:
+        pressure = attrs["load_control"].get("pressure")
+        if not (isinstance(pressure, list) and pressure and all(
+            isinstance(p, (int, float)) and not isinstance(p, bool) and math.isfinite(p) for p in pressure
+        )):  # fmt: skip
+            raise schema.refuse(
+                path,
+                WHAT,
+                "attribute load_control has no 'pressure': a list of finite numbers (Pa)",
+            )
+    return attrs
 
 
-def _check_sizes(path: Path, f) -> None:
-    """Refuse, before reading any data, datasets that are not numbers or that declare
-    more bytes than the file could hold (a damaged header can declare terabytes)."""
+def _inputs(path: Path, f) -> tuple[Surface, Material]:
+    """The surface and material of /input, checked against :data:`SURFACE` and :data:`MATERIAL`."""
     import h5py
 
-    budget = _MAX_EXPANSION * path.stat().st_size
-    total = 0
-    found: list[tuple[str, object]] = []
-    f.visititems(lambda name, obj: found.append((name, obj)))
-    for name, obj in found:
-        if not isinstance(obj, h5py.Dataset):
-            continue
-        if obj.dtype.kind not in "biufS":  # numbers; fixed-length names (column scale)
-            raise RunFileError(
-                f"{path}: damaged run file: dataset {name} holds {obj.dtype}, not numbers"
-            )
-        size = math.prod(obj.shape) * obj.dtype.itemsize
-        total += size
-        if total > budget:
-            raise RunFileError(
-                f"{path}: damaged run file: dataset {name} declares {size} bytes ({total} with "
-                f"those before it), more than this {path.stat().st_size}-byte file can hold"
-            )
+    for group in ("input/surface", "input/material"):
+        if not isinstance(f.get(group), h5py.Group):
+            raise schema.refuse(path, WHAT, f"group {group} is missing")
+    s, m = f["input/surface"], f["input/material"]
+    s = {k: schema.attribute(path, s, k, kind, WHAT) for k, kind in SURFACE.items()}
+    optional = {k: kind for k, kind in MATERIAL_OPTIONAL.items() if k in m.attrs}
+    m = {k: schema.attribute(path, m, k, kind, WHAT) for k, kind in (MATERIAL | optional).items()}
+    try:
+        heights = _heights_from_dict(s.pop("heights"))
+        surface = Surface(**s, heights=heights)
+    except MCSimError as err:
+        raise schema.refuse(path, WHAT, f"input/surface: {err}") from None
+    for k in MATERIAL_OPTIONAL:
+        m[k] = None if math.isnan(m.get(k, math.nan)) else m[k]
+    try:
+        material = Material(**m)
+    except MCSimError as err:
+        raise schema.refuse(path, WHAT, f"input/material: {err}") from None
+    return surface, material
 
 
-def _read_state(path: Path, f) -> EnsembleSums:
-    attrs = f.attrs
-    s, m = f["input/surface"].attrs, f["input/material"].attrs
-    surface = Surface(sigma=float(s["sigma"]), R=float(s["R"]), eta=float(s["eta"]),
-                      heights=_heights_from_json(s["heights"]), name=str(s["name"]))  # fmt: skip
-    H, z0, tau = (float(m.get(k, np.nan)) for k in ("H", "z0", "tau"))
-    material = Material(E1=float(m["E1"]), E2=float(m["E2"]), nu1=float(m["nu1"]), nu2=float(m["nu2"]),
-                        gamma=float(m["gamma"]), H=None if np.isnan(H) else H, name=str(m["name"]),
-                        z0=None if np.isnan(z0) else z0, tau=None if np.isnan(tau) else tau)  # fmt: skip
-    spec = MonteCarloSpec(surface, material, f["h"][()], float(attrs["area"]), int(attrs["realizations"]),
-                          int(attrs["seed_entropy"]), str(attrs["law"]), str(attrs["count"]),
-                          bool(attrs.get("cycle", False)), str(attrs.get("device", "cpu")))  # fmt: skip
+def _read_state(path: Path, f) -> tuple[EnsembleSums, dict]:
+    """The sums and progress of an open run file, and its root attributes (those a
+    reader uses checked against :data:`ATTRIBUTES`; NumPy scalars as Python values)."""
+    attrs = _attributes(path, f)
+    surface, material = _inputs(path, f)
+    h = schema.dataset(path, f, "h", "f", None, WHAT)
+    try:
+        spec = MonteCarloSpec(surface, material, h, attrs["area"], attrs["realizations"],
+                              int(attrs["seed_entropy"]), attrs["law"], attrs["count"],
+                              attrs.get("cycle", False), attrs.get("device", "cpu"))  # fmt: skip
+    except MCSimError as err:
+        raise schema.refuse(path, WHAT, f"inputs: {err}") from None
     R, M, rows = spec.realizations, spec.h.size, spec.row_h.size
     columns = sum_columns(spec.law_set)
     expected = {
-        "d": (M,),
-        "realizations/N": (R,),
-        "realizations/sums": (R, rows, len(columns)),
-        "progress/n_blocks": (R,),
-        "progress/done_blocks": (R,),
+        "d": ("f", (M,)),
+        "realizations/N": ("iu", (R,)),
+        "realizations/sums": ("f", (R, rows, len(columns))),
+        "progress/n_blocks": ("iu", (R,)),
+        "progress/done_blocks": ("iu", (R,)),
     }
-    if int(attrs["schema_version"]) >= 2:
-        expected["branch"] = (rows,)
-        stored = [str(c) for c in f["realizations/sums"].attrs["columns"]]
-        if stored != list(columns):
-            raise RunFileError(
-                f"{path}: sums columns {stored} differ from law set {spec.law!r}'s {list(columns)}"
-            )
-    if bool(attrs["complete"]):
+    version = int(f.attrs["schema_version"])  # checked by _open
+    if version >= 2:
+        expected["branch"] = ("S", (rows,))
+    if attrs["complete"]:
         names = _quantities(spec)
-        expected |= {f"realizations/{q}": (R, rows) for q in names}
-        expected |= {f"analytic/{q}": (rows,) for q in names}
-        expected |= {f"summary/{stat}/{q}": (rows,) for stat in STATS for q in names}
-        expected["summary/expected_contacts"] = (rows,)
-    for name, shape in expected.items():
-        if name not in f:
-            raise RunFileError(f"{path}: damaged run file: dataset {name} is missing")
-        if f[name].shape != shape:
-            raise RunFileError(
-                f"{path}: damaged run file: {name} has shape {f[name].shape}, the inputs ask for {shape}"
-            )
-    if int(attrs.get("block_size", -1)) != BLOCK:
+        expected |= {f"realizations/{q}": ("f", (R, rows)) for q in names}
+        expected |= {f"analytic/{q}": ("f", (rows,)) for q in names}
+        expected |= {f"summary/{stat}/{q}": ("f", (rows,)) for stat in STATS for q in names}
+        expected["summary/expected_contacts"] = ("f", (rows,))
+    for name, (dtype, shape) in expected.items():
+        schema.dataset(path, f, name, dtype, shape, WHAT)
+    if version >= 2:
+        stored = f["realizations/sums"].attrs.get("columns")
+        if np.ndim(stored) != 1 or [_text(c) for c in stored] != list(columns):
+            raise schema.refuse(path, WHAT, f"attribute realizations/sums@columns is "
+                                f"{schema.shown(stored)}, law set {spec.law!r} has {list(columns)}")  # fmt: skip
+    if attrs["block_size"] != BLOCK:
         raise RunFileError(
-            f"{path}: written with blocks of {attrs.get('block_size')} summits, this mcsim uses {BLOCK}"
+            f"{path}: written with blocks of {attrs['block_size']} summits, this mcsim uses {BLOCK}"
         )
     state = EnsembleSums(spec, f["realizations/N"][()], f["realizations/sums"][()],
                          f["progress/n_blocks"][()], f["progress/done_blocks"][()])  # fmt: skip
@@ -483,7 +523,40 @@ def _read_state(path: Path, f) -> EnsembleSums:
     # file was written); a complete run must.
     if bool(attrs["complete"]) and not state.complete:
         raise RunFileError(f"{path}: damaged run file: progress disagrees with the 'complete' flag")
-    return state
+    plain = {
+        k: (v.item() if np.ndim(v) == 0 and hasattr(v, "item") else v) for k, v in f.attrs.items()
+    }
+    return state, plain | {k: v for k, v in attrs.items() if not isinstance(v, (dict, list))}
+
+
+def _text(value) -> str | None:
+    """A stored name as text (None: not text)."""
+    if isinstance(value, bytes):
+        return value.decode(errors="replace")
+    return value if isinstance(value, str) else None
+
+
+def _heights(path: Path, f, realizations: int) -> list[np.ndarray] | None:
+    """The sampled heights of a run made with ``keep_heights`` (None: not kept)."""
+    import h5py
+
+    if "heights" not in f:
+        return None
+    group = f["heights"]
+    names = [str(r) for r in range(realizations)]
+    if not isinstance(group, h5py.Group) or sorted(group) != sorted(names):
+        raise schema.refuse(
+            path, WHAT, f"heights must be a group of datasets {names[0]} .. {names[-1]}"
+        )
+    out = []
+    for r in names:
+        z = schema.dataset(path, f, f"heights/{r}", "f", None, WHAT)
+        if z.ndim != 1:
+            raise schema.refuse(
+                path, WHAT, f"dataset heights/{r} has shape {z.shape}, expected (n,)"
+            )
+        out.append(z[()])
+    return out
 
 
 def _quantities(spec: MonteCarloSpec) -> tuple[str, ...]:
@@ -493,7 +566,7 @@ def _quantities(spec: MonteCarloSpec) -> tuple[str, ...]:
 
 def _verified(path: Path, f) -> None:
     stored = f.attrs.get("checksum")
-    if stored is None or checksum(f) != stored:
+    if not isinstance(stored, str) or checksum(f) != stored:
         raise RunFileError(f"{path}: damaged run file: checksum mismatch (truncated or edited)")
 
 
@@ -515,7 +588,7 @@ def read_state(path: str | Path) -> tuple[EnsembleSums, dict]:
     path = Path(path)
     with _open(path) as f, _damaged(path):
         _verified(path, f)
-        return _read_state(path, f), dict(f.attrs)
+        return _read_state(path, f)
 
 
 def read_run(path: str | Path, *, allow_incomplete: bool = False):
@@ -529,8 +602,7 @@ def read_run(path: str | Path, *, allow_incomplete: bool = False):
     path = Path(path)
     with _open(path) as f, _damaged(path):
         _verified(path, f)
-        state = _read_state(path, f)
-        attrs = {k: (v.item() if hasattr(v, "item") else v) for k, v in f.attrs.items()}
+        state, attrs = _read_state(path, f)
         if not attrs["complete"]:
             if not allow_incomplete:
                 done = int(np.sum(state.done_blocks == state.n_blocks))
@@ -541,11 +613,7 @@ def read_run(path: str | Path, *, allow_incomplete: bool = False):
             return assemble(state.completed(), attrs=attrs, path=path, complete=False)
         names = _quantities(state.spec)
         stats = {stat: {q: f[f"summary/{stat}/{q}"][()] for q in names} for stat in STATS}
-        heights = (
-            [f[f"heights/{r}"][()] for r in sorted(f["heights"], key=int)]
-            if "heights" in f
-            else None
-        )
+        heights = _heights(path, f, state.spec.realizations)
         cells = _read_environment(path, f, state.spec)
         return Run(
             environment=None if cells is None else environment_run(state.spec, cells),

@@ -57,7 +57,7 @@ import numpy as np
 
 from mcsim.model.errors import MCSimError, RunFileError
 from mcsim.model.units import SI_UNITS
-from mcsim.store import files
+from mcsim.store import files, schema
 
 SCHEMA_VERSION = 1
 
@@ -379,9 +379,32 @@ def _variable(f, name: str, values: np.ndarray, unit: str, long_name: str):
     return ds
 
 
+#: The file kind, in messages.
+WHAT = "sweep file"
+
+#: Root attributes every sweep file holds, and their kinds (:data:`mcsim.store.schema.KINDS`).
+ATTRIBUTES = {
+    "mcsim_version": "text",
+    "created": "text",
+    "command": "text",
+    "law": "text",
+    "varied": "JSON list",
+    "surface": "JSON object",
+    "material": "JSON object",
+    "definition": "JSON object",
+    "turn": "number",
+    "mc": "boolean",
+    "complete": "boolean",
+}
+
+#: Root attributes of a sweep with Monte Carlo runs (``mc``).
+MC_ATTRIBUTES = {"area": "number", "realizations": "integer", "seed_entropy": "digits",
+                 "device": "text"}  # fmt: skip
+
+
 def read_file(path: Path) -> dict:
     """Attributes, datasets (strings decoded), units and long names of a sweep file or
-    checkpoint, verified by its checksum."""
+    checkpoint, verified by its checksum and checked against the layout (module docstring)."""
     import h5py
 
     path = Path(path)
@@ -389,28 +412,99 @@ def read_file(path: Path) -> dict:
         raise RunFileError(f"{path}: no such file")
     try:
         with h5py.File(path, "r") as f:
-            if "sweep_schema_version" not in f.attrs:
-                raise RunFileError(f"{path}: not an mcsim sweep file (no sweep_schema_version)")
-            if int(f.attrs["sweep_schema_version"]) != SCHEMA_VERSION:
-                raise RunFileError(f"{path}: sweep schema version {f.attrs['sweep_schema_version']} "
-                                   f"is not supported (this mcsim reads {SCHEMA_VERSION})")  # fmt: skip
-            if f.attrs.get("checksum") != files.checksum(f):
-                raise RunFileError(f"{path}: damaged sweep file: checksum mismatch")
-            attrs = {k: (v.item() if hasattr(v, "item") else v) for k, v in f.attrs.items()}
-            data, units, long_names = {}, {}, {}
-            for k, ds in f.items():
-                values = ds[()]
-                if values.dtype.kind == "S":
-                    values = np.array([v.decode() for v in values.ravel()], dtype=object)
-                    values = values.reshape(ds.shape)
-                data[k] = values
-                units[k], long_names[k] = str(ds.attrs["units"]), str(ds.attrs["long_name"])
+            return _read(path, f)
     except MCSimError:
         raise
-    except (OSError, KeyError, ValueError, TypeError, RuntimeError) as err:
+    except (OSError, KeyError, ValueError, TypeError, RuntimeError, IndexError) as err:
         reason = " ".join(str(err).split())[:200]  # HDF5's messages span lines
         raise RunFileError(f"{path}: damaged sweep file ({type(err).__name__}: {reason})") from None
+
+
+def _read(path: Path, f) -> dict:
+    if "sweep_schema_version" not in f.attrs:
+        raise RunFileError(f"{path}: not an mcsim sweep file (no sweep_schema_version)")
+    version = schema.attribute(path, f, "sweep_schema_version", "integer", WHAT)
+    if version != SCHEMA_VERSION:
+        raise RunFileError(f"{path}: sweep schema version {version} is not supported "
+                           f"(this mcsim reads {SCHEMA_VERSION})")  # fmt: skip
+    schema.check_sizes(path, f, WHAT)
+    stored = f.attrs.get("checksum")
+    if not isinstance(stored, str) or stored != files.checksum(f):
+        raise RunFileError(f"{path}: damaged sweep file: checksum mismatch")
+    wanted = ATTRIBUTES | (
+        MC_ATTRIBUTES if schema.attribute(path, f, "mc", "boolean", WHAT) else {}
+    )
+    attrs = {
+        k: (v.item() if np.ndim(v) == 0 and hasattr(v, "item") else v) for k, v in f.attrs.items()
+    }
+    checked = {k: schema.attribute(path, f, k, kind, WHAT) for k, kind in wanted.items()}
+    grid = _grid(path, checked["varied"])
+    attrs |= {k: v for k, v in checked.items() if not isinstance(v, (dict, list))}  # JSON: as text
+    coords = {
+        d: schema.dataset(path, f, d, "S" if d == "law" else "f", None, WHAT)[()]
+        for d in (*grid, "h")
+    }
+    for d, values in coords.items():
+        if values.ndim != 1 or values.size == 0:
+            raise schema.refuse(
+                path, WHAT, f"coordinate {d} has shape {values.shape}, expected (n,) with n >= 1"
+            )
+    shape = tuple(coords[d].size for d in grid)
+    per_h = (*shape, coords["h"].size)
+    data, units, long_names = {}, {}, {}
+    for k in f:
+        if k in coords:
+            values = coords[k]
+        else:
+            values = schema.dataset(path, f, k, _dtype(k), None, WHAT)[()]
+            expected = _shapes(k, shape, per_h)
+            if values.shape not in expected:
+                raise schema.refuse(path, WHAT, f"dataset {k} has shape {values.shape}, expected "
+                                                f"{' or '.join(map(str, expected))} (the grid {', '.join(grid)}, h)")  # fmt: skip
+        if values.dtype.kind == "S":
+            values = _decoded(path, k, values)
+        data[k] = values
+        units[k] = schema.attribute(path, f[k], "units", "text", WHAT)
+        long_names[k] = schema.attribute(path, f[k], "long_name", "text", WHAT)
+    for k in STRINGS:
+        if k not in data:
+            raise schema.refuse(path, WHAT, f"dataset {k} is missing")
     return {"attrs": attrs, "data": data, "units": units, "long_names": long_names}
+
+
+def _grid(path: Path, varied: list) -> tuple[str, ...]:
+    """The dimension names in ``varied``: distinct names of inputs a sweep can vary."""
+    allowed = [dimension_name(n) for n in INPUTS]
+    if (
+        not varied
+        or len(set(map(str, varied))) != len(varied)
+        or any(not isinstance(d, str) or d not in allowed for d in varied)
+    ):
+        raise schema.refuse(path, WHAT, f"attribute varied is {schema.shown(json.dumps(varied))}, "
+                                        f"not a list of distinct names from {', '.join(allowed)}")  # fmt: skip
+    return tuple(varied)
+
+
+def _dtype(name: str) -> str:
+    """Kind of values of variable ``name`` (:data:`mcsim.store.schema.DTYPES`)."""
+    return "S" if name in STRINGS else "iu" if name == "done" else "f"
+
+
+def _shapes(name: str, grid: tuple, per_h: tuple) -> tuple[tuple, ...]:
+    """Shapes variable ``name`` may have: per point, or per point and separation."""
+    if name in CURVES or name.startswith("mc_"):
+        return (per_h,)
+    if name in SUMMARY or name in REGIME or name in STRINGS or name == "done":
+        return (grid,)
+    return (grid, per_h)
+
+
+def _decoded(path: Path, name: str, values: np.ndarray) -> np.ndarray:
+    try:
+        text = [v.decode() for v in values.ravel()]
+    except UnicodeDecodeError:
+        raise schema.refuse(path, WHAT, f"dataset {name} is not UTF-8 text") from None
+    return np.array(text, dtype=object).reshape(values.shape)
 
 
 def read_partial(path: Path) -> dict:
@@ -436,7 +530,7 @@ def read_sweep(path: str | Path) -> Sweep:
     """Open a sweep file as a :class:`Sweep` (no xarray needed); refuses a damaged file."""
     path = Path(path)
     raw = read_file(path)
-    grid = tuple(json.loads(raw["attrs"]["varied"]))
+    grid = tuple(json.loads(raw["attrs"]["varied"]))  # checked by read_file
     coords = {d: raw["data"].pop(d) for d in (*grid, "h")}
     coords = {d: v.astype(str) if v.dtype == object else v for d, v in coords.items()}
     raw["data"].pop("done", None)

@@ -533,7 +533,7 @@ def sweep(
             if differs:
                 raise ParameterError(f"cannot resume {out}: its checkpoint {partial.name} holds a "
                                      f"sweep with a different {differs}")  # fmt: skip
-            done = previous["done"]
+            done = _recorded(partial, previous, result, done.shape)
             for k in result.data:
                 result.data[k][done] = previous["data"][k][done]
         points = (
@@ -593,6 +593,19 @@ def _already_finished(out: Path, finished: Sweep, attrs: dict, seed_given: bool)
     note = f" (no seed given: taken as the file's, {seed})" if seed and not seed_given else ""
     log.warning("%s: already holds this finished sweep%s: nothing to do", out, note)
     return finished
+
+
+def _recorded(partial: Path, previous: dict, result: Sweep, shape: tuple) -> np.ndarray:
+    """The completed points of a checkpoint, once its variables are those of ``result``
+    (a checkpoint rewritten elsewhere, checksum included, may lack some)."""
+    variables = {"done": (previous["done"], shape)}
+    variables |= {k: (previous["data"].get(k), v.shape) for k, v in result.data.items()}
+    for k, (values, wanted) in variables.items():
+        if values is None or values.shape != wanted:
+            found = "is missing" if values is None else f"has shape {values.shape}"
+            raise RunFileError(f"{partial}: damaged sweep file: dataset {k} {found}, "
+                               f"the inputs ask for {wanted}")  # fmt: skip
+    return previous["done"]
 
 
 def _shown(values: np.ndarray) -> list:

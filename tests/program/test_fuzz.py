@@ -18,11 +18,14 @@ of exhausting the machine.
 from __future__ import annotations
 
 import contextlib
+import io
 import json
 import math
 import os
+import random
 import re
 import resource
+import shutil
 import struct
 import tracemalloc
 from pathlib import Path
@@ -1119,3 +1122,285 @@ def test_show_of_a_byte_flipped_run_is_one_line(run_files, tmp_path, capsys):
     err = capsys.readouterr().err
     assert status == 2 and err.startswith("mcsim: error: ") and err.count("\n") == 1, err
     assert "r.h5: damaged run file: checksum mismatch" in err
+
+
+# -- files rewritten elsewhere, checksum included: every command that reads them --------------
+#
+# A run or sweep file edited by a hand or another tool that recomputes the checksum (or
+# written by another writer) passes the checksum: the readers' schema checks must refuse
+# it. Each mutation below edits one attribute or dataset of a real file (delete; retype
+# to text, number or array; empty or reshape; JSON text made invalid or of the wrong
+# shape) and re-signs it with mcsim.store.files.checksum; raw byte flips are not re-signed.
+# Every command that reads that file kind then runs in this process on it and must exit
+# with 2 and one line on stderr naming the file, having written nothing and left the file
+# as it was, or exit 0 (a harmless edit) with output.
+#
+# Cases: per HDF5 file kind (complete run, run checkpoint, complete sweep, sweep
+# checkpoint) HDF5_SAMPLE mutations drawn with a seeded RNG from the full list (several
+# hundred per kind) plus FLIPS byte-flipped copies, each run through the kind's 2-5
+# commands: (8 + 2) x (4 + 5 + 2 + 3) = 140 command runs; text inputs (surface and
+# material TOML, histogram CSV, each AFM map format) TEXT_SAMPLE seeded mutations each,
+# each through its command: 10 x 9 = 90 runs. ``MCSIM_FUZZ_EXAMPLES`` scales both.
+
+HDF5_SAMPLE = max(8, EXAMPLES // 3)
+FLIPS = 2
+TEXT_SAMPLE = max(10, EXAMPLES // 2)
+SIMULATE = ["simulate", "--surface", "smooth", "--law", "jkr", "--cycle", "--h=1,0", "--area",
+            "1um^2", "--realizations", "3", "--seed", "9", "--workers", "1"]  # fmt: skip
+SWEEP = ["sweep", "--surface", "smooth", "--law", "dmt", "--vary", "sigma=1nm,2nm", "--vary",
+         "gamma=0.1,0.5", "--h=2,0", "--workers", "1"]  # fmt: skip
+#: Commands that read each file kind (FILE: the file, its folder holds the outputs).
+HDF5_COMMANDS = {
+    "run.h5": [["show"], ["compare"], ["plot", "--out", "o.png"], ["pads"]],
+    "run.partial.h5": [["show"], ["compare", "--partial"], ["plot", "--partial", "--out", "o.png"],
+                       ["pads", "--partial"], [*SIMULATE, "--out", "run.h5", "--resume"]],
+    "sweep.h5": [["show"], ["plot", "--out", "o.png"]],
+    "sweep.partial.h5": [["show"], ["plot", "--partial", "--out", "o.png"],
+                         [*SWEEP, "--out", "sweep.h5", "--resume"]],
+}  # fmt: skip
+
+
+def quiet_cli(*argv) -> tuple[int, str, str]:
+    """``mcsim ARGV`` in this process, outside pytest's capture (a module fixture)."""
+    out, err = io.StringIO(), io.StringIO()
+    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+        code = cli.main([str(a) for a in argv])
+    return code, out.getvalue(), err.getvalue()
+
+
+@pytest.fixture(scope="module")
+def written(tmp_path_factory) -> dict[str, bytes]:
+    """A complete cycle run, its checkpoint, a complete sweep and its checkpoint, as bytes."""
+    from mcsim.engine.montecarlo import EnsembleSums
+    from mcsim.store.runfile import read_state, write_checkpoint
+    from mcsim.store.sweepfile import read_sweep, write_sweep
+
+    folder = tmp_path_factory.mktemp("written")
+    assert quiet_cli(*SIMULATE, "--out", folder / "run.h5")[0] == 0
+    assert quiet_cli(*SWEEP, "--out", folder / "sweep.h5")[0] == 0
+    state, _ = read_state(folder / "run.h5")
+    partial = EnsembleSums.start(state.spec)
+    partial.sums[:1], partial.done_blocks[:1] = state.sums[:1], state.n_blocks[:1]
+    write_checkpoint(folder / "run.partial.h5", partial, command="test")
+    sweep = read_sweep(folder / "sweep.h5")
+    attrs = {k: v for k, v in sweep.attrs.items() if k not in ("checksum", "complete")}
+    done = np.zeros(sweep.shape, dtype=bool)
+    done.flat[:2] = True
+    write_sweep(folder / "sweep.partial.h5", sweep, attrs, complete=False, done=done)
+    return {name: (folder / name).read_bytes() for name in HDF5_COMMANDS}
+
+
+#: Replacement values of an attribute: retyped, emptied, out of range.
+ATTRIBUTE_VALUES = {"text": "x", "number": 1.5, "integer": 7, "negative": -1.0, "nan": math.nan,
+                    "array": np.array([1.0, 2.0]), "empty": np.array([], dtype=float)}  # fmt: skip
+#: Replacement texts of a JSON attribute: invalid, or JSON of the wrong shape.
+JSON_VALUES = {"invalid JSON": "{not json", "JSON list": "[]", "JSON object": "{}",
+               "JSON number": "1", "JSON text": '"x"'}  # fmt: skip
+#: Replacements of a dataset, from its values.
+DATASET_VALUES = {
+    "text": lambda v: np.array([b"x", b"y"]),
+    "scalar": lambda v: np.float64(1.5),
+    "empty": lambda v: np.array([], dtype=float),
+    "one short": lambda v: np.ravel(v)[:-1],
+    "extra axis": lambda v: np.repeat(np.asarray(v)[..., None], 2, axis=-1),
+    "integers": lambda v: np.zeros(np.shape(v), "i8" if np.asarray(v).dtype.kind != "i" else "f8"),
+}
+#: HDF5's own attributes (dimension scales) and the checksum: not mcsim's schema.
+HDF5_OWN = {"checksum", "DIMENSION_LIST", "REFERENCE_LIST", "CLASS", "NAME", "_Netcdf4Dimid"}
+
+
+def hdf5_mutations(path: Path) -> list[tuple[str, str, str, object]]:
+    """Every (object, attribute or None, mutation, value) of the file at ``path``."""
+    import h5py
+
+    out = []
+    with h5py.File(path, "r") as f:
+        objects = [("", f)]
+        f.visititems(lambda name, obj: objects.append((name, obj)))
+        for name, obj in objects:
+            for key in sorted(set(obj.attrs) - HDF5_OWN):
+                out.append((name, key, "delete", None))
+                out += [(name, key, m, v) for m, v in ATTRIBUTE_VALUES.items()]
+                value = obj.attrs[key]
+                if isinstance(value, str) and value[:1] in "[{":
+                    out += [(name, key, m, v) for m, v in JSON_VALUES.items()]
+                    parsed = json.loads(value)
+                    wrong = {k: "x" for k in parsed} if isinstance(parsed, dict) else [{}] * 2
+                    out.append((name, key, "JSON of wrong values", json.dumps(wrong)))
+            if isinstance(obj, h5py.Dataset):
+                out.append((name, None, "delete", None))
+                out += [(name, None, m, v) for m, v in DATASET_VALUES.items()]
+    return out
+
+
+def mutate_and_resign(path: Path, name: str, key: str | None, mutation: str, value) -> None:
+    import h5py
+
+    from mcsim.store.files import checksum
+
+    with h5py.File(path, "r+") as f:
+        obj = f[name] if name else f
+        if key is not None and mutation == "delete":
+            del obj.attrs[key]
+        elif key is not None:
+            obj.attrs[key] = value
+        else:
+            old = obj[()]
+            del f[name]
+            if mutation != "delete":
+                f.create_dataset(name, data=value(old))
+        f.attrs["checksum"] = checksum(f)
+
+
+def byte_flipped(raw: bytes, rng: random.Random) -> bytes:
+    data = bytearray(raw)
+    for _ in range(rng.randint(1, 8)):
+        data[rng.randrange(len(data))] ^= 1 << rng.randrange(8)
+    return bytes(data)
+
+
+def hdf5_cases() -> list[tuple[str, int]]:
+    """(file kind, case number): HDF5_SAMPLE mutations and FLIPS byte flips per kind."""
+    return [(name, i) for name in HDF5_COMMANDS for i in range(HDF5_SAMPLE + FLIPS)]
+
+
+def assert_refused_or_sane(folder: Path, path: Path, argv: list, code: int, out: str, err: str):
+    """The command's contract on a hostile file (see the section comment)."""
+    assert "Traceback" not in err, err
+    if code == 0:
+        assert out.strip() or list(folder.glob("*.png")), f"{argv}: exit 0 and no output"
+        return
+    assert code == 2, f"{argv}: exit {code}: {err}"
+    assert err.startswith("mcsim: error: ") and err.count("\n") == 1, f"{argv}: {err!r}"
+    assert path.name in err, f"{argv}: the message does not name {path.name}: {err!r}"
+
+
+@pytest.mark.parametrize(("name", "case"), hdf5_cases())
+def test_run_and_sweep_files_edited_elsewhere_are_refused_in_one_line(
+    written, tmp_path, name, case
+):
+    rng = random.Random(f"{name}/{case}")
+    source = tmp_path / "source" / name
+    source.parent.mkdir()
+    source.write_bytes(written[name])
+    folder = tmp_path / "work"
+    folder.mkdir()
+    path = folder / name
+    if case < HDF5_SAMPLE:
+        mutations = hdf5_mutations(source)
+        mutation = random.Random(f"{name}").sample(mutations, HDF5_SAMPLE)[case]
+        label = f"{mutation[0] or '/'}@{mutation[1]}: {mutation[2]}"
+    else:
+        label = "byte flips"
+    for command in HDF5_COMMANDS[name]:
+        for stale in folder.iterdir():
+            stale.unlink()
+        shutil.copy(source, path)
+        if case < HDF5_SAMPLE:
+            mutate_and_resign(path, *mutation)
+        else:
+            path.write_bytes(byte_flipped(written[name], rng))
+        before, listing = path.read_bytes(), sorted(folder.iterdir())
+        argv = [*command, *([path] if command[0] not in ("simulate", "sweep") else [])]
+        argv = [folder / a if str(a).endswith((".png", ".h5")) and a != path else a for a in argv]
+        code, out, err = quiet_cli(*argv)
+        note = f"{name}, {label}, mcsim {' '.join(map(str, command))}"
+        try:
+            assert_refused_or_sane(folder, path, argv, code, out, err)
+        except AssertionError as failure:
+            raise AssertionError(f"{note}: {failure}") from None
+        if code == 2:
+            assert sorted(folder.iterdir()) == listing, f"{note}: wrote files"
+            assert path.read_bytes() == before, f"{note}: changed the file"
+
+
+#: Text and AFM inputs: seed file (from ``seeds``), name and the command that reads it.
+TEXT_COMMANDS = {
+    "surface": (".toml", ["analytic", "--surface", "FILE", "--h=1,0"]),
+    "material": (".toml", ["analytic", "--surface", "smooth", "--material", "FILE", "--h=1,0"]),
+    "histogram": (".csv", ["ingest", "FILE", "--R", "1.7um", "--eta", "17um^-2"]),
+    **{
+        s: (s, ["ingest", "FILE", "--unit", "nm", "--pixel-size", "10nm"]) for s in (".npy", ".xyz")
+    },
+    **{s: (s, ["ingest", "FILE"]) for s in (".txt", ".gwy", ".ibw", ".nid")},
+}
+
+
+def text_mutation(raw: bytes, rng: random.Random) -> bytes:
+    """A line deleted, a value retyped (text, number, array, empty), a truncation or flips."""
+    lines = raw.split(b"\n")
+    at = rng.randrange(len(lines))
+    kind = rng.choice(["delete line", "retype", "truncate", "flips"])
+    if kind == "delete line":
+        del lines[at]
+    elif kind == "retype":
+        head, sep, _ = lines[at].partition(b"=")
+        value = rng.choice([b'"x"', b"1.5", b"[1, 2]", b'""', b"-1", b"nan", b"x", b""])
+        lines[at] = head + sep + b" " + value if sep else value
+    elif kind == "truncate":
+        return raw[: rng.randrange(len(raw))]
+    else:
+        return byte_flipped(raw, rng)
+    return b"\n".join(lines)
+
+
+@pytest.mark.parametrize("kind", sorted(TEXT_COMMANDS))
+def test_text_and_map_files_edited_elsewhere_are_refused_in_one_line(seeds, tmp_path, kind):
+    suffix, command = TEXT_COMMANDS[kind]
+    raw = seeds[suffix]
+    if kind == "surface":
+        raw = f"[surface]\n{SURFACE_TOML}".encode()
+    elif kind == "material":
+        raw = f"[material]\n{MATERIAL_TOML}".encode()
+    rng = random.Random(kind)
+    for case in range(TEXT_SAMPLE):
+        folder = tmp_path / str(case)
+        folder.mkdir()
+        path = folder / f"in{suffix}"
+        path.write_bytes(text_mutation(raw, rng))
+        argv = [str(path) if a == "FILE" else a for a in command]
+        if command[0] == "ingest":
+            argv += ["--out", str(folder / "out.toml")]
+        before, listing = path.read_bytes(), sorted(folder.iterdir())
+        code, out, err = quiet_cli(*argv)
+        note = f"{kind} case {case}, mcsim {' '.join(command)}"
+        try:
+            assert_refused_or_sane(folder, path, argv, code, out, err)
+        except AssertionError as failure:
+            raise AssertionError(f"{note}: {failure}") from None
+        if code == 2:
+            assert sorted(folder.iterdir()) == listing, f"{note}: wrote files"
+        assert path.read_bytes() == before, f"{note}: changed the file"
+
+
+@pytest.mark.parametrize(
+    ("value", "message"),
+    [
+        ("{not json", "attribute varied is '{not json', not a JSON list"),
+        ('{"sigma": 1}', "attribute varied is '{\"sigma\": 1}', not a JSON list"),
+        ('["sigma", "nope"]', 'attribute varied is \'["sigma", "nope"]\', not a list of distinct'),
+        ('["sigma", "sigma"]', 'attribute varied is \'["sigma", "sigma"]\', not a list of'),
+        ("[1]", "attribute varied is '[1]', not a list of distinct names"),
+        ("[]", "attribute varied is '[]', not a list of distinct names"),
+    ],
+)
+@pytest.mark.parametrize("command", ["show", "plot"])
+def test_a_sweep_whose_varied_was_edited_and_resigned_is_refused(
+    written, tmp_path, value, message, command
+):
+    path = tmp_path / "sweep.h5"
+    path.write_bytes(written["sweep.h5"])
+    mutate_and_resign(path, "", "varied", "edited", value)
+    code, _, err = quiet_cli(command, path)  # used to raise KeyError, JSONDecodeError, ...
+    assert code == 2 and err.count("\n") == 1
+    assert f"{path}: damaged sweep file: {message}" in err
+
+
+def test_resuming_a_sweep_checkpoint_that_lacks_a_variable_is_refused(written, tmp_path):
+    path = tmp_path / "sweep.partial.h5"
+    path.write_bytes(written["sweep.partial.h5"])
+    mutate_and_resign(path, "load", None, "delete", None)
+    code, _, err = quiet_cli(*SWEEP, "--out", tmp_path / "sweep.h5", "--resume")
+    assert code == 2  # used to raise KeyError: 'load'
+    assert f"{path}: damaged sweep file: dataset load is missing" in err
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["sweep.partial.h5"]
