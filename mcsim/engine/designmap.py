@@ -243,12 +243,9 @@ def _zero_load_turn(sigma, factor, p, nodes, weights):
     values = np.empty(GRID)
     while True:
         first_tensile = after = -1
-        for i in range(GRID):
-            grid[i] = top + (bottom - top) * i / (GRID - 1)
+        for i in range(GRID):  # from the top down, as far as the first compressive point
+            grid[i] = top + (bottom - top) * i / (GRID - 1) if i < GRID - 1 else bottom
             values[i] = _load(grid[i], 0.0, False, sigma, factor, p, nodes, weights)
-        grid[GRID - 1] = bottom
-        values[GRID - 1] = _load(bottom, 0.0, False, sigma, factor, p, nodes, weights)
-        for i in range(GRID):
             if first_tensile < 0 and values[i] < 0.0:
                 first_tensile = i
             elif first_tensile >= 0 and values[i] > 0.0:
@@ -296,9 +293,14 @@ def _point(turn, sigma, factor, p, nodes, weights, gl_x, gl_w, out):
     grid = np.empty(n + (n - 1) * m)
     values = np.empty(grid.size)
     work = hysteresis = 0.0
+    c = 0  # the next coarse point: its load is known
     for j in range(n):
         grid[j * (m + 1)] = cuts[j]
-        values[j * (m + 1)] = _load(cuts[j], turn, True, sigma, factor, p, nodes, weights)
+        if c <= PANELS and cuts[j] == coarse[c]:
+            values[j * (m + 1)] = on_coarse[c]
+            c += 1
+        else:
+            values[j * (m + 1)] = _load(cuts[j], turn, True, sigma, factor, p, nodes, weights)
         if j == n - 1:
             break
         half = 0.5 * (cuts[j + 1] - cuts[j])
