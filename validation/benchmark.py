@@ -42,7 +42,9 @@ Prints a markdown table and writes it to ``validation/out/benchmark.md``.
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import json
+import math
 import os
 import resource
 import shlex
@@ -380,6 +382,199 @@ def end_to_end_lines(res: dict, repeats: int) -> list[str]:
     ]
 
 
+# --- analytic design maps (issue 23) ---------------------------------------------------------
+
+#: The design map: σ log-spaced × w linear, the jkr law set, smooth surface on silicon.
+DESIGN_MAP = {"sigma": "0.3nm:20nm:50:log", "gamma": "0.05:1:40"}
+#: Issue 23's target: points per second ≥ this × the NumPy baseline's, start-up included.
+SPEEDUP_DESIGN_MAP = 100.0
+#: The baseline's height nodes, JKR-radius bisection steps and retraction separations.
+BASELINE_NODES, BISECTION_STEPS, RETRACTION_ROWS = 4000, 60, 51
+
+
+def design_points() -> tuple[np.ndarray, np.ndarray]:
+    """σ (m) and w (J/m²) of every point of :data:`DESIGN_MAP`, C order (w fastest)."""
+    sigma = np.geomspace(0.3e-9, 20e-9, 50)
+    gamma = np.linspace(0.05, 1.0, 40)
+    s, g = np.meshgrid(sigma, gamma, indexing="ij")
+    return s.ravel(), g.ravel()
+
+
+def jkr_radius(delta: np.ndarray, R: float, E_star: float, w: float) -> np.ndarray:
+    """Contact radius a (m) on the stable JKR branch, δ = a²/R − √(2πwa/E*) (Johnson, Kendall
+    & Roberts 1971), by bisection between the fold a_c = (πwR²/(8E*))^{1/3} and an upper
+    bound, all elements at once (``delta`` ≥ δ_c)."""
+    c = np.sqrt(2 * np.pi * w / E_star)
+    lo = np.full_like(delta, np.cbrt(np.pi * w * R * R / (8 * E_star)))
+    hi = 2 * np.sqrt(R * np.maximum(delta, 0.0)) + 4 * np.cbrt(c * R) ** 2 + lo
+    for _ in range(BISECTION_STEPS):
+        mid = 0.5 * (lo + hi)
+        above = mid * mid / R - c * np.sqrt(mid) > delta
+        hi = np.where(above, mid, hi)
+        lo = np.where(above, lo, mid)
+    return 0.5 * (lo + hi)
+
+
+def design_baseline(sigma: float, w: float) -> tuple[float, float, float]:
+    """The straightforward NumPy pull-off of one design point (jkr, Gaussian heights).
+
+    Heights on a fixed grid of :data:`BASELINE_NODES` nodes over ±√82 (trapezoid weights);
+    per summit the JKR load P = 4E*a³/(3R) − √(8πwE*a³) with a from :func:`jkr_radius`;
+    the turn is the zero of the approach load (bisection in h, 50 steps), the pull-off
+    the most tensile load of :data:`RETRACTION_ROWS` separations from the turn to the top,
+    and the work of separation their trapezoid rule. Returns (turn, pull_off/(A_n K),
+    work J/m²).
+    """
+    R, eta, E, K = SURFACE.R, SURFACE.eta, MATERIAL.E_star, MATERIAL.K
+    s = np.linspace(-np.sqrt(82.0), np.sqrt(82.0), BASELINE_NODES)
+    weight = np.exp(-0.5 * s * s) / np.sqrt(2 * np.pi) * (s[1] - s[0])
+    delta_c = -0.75 * np.cbrt(np.pi**2 * w * w * R / E**2)
+
+    def load(h: np.ndarray, turn: float | None) -> np.ndarray:
+        delta = sigma * (s[None, :] - h[:, None])
+        touching = delta > 0 if turn is None else (s[None, :] > turn) & (delta > delta_c)
+        a = jkr_radius(delta[touching], R, E, w)  # only the summits in contact
+        force = np.zeros_like(delta)
+        force[touching] = 4 * E * a**3 / (3 * R) - np.sqrt(8 * np.pi * w * E * a**3)
+        return eta / K * (force @ weight)
+
+    top = np.sqrt(82.0) - delta_c / sigma
+    lo, hi = -np.sqrt(82.0), top
+    if load(np.array([lo]), None)[0] <= 0 or np.all(load(np.linspace(lo, hi, 51), None) >= 0):
+        return top, 0.0, 0.0  # never tensile: the surfaces rest apart
+    for _ in range(50):  # compressive below the zero, tensile above it
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if load(np.array([mid]), None)[0] > 0 else (lo, mid)
+    turn = 0.5 * (lo + hi)
+    h = np.linspace(turn, top, RETRACTION_ROWS)
+    retract = load(h, turn)
+    work = K * sigma * float(np.sum(np.diff(h) * 0.5 * (np.maximum(-retract[1:], 0) +
+                                                         np.maximum(-retract[:-1], 0))))  # fmt: skip
+    return turn, max(-float(retract.min()), 0.0), work
+
+
+def design_map_cmd(out: str) -> list[str]:
+    """The user's ``mcsim sweep`` of :data:`DESIGN_MAP` with ``--law jkr``."""
+    vary = [x for k, v in DESIGN_MAP.items() for x in ("--vary", f"{k}={v}")]
+    return [sys.executable, "-m", "mcsim", "sweep", "--surface", "smooth", "--material",
+            "silicon", "--law", "jkr", *vary, "--out", out, "--overwrite", "--quiet"]  # fmt: skip
+
+
+def design_map(repeats: int, cache: str) -> dict:
+    """Issue 23: points per second of the design map, mcsim against the baseline, one process.
+
+    In this process, alternately (so that the machine's load reaches both alike):
+    the baseline on every 100th point, ``mcsim.sweep`` of all 2000 points in memory, and
+    the reference path (``gw_curves`` and ``adhesion_summary``, what a sweep computed per
+    point before the fast path) on every 400th point. Then the command
+    :func:`design_map_cmd` as a whole process (start-up, import, kernel loading, file
+    writing and exit included; an untimed first run fills the caches).
+    """
+    import warnings
+
+    from mcsim.physics.adhesion import RegimeWarning, adhesion_summary
+    from mcsim.physics.analytic import gw_curves
+    from mcsim.studies.sweeps import DEFAULT_H
+    from mcsim.studies.sweeps import sweep as run_sweep
+
+    warnings.simplefilter("ignore", RegimeWarning)
+    sigma, gamma = design_points()
+    t0 = time.perf_counter()
+    run_sweep(SURFACE, MATERIAL, {"sigma": "1nm,2nm"}, law="jkr", workers=1)  # load the kernel
+    first = time.perf_counter() - t0
+
+    def reference(i: int) -> None:
+        s = dataclasses.replace(SURFACE, sigma=sigma[i])
+        m = dataclasses.replace(MATERIAL, gamma=gamma[i])
+        gw_curves(s, m, np.asarray(DEFAULT_H), "jkr")
+        adhesion_summary(s, m, "jkr")
+
+    t = {"baseline": np.inf, "mcsim": np.inf, "reference": np.inf, "baseline_cpu": np.inf}
+    base_points, ref_points = range(0, sigma.size, 100), range(0, sigma.size, 400)
+    for _ in range(repeats):
+        t["baseline"] = min(t["baseline"], best_of(1, lambda: [design_baseline(sigma[i], gamma[i])
+                                                                for i in base_points])[0])  # fmt: skip
+        t["baseline_cpu"] = min(t["baseline_cpu"], best_of(1, lambda: [design_baseline(sigma[i], gamma[i])
+                                                                        for i in base_points],
+                                                            clock=time.process_time)[0])  # fmt: skip
+        wall, result = best_of(1, lambda: run_sweep(SURFACE, MATERIAL, DESIGN_MAP, law="jkr"))
+        t["mcsim"] = min(t["mcsim"], wall)
+        t["reference"] = min(t["reference"], best_of(1, lambda: [reference(i) for i in ref_points])[0])  # fmt: skip
+    base = [design_baseline(sigma[i], gamma[i]) for i in base_points]
+    po = result.data["pull_off"].ravel()
+    rel = [abs(b[1] / po[i] - 1) for b, i in zip(base, base_points) if po[i] > 1e-12]
+    env = {**os.environ, "MCSIM_CACHE_DIR": cache}
+    env.pop("PYTHONDONTWRITEBYTECODE", None)
+    walls, cpus = [], []
+    with tempfile.TemporaryDirectory() as tmp:
+        cmd = design_map_cmd(os.path.join(tmp, "map.h5"))
+        for _ in range(repeats + 1):
+            t0, c0 = time.perf_counter(), children_cpu()
+            proc = subprocess.run(cmd, capture_output=True, text=True, env=env)
+            walls.append(time.perf_counter() - t0)
+            cpus.append(children_cpu() - c0)
+            if proc.returncode != 0:
+                sys.exit(f"{shlex.join(cmd)} failed:\n{proc.stderr}")
+    return {
+        "points": int(sigma.size),
+        "s_baseline": t["baseline"] / len(base_points),
+        "s_reference": t["reference"] / len(ref_points),
+        "s_mcsim": t["mcsim"] / sigma.size,
+        "s_cli": min(walls[1:]) / sigma.size,
+        "s_baseline_cpu": t["baseline_cpu"] / len(base_points),
+        "s_cli_cpu": min(cpus[1:]) / sigma.size,
+        "cli_walls": walls[1:],
+        "first_call": first,
+        "baseline_vs_mcsim": max(rel) if rel else math.nan,
+        "load": os.getloadavg(),
+    }
+
+
+def children_cpu() -> float:
+    """CPU time (user + system, s) of this process's finished children so far."""
+    usage = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return usage.ru_utime + usage.ru_stime
+
+
+def design_map_lines(r: dict, repeats: int) -> list[str]:
+    """Report of :func:`design_map`."""
+    rate = {k: 1 / r[f"s_{k}"] for k in ("baseline", "reference", "mcsim", "cli")}
+    cmd = shlex.join(["mcsim", *design_map_cmd("MAP.h5")[3:]])
+    cli = rate["cli"] / rate["baseline"]
+    return [
+        f"Analytic design map (issue 23): `{cmd}`, {r['points']} points (curves at 51 h, "
+        "regime numbers, zero-load turn, pull-off located to 1e-8 in h, work of separation, "
+        "hysteresis). Points per second, best of "
+        f"{repeats}, each measured alternately in one process (load average "
+        "{:.2f} {:.2f} {:.2f} at its end; the machine is shared):".format(*r["load"]),
+        "",
+        "| path | s per point | points/s | vs baseline |",
+        "|---|---:|---:|---:|",
+        f"| NumPy baseline ({BASELINE_NODES} height nodes, {BISECTION_STEPS}-step bisection "
+        f"for a, {RETRACTION_ROWS} retraction rows) | {r['s_baseline']:.4f} | "
+        f"{rate['baseline']:.1f} | 1 (reference) |",
+        f"| mcsim reference path (`gw_curves` + `adhesion_summary` per point) | "
+        f"{r['s_reference']:.4f} | {rate['reference']:.1f} | "
+        f"{rate['reference'] / rate['baseline']:.1f}× |",
+        f"| mcsim `sweep()` in process (fast path, kernel loaded) | {r['s_mcsim']:.5f} | "
+        f"{rate['mcsim']:.0f} | {rate['mcsim'] / rate['baseline']:.0f}× |",
+        f"| `mcsim sweep` whole process (start-up, imports, kernel, file) | {r['s_cli']:.5f} | "
+        f"{rate['cli']:.0f} | {cli:.0f}× |",
+        "",
+        f"- {verdict(cli >= SPEEDUP_DESIGN_MAP)}: whole process ≥ {SPEEDUP_DESIGN_MAP:g}× the "
+        f"baseline per point: **{cli:.0f}×** (runs: "
+        f"{', '.join(f'{w:.2f}' for w in r['cli_walls'])} s for {r['points']} points)",
+        f"- CPU time (user + system, less sensitive to the other jobs on the machine): "
+        f"baseline {r['s_baseline_cpu']:.4f} s per point, whole process "
+        f"{r['s_cli_cpu']:.5f} s per point (both threads): "
+        f"**{r['s_baseline_cpu'] / r['s_cli_cpu']:.0f}×**",
+        f"- check: the baseline's grid pull-off is within {r['baseline_vs_mcsim']:.1e} "
+        "(relative) of mcsim's at its points (51 rows, 4000 nodes: its own error)",
+        f"- first `sweep()` call of the process (kernel loaded from the disk cache): "
+        f"{r['first_call']:.2f} s",
+    ]
+
+
 def agreement(base: dict, mc: dict) -> tuple[float, int]:
     """Largest |z| between the baseline's and mcsim's sums of P, F, T over the separations.
 
@@ -553,6 +748,8 @@ def report(res: dict, info: dict, args: argparse.Namespace, n: float, n_big: flo
         "",
         *end_to_end_lines(res, args.repeats),
         "",
+        *design_map_lines(res["designmap"], args.repeats),
+        "",
         f"Machine: {info['cpu']}, {cores} cores available (`os.sched_getaffinity`); "
         f"Python {info['python']}, NumPy {info['numpy']}, numba {info['numba']}. "
         "Load average (1, 5, 15 min) at start {:.2f} {:.2f} {:.2f}, at end {:.2f} {:.2f} {:.2f} "
@@ -566,8 +763,9 @@ def main() -> None:
     p = parser(__doc__.splitlines()[0])
     p.add_argument("--full", action="store_true", help="also the baseline at N = 1e8 (≈6 GB)")
     p.add_argument("--repeats", type=int, default=3, help="timing repeats (default %(default)s)")
-    p.add_argument("--only", choices=("end-to-end",),
-                   help="only this part: the whole-process timing of issue 12 (minutes)")  # fmt: skip
+    p.add_argument("--only", choices=("end-to-end", "designmap"),
+                   help="only this part: the whole-process timing of issue 12 (minutes), or "
+                        "the analytic design map of issue 23 (a minute)")  # fmt: skip
     p.add_argument("--case", help=argparse.SUPPRESS)
     p.add_argument("--n", type=float, default=1e7, help=argparse.SUPPRESS)
     p.add_argument("--sweep", default="full", choices=SWEEPS, help=argparse.SUPPRESS)
@@ -594,6 +792,12 @@ def main() -> None:
     r_big = 1 if args.quick else 2
     res: dict = {}
     n_end = N_END_TO_END / 10 if args.quick else N_END_TO_END
+    if args.only == "designmap":
+        with tempfile.TemporaryDirectory() as cache:
+            lines = design_map_lines(design_map(r, cache), r)
+        lines += ["", f"Machine: {info['cpu']}, {info['cores']} cores available."]
+        write(lines, args, args.out / "benchmark-designmap.md")
+        return
     if args.only == "end-to-end":
         with tempfile.TemporaryDirectory() as cache:
             lines = end_to_end_lines(end_to_end(n_end, r, seed, cache), r)
@@ -619,6 +823,7 @@ def main() -> None:
         for case in ("mcsim1", "mcsimall"):
             res[f"{case}-big"] = spawn(case, n_big, "full", r_big, seed_big, cache)
         res |= end_to_end(n_end, r, seed, cache)  # after the cold start-up: the cache is warm
+        res["designmap"] = design_map(r, cache)
     write(report(res, info, args, n, n_big), args, args.out / "benchmark.md")
 
 

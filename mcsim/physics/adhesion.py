@@ -45,7 +45,6 @@ import warnings
 from dataclasses import asdict, dataclass
 
 import numpy as np
-from scipy import optimize
 
 from mcsim.model.errors import ParameterError
 from mcsim.model.params import Material, Surface, check_range, plasticity_index
@@ -300,6 +299,8 @@ def zero_load_separation(
     ParameterError
         If the load is still tensile at h = -1e6.
     """
+    from scipy import optimize  # here, not at import: a sweep's fast path does without it
+
     laws = get_law_set(law)
     top, bottom = _top(surface, laws, material), _bottom(surface)
     # Below the lowest summit every summit is pressed in: extend the scan downwards
@@ -366,6 +367,8 @@ def adhesion_summary(
     ParameterError
         A law set without a ``load`` or a retraction branch, or a missing material field.
     """
+    from scipy import optimize
+
     laws = get_law_set(law)
     if "load" not in laws.names:
         raise ParameterError(

@@ -16,7 +16,9 @@ last varies fastest). Every point is one independent task: the GW curves of
 :func:`mcsim.gw_curves` on approach over ``h``, the regime numbers of
 :mod:`mcsim.physics.adhesion` and, for a law set with a net load and a retraction branch,
 :func:`mcsim.physics.adhesion.adhesion_summary` (the numbers ``mcsim analytic`` and ``mcsim
-adhesion`` give for the same inputs, bit for bit); with ``mc``, one Monte Carlo run
+adhesion`` give for the same inputs, bit for bit; for the ``jkr`` law set without ``mc``
+they come from the compiled batch of :mod:`mcsim.engine.designmap`, equal to them within its
+stated tolerances, many times faster); with ``mc``, one Monte Carlo run
 (:func:`mcsim.simulate`, in memory) whose seed derives from (``seed``, point index)
 alone. Points run on threads or on Dask; the numbers do not depend on where or in what
 order. A point that fails (an out-of-range combination, a root not found) is recorded
@@ -48,8 +50,10 @@ import numpy as np
 
 from mcsim._version import __version__
 from mcsim.engine import interrupt
+from mcsim.engine.designmap import REFERENCE, jkr_summaries
 from mcsim.engine.montecarlo import FIRST_CHECKPOINT, default_workers, in_order
 from mcsim.model import units
+from mcsim.model.distributions import GAUSSIAN, Gaussian
 from mcsim.model.errors import MCSimError, ParameterError, RunFileError
 from mcsim.model.params import Material, Surface, check_range, check_separations, plasticity_index
 from mcsim.model.units import parse_quantity
@@ -240,11 +244,11 @@ def evaluate(point: _Point, config: _Config) -> dict:
     return out
 
 
-def _evaluate_quietly(point: _Point, config: _Config) -> dict:
-    """:func:`evaluate` on a Dask worker, without printing the regime warnings it records."""
+def _evaluate_quietly(points: list[_Point], config: _Config) -> list[dict]:
+    """:func:`evaluate_batch` on a Dask worker, without printing the regime warnings it records."""
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RegimeWarning)
-        return evaluate(point, config)
+        return evaluate_batch(points, config)
 
 
 def _evaluate(point: _Point, config: _Config, out: dict) -> None:
@@ -256,11 +260,7 @@ def _evaluate(point: _Point, config: _Config, out: dict) -> None:
     with_environment = {} if environment is None else {"environment": environment}
     curves = gw_curves(surface, material, np.asarray(config.h), law, **with_environment)
     out |= curves.values
-    out["tabor"] = _number(tabor_parameter(surface, material))
-    out["maugis_lambda"] = _number(maugis_parameter(surface, material))
-    out["adhesion_parameter"] = adhesion_parameter(surface, material)
-    out["plasticity_index"] = _number(plasticity_index(surface, material))
-    out["regime_warning"] = "; ".join(regime_warnings(surface, material, law))
+    out |= _regime(surface, material, law)
     if has_summary(law):
         turn = config.turn
         if config.preload is not None:
@@ -301,6 +301,89 @@ def pads_seed(entropy: int, index: int) -> int:
     (``mcsim simulate --cycle --seed`` with it draws the same pads)."""
     a, b = np.random.SeedSequence(entropy, spawn_key=(index, 1)).generate_state(2, np.uint64)
     return (int(a) << 64) | int(b)
+
+
+def _regime(surface: Surface, material: Material, law: str) -> dict:
+    """The regime numbers of one summit and the regime warnings."""
+    return {
+        "tabor": _number(tabor_parameter(surface, material)),
+        "maugis_lambda": _number(maugis_parameter(surface, material)),
+        "adhesion_parameter": adhesion_parameter(surface, material),
+        "plasticity_index": _number(plasticity_index(surface, material)),
+        "regime_warning": "; ".join(regime_warnings(surface, material, law)),
+    }
+
+
+#: Points per batch of the compiled fast path (:func:`evaluate_batch`).
+BATCH = 64
+
+
+def _fast(point: _Point, config: _Config) -> bool:
+    """Whether :func:`mcsim.engine.designmap.jkr_summaries` computes this point: the jkr law
+    set on Gaussian heights, without Monte Carlo, pads, a preload or an environment (which
+    the compiled kernel does not know)."""
+    return (point.law == "jkr" and not config.mc and isinstance(point.surface.heights, Gaussian)
+            and point.environment is None and config.preload is None and not config.pads)  # fmt: skip
+
+
+def _batches(points, config: _Config):
+    """Consecutive points in lists: up to :data:`BATCH` fast-path points, others alone."""
+    batch: list[_Point] = []
+    for point in points:
+        if not _fast(point, config):
+            if batch:
+                yield batch
+                batch = []
+            yield [point]
+            continue
+        batch.append(point)
+        if len(batch) == BATCH:
+            yield batch
+            batch = []
+    if batch:
+        yield batch
+
+
+def evaluate_batch(points: list[_Point], config: _Config) -> list[dict]:
+    """:func:`evaluate` of each point; fast-path points (:func:`_fast`) in one compiled call.
+
+    The fast path gives the approach curves and the adhesion summary of
+    :func:`mcsim.engine.designmap.jkr_summaries`: the same quantities as
+    :func:`mcsim.physics.adhesion.adhesion_summary` and :func:`mcsim.gw_curves`, equal to
+    them within that module's stated tolerances (not bit for bit). A point the fast path
+    leaves to the reference (or a batch it fails on) is evaluated by :func:`evaluate`.
+    """
+    if not all(_fast(p, config) for p in points):
+        return [evaluate(p, config) for p in points]
+    h = np.asarray(config.h)
+    s = [p.surface for p in points]
+    m = [p.material for p in points]
+    try:
+        fast = jkr_summaries([x.sigma for x in s], [x.R for x in s], [x.eta for x in s],
+                             [x.E_star for x in m], [x.K for x in m], [x.gamma for x in m], h,
+                             turn=config.turn)  # fmt: skip
+    except (MCSimError, ArithmeticError, ValueError, RuntimeError):
+        return [evaluate(p, config) for p in points]
+    contact = np.asarray(GAUSSIAN.sf(h), dtype=float)
+    out = []
+    for i, point in enumerate(points):
+        if fast["status"][i] == REFERENCE:
+            out.append(evaluate(point, config))
+            continue
+        material = point.material
+        values = {"law_used": "jkr", "contact_fraction": contact, "load": fast["load"][i],
+                  "area": fast["area"][i]}  # fmt: skip
+        if material.tau is not None:  # Bowden-Tabor friction, as mcsim.gw_curves
+            values["friction"] = material.tau / material.K * values["area"]
+            with np.errstate(invalid="ignore", divide="ignore"):
+                values["mu"] = np.where(values["load"] > 0, values["friction"] / values["load"],
+                                        np.nan)  # fmt: skip
+        values |= _regime(point.surface, material, "jkr")
+        values |= {k: float(fast[k][i]) for k in ("turn", "pull_off", "h_pull_off",
+                                                   "work_of_separation", "hysteresis")}  # fmt: skip
+        values["pull_off_pressure"] = values["pull_off"] * material.K
+        out.append(values)
+    return out
 
 
 def _number(value: float | None) -> float:
@@ -758,7 +841,7 @@ def _run(stack, points, config, result: Sweep, done, workers, scheduler, progres
     if client is None:
         pool = ThreadPoolExecutor(max_workers=n_workers)
         stack.callback(pool.shutdown, wait=True, cancel_futures=True)
-        submit = functools.partial(pool.submit, evaluate, config=config)
+        submit = functools.partial(pool.submit, evaluate_batch, config=config)
         window = 2 * n_workers
     else:
         submit = functools.partial(client.submit, _evaluate_quietly, config=config, pure=False)
@@ -766,14 +849,15 @@ def _run(stack, points, config, result: Sweep, done, workers, scheduler, progres
     next_checkpoint = time.monotonic() + min(FIRST_CHECKPOINT, checkpoint_every)
     unsaved = False
     results = stack.enter_context(
-        contextlib.closing(in_order(submit, points, window, interrupt.check))
+        contextlib.closing(in_order(submit, _batches(points, config), window, interrupt.check))
     )
     try:
-        for point, values in results:
-            _store(result, done, point.index, values)
+        for batch, batch_values in results:
+            for point, values in zip(batch, batch_values):
+                _store(result, done, point.index, values)
             unsaved = True
             if bar is not None:
-                bar.update(1)
+                bar.update(len(batch))
             if checkpoint is not None and time.monotonic() > next_checkpoint:
                 checkpoint(done=done)
                 unsaved = False

@@ -151,6 +151,9 @@ def test_a_sweep_with_no_value_to_plot_is_a_one_line_error(monkeypatch):
         raise ParameterError("no root found (injected)")
 
     monkeypatch.setattr(mcsim.studies.sweeps, "adhesion_summary", failing)
+    # jkr points go to the compiled fast path first: fail it too (its points then fall back
+    # to adhesion_summary)
+    monkeypatch.setattr(mcsim.studies.sweeps, "jkr_summaries", failing)
     # every adhesion summary fails, and jkr without tau has no seed curves or friction
     result = sweep(SMOOTH, SILICON, {"gamma": "0.2,0.3"}, law="jkr", h=H)
     assert np.all(np.isnan(result.data["pull_off"]))
