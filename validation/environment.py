@@ -31,10 +31,10 @@ from mcsim.physics.environment import (
     capillary_work,
     environment_curves,
     kelvin_radius,
-    nayak_heights,
     vdw_pressure,
     vdw_work,
 )
+from mcsim.physics.gapheights import nayak_heights
 from mcsim.topography.empirical import Empirical
 
 A, D0, GAMMA = 1.6e-19, 0.2e-9, 0.072

@@ -179,7 +179,7 @@ def environment_notes(surface, environment) -> list[str]:
         return []
     import math
 
-    from mcsim.physics.environment import gap_heights
+    from mcsim.physics.gapheights import gap_heights
 
     env, gap = environment, gap_heights(surface)
     hamaker = "none" if not env.has_vdw else f"{env.hamaker:.4g} J"

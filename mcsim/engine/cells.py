@@ -8,7 +8,7 @@ Cell model. A patch with N summits is tiled by N cells of area A/N (one cell per
 summit, area 1/η on average). Each cell is locally flat at one height z about the
 mean plane, drawn independently of the other cells and of the summits, from the
 surface's height distribution: N(0, Rq²), or the measured map histogram scaled by Rq
-(:func:`mcsim.physics.environment.gap_heights`). At row separation d the mean-plane
+(:func:`mcsim.physics.gapheights.gap_heights`). At row separation d the mean-plane
 gap is D = d + y_s (y_s the summit offset) and the cell's gap g = D − z; it pulls with
 
     p_vdW = (A/6π) g⁻³ [g >= D0],     p_cap = (γ_L/r_K) [D0 <= g < g_K],
@@ -43,7 +43,8 @@ import numpy as np
 
 from mcsim.engine.montecarlo import BLOCK, MonteCarloSpec, PatchPlan, in_order, make_tasks
 from mcsim.model.distributions import GAUSSIAN
-from mcsim.physics.environment import Environment, GapHeights
+from mcsim.physics.environment import Environment
+from mcsim.physics.gapheights import GapHeights
 
 #: Columns of the cell sums, per row: Σ p_vdW (Pa), Σ p_vdW² (Pa²), Σ p_cap, Σ p_cap².
 CELL_COLUMNS = ("vdw", "vdw2", "capillary", "capillary2")
@@ -158,7 +159,7 @@ def run_cell_sums(
         Summits, hence cells, of each patch.
     env : Environment
     gap : GapHeights
-        From :func:`mcsim.physics.environment.gap_heights`.
+        From :func:`mcsim.physics.gapheights.gap_heights`.
     workers : int
         Threads (NumPy releases the GIL in the array work).
     chunk_size : int

@@ -53,8 +53,8 @@ from mcsim.physics.environment import (
     Environment,
     environment_curves,
     environment_works,
-    gap_heights,
 )
+from mcsim.physics.gapheights import gap_heights
 from mcsim.physics.laws import LawSet, get_law_set
 
 #: Johnson–Greenwood (1997) map at low load: DMT below this Maugis λ.
@@ -218,7 +218,7 @@ class AdhesionSummary:
         Kelvin radius r_K of the environment, m (0 when dry); None without.
     rq, summit_offset : float or None
         Rms height and mean summit height above the mean plane used by the environment,
-        m (:func:`mcsim.physics.environment.gap_heights`); None without.
+        m (:func:`mcsim.physics.gapheights.gap_heights`); None without.
     heights_source : str or None
         Where ``rq`` and ``summit_offset`` come from: ``"given"`` or the Nayak estimate.
     """

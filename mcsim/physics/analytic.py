@@ -39,7 +39,8 @@ import numpy as np
 
 from mcsim.model.errors import ParameterError
 from mcsim.model.params import Material, Surface, check_range, check_separations
-from mcsim.physics.environment import Environment, environment_curves, gap_heights
+from mcsim.physics.environment import Environment, environment_curves
+from mcsim.physics.gapheights import gap_heights
 from mcsim.physics.laws import Edges, LawSet, get_law_set
 
 #: Quantities of a GW curve, in output order, with their meaning.
@@ -251,7 +252,7 @@ def gw_curves(
     environment : Environment, optional
         Adds the curves ``vdw`` and ``capillary`` (attraction per nominal area over K,
         > 0 attractive; :func:`mcsim.physics.environment.environment_curves` at the
-        mean-plane gap D = hσ + summit_offset of :func:`~mcsim.physics.environment.gap_heights`)
+        mean-plane gap D = hσ + summit_offset of :func:`~mcsim.physics.gapheights.gap_heights`)
         and makes ``load`` the net load (see the module docstring). None (default): the
         contact curves alone, exactly as without this argument.
 

@@ -44,7 +44,7 @@ own standard deviation (of its piecewise-uniform density,
 :class:`~mcsim.topography.empirical.Empirical`); a given ``sigma`` rescales its shape.
 
 ``rq``, ``summit_offset`` and ``map_heights`` are used only by the environment
-(:func:`mcsim.physics.environment.gap_heights`; Nayak estimates where absent).
+(:func:`mcsim.physics.gapheights.gap_heights`; Nayak estimates where absent).
 ``map_heights`` takes the same forms as ``heights`` (``[surface.map_heights] file =
 "map-heights.csv"``, as ``mcsim ingest`` writes it): the heights of every point about the
 mean plane, whose shape is kept and scaled by ``rq``; ``rq`` defaults to its own standard

@@ -73,17 +73,16 @@ from pathlib import Path
 import numpy as np
 
 from mcsim._version import __version__
-from mcsim.engine.cells import CELL_COLUMNS, CELL_UNITS, CellSums
 from mcsim.engine.kernels import sum_columns, sum_units
 from mcsim.engine.montecarlo import BLOCK, EnsembleSums, MonteCarloSpec
 from mcsim.engine.statistics import Summary, quantities
 from mcsim.model.distributions import GAUSSIAN
 from mcsim.model.errors import MCSimError, RunFileError
 from mcsim.model.params import Material, Surface
-from mcsim.physics.environment import Environment, GapHeights
-from mcsim.physics.laws import get_law_set
 from mcsim.store import schema
+from mcsim.store.envgroup import read_environment, write_environment
 from mcsim.store.files import atomic_write, checksum
+from mcsim.store.h5layout import AXES, dataset, row_axis
 from mcsim.store.results import STATS, Run, assemble, environment_run
 
 SCHEMA_VERSION = 2
@@ -116,55 +115,6 @@ def _heights_from_dict(data: dict):
     from mcsim.topography.empirical import Empirical
 
     return Empirical.from_dict({k: v for k, v in data.items() if k != "name"})
-
-
-def _dataset(f, name: str, data, unit: str, description: str, dims=(), **options):
-    """Create dataset ``name`` with its unit; ``dims`` name its axes (see :func:`_axis`)."""
-    ds = f.create_dataset(name, data=np.asarray(data), **options)
-    ds.attrs["unit"] = unit
-    ds.attrs["description"] = description
-    for k, axis in enumerate(dims):
-        ds.dims[k].attach_scale(_axis(ds.parent, axis, ds.shape[k]))
-    return ds
-
-
-#: Named axes: unit and meaning of each coordinate.
-AXES = {
-    "h": ("1", "d/sigma"),
-    "row": ("1", "d/sigma of each row of a cycle: approach, then retraction (see branch)"),
-    "realization": ("1", "realization index"),
-    "column": ("1", "column of realizations/sums"),
-    "cell_column": ("1", "column of environment/sums"),
-}
-
-
-def _axis(group, axis: str, size: int):
-    """The coordinate ``axis`` of ``group``, created on first use.
-
-    Each group that uses an axis holds its own copy as an HDF5 dimension scale named
-    after it, so that netCDF readers (``xarray.open_dataset(path, group=...,
-    engine="h5netcdf")``, ``open_datatree``) name the dimension and give its values,
-    with the same name in every group.
-    """
-    if axis not in group:
-        values = {
-            "h": lambda: group.file["h"][()],
-            "row": lambda: group.file["row"][()],
-            "realization": lambda: np.arange(size),
-            "column": lambda: np.array(sum_columns(get_law_set(group.file.attrs["law"])), "S"),
-            "cell_column": lambda: np.array(CELL_COLUMNS, "S"),
-        }[axis]()
-        scale = _dataset(group, axis, values, *AXES[axis])
-        if axis in ("column", "cell_column"):
-            scale.attrs["_Encoding"] = "utf-8"  # netCDF readers decode the names to text
-        scale.make_scale(axis)
-    return group[axis]
-
-
-def _row_axis(spec: MonteCarloSpec) -> str:
-    """Name of the row axis of the sums and curves: ``h`` (approach only), or ``row``
-    (a cycle: the M approach rows, then the M retraction rows)."""
-    return "row" if spec.cycle else "h"
 
 
 def _write_inputs(f, spec: MonteCarloSpec, command: str, complete: bool, extra=None) -> dict:
@@ -203,31 +153,31 @@ def _write_inputs(f, spec: MonteCarloSpec, command: str, complete: bool, extra=N
     m.attrs.update({k: np.nan if getattr(mat, k) is None else getattr(mat, k) for k in ("z0", "tau")})  # fmt: skip
     m.attrs["units"] = json.dumps({"E1": "Pa", "E2": "Pa", "nu1": "1", "nu2": "1", "gamma": "J/m^2",
                                    "H": "Pa", "z0": "m", "tau": "Pa"})  # fmt: skip
-    _dataset(f, "h", spec.h, *AXES["h"]).make_scale("h")
-    _dataset(f, "d", spec.d, "m", "mean separation", dims=("h",))
+    dataset(f, "h", spec.h, *AXES["h"]).make_scale("h")
+    dataset(f, "d", spec.d, "m", "mean separation", dims=("h",))
     if spec.cycle:
-        _dataset(f, "row", spec.row_h, *AXES["row"]).make_scale("row")
-    _dataset(f, "branch", spec.row_branch.astype("S"), "1", "branch of each row of the sums",
-             dims=(_row_axis(spec),))  # fmt: skip
+        dataset(f, "row", spec.row_h, *AXES["row"]).make_scale("row")
+    dataset(f, "branch", spec.row_branch.astype("S"), "1", "branch of each row of the sums",
+             dims=(row_axis(spec),))  # fmt: skip
     return attrs
 
 
 def _write_state(f, state: EnsembleSums) -> None:
     per_realization = ("realization",)
-    _dataset(f, "realizations/N", state.n_summits, "1", "summits in the patch", per_realization)
-    sums = _dataset(
+    dataset(f, "realizations/N", state.n_summits, "1", "summits in the patch", per_realization)
+    sums = dataset(
         f,
         "realizations/sums",
         state.sums,
         "per column, see units",
         "raw per-row sums over the blocks done",
-        ("realization", _row_axis(state.spec), "column"),
+        ("realization", row_axis(state.spec), "column"),
     )
     sums.attrs["columns"] = list(sum_columns(state.spec.law_set))
     sums.attrs["units"] = list(sum_units(state.spec.law_set))
     blocks = f"blocks of {BLOCK} summits above s_min"
-    _dataset(f, "progress/n_blocks", state.n_blocks, "1", blocks, per_realization)
-    _dataset(f, "progress/done_blocks", state.done_blocks, "1", "blocks done", per_realization)
+    dataset(f, "progress/n_blocks", state.n_blocks, "1", blocks, per_realization)
+    dataset(f, "progress/done_blocks", state.done_blocks, "1", "blocks done", per_realization)
 
 
 def write_checkpoint(
@@ -261,20 +211,20 @@ def write_run(path: str | Path, run, *, command: str, extra: dict | None = None)
     def fill(f):
         attrs.update(_write_inputs(f, run.spec, command, complete=True, extra=extra))
         _write_state(f, run.ensemble)
-        per_row = (_row_axis(run.spec),)
+        per_row = (row_axis(run.spec),)
         for q in run.quantities:
             norm = run.normalisation(q)
             curves = run.realizations[q]
-            _dataset(f, f"realizations/{q}", curves, "1", norm, ("realization", per_row[0]))
-            _dataset(f, f"analytic/{q}", run.analytic[q], "1", norm, per_row)
+            dataset(f, f"realizations/{q}", curves, "1", norm, ("realization", per_row[0]))
+            dataset(f, f"analytic/{q}", run.analytic[q], "1", norm, per_row)
             for stat in STATS:
                 values = getattr(run.summary, stat)[q]
-                _dataset(f, f"summary/{stat}/{q}", values, "1", norm, per_row)
+                dataset(f, f"summary/{stat}/{q}", values, "1", norm, per_row)
         expected = run.summary.expected_contacts
-        _dataset(f, "summary/expected_contacts", expected, "1", "R E[N] S(s)", per_row)
+        dataset(f, "summary/expected_contacts", expected, "1", "R E[N] S(s)", per_row)
         if run.heights is not None:
             for r, z in enumerate(run.heights):
-                _dataset(
+                dataset(
                     f,
                     f"heights/{r}",
                     z,
@@ -285,86 +235,10 @@ def write_run(path: str | Path, run, *, command: str, extra: dict | None = None)
                 )
 
         if run.environment is not None:
-            _write_environment(f, run)
+            write_environment(f, run)
 
     atomic_write(path, fill)
     return dataclasses.replace(run, path=path, attrs=attrs)
-
-
-#: Fields of the Environment as stored, with their units.
-_ENVIRONMENT_UNITS = {"hamaker": "J", "cutoff": "m", "rh": "1", "contact_angle": "rad",
-                      "temperature": "K", "surface_tension": "J/m^2", "molar_volume": "m^3/mol"}  # fmt: skip
-
-
-def _write_environment(f, run) -> None:
-    """The /environment group (see the module docstring)."""
-    part = run.environment
-    env, gap = part.cells.environment, part.cells.gap
-    g = f.create_group("environment")
-    g.attrs.update(
-        {k: np.nan if getattr(env, k) is None else getattr(env, k) for k in _ENVIRONMENT_UNITS}
-    )
-    g.attrs.update(kelvin_radius=env.kelvin_radius, rq=gap.rq, summit_offset=gap.summit_offset,
-                   gap_source=gap.source, cell_model=CELL_MODEL,
-                   map_heights=json.dumps("gaussian" if isinstance(gap.heights, float)
-                                          else gap.heights.to_dict()))  # fmt: skip
-    g.attrs["units"] = json.dumps(
-        _ENVIRONMENT_UNITS | {"kelvin_radius": "m", "rq": "m", "summit_offset": "m"}
-    )
-    rows = (_row_axis(run.spec),)
-    _dataset(
-        f, "environment/n_cells", part.cells.n_cells, "1", "cells in the patch", ("realization",)
-    )
-    sums = _dataset(f, "environment/sums", part.cells.sums, "per column, see units",
-                    "per-row sums over the cells", ("realization", rows[0], "cell_column"))  # fmt: skip
-    sums.attrs["columns"], sums.attrs["units"] = list(CELL_COLUMNS), list(CELL_UNITS)
-    est = part.estimates
-    for t in est.mean:
-        norm = f"p_{t}/K"
-        _dataset(
-            f,
-            f"environment/realizations/{t}",
-            est.realizations[t],
-            "1",
-            norm,
-            ("realization", rows[0]),
-        )
-        _dataset(f, f"environment/summary/mean/{t}", est.mean[t], "1", norm, rows)
-        _dataset(f, f"environment/summary/se/{t}", est.se[t], "1", norm, rows)
-        _dataset(f, f"environment/analytic/{t}", part.analytic[t], "1", norm, rows)
-
-
-#: The cell model of the environment pass, as recorded in run files.
-CELL_MODEL = ("one cell of area A/N per summit, heights iid from the map_heights (or Gaussian) "
-              "distribution scaled by rq, uncorrelated with each other and with the summits")  # fmt: skip
-
-
-def _read_environment(path: Path, f, spec: MonteCarloSpec) -> CellSums | None:
-    """The environment's cell sums of a run file, or None if it has none."""
-    if "environment" not in f:
-        return None
-    a = f["environment"].attrs
-    values = {k: float(a[k]) for k in _ENVIRONMENT_UNITS}
-    values["hamaker"] = None if np.isnan(values["hamaker"]) else values["hamaker"]
-    env = Environment(**values)
-    shape = json.loads(a["map_heights"])
-    rq = float(a["rq"])
-    heights = rq
-    if shape != "gaussian":
-        from mcsim.topography.empirical import Empirical
-
-        heights = Empirical.from_dict(shape)
-    gap = GapHeights(heights, rq, float(a["summit_offset"]), str(a["gap_source"]))
-    R, rows = spec.realizations, spec.row_h.size
-    for name, want in (
-        ("environment/n_cells", (R,)),
-        ("environment/sums", (R, rows, len(CELL_COLUMNS))),
-    ):
-        if f[name].shape != want:
-            raise RunFileError(
-                f"{path}: damaged run file: {name} has shape {f[name].shape}, the inputs ask for {want}"
-            )
-    return CellSums(env, gap, f["environment/n_cells"][()], f["environment/sums"][()])
 
 
 # --- reading --------------------------------------------------------------------------
@@ -614,7 +488,7 @@ def read_run(path: str | Path, *, allow_incomplete: bool = False):
         names = _quantities(state.spec)
         stats = {stat: {q: f[f"summary/{stat}/{q}"][()] for q in names} for stat in STATS}
         heights = _heights(path, f, state.spec.realizations)
-        cells = _read_environment(path, f, state.spec)
+        cells = read_environment(path, f, state.spec)
         return Run(
             environment=None if cells is None else environment_run(state.spec, cells),
             ensemble=state,

@@ -25,7 +25,8 @@ from mcsim.engine.montecarlo import DEFAULT_CHUNK, MonteCarloSpec, default_worke
 from mcsim.model.errors import ParameterError, RunFileError
 from mcsim.model.params import Material, Surface, check_range
 from mcsim.model.units import parse_quantity
-from mcsim.physics.environment import Environment, gap_heights
+from mcsim.physics.environment import Environment
+from mcsim.physics.gapheights import gap_heights
 from mcsim.store import files, runfile
 from mcsim.store.results import Run, assemble
 
@@ -156,7 +157,7 @@ def simulate(
         Van der Waals and capillary condensation across the gaps: each patch's pressures
         are sampled over its cells (:mod:`mcsim.engine.cells`: one cell per summit, heights
         from ``surface.rq``/``map_heights`` or the Nayak estimate,
-        :func:`mcsim.physics.environment.gap_heights`) in a pass after the contact sums
+        :func:`mcsim.physics.gapheights.gap_heights`) in a pass after the contact sums
         (local threads, not checkpointed: a resumed run redoes it). The contact sums are
         the same as without it. None: no such pass, and the file is as before.
 

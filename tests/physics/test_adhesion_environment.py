@@ -13,7 +13,8 @@ from scipy import integrate
 from mcsim import gw_curves
 from mcsim.model.params import Material, Surface
 from mcsim.physics.adhesion import RegimeWarning, adhesion_summary
-from mcsim.physics.environment import Environment, gap_heights
+from mcsim.physics.environment import Environment
+from mcsim.physics.gapheights import gap_heights
 
 SURFACE = Surface(sigma=1.9e-9, R=1.2e-6, eta=14e12, rq=2.4e-9, summit_offset=2.1e-9, name="s")
 MATERIAL = Material(E1=150e9, E2=150e9, nu1=0.25, nu2=0.25, gamma=0.3, z0=0.3e-9)

@@ -12,7 +12,8 @@ from scipy import integrate
 from mcsim import gw_curves
 from mcsim.model.params import Material, Surface
 from mcsim.model.presets import MATERIALS, SURFACES
-from mcsim.physics.environment import Environment, gap_heights
+from mcsim.physics.environment import Environment
+from mcsim.physics.gapheights import gap_heights
 from mcsim.physics.loadcontrol import load_control
 
 # Surfaces nobody tuned the code to: one with rq and summit_offset given, one estimated.

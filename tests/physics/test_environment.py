@@ -21,10 +21,10 @@ from mcsim.physics.environment import (
     environment_curves,
     environment_works,
     kelvin_radius,
-    nayak_heights,
     vdw_pressure,
     vdw_work,
 )
+from mcsim.physics.gapheights import nayak_heights
 from mcsim.topography.empirical import Empirical
 
 A = 1.6e-19  # J, silicon across air

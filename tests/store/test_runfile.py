@@ -103,7 +103,7 @@ def test_interrupted_run_leaves_no_partial_file_and_the_old_run_intact(tmp_path,
     def interrupt(*args, **kwargs):
         raise KeyboardInterrupt
 
-    monkeypatch.setattr("mcsim.store.runfile._dataset", interrupt)  # dies while writing
+    monkeypatch.setattr("mcsim.store.runfile.dataset", interrupt)  # dies while writing
     with pytest.raises(KeyboardInterrupt):
         make_run(path, seed=6, overwrite=True)
     assert path.read_bytes() == before

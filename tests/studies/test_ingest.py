@@ -428,7 +428,7 @@ def test_measured_rq_and_offset_are_near_the_nayak_estimate_of_a_gaussian_map(ga
     # Not a tolerance of the method: Nayak's relations are asymptotic in alpha and this map
     # has alpha ~ 2.9; measured here, the direct-route summits give rq 3.6 % and the offset
     # 2.6 % low. The 10 % bound catches a wrong plane or definition, not a few per cent.
-    from mcsim.physics.environment import nayak_heights
+    from mcsim.physics.gapheights import nayak_heights
 
     s = ingest_file(gaussian_map, unit="nm", pixel_size=1e-9).surface
     estimate = nayak_heights(s.sigma, s.R, s.eta)

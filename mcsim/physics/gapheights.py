@@ -1,0 +1,103 @@
+"""The heights of a rough surface about its mean plane, which the environment needs.
+
+The GW summits (σ_s, R, η) measure the separation from the mean summit plane; van der
+Waals and capillary attraction act across the gaps of the whole surface, measured from its
+mean plane (:mod:`mcsim.physics.environment`). This module gives the rms height Rq and the
+summit plane's offset y_s: as given (a measured map gives both, and its height histogram),
+or estimated from the summits by Nayak's (1971) and McCool's (1986) relations.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import NamedTuple
+
+
+class NayakEstimate(NamedTuple):
+    """Heights of a Gaussian GW surface estimated from its summits (:func:`nayak_heights`).
+
+    Attributes
+    ----------
+    rq : float
+        Rms height of the surface about its mean plane √m0, m.
+    summit_offset : float
+        Mean summit height above the mean plane y_s, m.
+    alpha : float
+        Bandwidth parameter α = m0 m4/m2² (the relations are asymptotic in α ≫ 1).
+    """
+
+    rq: float
+    summit_offset: float
+    alpha: float
+
+
+def nayak_heights(sigma, R, eta) -> NayakEstimate:
+    """Rq and summit offset of a Gaussian surface from its summits' σ_s, R and η.
+
+    Nayak (1971) and McCool (1986) relations inverted (PHYSICS.md, "The environment"):
+    m4 = π(0.375/R)², m2 = m4/(6π√3 η), m0 = σ_s² + 0.8968 m2²/m4, α = m0 m4/m2²,
+    Rq = √m0, y_s = 4√(m0/(πα)). Rough at the low α (2.5–4.9) of the paper's surfaces.
+
+    Parameters
+    ----------
+    sigma : float
+        Standard deviation of the summit heights σ_s, m.
+    R : float
+        Mean summit radius of curvature, m.
+    eta : float
+        Summit density η, m⁻².
+
+    Returns
+    -------
+    NayakEstimate
+    """
+    m4 = math.pi * (0.375 / R) ** 2
+    m2 = m4 / (6 * math.pi * math.sqrt(3) * eta)
+    m0 = sigma**2 + 0.8968 * m2**2 / m4
+    alpha = m0 * m4 / m2**2
+    return NayakEstimate(math.sqrt(m0), 4 * math.sqrt(m0 / (math.pi * alpha)), alpha)
+
+
+class GapHeights(NamedTuple):
+    """What the environment needs of a surface (:func:`gap_heights`).
+
+    Attributes
+    ----------
+    heights : float or Empirical
+        Rq of Gaussian heights about the mean plane, m, or the measured height histogram
+        (an :class:`~mcsim.topography.empirical.Empirical` in m).
+    rq : float
+        Rms height about the mean plane, m.
+    summit_offset : float
+        Height of the mean summit plane above the mean plane y_s, m.
+    source : str
+        Where the numbers come from: ``"given"``, or ``"Nayak estimate (alpha = ...)"``.
+    """
+
+    heights: object
+    rq: float
+    summit_offset: float
+    source: str
+
+
+def gap_heights(surface) -> GapHeights:
+    """Heights about the mean plane and the summit offset of a surface, for the environment.
+
+    ``surface.rq`` and ``surface.summit_offset`` where given (a measured map gives both,
+    and its height histogram ``surface.map_heights``); otherwise both from the summits'
+    σ, R, η by :func:`nayak_heights` (an estimate: rough at the paper's low α).
+
+    Parameters
+    ----------
+    surface : mcsim.model.params.Surface
+    """
+    estimate = None
+    if surface.rq is None or surface.summit_offset is None:
+        estimate = nayak_heights(surface.sigma, surface.R, surface.eta)
+    rq = estimate.rq if surface.rq is None else surface.rq
+    offset = estimate.summit_offset if surface.summit_offset is None else surface.summit_offset
+    source = "given" if estimate is None else f"Nayak estimate (alpha = {estimate.alpha:.3g})"
+    heights, shape = rq, surface.map_heights
+    if shape is not None:  # a measured histogram in units of rq, made dimensional
+        heights = type(shape)(shape.edges, shape.densities, sigma=rq, source=shape.source)
+    return GapHeights(heights, rq, offset, source)
