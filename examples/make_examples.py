@@ -4,11 +4,11 @@ One synthetic AFM scan, a Gaussian-correlated random surface, is written in each
 format mcsim reads without an instrument's software: a text matrix (``scan.txt``,
 heights in nm, no header: the README passes ``--unit nm --pixel-size 10nm``), NumPy
 (``scan.npy``, heights in m), Gwyddion (``scan.gwy``: channel ``Height``, sizes and
-units stored) and Nanosurf (``scan.nid``: channels ``Scan forward/Z-Axis`` and ``Scan
-backward/Z-Axis``, 32-bit). Beside them: ``hist.csv``, the histogram of the scan's
-heights (centre in nm, count), ``hist-surface.toml``, a surface file that uses it, and
-``gold.toml``, a material file. No ``.ibw``: the igor2 package reads Igor waves but
-cannot write them.
+units stored), Nanosurf (``scan.nid``: channels ``Scan forward/Z-Axis`` and ``Scan
+backward/Z-Axis``, 32-bit) and an Igor binary wave (``scan.ibw``: version 5, one 2-D
+float32 wave in m, pixel size in the wave scaling; written here, as igor2 only reads).
+Beside them: ``hist.csv``, the histogram of the scan's heights (centre in nm, count),
+``hist-surface.toml``, a surface file that uses it, and ``gold.toml``, a material file.
 
 The surface is white noise filtered by a Gaussian in Fourier space (a periodic field
 whose height autocorrelation is Gaussian with correlation length ``CORRELATION``;
@@ -24,6 +24,7 @@ Writing ``scan.gwy`` needs ``gwyfile`` (in the ``test`` extra: ``pip install -e
 
 from __future__ import annotations
 
+import struct
 from pathlib import Path
 
 import numpy as np
@@ -104,6 +105,30 @@ def write_nid(path: Path, forward: np.ndarray, backward: np.ndarray) -> None:
     path.write_bytes("\r\n".join(header).encode("latin-1") + b"#!" + b"".join(blocks))
 
 
+def write_ibw(path: Path, z: np.ndarray) -> None:
+    """An Igor binary wave, version 5, little-endian: one 2-D float32 wave of heights in m.
+
+    The layout is WaveMetrics' Technical Note PTN003: a 64-byte BinHeader5, a 320-byte
+    WaveHeader5, then the data; fields not set here are zero (no note, formula, extended
+    units or labels). Igor's ``w[x, y]`` has x fastest, so nDim is (columns, rows) and the
+    rows of ``z`` are written in order.
+    """
+    data = z.astype("<f4").tobytes()
+    header = bytearray(64 + 320)
+    # BinHeader5: version, checksum (set last), wfmSize = WaveHeader5 + data
+    struct.pack_into("<hhl", header, 0, 5, 0, 320 + len(data))
+    wave = 64  # WaveHeader5 offsets below are from its start
+    struct.pack_into("<lh", header, wave + 12, z.size, 2)  # npnts, type NT_FP32
+    struct.pack_into("<h32s", header, wave + 26, 1, b"scan")  # whVersion, bname
+    struct.pack_into("<4l", header, wave + 68, z.shape[1], z.shape[0], 0, 0)  # nDim
+    struct.pack_into("<4d", header, wave + 84, PIXEL_SIZE, PIXEL_SIZE, 0, 0)  # sfA, m/pixel
+    struct.pack_into("4s4s4s", header, wave + 148, b"m", b"m", b"m")  # dataUnits, dimUnits x, y
+    # the 16-bit sum of BinHeader5 and WaveHeader5 must be 0 (PTN003)
+    total = sum(struct.unpack("<192h", header))
+    struct.pack_into("<h", header, 2, (-total + 2**15) % 2**16 - 2**15)
+    path.write_bytes(bytes(header) + data)
+
+
 def write_gwy(path: Path, z: np.ndarray) -> None:
     """A Gwyddion .gwy file with one channel, ``Height``, in m (needs gwyfile)."""
     from gwyfile.objects import GwyContainer, GwyDataField, GwySIUnit
@@ -135,12 +160,13 @@ def main(folder: Path = HERE) -> list[Path]:
     backward = z + NOISE * rng.standard_normal(z.shape)
     folder.mkdir(parents=True, exist_ok=True)
     paths = {name: folder / name for name in (
-        "scan.txt", "scan.npy", "scan.gwy", "scan.nid", "hist.csv", "hist-surface.toml", "gold.toml",
+        "scan.txt", "scan.npy", "scan.gwy", "scan.nid", "scan.ibw", "hist.csv", "hist-surface.toml", "gold.toml",
     )}  # fmt: skip
     np.savetxt(paths["scan.txt"], z * 1e9, fmt="%.4f")
     np.save(paths["scan.npy"], z)
     write_gwy(paths["scan.gwy"], z)
     write_nid(paths["scan.nid"], z, backward)
+    write_ibw(paths["scan.ibw"], z)
     write_histogram(paths["hist.csv"], z)
     paths["hist-surface.toml"].write_text(HIST_SURFACE)
     paths["gold.toml"].write_text(GOLD)

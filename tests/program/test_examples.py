@@ -2,13 +2,15 @@
 
 The generator is rerun into a temporary folder and every file compared with the shipped
 one: text files exactly, maps through mcsim's readers. Binary maps are compared to
-1e-12 relative, not bit for bit: the Fourier filter's last bits may differ on another CPU
-(another SIMD width), which is not a change of the surface.
+1e-12 relative (the float32 .ibw to one float32 step), not bit for bit: the Fourier
+filter's last bits may differ on another CPU (another SIMD width), which is not a change
+of the surface.
 """
 
 from __future__ import annotations
 
 import importlib.util
+import struct
 from pathlib import Path
 
 import numpy as np
@@ -28,6 +30,7 @@ MAPS = {
     "scan.npy": {"unit": "m", "pixel_size": make_examples.PIXEL_SIZE},
     "scan.gwy": {},
     "scan.nid": {},
+    "scan.ibw": {},
 }
 
 
@@ -63,7 +66,9 @@ def test_regenerated_map_equals_the_shipped_one(regenerated, name):
     # the text matrix rounds to 1e-4 nm, the .nid to 2^-32 of its 1 µm range: the last
     # digit may differ where the unrounded value lies within an ulp of a rounding boundary
     step = {"scan.txt": 1e-13, "scan.nid": 1e-6 / 2**32}.get(name, 0.0)
-    np.testing.assert_allclose(new.heights, old.heights, rtol=1e-12, atol=step * 1.01)
+    # the .ibw's float32: one step of a float32 is at most 2^-23 of the value
+    rtol = {"scan.ibw": 2.0**-23}.get(name, 1e-12)
+    np.testing.assert_allclose(new.heights, old.heights, rtol=rtol, atol=step * 1.01)
     assert (new.dx, new.dy, new.shape) == (old.dx, old.dy, old.shape)
 
 
@@ -72,11 +77,30 @@ def test_every_format_holds_the_same_surface(name):
     m = read_height_map(EXAMPLES / name, **MAPS[name])
     reference = np.load(EXAMPLES / "scan.npy")
     # stored precision: the text matrix's 4 decimals in nm (half a step 5e-14 m), the
-    # .nid's 32-bit integers (half a step 1e-6/2^33 m); .npy and .gwy store the doubles
+    # .nid's 32-bit integers (half a step 1e-6/2^33 m), the .ibw's float32 (rounding to
+    # nearest: at most 2^-24 of the value); .npy and .gwy store the doubles
     tolerance = {"scan.txt": 5e-14, "scan.nid": 1e-6 / 2**33}.get(name, 0.0)
-    np.testing.assert_allclose(m.heights, reference, rtol=0, atol=tolerance * 1.01)
+    rtol = {"scan.ibw": 2.0**-24}.get(name, 0.0)
+    np.testing.assert_allclose(m.heights, reference, rtol=rtol, atol=tolerance * 1.01)
     assert m.dx == m.dy == make_examples.PIXEL_SIZE
     assert m.shape == (make_examples.PIXELS, make_examples.PIXELS)
+
+
+def test_ibw_header_checksum_is_zero():
+    # PTN003: the 16-bit sum of BinHeader5 (64 bytes) and WaveHeader5 (320 bytes) is 0
+    header = (EXAMPLES / "scan.ibw").read_bytes()[:384]
+    assert sum(struct.unpack("<192h", header)) % 2**16 == 0
+
+
+def test_ibw_reads_back_through_igor2_with_its_scaling_and_units():
+    binarywave = pytest.importorskip("igor2.binarywave")
+    wave = binarywave.load(str(EXAMPLES / "scan.ibw"))["wave"]
+    header = wave["wave_header"]
+    # Igor's w[x, y] is the transpose of the rows-along-y map
+    expected = np.load(EXAMPLES / "scan.npy").T.astype(np.float32)
+    np.testing.assert_array_equal(wave["wData"], expected)
+    assert list(header["sfA"][:2]) == [make_examples.PIXEL_SIZE] * 2
+    assert header["dataUnits"][0] == b"m" and list(header["dimUnits"][:2, 0]) == [b"m", b"m"]
 
 
 def test_scan_has_the_generator_statistics():
