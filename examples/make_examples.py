@@ -82,7 +82,7 @@ def surface(rng: np.random.Generator) -> np.ndarray:
 
 
 def write_nid(path: Path, forward: np.ndarray, backward: np.ndarray) -> None:
-    """A Nanosurf .nid file: INI header, ``#!``, two 32-bit Z-Axis images (mcsim.topography.summits.readers.nid)."""
+    """A Nanosurf .nid file: INI header, ``#!``, two 32-bit Z-Axis images (mcsim.topography.readers.nid)."""
     height_range = 1e-6  # m; raw r maps to (r + 2³¹)/2³² · range + min, min = -range/2
     blocks = []
     header = [
