@@ -33,7 +33,6 @@ from __future__ import annotations
 import contextlib
 import dataclasses
 import datetime as _dt
-import difflib
 import functools
 import json
 import logging
@@ -43,40 +42,26 @@ import time
 import warnings
 from collections.abc import Mapping
 from concurrent.futures import ThreadPoolExecutor
-from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
 from mcsim._version import __version__
 from mcsim.engine import interrupt
-from mcsim.engine.designmap import REFERENCE, jkr_summaries
 from mcsim.engine.montecarlo import FIRST_CHECKPOINT, default_workers, in_order
-from mcsim.model import units
-from mcsim.model.distributions import GAUSSIAN, Gaussian
-from mcsim.model.errors import MCSimError, ParameterError, RunFileError
-from mcsim.model.params import Material, Surface, check_range, check_separations, plasticity_index
+from mcsim.model.errors import ParameterError, RunFileError
+from mcsim.model.params import Material, Surface, check_range, check_separations
 from mcsim.model.units import parse_quantity
 from mcsim.physics.adhesion import (
     RegimeWarning,
-    adhesion_parameter,
-    adhesion_summary,
-    choose_law,
-    maugis_parameter,
-    regime_warnings,
-    tabor_parameter,
 )
-from mcsim.physics.analytic import gw_curves, quantities
 from mcsim.physics.environment import Environment
 from mcsim.physics.laws import get_law_set
-from mcsim.physics.loadcontrol import preload_turn
 from mcsim.store import files, runfile
 from mcsim.store.sweepfile import (
     ENVIRONMENT_INPUTS,
-    ENVIRONMENT_SUMMARY,
     INPUTS,
     SCHEMA_VERSION,
-    SUMMARY,
     Sweep,
     dimension_name,
     empty_sweep,
@@ -85,316 +70,30 @@ from mcsim.store.sweepfile import (
     read_sweep,
     write_sweep,
 )
-from mcsim.studies.pads import finite_pads
+from mcsim.studies.sweeppoint import (
+    MAX_POINTS,
+    Config,
+    batches,
+    evaluate_batch,
+    evaluate_quietly,
+    has_summary,
+    make_point,
+    parse_values,
+    point_curves,
+    unknown_input,
+)
 
 log = logging.getLogger(__name__)
 
 
-#: Most points of one sweep.
-MAX_POINTS = 1_000_000
-
 #: Separations d/σ of the curves unless given.
 DEFAULT_H = tuple(np.linspace(4.0, -1.0, 51).tolist())
-
-_SURFACE_FIELDS = {"sigma", "R", "eta"}
 
 
 # --- the grid ----------------------------------------------------------------------------
 
 
-def _unknown_input(name: str) -> ParameterError:
-    close = difflib.get_close_matches(name, INPUTS, n=1)
-    hint = f"; did you mean {close[0]!r}?" if close else ""
-    return ParameterError(f"vary: unknown input {name!r} (allowed: {', '.join(INPUTS)}){hint}")
-
-
-def parse_values(name: str, spec) -> np.ndarray:
-    """The values of one varied input: SI floats (strings for ``law``).
-
-    ``spec`` is a range ``"start:stop:num[:log]"`` (inclusive, start <= stop), a comma
-    list ``"0.3nm,1nm"``, or a sequence of numbers (SI) or quantity strings. A bare
-    number is SI, as in every other option (``gamma=0.05:1:5`` is in J/m²), except in a
-    string for ``contact_angle``, where it is in degrees, as ``--contact-angle``
-    (``contact_angle=0:80:9``; ``"0.5 rad"`` with its unit).
-    """
-    if name not in INPUTS:
-        raise _unknown_input(name)
-    dimension = INPUTS[name][0]
-    where = f"vary {name}"
-    if name == "contact_angle" and isinstance(spec, str):
-        spec = _in_degrees(spec)
-    if isinstance(spec, str):
-        text = spec.strip()
-        if not text:
-            raise ParameterError(f"{where}: empty list of values")
-        if ":" in text and name != "law":
-            values = units.parse_values(text, dimension, where, limit=MAX_POINTS, ascending=True)
-        else:
-            values = [x.strip() for x in text.split(",")]
-    else:
-        values = list(np.atleast_1d(spec)) if not isinstance(spec, list | tuple) else list(spec)
-        if not values:
-            raise ParameterError(f"{where}: empty list of values")
-    if name == "law":
-        laws = []
-        for v in values:
-            if v != "auto":
-                get_law_set(v)  # unknown: names the allowed ones
-            laws.append(str(v))
-        values = np.array(laws, dtype=str)
-    else:
-        values = np.array([parse_quantity(plain(v), dimension, where) for v in values])
-    if values.size > MAX_POINTS:
-        raise ParameterError(f"{where}: {values.size} values, more than a sweep's "
-                             f"{MAX_POINTS} points")  # fmt: skip
-    unique, counts = np.unique(values, return_counts=True)
-    if np.any(counts > 1):
-        raise ParameterError(f"{where}: value {unique[counts > 1][0]!r} appears more than once")
-    return values
-
-
-def _in_degrees(spec: str) -> str:
-    """A contact-angle spec with ``deg`` after each bare number (its values, or a range's
-    start and stop): a bare angle is in degrees, as on the command line."""
-
-    def unit(x: str) -> str:
-        return x if units.has_unit(x) else f"{x.strip()} deg"
-
-    if ":" in spec:
-        parts = spec.split(":")
-        return ":".join([unit(parts[0]), unit(parts[1]), *parts[2:]])
-    return ",".join(unit(x) for x in spec.split(","))
-
-
-@dataclass(frozen=True)
-class _Point:
-    """One grid point: its flat index (C order) and its inputs."""
-
-    index: int
-    surface: Surface
-    material: Material
-    law: str
-    area: float | None
-    environment: Environment | None = None
-
-
-@dataclass(frozen=True)
-class _Config:
-    """What every point shares."""
-
-    h: tuple[float, ...]
-    turn: float | None
-    mc: bool
-    realizations: int
-    entropy: int | None
-    device: str = "cpu"
-    pads: int | None = None
-    restoring_force: float | None = None
-    preload: float | None = None
-
-
-def _point(base_surface, base_material, base_environment, law, area, names, values,
-           index) -> _Point:  # fmt: skip
-    """The inputs at one point; a bad combination raises ParameterError (a failed point)."""
-    surface_changes, material_changes, environment_changes = {}, {}, {}
-    for name, value in zip(names, values):
-        if name == "law":
-            law = str(value)
-        elif name == "area":
-            area = float(value)
-        elif name in ENVIRONMENT_INPUTS:
-            environment_changes[name] = float(value)
-        else:
-            for f in INPUTS[name][1]:
-                (surface_changes if f in _SURFACE_FIELDS else material_changes)[f] = float(value)
-    environment = base_environment
-    if environment_changes:
-        environment = dataclasses.replace(environment, **environment_changes)
-    return _Point(index, dataclasses.replace(base_surface, **surface_changes),
-                  dataclasses.replace(base_material, **material_changes), law, area,
-                  environment)  # fmt: skip
-
-
 # --- one point -----------------------------------------------------------------------------
-
-
-def has_summary(law: str) -> bool:
-    """Whether ``law`` (or ``auto``) has a net load and a retraction branch."""
-    if law == "auto":
-        return True
-    laws = get_law_set(law)
-    return "load" in laws.names and laws.retract
-
-
-def _curve_names(law: str, material: Material, environment: bool = False) -> tuple[str, ...]:
-    return quantities("jkr" if law == "auto" else law, material, environment)
-
-
-def evaluate(point: _Point, config: _Config) -> dict:
-    """Every output at one point (a dict of floats, arrays over h and strings).
-
-    Where a step fails, the outputs of the steps before it (curves, regime numbers,
-    adhesion summary, Monte Carlo, in that order) are kept and ``error`` says why.
-    """
-    out: dict = {}
-    try:
-        _evaluate(point, config, out)
-    except (MCSimError, ArithmeticError, ValueError, RuntimeError) as err:
-        out["error"] = f"{type(err).__name__}: {' '.join(str(err).split())}"
-    return out
-
-
-def _evaluate_quietly(points: list[_Point], config: _Config) -> list[dict]:
-    """:func:`evaluate_batch` on a Dask worker, without printing the regime warnings it records."""
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", RegimeWarning)
-        return evaluate_batch(points, config)
-
-
-def _evaluate(point: _Point, config: _Config, out: dict) -> None:
-    surface, material = point.surface, point.material
-    law = choose_law(surface, material)[0] if point.law == "auto" else point.law
-    out["law_used"] = law
-    environment = point.environment
-    # The environment only where there is one: without, every call is as before it existed.
-    with_environment = {} if environment is None else {"environment": environment}
-    curves = gw_curves(surface, material, np.asarray(config.h), law, **with_environment)
-    out |= curves.values
-    out |= _regime(surface, material, law)
-    if has_summary(law):
-        turn = config.turn
-        if config.preload is not None:
-            turn = preload_turn(surface, material, config.preload, law, environment)
-        summary = adhesion_summary(surface, material, law, turn=turn, **with_environment)
-        out |= {k: getattr(summary, k) for k in SUMMARY}
-        if environment is not None:
-            out |= {k: getattr(summary, k) for k in ENVIRONMENT_SUMMARY}
-    if config.mc:
-        from mcsim.studies.simulation import simulate
-
-        run = simulate(surface, material, np.asarray(config.h), point.area,
-                       realizations=config.realizations, seed=point_seed(config.entropy, point.index),
-                       law=law, device=config.device, workers=1, command="mcsim.sweep",
-                       **with_environment)  # fmt: skip
-        for q in run.quantities:
-            out[f"mc_{q}"] = run.summary.mean[q]
-            out[f"mc_{q}_se"] = run.summary.se[q]
-    if config.pads:
-        out |= _pads(point, config, law, out.get("turn", math.nan), out.get("h_pull_off", math.nan))
-
-
-def _pads(point: _Point, config: _Config, law: str, turn: float, h_pull_off: float) -> dict:
-    """The pads of one point: ``config.pads`` pads of the point's area from its own stream."""
-    from mcsim.engine.montecarlo import MonteCarloSpec
-
-    if not math.isfinite(turn):
-        raise ParameterError(f"pads need the adhesion summary's turn; law {law!r} has none")
-    spec = MonteCarloSpec(point.surface, point.material, np.asarray(config.h), point.area,
-                          config.pads, pads_seed(config.entropy, point.index), law, cycle=True)  # fmt: skip
-    return finite_pads(spec, config.restoring_force, preload=config.preload, turn=turn,
-                       h_pull_off=h_pull_off)  # fmt: skip
-
-
-def pads_seed(entropy: int, index: int) -> int:
-    """Root seed of the pads at grid point ``index``: 128 bits drawn from
-    ``SeedSequence(entropy, spawn_key=(index, 1))``, a stream apart from :func:`point_seed`'s
-    (``mcsim simulate --cycle --seed`` with it draws the same pads)."""
-    a, b = np.random.SeedSequence(entropy, spawn_key=(index, 1)).generate_state(2, np.uint64)
-    return (int(a) << 64) | int(b)
-
-
-def _regime(surface: Surface, material: Material, law: str) -> dict:
-    """The regime numbers of one summit and the regime warnings."""
-    return {
-        "tabor": _number(tabor_parameter(surface, material)),
-        "maugis_lambda": _number(maugis_parameter(surface, material)),
-        "adhesion_parameter": adhesion_parameter(surface, material),
-        "plasticity_index": _number(plasticity_index(surface, material)),
-        "regime_warning": "; ".join(regime_warnings(surface, material, law)),
-    }
-
-
-#: Points per batch of the compiled fast path (:func:`evaluate_batch`).
-BATCH = 64
-
-
-def _fast(point: _Point, config: _Config) -> bool:
-    """Whether :func:`mcsim.engine.designmap.jkr_summaries` computes this point: the jkr law
-    set on Gaussian heights, without Monte Carlo, pads, a preload or an environment (which
-    the compiled kernel does not know)."""
-    return (point.law == "jkr" and not config.mc and isinstance(point.surface.heights, Gaussian)
-            and point.environment is None and config.preload is None and not config.pads)  # fmt: skip
-
-
-def _batches(points, config: _Config):
-    """Consecutive points in lists: up to :data:`BATCH` fast-path points, others alone."""
-    batch: list[_Point] = []
-    for point in points:
-        if not _fast(point, config):
-            if batch:
-                yield batch
-                batch = []
-            yield [point]
-            continue
-        batch.append(point)
-        if len(batch) == BATCH:
-            yield batch
-            batch = []
-    if batch:
-        yield batch
-
-
-def evaluate_batch(points: list[_Point], config: _Config) -> list[dict]:
-    """:func:`evaluate` of each point; fast-path points (:func:`_fast`) in one compiled call.
-
-    The fast path gives the approach curves and the adhesion summary of
-    :func:`mcsim.engine.designmap.jkr_summaries`: the same quantities as
-    :func:`mcsim.physics.adhesion.adhesion_summary` and :func:`mcsim.gw_curves`, equal to
-    them within that module's stated tolerances (not bit for bit). A point the fast path
-    leaves to the reference (or a batch it fails on) is evaluated by :func:`evaluate`.
-    """
-    if not all(_fast(p, config) for p in points):
-        return [evaluate(p, config) for p in points]
-    h = np.asarray(config.h)
-    s = [p.surface for p in points]
-    m = [p.material for p in points]
-    try:
-        fast = jkr_summaries([x.sigma for x in s], [x.R for x in s], [x.eta for x in s],
-                             [x.E_star for x in m], [x.K for x in m], [x.gamma for x in m], h,
-                             turn=config.turn)  # fmt: skip
-    except (MCSimError, ArithmeticError, ValueError, RuntimeError):
-        return [evaluate(p, config) for p in points]
-    contact = np.asarray(GAUSSIAN.sf(h), dtype=float)
-    out = []
-    for i, point in enumerate(points):
-        if fast["status"][i] == REFERENCE:
-            out.append(evaluate(point, config))
-            continue
-        material = point.material
-        values = {"law_used": "jkr", "contact_fraction": contact, "load": fast["load"][i],
-                  "area": fast["area"][i]}  # fmt: skip
-        if material.tau is not None:  # Bowden-Tabor friction, as mcsim.gw_curves
-            values["friction"] = material.tau / material.K * values["area"]
-            with np.errstate(invalid="ignore", divide="ignore"):
-                values["mu"] = np.where(values["load"] > 0, values["friction"] / values["load"],
-                                        np.nan)  # fmt: skip
-        values |= _regime(point.surface, material, "jkr")
-        values |= {k: float(fast[k][i]) for k in ("turn", "pull_off", "h_pull_off",
-                                                   "work_of_separation", "hysteresis")}  # fmt: skip
-        values["pull_off_pressure"] = values["pull_off"] * material.K
-        out.append(values)
-    return out
-
-
-def _number(value: float | None) -> float:
-    return math.nan if value is None else float(value)
-
-
-def point_seed(entropy: int, index: int) -> int:
-    """Root seed of the Monte Carlo run at grid point ``index``: 128 bits drawn from
-    ``SeedSequence(entropy, spawn_key=(index,))``, the point's own child stream."""
-    a, b = np.random.SeedSequence(entropy, spawn_key=(index,)).generate_state(2, np.uint64)
-    return (int(a) << 64) | int(b)
 
 
 # --- the result ----------------------------------------------------------------------------
@@ -590,12 +289,12 @@ def sweep(
             else:
                 partial.unlink(missing_ok=True)
         entropy = np.random.SeedSequence(seed).entropy if mc or pads else None
-        config = _Config(h, turn, mc, realizations, entropy, device, pads, restoring_force, preload)
+        config = Config(h, turn, mc, realizations, entropy, device, pads, restoring_force, preload)
         laws = list(grid[names.index("law")]) if "law" in names else [law]
         with_env = environment is not None
-        curve_names = _union(_curve_names(x, material, with_env) for x in laws)
+        curve_names = _union(point_curves(x, material, with_env) for x in laws)
         if "tau" in names and material.tau is None:
-            curve_names = _union([curve_names, _curve_names(laws[0], dataclasses.replace(material, tau=1.0), with_env)])  # fmt: skip
+            curve_names = _union([curve_names, point_curves(laws[0], dataclasses.replace(material, tau=1.0), with_env)])  # fmt: skip
         summary = any(has_summary(x) for x in laws)
         result = empty_sweep(dims, grid, h, curve_names, summary, mc, with_env, pads=bool(pads))
         if command is None:
@@ -620,7 +319,7 @@ def sweep(
             for k in result.data:
                 result.data[k][done] = previous["data"][k][done]
         points = (
-            _point(surface, material, environment, law, area_m2, names, values, index)
+            make_point(surface, material, environment, law, area_m2, names, values, index)
             for index, values in enumerate(_product(grid))
             if not done.flat[index]
         )
@@ -716,7 +415,7 @@ def _check_vary(vary: Mapping, law: str | None, mc: bool) -> tuple[list[str], li
     fields: dict[str, str] = {}
     for name in names:
         if name not in INPUTS:
-            raise _unknown_input(name)
+            raise unknown_input(name)
         for f in INPUTS[name][1]:
             if f in fields:
                 raise ParameterError(f"vary: {name!r} and {fields[f]!r} both set {f}: vary one of them")  # fmt: skip
@@ -747,7 +446,7 @@ def _check_values(surface: Surface, material: Material, environment, names, grid
                 raise ParameterError(f"vary {name}: {err}") from None
 
 
-def _attrs(surface, material, environment, law, dims, grid, config: _Config, area, command) -> dict:
+def _attrs(surface, material, environment, law, dims, grid, config: Config, area, command) -> dict:
     surface_json = json.dumps({"sigma": surface.sigma, "R": surface.R, "eta": surface.eta,
                                "name": surface.name, "heights": runfile.heights_to_json(surface),
                                "units": {"sigma": "m", "R": "m", "eta": "m^-2"}})  # fmt: skip
@@ -808,7 +507,7 @@ def _check_pads(pads, restoring_force, preload, turn) -> tuple[float | None, flo
     return fr, preload
 
 
-def _pads_attrs(config: _Config, area) -> dict:
+def _pads_attrs(config: Config, area) -> dict:
     """Root attributes of the pads and the preload (empty without them)."""
     attrs = {}
     if config.preload is not None:
@@ -844,12 +543,12 @@ def _run(stack, points, config, result: Sweep, done, workers, scheduler, progres
         submit = functools.partial(pool.submit, evaluate_batch, config=config)
         window = 2 * n_workers
     else:
-        submit = functools.partial(client.submit, _evaluate_quietly, config=config, pure=False)
+        submit = functools.partial(client.submit, evaluate_quietly, config=config, pure=False)
         window = 2 * max(1, sum(client.nthreads().values()))
     next_checkpoint = time.monotonic() + min(FIRST_CHECKPOINT, checkpoint_every)
     unsaved = False
     results = stack.enter_context(
-        contextlib.closing(in_order(submit, _batches(points, config), window, interrupt.check))
+        contextlib.closing(in_order(submit, batches(points, config), window, interrupt.check))
     )
     try:
         for batch, batch_values in results:

@@ -145,15 +145,15 @@ def test_points_with_nothing_to_pull_off_are_counted_on_the_log_axes_not_dropped
 
 
 def test_a_sweep_with_no_value_to_plot_is_a_one_line_error(monkeypatch):
-    import mcsim.studies.sweeps
+    import mcsim.studies.sweeppoint
 
     def failing(*args, **kwargs):
         raise ParameterError("no root found (injected)")
 
-    monkeypatch.setattr(mcsim.studies.sweeps, "adhesion_summary", failing)
+    monkeypatch.setattr(mcsim.studies.sweeppoint, "adhesion_summary", failing)
     # jkr points go to the compiled fast path first: fail it too (its points then fall back
     # to adhesion_summary)
-    monkeypatch.setattr(mcsim.studies.sweeps, "jkr_summaries", failing)
+    monkeypatch.setattr(mcsim.studies.sweeppoint, "jkr_summaries", failing)
     # every adhesion summary fails, and jkr without tau has no seed curves or friction
     result = sweep(SMOOTH, SILICON, {"gamma": "0.2,0.3"}, law="jkr", h=H)
     assert np.all(np.isnan(result.data["pull_off"]))
@@ -200,7 +200,7 @@ def test_a_sweep_file_is_plotted_on_its_own(capsys, map_file, gamma_file, tmp_pa
 
 
 def test_an_incomplete_sweep_checkpoint_is_plotted_only_with_partial(capsys, tmp_path, monkeypatch):
-    import mcsim.studies.sweeps as sweeps
+    import mcsim.studies.sweeppoint as sweeps
 
     evaluate = sweeps.evaluate
 

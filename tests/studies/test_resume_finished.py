@@ -285,7 +285,7 @@ def test_a_kill_between_the_final_sweep_write_and_the_checkpoints_removal_is_fin
 
 def interrupt_sweep_at_point_1(path, monkeypatch):
     """Run SWEEP into ``path`` until a Ctrl-C at its second point: its checkpoint holds one point."""
-    import mcsim.studies.sweeps as sweeps
+    import mcsim.studies.sweeppoint as sweeps
 
     evaluate = sweeps.evaluate
 

@@ -175,14 +175,14 @@ def test_cli_sweep_writes_the_file_and_refuses_to_replace_it_without_overwrite(t
 def test_a_failed_point_is_recorded_and_reported_with_its_inputs_and_the_others_kept(
     tmp_path, capsys, monkeypatch
 ):
-    import mcsim.studies.sweeps
+    import mcsim.studies.sweeppoint
 
     def failing_at_gamma_01(surface, material, law, turn=None):
         if material.gamma == 0.1:
             raise ParameterError("no root found (injected)")
         return adhesion_summary(surface, material, law, turn=turn)
 
-    monkeypatch.setattr(mcsim.studies.sweeps, "adhesion_summary", failing_at_gamma_01)
+    monkeypatch.setattr(mcsim.studies.sweeppoint, "adhesion_summary", failing_at_gamma_01)
     path = tmp_path / "fail.h5"
     code, _, err = run_cli(capsys, "sweep", "--surface", "smooth", "--law", "dmt", "--vary",
                            "gamma=0.1,0.5", "--h=2,0", "--out", str(path))  # fmt: skip
@@ -295,7 +295,7 @@ def test_a_two_worker_local_dask_cluster_gives_the_serial_sweep_bit_for_bit(
 def test_an_interrupted_sweep_resumes_without_recomputing_and_equals_the_uninterrupted_one(
     serial, tmp_path, monkeypatch
 ):
-    import mcsim.studies.sweeps as sweeps
+    import mcsim.studies.sweeppoint as sweeps
 
     path, evaluate, calls = tmp_path / "resumed.h5", sweeps.evaluate, []
 
@@ -338,7 +338,7 @@ def test_completed_points_are_checkpointed_as_they_finish(tmp_path, monkeypatch)
 
 
 def test_resume_refuses_a_checkpoint_of_other_inputs(tmp_path, monkeypatch):
-    import mcsim.studies.sweeps as sweeps
+    import mcsim.studies.sweeppoint as sweeps
 
     evaluate = sweeps.evaluate
 
@@ -361,7 +361,7 @@ def test_ctrl_c_during_a_cli_sweep_saves_the_completed_points_and_resume_finishe
 ):
     import signal
 
-    import mcsim.studies.sweeps as sweeps
+    import mcsim.studies.sweeppoint as sweeps
 
     evaluate = sweeps.evaluate
 
@@ -403,7 +403,7 @@ def test_cli_monte_carlo_sweep_stores_means_and_standard_errors_over_h(tmp_path,
 
 def test_monte_carlo_per_point_uses_the_points_own_seed_whatever_the_workers():
     from mcsim.studies.simulation import simulate
-    from mcsim.studies.sweeps import point_seed
+    from mcsim.studies.sweeppoint import point_seed
 
     vary = {"sigma": "1nm,2nm", "area": "1um^2,2um^2"}
     kwargs = dict(law="seed", h=[2.0, 0.5], mc=True, realizations=2, seed=7)

@@ -12,7 +12,7 @@ from mcsim.model.errors import ParameterError
 from mcsim.model.presets import MATERIALS, SURFACES
 from mcsim.physics.adhesion import RegimeWarning, adhesion_summary
 from mcsim.physics.environment import Environment
-from mcsim.studies.sweeps import parse_values
+from mcsim.studies.sweeppoint import parse_values
 
 ENV = Environment(hamaker=1.6e-19)
 LAW = "maugis-dugdale"

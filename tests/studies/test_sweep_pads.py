@@ -15,7 +15,8 @@ from mcsim.physics.adhesion import adhesion_summary
 from mcsim.physics.analytic import gw_curves
 from mcsim.physics.loadcontrol import preload_turn
 from mcsim.store.sweepfile import PADS, read_sweep
-from mcsim.studies.sweeps import pads_seed, sweep
+from mcsim.studies.sweeppoint import pads_seed
+from mcsim.studies.sweeps import sweep
 
 SMOOTH = dataclasses.replace(SURFACES["smooth"], sigma=2.5e-9)
 SILICON = MATERIALS["silicon"]
@@ -103,7 +104,7 @@ def test_pads_do_not_depend_on_the_workers(pads_sweep):
 def test_an_interrupted_pads_sweep_resumes_to_the_uninterrupted_one(
     pads_sweep, tmp_path, monkeypatch
 ):
-    import mcsim.studies.sweeps as sweeps
+    import mcsim.studies.sweeppoint as sweeps
 
     evaluate, path = sweeps.evaluate, tmp_path / "resumed.h5"
 
