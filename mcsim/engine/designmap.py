@@ -38,17 +38,13 @@ from __future__ import annotations
 
 import functools
 import hashlib
-import importlib.util
 import inspect
 import math
-import os
-import sys
-import tempfile
 import threading
 
 import numpy as np
 
-from mcsim.engine.kernels import cache_dir, numba_version
+from mcsim.engine.kernels import generated_module, numba_version
 from mcsim.physics.adhesion import GAUSSIAN_TOP, GRID, NODES, PANELS
 from mcsim.physics.laws.jkr import jkr_area, jkr_load
 
@@ -391,20 +387,7 @@ def _compiled():
     text = "\n".join(parts)
     sources = [text, inspect.getsource(jkr_load), inspect.getsource(jkr_area), numba_version()]
     digest = hashlib.sha256("\n".join(sources).encode()).hexdigest()[:16]
-    name = f"mcsim_designmap_jkr_{digest}"
-    folder = cache_dir() / "kernels"
-    path = folder / f"{name}.py"
-    if not path.exists():
-        folder.mkdir(parents=True, exist_ok=True)
-        fd, tmp = tempfile.mkstemp(dir=folder, prefix=f".{name}.", suffix=".tmp")
-        with os.fdopen(fd, "w") as f:
-            f.write(text)
-        os.replace(tmp, path)  # atomic: concurrent processes never see half a module
-    spec = importlib.util.spec_from_file_location(name, path)
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[name] = module  # numba's cache re-imports the module by name
-    spec.loader.exec_module(module)
-    return module._batch
+    return generated_module(f"mcsim_designmap_jkr_{digest}", text)._batch
 
 
 def _rule(n: int) -> tuple[np.ndarray, np.ndarray]:

@@ -285,7 +285,14 @@ def _generate(law: LawSet, counting: bool = False):
     )
     sources = [text, *(inspect.getsource(f) for f in law.laws)]
     digest = hashlib.sha256("\n".join([numba_version(), *sources]).encode()).hexdigest()[:16]
-    name = f"mcsim_kernel_{law.name.replace('-', '_')}_{digest}"
+    _register_bitcasts()
+    return generated_module(f"mcsim_kernel_{law.name.replace('-', '_')}_{digest}", text).kernel
+
+
+def generated_module(name: str, text: str):
+    """The module of source ``text``, written once as ``<cache>/kernels/<name>.py`` and
+    imported from there (numba's on-disk cache needs a real file; ``name`` carries a hash
+    of everything the source depends on, so a change makes a new file)."""
     folder = cache_dir() / "kernels"
     path = folder / f"{name}.py"
     if not path.exists():
@@ -297,9 +304,8 @@ def _generate(law: LawSet, counting: bool = False):
     spec = importlib.util.spec_from_file_location(name, path)
     module = importlib.util.module_from_spec(spec)
     sys.modules[name] = module  # numba's cache re-imports the module by name
-    _register_bitcasts()
     spec.loader.exec_module(module)
-    return module.kernel
+    return module
 
 
 def compile_law(fn, **options):
