@@ -178,11 +178,7 @@ def simulate(
         previous = partial = finished = None
         seed_given = seed is not None
         if out is not None:
-            out = files.check_output_path(out, overwrite=overwrite, resume=resume)
-            stack.enter_context(files.lock(out))
-            # Again under the lock: another writer may have finished in the meantime.
-            files.check_output_path(out, overwrite=overwrite, resume=resume)
-            partial = files.checkpoint_path(out)
+            out, partial = files.claim(stack, out, overwrite=overwrite, resume=resume)
             if resume and not overwrite and out.exists():
                 finished = runfile.read_run(out)  # checksum verified: damage is refused
                 seed = finished.spec.entropy if seed is None else seed

@@ -269,10 +269,7 @@ def sweep(
         previous = finished = None
         seed_given = seed is not None
         if out is not None:
-            out = files.check_output_path(out, overwrite=overwrite, resume=resume)
-            stack.enter_context(files.lock(out))
-            files.check_output_path(out, overwrite=overwrite, resume=resume)
-            partial = files.checkpoint_path(out)
+            out, partial = files.claim(stack, out, overwrite=overwrite, resume=resume)
             if resume and not overwrite and out.exists():
                 finished = read_sweep(out)  # checksum verified: damage is refused
                 recorded = finished.attrs.get("seed_entropy")
