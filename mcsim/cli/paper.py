@@ -19,7 +19,7 @@ def run(args) -> int:
     if not args.no_mc:
         mc = paper_monte_carlo(args.out, seed=args.seed, overwrite=args.overwrite)
     result = reproduce_paper(out_dir=args.out, mc=mc, overwrite=args.overwrite)
-    for path in [*result["figures"], result["curves_csv"], result["mu_table_csv"]]:
+    for path in [*result["figures"].values(), result["curves_csv"], result["mu_table_csv"]]:
         announce(path, quiet=args.quiet)
     return 0
 

@@ -374,3 +374,11 @@ def test_every_written_file_is_announced_on_stderr_and_quiet_silences_it(
     assert f"mcsim: wrote {written}" in err and "wrote" not in out
     code, out, err = run_cli(capsys, *argv, "--quiet", "--overwrite")
     assert code == 0 and written.exists() and "wrote" not in err + out
+
+
+def test_paper_announces_every_file_it_wrote(capsys, tmp_path):
+    code, _, err = run_cli(capsys, "paper", "--no-mc", "--out", tmp_path / "paper")
+    written = [Path(line.removeprefix("mcsim: wrote ")) for line in err.splitlines()
+               if line.startswith("mcsim: wrote ")]  # fmt: skip
+    assert code == 0 and len(written) == 7  # five figures and two tables
+    assert all(path.is_file() for path in written)
