@@ -67,8 +67,9 @@ SWEEP_LABEL = {"full": "h = 4 … −1", "high": "h = 4 … 2"}
 MIB = 2**20
 #: Targets of issue 5.
 SPEEDUP_FULL, SPEEDUP_HIGH, RSS_STREAMED, ANALYTIC_S = 10.0, 20.0, 1e9, 0.050
-#: Issue 12: summits of the end-to-end command, and its target against the baseline.
-N_END_TO_END, SPEEDUP_END_TO_END = 5e7, 10.0
+#: Issues 12 and 23: summits of the end-to-end command, and its target against the baseline
+#: (issue 23: ≥ 12× here, so that ≥ 10× holds on other machines).
+N_END_TO_END, SPEEDUP_END_TO_END = 5e7, 12.0
 SQRT_PER_PAIR = 3  # the fused kernel's square roots per contacting pair (one per law)
 
 
@@ -367,7 +368,7 @@ def end_to_end_lines(res: dict, repeats: int) -> list[str]:
         "--seed 1", "--seed S"
     )
     return [
-        f"End to end, as a user runs it (issue 12): `{cmd}` (N = {n:.0e} summits, "
+        f"End to end, as a user runs it (issues 12, 23): `{cmd}` (N = {n:.0e} summits, "
         f"{kernel['workers']} workers) as a whole process, interpreter start-up, imports, "
         "kernel loading, file writing and exit included (numba cache and bytecode warm "
         f"from an untimed first run; best of {repeats}), against the NumPy baseline at "

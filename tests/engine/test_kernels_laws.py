@@ -136,3 +136,30 @@ def test_outputs_sharing_a_parameter_read_it_from_one_tuple_so_shared_work_is_co
     toy_loop = _sweep_source(TOY, counting=True)
     assert "law1(delta, delta_max, a0[0], a0[2])" in toy_loop
     assert "law2(delta, a0[0], a2[1])" in toy_loop
+
+
+@pytest.mark.parametrize("name", ["seed", "jkr"])
+def test_counting_and_bisection_find_the_same_first_rows_so_the_sums_are_bit_identical(name):
+    """Up to LINEAR_ROWS rows the kernel finds each summit's first row by counting the
+    thresholds above it, beyond by bisection: both give the same buckets, so forcing
+    bisection (LINEAR_ROWS = 0) leaves every sum unchanged, bit for bit, ties included."""
+    from mcsim.engine import kernels
+
+    law = LAW_SETS[name]
+    args, edges = law.arguments(SMOOTH, MATERIAL), law.edges_for(SMOOTH, MATERIAL)
+    rng = np.random.default_rng(11)
+    z = rng.standard_normal(5000) * SMOOTH.sigma
+    d = np.linspace(3, -1, 51) * SMOOTH.sigma
+    z[:51] = d  # summits exactly at a row's threshold (approach: δ = 0)
+    turn = np.full_like(d, d.min()) if law.retract else d
+    counted = block_sums(z, d, law, args, d_turn=turn, edges=edges)
+    mp = pytest.MonkeyPatch()
+    try:
+        mp.setattr(kernels, "LINEAR_ROWS", 0)
+        kernels._generate.cache_clear()
+        assert "m <= 0" in kernels._sweep_source(law, kernels._counting(law, edges))
+        bisected = block_sums(z, d, law, args, d_turn=turn, edges=edges)
+    finally:
+        mp.undo()
+        kernels._generate.cache_clear()
+    np.testing.assert_array_equal(counted, bisected)
