@@ -344,3 +344,31 @@ def test_a_schema_2_cycle_file_still_opens_with_the_same_results(tmp_path):
     for a, b in zip(new.heights, old.heights, strict=True):
         np.testing.assert_array_equal(a, b)
     assert new.compare().equals(old.compare())
+
+
+def test_a_run_whose_compressed_curves_are_all_zero_still_reads(tmp_path):
+    """No summit reaches these separations: gzip shrinks the zero curves and sums ~1000-fold,
+    far past the 64-fold expansion allowed to contiguous data, and the file still reads."""
+    h = np.linspace(30.0, 20.0, 200)
+    run = simulate(SURFACES["smooth"], MATERIALS["silicon"], h, "1 um^2", realizations=2000,
+                   seed=1, workers=1, out=tmp_path / "far.h5")  # fmt: skip
+    assert not run.sums[..., 0].any()
+    sizes = []
+    with h5py.File(run.path) as f:
+        assert f["realizations/sums/n_contact"].compression == "gzip"
+        f.visititems(
+            lambda _, obj: sizes.append(obj.nbytes) if isinstance(obj, h5py.Dataset) else None
+        )
+    assert sum(sizes) > 64 * run.path.stat().st_size
+    np.testing.assert_array_equal(read_run(run.path).sums, run.sums)
+
+
+def test_a_compressed_dataset_declaring_more_than_deflate_can_expand_is_refused(tmp_path):
+    path = make_run(tmp_path / "a.h5").path
+    with h5py.File(path, "r+") as f:
+        del f["analytic/P"]
+        f.create_dataset("analytic/P", shape=(10**8,), dtype="f8", chunks=(10**4,),
+                         compression="gzip")  # fmt: skip  # no chunk written
+    with pytest.raises(RunFileError, match=r"dataset analytic/P declares 800000000 bytes, more "
+                                           r"than its 0 compressed bytes can hold"):  # fmt: skip
+        read_run(path)
