@@ -3,7 +3,7 @@
 Shared by run files (:mod:`mcsim.store.runfile`) and sweep files (:mod:`mcsim.store.sweepfile`):
 a file is written to a temporary beside its path and linked into place only when complete,
 under ``<name>.lock``, with a SHA-256 checksum over every dataset and attribute that every
-reader verifies.
+reader verifies; its large datasets are compressed (:func:`storage`).
 """
 
 from __future__ import annotations
@@ -122,6 +122,24 @@ def lock(path: str | Path):
     finally:
         lock_path.unlink(missing_ok=True)  # ours: we hold its flock
         os.close(fd)
+
+
+#: Datasets of more bytes than this are stored chunked, byte-shuffled and gzip-compressed
+#: (HDF5's built-in filters: any HDF5 reader, plain h5py and netCDF included, reads them);
+#: smaller ones contiguous, where compression would save nothing worth its chunk index.
+COMPRESS_ABOVE = 16 * 1024
+
+#: gzip (deflate) level of compressed datasets: h5py's default (level 9 saves under 1 % more
+#: of a run file's sums, in three times the writing time).
+GZIP_LEVEL = 4
+
+
+def storage(data: np.ndarray) -> dict:
+    """Options of ``h5py.Group.create_dataset`` for ``data``: chunked, shuffled and
+    gzip-compressed above :data:`COMPRESS_ABOVE` bytes, else none (contiguous)."""
+    if data.nbytes <= COMPRESS_ABOVE:
+        return {}
+    return {"chunks": True, "compression": "gzip", "compression_opts": GZIP_LEVEL, "shuffle": True}
 
 
 def checksum(f) -> str:

@@ -1,49 +1,68 @@
 """HDF5 run files: atomic, checksummed, resumable; read back as a :class:`~mcsim.store.results.Run`.
 
-Layout (schema version :data:`SCHEMA_VERSION`; every dataset carries a ``unit``
-attribute, dimensionless ones ``"1"`` with the normalisation in ``description``):
+Layout (schema version :data:`SCHEMA_VERSION`, netCDF-compatible: ``xarray.open_dataset(path,
+group=..., engine="h5netcdf")`` or ``xarray.open_datatree``). Every dataset, coordinates
+included, has the CF attributes ``units`` (UDUNITS text: ``"1"`` for dimensionless values
+and names, ``"m"``, ``"N m^2"``, ...) and ``long_name`` (words); a dimensionless curve
+keeps its normalisation (``"load/(A K)"``) in ``description``. ``rows`` below stands for
+the axes ``(h)`` of an approach, or ``(branch, h)`` of a cycle (``--cycle``: the branches
+"approach" and "retract", both over the same h):
 
     /                      attrs: schema_version, mcsim_version, created, command,
                            seed_entropy, law, law_outputs (JSON: name -> unit),
                            quantities (JSON: name -> normalisation), count,
                            area [m^2], realizations, cycle, branches (JSON), turn
                            (d/σ of the closest approach; cycle only),
-                           block_size, complete, checksum
+                           block_size, complete, checksum; load_control (JSON: the
+                           nominal pressures, Pa, the separations balance: simulate
+                           --pressure/--load only)
     /input/surface         attrs: sigma [m], R [m], eta [m^-2], name, heights (JSON)
     /input/material        attrs: E1, E2 [Pa], nu1, nu2, gamma [J/m^2], H [Pa], name,
                            z0 [m], tau [Pa] (NaN: not given; absent in older files)
-    /h, /d                 separations: d/σ and d [m] (M each)
-    /branch                (rows,) branch of each row: the M separations on approach,
-                           then with ``cycle`` the same M on retraction
-    /realizations/N        summits per patch
-    /realizations/sums     (R, rows, C) raw sums; attrs columns (sum_columns of the law
-                           set) and their units (1, the outputs', their squares, products)
-    /progress/n_blocks, /progress/done_blocks   blocks per patch, and done
+    /h, /d                 coordinate h = d/σ, and d [m] over it (M each)
+    /branch                coordinate (2,): "approach", "retract" (cycle only)
+    /realizations/N        (realization) summits per patch
+    /realizations/sums/<c> (realization, rows) raw sum of column c over the blocks done,
+                           c in the law set's sum_columns (n_contact, each output, its
+                           square, the products), each with its own units
+    /progress/n_blocks, /progress/done_blocks   (realization) blocks per patch, and done
     -- complete runs only --
-    /realizations/<q>      (R, rows) dimensionless curves, q in ``quantities``
-    /summary/<stat>/<q>    (rows,) stat in mean, se, std, se_between
+    /realizations/<q>      (realization, rows) dimensionless curves, q in ``quantities``
+    /summary/<stat>/<q>    (rows) stat in mean, se, std, se_between
     /summary/expected_contacts
-    /analytic/<q>          (rows,) GW curves for the same inputs (expected values)
-    /heights/<r>           optional: sampled heights above s_min [m]
+    /analytic/<q>          (rows) GW curves for the same inputs (expected values)
+    /heights/z, /heights/count   optional (``--keep-heights``): the sampled heights above
+                           s_min [m] of every patch, one after another (summit), and the
+                           number per patch (realization): a CF contiguous ragged array
     -- runs with an environment only (mcsim.engine.cells; absent otherwise) --
     /environment           attrs: hamaker [J], cutoff [m], rh, contact_angle [rad],
                            temperature [K], surface_tension [J/m^2], molar_volume
                            [m^3/mol], kelvin_radius [m], units (JSON), rq [m],
                            summit_offset [m], gap_source (given or the Nayak estimate),
                            map_heights (JSON: "gaussian" or the histogram), cell_model
-    /environment/n_cells   cells per patch (one per summit)
-    /environment/sums      (R, rows, 4) Σp_vdW, Σp_vdW², Σp_cap, Σp_cap² over the cells
+    /environment/n_cells   (realization) cells per patch (one per summit)
+    /environment/sums/<c>  (realization, rows) Σp_vdW, Σp_vdW², Σp_cap, Σp_cap² over the
+                           cells (c: vdw, vdw2, capillary, capillary2)
     /environment/realizations/<t>, /environment/summary/{mean,se}/<t>,
-    /environment/analytic/<t>   (R, rows) or (rows,) pressures / K, t in vdw, capillary
+    /environment/analytic/<t>   (realization, rows) or (rows) pressures / K, t in vdw, capillary
 
-Schema 1 (mcsim 0.1: the seed law set, approach only, no law_outputs, quantities,
-cycle, branches, turn, z0, tau or /branch) is still read, with identical results.
+Named axes: every group whose datasets have an axis h, branch, realization or summit
+holds that axis's coordinate as an HDF5 dimension scale of the same name, attached to
+those datasets, so netCDF readers name the dimensions alike in every group and give
+their values. A variable named ``load`` (the law sets' net normal force) is read as
+``ds["load"]``: ``ds.load`` is xarray's method that reads a dataset into memory.
 
-Named axes: every group whose datasets have an axis h (M), realization (R) or column
-(the 10 sums columns) holds that axis's coordinate as an HDF5 dimension scale of the same
-name, attached to those datasets, so netCDF readers (xarray with h5netcdf) name the
-dimensions alike in every group and give their values. Files written before the scales
-were added read the same.
+Storage: datasets above :data:`mcsim.store.files.COMPRESS_ABOVE` bytes (the per-patch
+curves and sums, the kept heights) are chunked, byte-shuffled and gzip-compressed,
+HDF5's built-in filters that plain h5py and every netCDF reader decode; smaller ones are
+contiguous.
+
+Older schemas are still read, with identical results: schema 2 (units in ``unit``, the
+sums one (R, rows, C) array ``/realizations/sums`` with attributes ``columns`` and
+``units``, a cycle's 2M rows on one axis ``row`` with ``/branch`` the branch of each row,
+kept heights one dataset ``/heights/<r>`` per patch) and schema 1 (mcsim 0.1: the seed
+law set, approach only, no law_outputs, quantities, cycle, branches, turn, z0, tau or
+/branch; files written before the dimension scales read the same).
 
 Guarantees:
 
@@ -73,7 +92,7 @@ from pathlib import Path
 import numpy as np
 
 from mcsim._version import __version__
-from mcsim.engine.kernels import sum_columns, sum_units
+from mcsim.engine.kernels import sum_columns
 from mcsim.engine.montecarlo import BLOCK, EnsembleSums, MonteCarloSpec
 from mcsim.engine.statistics import Summary, quantities
 from mcsim.model.distributions import GAUSSIAN
@@ -82,13 +101,24 @@ from mcsim.model.params import Material, Surface
 from mcsim.store import schema
 from mcsim.store.envgroup import read_environment, write_environment
 from mcsim.store.files import atomic_write, checksum
-from mcsim.store.h5layout import AXES, dataset, row_axis
+from mcsim.store.h5layout import (
+    AXES,
+    STAT_WORDS,
+    axis_scale,
+    by_branch,
+    curve_long_name,
+    dataset,
+    read_rows,
+    row_dims,
+    row_shape,
+    sum_variables,
+)
 from mcsim.store.results import STATS, Run, assemble, environment_run
 
-SCHEMA_VERSION = 2
+SCHEMA_VERSION = 3
 
 #: Schema versions this mcsim reads.
-READABLE = (1, 2)
+READABLE = (1, 2, 3)
 
 #: The file kind, in messages.
 WHAT = "run file"
@@ -154,27 +184,20 @@ def _write_inputs(f, spec: MonteCarloSpec, command: str, complete: bool, extra=N
     m.attrs["units"] = json.dumps({"E1": "Pa", "E2": "Pa", "nu1": "1", "nu2": "1", "gamma": "J/m^2",
                                    "H": "Pa", "z0": "m", "tau": "Pa"})  # fmt: skip
     dataset(f, "h", spec.h, *AXES["h"]).make_scale("h")
-    dataset(f, "d", spec.d, "m", "mean separation", dims=("h",))
+    dataset(f, "d", spec.d, "m", "mean separation d of the surfaces", dims=("h",))
     if spec.cycle:
-        dataset(f, "row", spec.row_h, *AXES["row"]).make_scale("row")
-    dataset(f, "branch", spec.row_branch.astype("S"), "1", "branch of each row of the sums",
-             dims=(row_axis(spec),))  # fmt: skip
+        axis_scale(f, "branch", len(spec.branches))
     return attrs
 
 
 def _write_state(f, state: EnsembleSums) -> None:
+    spec = state.spec
     per_realization = ("realization",)
     dataset(f, "realizations/N", state.n_summits, "1", "summits in the patch", per_realization)
-    sums = dataset(
-        f,
-        "realizations/sums",
-        state.sums,
-        "per column, see units",
-        "raw per-row sums over the blocks done",
-        ("realization", row_axis(state.spec), "column"),
-    )
-    sums.attrs["columns"] = list(sum_columns(state.spec.law_set))
-    sums.attrs["units"] = list(sum_units(state.spec.law_set))
+    per_row = ("realization", *row_dims(spec))
+    for k, (column, units, words) in enumerate(sum_variables(spec.law_set)):
+        dataset(f, f"realizations/sums/{column}", by_branch(spec, state.sums[..., k], 1), units,
+                words, per_row, "raw sum of each patch and separation over the blocks done")  # fmt: skip
     blocks = f"blocks of {BLOCK} summits above s_min"
     dataset(f, "progress/n_blocks", state.n_blocks, "1", blocks, per_realization)
     dataset(f, "progress/done_blocks", state.done_blocks, "1", "blocks done", per_realization)
@@ -207,38 +230,42 @@ def write_run(path: str | Path, run, *, command: str, extra: dict | None = None)
 
     path = Path(path)
     attrs: dict = {}
+    spec = run.spec
 
     def fill(f):
-        attrs.update(_write_inputs(f, run.spec, command, complete=True, extra=extra))
+        attrs.update(_write_inputs(f, spec, command, complete=True, extra=extra))
         _write_state(f, run.ensemble)
-        per_row = (row_axis(run.spec),)
+        rows = row_dims(spec)
         for q in run.quantities:
-            norm = run.normalisation(q)
-            curves = run.realizations[q]
-            dataset(f, f"realizations/{q}", curves, "1", norm, ("realization", per_row[0]))
-            dataset(f, f"analytic/{q}", run.analytic[q], "1", norm, per_row)
+            norm, words = run.normalisation(q), curve_long_name(q, spec.law_set)
+            dataset(f, f"realizations/{q}", by_branch(spec, run.realizations[q], 1), "1", words,
+                    ("realization", *rows), norm)  # fmt: skip
+            dataset(f, f"analytic/{q}", by_branch(spec, run.analytic[q], 0), "1",
+                    f"GW expected value of {q}: {words}", rows, norm)  # fmt: skip
             for stat in STATS:
-                values = getattr(run.summary, stat)[q]
-                dataset(f, f"summary/{stat}/{q}", values, "1", norm, per_row)
-        expected = run.summary.expected_contacts
-        dataset(f, "summary/expected_contacts", expected, "1", "R E[N] S(s)", per_row)
+                values = by_branch(spec, getattr(run.summary, stat)[q], 0)
+                dataset(f, f"summary/{stat}/{q}", values, "1", f"{STAT_WORDS[stat]} of {q}: {words}",
+                        rows, norm)  # fmt: skip
+        expected = by_branch(spec, run.summary.expected_contacts, 0)
+        dataset(f, "summary/expected_contacts", expected, "1",
+                "expected summits carrying force over the whole ensemble", rows, "R E[N] S(s)")  # fmt: skip
         if run.heights is not None:
-            for r, z in enumerate(run.heights):
-                dataset(
-                    f,
-                    f"heights/{r}",
-                    z,
-                    "m",
-                    "sampled heights above s_min",
-                    compression="gzip",
-                    shuffle=True,
-                )
-
+            _write_heights(f, run.heights)
         if run.environment is not None:
             write_environment(f, run)
 
     atomic_write(path, fill)
     return dataclasses.replace(run, path=path, attrs=attrs)
+
+
+def _write_heights(f, heights: list[np.ndarray]) -> None:
+    """The kept heights as a CF contiguous ragged array: /heights/z (summit), the patches
+    one after another, and /heights/count (realization), summits per patch."""
+    count = dataset(f, "heights/count", [z.size for z in heights], "1",
+                    "summits kept in the patch", ("realization",))  # fmt: skip
+    count.attrs["sample_dimension"] = "summit"
+    dataset(f, "heights/z", np.concatenate(heights), "m", "sampled summit heights above s_min",
+            ("summit",))  # fmt: skip
 
 
 # --- reading --------------------------------------------------------------------------
@@ -364,35 +391,51 @@ def _read_state(path: Path, f) -> tuple[EnsembleSums, dict]:
         raise schema.refuse(path, WHAT, f"inputs: {err}") from None
     R, M, rows = spec.realizations, spec.h.size, spec.row_h.size
     columns = sum_columns(spec.law_set)
+    version = int(f.attrs["schema_version"])  # checked by _open
+    per_row = row_shape(spec, version)
     expected = {
         "d": ("f", (M,)),
         "realizations/N": ("iu", (R,)),
-        "realizations/sums": ("f", (R, rows, len(columns))),
         "progress/n_blocks": ("iu", (R,)),
         "progress/done_blocks": ("iu", (R,)),
     }
-    version = int(f.attrs["schema_version"])  # checked by _open
-    if version >= 2:
+    if version >= 3:
+        expected |= {f"realizations/sums/{c}": ("f", (R, *per_row)) for c in columns}
+    else:
+        expected["realizations/sums"] = ("f", (R, rows, len(columns)))
+    if version == 2:
         expected["branch"] = ("S", (rows,))
+    if version >= 3 and spec.cycle:
+        expected["branch"] = ("S", (len(spec.branches),))
     if attrs["complete"]:
         names = _quantities(spec)
-        expected |= {f"realizations/{q}": ("f", (R, rows)) for q in names}
-        expected |= {f"analytic/{q}": ("f", (rows,)) for q in names}
-        expected |= {f"summary/{stat}/{q}": ("f", (rows,)) for stat in STATS for q in names}
-        expected["summary/expected_contacts"] = ("f", (rows,))
+        expected |= {f"realizations/{q}": ("f", (R, *per_row)) for q in names}
+        expected |= {f"analytic/{q}": ("f", per_row) for q in names}
+        expected |= {f"summary/{stat}/{q}": ("f", per_row) for stat in STATS for q in names}
+        expected["summary/expected_contacts"] = ("f", per_row)
     for name, (dtype, shape) in expected.items():
         schema.dataset(path, f, name, dtype, shape, WHAT)
-    if version >= 2:
+    if version == 2:
         stored = f["realizations/sums"].attrs.get("columns")
         if np.ndim(stored) != 1 or [_text(c) for c in stored] != list(columns):
             raise schema.refuse(path, WHAT, f"attribute realizations/sums@columns is "
                                 f"{schema.shown(stored)}, law set {spec.law!r} has {list(columns)}")  # fmt: skip
+    if version >= 3 and spec.cycle:
+        stored = [_text(b) for b in f["branch"][()]]
+        if stored != list(spec.branches):
+            raise schema.refuse(path, WHAT, f"coordinate branch is {schema.shown(stored)}, "
+                                            f"a cycle has {list(spec.branches)}")  # fmt: skip
     if attrs["block_size"] != BLOCK:
         raise RunFileError(
             f"{path}: written with blocks of {attrs['block_size']} summits, this mcsim uses {BLOCK}"
         )
-    state = EnsembleSums(spec, f["realizations/N"][()], f["realizations/sums"][()],
-                         f["progress/n_blocks"][()], f["progress/done_blocks"][()])  # fmt: skip
+    if version >= 3:
+        sums = np.stack([read_rows(f, f"realizations/sums/{c}", spec, version, 1) for c in columns],
+                        axis=-1)  # fmt: skip
+    else:
+        sums = f["realizations/sums"][()]
+    state = EnsembleSums(spec, f["realizations/N"][()], sums, f["progress/n_blocks"][()],
+                         f["progress/done_blocks"][()])  # fmt: skip
     # A checkpoint may have every block done (saved after the last task, before the run
     # file was written); a complete run must.
     if bool(attrs["complete"]) and not state.complete:
@@ -416,6 +459,8 @@ def _heights(path: Path, f, realizations: int) -> list[np.ndarray] | None:
 
     if "heights" not in f:
         return None
+    if int(f.attrs["schema_version"]) >= 3:
+        return _ragged_heights(path, f, realizations)
     group = f["heights"]
     names = [str(r) for r in range(realizations)]
     if not isinstance(group, h5py.Group) or sorted(group) != sorted(names):
@@ -431,6 +476,16 @@ def _heights(path: Path, f, realizations: int) -> list[np.ndarray] | None:
             )
         out.append(z[()])
     return out
+
+
+def _ragged_heights(path: Path, f, realizations: int) -> list[np.ndarray]:
+    """The kept heights of a schema-3 file: /heights/z split by /heights/count."""
+    count = schema.dataset(path, f, "heights/count", "iu", (realizations,), WHAT)[()]
+    z = schema.dataset(path, f, "heights/z", "f", None, WHAT)
+    if z.ndim != 1 or np.any(count < 0) or int(count.sum()) != z.shape[0]:
+        raise schema.refuse(path, WHAT, f"dataset heights/z has shape {z.shape}, heights/count "
+                                        f"asks for ({int(count.sum())},)")  # fmt: skip
+    return np.split(z[()], np.cumsum(count)[:-1])
 
 
 def _quantities(spec: MonteCarloSpec) -> tuple[str, ...]:
@@ -485,16 +540,21 @@ def read_run(path: str | Path, *, allow_incomplete: bool = False):
                     "resume it with `mcsim simulate ... --resume`, or use the completed part (--partial)"
                 )
             return assemble(state.completed(), attrs=attrs, path=path, complete=False)
-        names = _quantities(state.spec)
-        stats = {stat: {q: f[f"summary/{stat}/{q}"][()] for q in names} for stat in STATS}
-        heights = _heights(path, f, state.spec.realizations)
-        cells = read_environment(path, f, state.spec)
+        spec, version = state.spec, int(attrs["schema_version"])
+        names = _quantities(spec)
+
+        def rows(name: str, axis: int = 0) -> np.ndarray:
+            return read_rows(f, name, spec, version, axis)
+
+        stats = {stat: {q: rows(f"summary/{stat}/{q}") for q in names} for stat in STATS}
+        heights = _heights(path, f, spec.realizations)
+        cells = read_environment(path, f, spec, version)
         return Run(
-            environment=None if cells is None else environment_run(state.spec, cells),
+            environment=None if cells is None else environment_run(spec, cells),
             ensemble=state,
-            realizations={q: f[f"realizations/{q}"][()] for q in names},
-            summary=Summary(**stats, expected_contacts=f["summary/expected_contacts"][()]),
-            analytic={q: f[f"analytic/{q}"][()] for q in names},
+            realizations={q: rows(f"realizations/{q}", 1) for q in names},
+            summary=Summary(**stats, expected_contacts=rows("summary/expected_contacts")),
+            analytic={q: rows(f"analytic/{q}") for q in names},
             attrs=attrs,
             path=path,
             heights=heights,

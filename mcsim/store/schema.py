@@ -131,15 +131,25 @@ def dataset(path: Path, f, name: str, dtype: str, shape: tuple | None, what: str
     return obj
 
 
-#: A file's datasets hold at most this many times the file's size (gzip on sampled
-#: heights saves ~10 %; nothing mcsim writes compresses 64-fold).
+#: A file's uncompressed datasets hold at most this many times the file's size (nothing
+#: mcsim writes declares more bytes than the file holds, but the little there is).
 MAX_EXPANSION = 64
+
+#: Deflate's largest compression ratio (1032:1, RFC 1951: a 258-byte match in at most 2
+#: bits): a gzip-compressed dataset declaring more bytes than this times its stored ones
+#: cannot be what it says.
+DEFLATE_RATIO = 1032
 
 
 def check_sizes(path: Path, f, what: str) -> None:
     """Refuse, before reading any data, datasets that are not numbers or fixed-length
     text, or that declare more bytes than the file could hold (a damaged header can
-    declare terabytes)."""
+    declare terabytes).
+
+    A contiguous or otherwise filtered dataset counts with its declared bytes, a
+    gzip-compressed one with its stored bytes, after checking that deflate could expand
+    those to the declared ones.
+    """
     import h5py
 
     budget = MAX_EXPANSION * path.stat().st_size
@@ -152,6 +162,13 @@ def check_sizes(path: Path, f, what: str) -> None:
         if obj.dtype.kind not in "biufS":  # numbers; fixed-length text
             raise refuse(path, what, f"dataset {name} holds {obj.dtype}, not numbers")
         size = int(np.prod(obj.shape, dtype=object)) * obj.dtype.itemsize
+        if obj.compression == "gzip":
+            stored = obj.id.get_storage_size()
+            chunk = int(np.prod(obj.chunks, dtype=object)) * obj.dtype.itemsize
+            if size > DEFLATE_RATIO * stored + chunk:
+                raise refuse(path, what, f"dataset {name} declares {size} bytes, more than its "
+                                         f"{stored} compressed bytes can hold")  # fmt: skip
+            size = stored
         total += size
         if total > budget:
             raise refuse(

@@ -42,9 +42,14 @@ every variable has ``units`` and ``long_name`` attributes; schema :data:`SCHEMA_
                             seed_entropy, pads_streams; complete; checksum
 
 Strings are fixed-length UTF-8 bytes with ``_Encoding = "utf-8"`` (netCDF readers give
-text). A sweep in progress keeps its completed points in ``<stem>.partial<suffix>``
-beside the output (the same layout plus ``done``, 1 per completed point, and
-``complete = False``), which ``resume`` continues without recomputing them.
+text). Coordinates carry ``units`` and ``long_name`` too (``"1"`` for names). The curve
+``load`` is read as ``ds["load"]``: ``ds.load`` is xarray's method that reads a dataset
+into memory. Variables above :data:`mcsim.store.files.COMPRESS_ABOVE` bytes are chunked
+and gzip-compressed (any HDF5 reader decodes them).
+
+A sweep in progress keeps its completed points in ``<stem>.partial<suffix>`` beside the
+output (the same layout plus ``done``, 1 per completed point, and ``complete = False``),
+which ``resume`` continues without recomputing them.
 """
 
 from __future__ import annotations
@@ -371,7 +376,7 @@ def _variable(f, name: str, values: np.ndarray, unit: str, long_name: str):
         values = np.array([str(v).encode() for v in values.ravel()] or [b""]).reshape(values.shape)
         if values.dtype.itemsize == 0:
             values = values.astype("S1")
-    ds = f.create_dataset(name, data=values)
+    ds = f.create_dataset(name, data=values, **files.storage(values))
     ds.attrs["units"] = unit
     ds.attrs["long_name"] = long_name
     if text:

@@ -40,12 +40,12 @@ def test_run_file_records_provenance_and_inputs_with_units(tmp_path):
         assert f.attrs["area"] == pytest.approx(300e-12)
         assert f["input/surface"].attrs["sigma"] == pytest.approx(1.4e-9)
         assert "m^-2" in f["input/surface"].attrs["units"]
-        assert f["d"].attrs["unit"] == "m"
-        assert f["realizations/sums"].shape == (3, 3, 10)
+        assert f["d"].attrs["units"] == "m"
+        assert f["realizations/sums/P"].shape == (3, 3)
         for q in QUANTITIES:
             assert f[f"realizations/{q}"].shape == (3, 3)
             assert f[f"analytic/{q}"].shape == (3,)
-            assert f[f"summary/se/{q}"].attrs["unit"] == "1"
+            assert f[f"summary/se/{q}"].attrs["units"] == "1"
 
 
 def test_reader_returns_what_was_written(tmp_path):
@@ -143,14 +143,16 @@ def test_output_folder_must_be_writable(tmp_path, monkeypatch):
         make_run(tmp_path / "a.h5")
 
 
-def test_kept_heights_are_stored_compressed(tmp_path):
+def test_kept_heights_are_one_compressed_ragged_array_split_by_count(tmp_path):
     run = make_run(tmp_path / "a.h5", keep_heights=True)
     back = read_run(run.path)
     assert len(back.heights) == 3
     for a, b in zip(run.heights, back.heights):
         np.testing.assert_array_equal(a, b)
     with h5py.File(run.path) as f:
-        assert f["heights/0"].compression == "gzip"
+        assert f["heights/z"].compression == "gzip" and f["heights/z"].shuffle
+        assert list(f["heights/count"][()]) == [z.size for z in run.heights]
+        assert f["heights/count"].attrs["sample_dimension"] == "summit"  # CF ragged array
 
 
 def test_an_edited_result_is_detected_on_open(tmp_path):
@@ -219,7 +221,7 @@ def test_run_files_written_before_the_named_axes_still_open():
     assert_same_run(again, old)
 
 
-# --- schema 2: any law set, cycles; schema 1 still read ----------------------------------
+# --- schema 2: any law set, cycles; schema 3: CF attributes, a branch axis; 1 and 2 read --
 
 SCHEMA1 = Path(__file__).parents[1] / "data" / "run_schema1.h5"
 
@@ -252,27 +254,29 @@ def toy(monkeypatch, law_set_cache):
     return dataclasses.replace(MATERIALS["silicon"], tau=1e8, z0=0.3e-9)
 
 
-def test_schema_2_records_the_law_set_outputs_columns_branches_and_turn(tmp_path, toy):
+def test_the_run_file_records_the_law_set_outputs_columns_branches_and_turn(tmp_path, toy):
     import json
+
+    from mcsim.engine.kernels import sum_columns, sum_units
+    from mcsim.physics.laws import get_law_set
 
     simulate(SURFACES["smooth"], toy, H, "300 um^2", realizations=2, seed=4, law="toy", cycle=True,
              out=tmp_path / "a.h5")  # fmt: skip
     with h5py.File(tmp_path / "a.h5") as f:
-        assert f.attrs["schema_version"] == 2
+        assert f.attrs["schema_version"] == SCHEMA_VERSION == 3
         assert f.attrs["law"] == "toy" and bool(f.attrs["cycle"])
         assert json.loads(f.attrs["law_outputs"]) == {"load": "N", "area": "m^2", "grip": "N"}
         assert json.loads(f.attrs["branches"]) == ["approach", "retract"]
         assert f.attrs["turn"] == 0.0
         assert list(json.loads(f.attrs["quantities"])) == [
             "contact_fraction", "load", "area", "grip", "friction", "mu"]  # fmt: skip
-        assert [b.decode() for b in f["branch"][()]] == ["approach"] * 3 + ["retract"] * 3
-        assert f["realizations/sums"].shape == (2, 6, 10)
-        assert list(f["realizations/sums"].attrs["columns"])[:4] == [
-            "n_contact",
-            "load",
-            "area",
-            "grip",
-        ]
+        assert [b.decode() for b in f["branch"][()]] == ["approach", "retract"]
+        columns = sum_columns(get_law_set("toy"))
+        assert columns[:4] == ("n_contact", "load", "area", "grip") and len(columns) == 10
+        for column, units in zip(columns, sum_units(get_law_set("toy")), strict=True):
+            assert f[f"realizations/sums/{column}"].shape == (2, 2, 3)  # realization, branch, h
+            assert f[f"realizations/sums/{column}"].attrs["units"] == units
+        assert f["summary/mean/area"].shape == (2, 3)
         assert f["summary/mean/area"].attrs["description"] == "area/A"
         assert f["input/material"].attrs["tau"] == 1e8
         assert f["input/material"].attrs["z0"] == 0.3e-9
@@ -298,3 +302,73 @@ def test_a_cycle_run_of_another_law_set_reads_back_as_written(tmp_path, toy):
 def test_the_seed_dataframe_columns_are_unchanged(tmp_path):
     df = make_run(tmp_path / "a.h5").to_dataframe()
     assert list(df.columns) == ["source", "realization", "h", "d", "quantity", "value", "unit"]
+
+
+SCHEMA2 = Path(__file__).parents[1] / "data" / "run_schema2_cycle.h5"
+
+
+def test_a_schema_2_cycle_file_still_opens_with_the_same_results(tmp_path):
+    """tests/data/run_schema2_cycle.h5 was written by mcsim at commit 952d384, before
+    schema 3 (its ``command`` attribute holds the call: jkr, cycle, an environment, kept
+    heights). Read, it gives exactly the rows it stores (a cycle's approach rows, then its
+    retraction rows, on one axis); written again as schema 3, it reads back the same."""
+    from mcsim.store.runfile import write_run
+
+    old = read_run(SCHEMA2)
+    assert old.attrs["schema_version"] == 2
+    assert old.spec.cycle and old.spec.law == "jkr" and old.environment is not None
+    with h5py.File(SCHEMA2) as f:
+        np.testing.assert_array_equal(old.sums, f["realizations/sums"][()])
+        for q in old.quantities:
+            np.testing.assert_array_equal(old.realizations[q], f[f"realizations/{q}"][()])
+            np.testing.assert_array_equal(old.analytic[q], f[f"analytic/{q}"][()])
+            for stat in ("mean", "se", "std", "se_between"):
+                np.testing.assert_array_equal(getattr(old.summary, stat)[q],
+                                              f[f"summary/{stat}/{q}"][()])  # fmt: skip
+        np.testing.assert_array_equal(old.environment.cells.sums, f["environment/sums"][()])
+        for r, z in enumerate(old.heights):
+            np.testing.assert_array_equal(z, f[f"heights/{r}"][()])
+    new = read_run(write_run(tmp_path / "v3.h5", old, command="test").path)
+    assert new.attrs["schema_version"] == 3 and new.spec == old.spec
+    np.testing.assert_array_equal(new.sums, old.sums)
+    np.testing.assert_array_equal(new.environment.cells.sums, old.environment.cells.sums)
+    for q in old.quantities:
+        np.testing.assert_array_equal(new.realizations[q], old.realizations[q])
+        np.testing.assert_array_equal(new.analytic[q], old.analytic[q])
+        for stat in ("mean", "se", "std", "se_between"):
+            np.testing.assert_array_equal(getattr(new.summary, stat)[q],
+                                          getattr(old.summary, stat)[q])  # fmt: skip
+    for t in old.environment.estimates.mean:
+        np.testing.assert_array_equal(new.environment.estimates.mean[t],
+                                      old.environment.estimates.mean[t])  # fmt: skip
+    for a, b in zip(new.heights, old.heights, strict=True):
+        np.testing.assert_array_equal(a, b)
+    assert new.compare().equals(old.compare())
+
+
+def test_a_run_whose_compressed_curves_are_all_zero_still_reads(tmp_path):
+    """No summit reaches these separations: gzip shrinks the zero curves and sums ~1000-fold,
+    far past the 64-fold expansion allowed to contiguous data, and the file still reads."""
+    h = np.linspace(30.0, 20.0, 200)
+    run = simulate(SURFACES["smooth"], MATERIALS["silicon"], h, "1 um^2", realizations=2000,
+                   seed=1, workers=1, out=tmp_path / "far.h5")  # fmt: skip
+    assert not run.sums[..., 0].any()
+    sizes = []
+    with h5py.File(run.path) as f:
+        assert f["realizations/sums/n_contact"].compression == "gzip"
+        f.visititems(
+            lambda _, obj: sizes.append(obj.nbytes) if isinstance(obj, h5py.Dataset) else None
+        )
+    assert sum(sizes) > 64 * run.path.stat().st_size
+    np.testing.assert_array_equal(read_run(run.path).sums, run.sums)
+
+
+def test_a_compressed_dataset_declaring_more_than_deflate_can_expand_is_refused(tmp_path):
+    path = make_run(tmp_path / "a.h5").path
+    with h5py.File(path, "r+") as f:
+        del f["analytic/P"]
+        f.create_dataset("analytic/P", shape=(10**8,), dtype="f8", chunks=(10**4,),
+                         compression="gzip")  # fmt: skip  # no chunk written
+    with pytest.raises(RunFileError, match=r"dataset analytic/P declares 800000000 bytes, more "
+                                           r"than its 0 compressed bytes can hold"):  # fmt: skip
+        read_run(path)

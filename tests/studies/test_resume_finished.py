@@ -127,7 +127,7 @@ def test_cli_resume_of_a_finished_run_of_another_seed_is_refused_in_one_line(tmp
 def test_resume_refuses_a_damaged_finished_run_by_name(finished):
     path, _ = finished
     with h5py.File(path, "r+") as f:
-        f["realizations/sums"][0, 0, 0] += 1.0  # an edit the checksum does not cover
+        f["realizations/sums/n_contact"][0, 0] += 1.0  # an edit the checksum does not cover
     with pytest.raises(RunFileError, match=f"^{re.escape(str(path))}: damaged run file: checksum"):
         simulate(**RUN, out=path, resume=True)
 
