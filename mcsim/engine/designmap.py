@@ -85,6 +85,8 @@ import numpy as np
 from mcsim.engine.kernels import generated_module, numba_version
 from mcsim.physics.adhesion import GAUSSIAN_TOP, GRID, NODES, PANELS
 from mcsim.physics.environment import _TAIL as _GAP_TAIL
+from mcsim.physics.environment import Environment
+from mcsim.physics.gapheights import nayak_heights
 from mcsim.physics.laws.jkr import jkr_area, jkr_load
 
 #: Gauss–Legendre nodes of the one-panel rule in u (module docstring).
@@ -743,13 +745,14 @@ def jkr_summaries(sigma, R, eta, E_star, K, gamma, h, turn=None, environment=Non
         Separations d/σ of the approach curves.
     turn : float, optional
         Closest approach h_turn before retraction; default the zero of the approach load.
-    environment : sequence of Environment, optional
-        One per point: van der Waals and capillary attraction across the gaps of Gaussian
-        heights, as ``adhesion_summary(..., environment=...)`` (module docstring). None
-        (default): the contact alone.
+    environment : Environment or sequence of Environment, optional
+        For every point, or one per point: van der Waals and capillary attraction across the
+        gaps of Gaussian heights, as ``adhesion_summary(..., environment=...)`` (module
+        docstring). None (default): the contact alone.
     rq, summit_offset : array_like, optional
         Per point, with ``environment``: Rq and the summit plane's offset y_s of the heights
-        about the mean plane, m (:func:`mcsim.physics.gapheights.gap_heights`).
+        about the mean plane, m (:func:`mcsim.physics.gapheights.gap_heights`); default both
+        Nayak's estimates from σ, R, η (:func:`mcsim.physics.gapheights.nayak_heights`).
 
     Returns
     -------
@@ -776,6 +779,10 @@ def jkr_summaries(sigma, R, eta, E_star, K, gamma, h, turn=None, environment=Non
         params[i] = (c["delta_c"], c["jkr_kappa"], c["jkr_t_c"], c["jkr_hertz"],
                      c["jkr_adhesion"], c["jkr_area_unit"], eta[i])  # fmt: skip
     if environment is not None:
+        if isinstance(environment, Environment):
+            environment = [environment] * sigma.size
+        if rq is None or summit_offset is None:
+            rq, summit_offset, _ = zip(*map(nayak_heights, sigma, R, eta))
         rq, summit_offset = (np.broadcast_to(np.asarray(x, dtype=float), sigma.shape)
                              for x in (rq, summit_offset))  # fmt: skip
         params = np.hstack([params, environment_params(environment, rq, summit_offset, sigma, K)])

@@ -277,9 +277,9 @@ def _fast(point: Point, config: Config) -> bool:
     without an environment or with one over Gaussian heights about the mean plane (not a
     measured height histogram, which the compiled kernel does not know)."""
     surface = point.surface
-    heights = point.environment is None or surface.map_heights is None
+    gaussian_gaps = point.environment is None or surface.map_heights is None
     return (point.law == "jkr" and not config.mc and isinstance(surface.heights, Gaussian)
-            and heights and config.preload is None and not config.pads)  # fmt: skip
+            and gaussian_gaps and config.preload is None and not config.pads)  # fmt: skip
 
 
 def batches(points, config: Config):

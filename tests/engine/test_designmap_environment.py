@@ -182,3 +182,14 @@ def test_a_point_gives_the_same_bits_alone_and_in_a_batch(batch):
     alone = fast(cases[3:4])
     for k, v in alone.items():
         np.testing.assert_array_equal(v[0], result[k][3], err_msg=k)
+
+
+def test_one_environment_for_every_point_and_nayak_heights_by_default():
+    s, m, _ = zip(*random_cases(3, seed=9))
+    env = Environment(hamaker=1.6e-19, rh=0.5)
+    short = jkr_summaries([x.sigma for x in s], [x.R for x in s], [x.eta for x in s],
+                          [x.E_star for x in m], [x.K for x in m], [x.gamma for x in m], H,
+                          environment=env)  # fmt: skip
+    full = fast([(a, b, env) for a, b in zip(s, m)])
+    for k, v in full.items():
+        np.testing.assert_array_equal(short[k], v, err_msg=k)
