@@ -33,6 +33,7 @@ from mcsim.physics.adhesion import (
 )
 from mcsim.physics.analytic import gw_curves, quantities
 from mcsim.physics.environment import Environment
+from mcsim.physics.gapheights import gap_heights
 from mcsim.physics.laws import get_law_set
 from mcsim.physics.loadcontrol import preload_turn
 from mcsim.store.sweepfile import (
@@ -272,10 +273,13 @@ BATCH = 64
 
 def _fast(point: Point, config: Config) -> bool:
     """Whether :func:`mcsim.engine.designmap.jkr_summaries` computes this point: the jkr law
-    set on Gaussian heights, without Monte Carlo, pads, a preload or an environment (which
-    the compiled kernel does not know)."""
-    return (point.law == "jkr" and not config.mc and isinstance(point.surface.heights, Gaussian)
-            and point.environment is None and config.preload is None and not config.pads)  # fmt: skip
+    set on Gaussian summit heights, without Monte Carlo, pads or a preload, and either
+    without an environment or with one over Gaussian heights about the mean plane (not a
+    measured height histogram, which the compiled kernel does not know)."""
+    surface = point.surface
+    gaussian_gaps = point.environment is None or surface.map_heights is None
+    return (point.law == "jkr" and not config.mc and isinstance(surface.heights, Gaussian)
+            and gaussian_gaps and config.preload is None and not config.pads)  # fmt: skip
 
 
 def batches(points, config: Config):
@@ -301,38 +305,51 @@ def evaluate_batch(points: list[Point], config: Config) -> list[dict]:
 
     The fast path gives the approach curves and the adhesion summary of
     :func:`mcsim.engine.designmap.jkr_summaries`: the same quantities as
-    :func:`mcsim.physics.adhesion.adhesion_summary` and :func:`mcsim.gw_curves`, equal to
-    them within that module's stated tolerances (not bit for bit). A point the fast path
-    leaves to the reference (or a batch it fails on) is evaluated by :func:`evaluate`.
+    :func:`mcsim.physics.adhesion.adhesion_summary` and :func:`mcsim.gw_curves` (with the
+    environment's curves and works where the points have one), equal to them within that
+    module's stated tolerances (not bit for bit). A point the fast path leaves to the
+    reference (or a batch it fails on, or one that mixes points with and without an
+    environment) is evaluated by :func:`evaluate`.
     """
-    if not all(_fast(p, config) for p in points):
+    environments = [p.environment for p in points]
+    with_environment = environments[0] is not None
+    if not all(_fast(p, config) for p in points) or any(
+        (e is not None) != with_environment for e in environments
+    ):
         return [evaluate(p, config) for p in points]
     h = np.asarray(config.h)
     s = [p.surface for p in points]
     m = [p.material for p in points]
+    environment = {}
+    if with_environment:
+        gaps = [gap_heights(x) for x in s]
+        environment = {"environment": environments, "rq": [g.rq for g in gaps],
+                       "summit_offset": [g.summit_offset for g in gaps]}  # fmt: skip
     try:
         fast = jkr_summaries([x.sigma for x in s], [x.R for x in s], [x.eta for x in s],
                              [x.E_star for x in m], [x.K for x in m], [x.gamma for x in m], h,
-                             turn=config.turn)  # fmt: skip
+                             turn=config.turn, **environment)  # fmt: skip
     except (MCSimError, ArithmeticError, ValueError, RuntimeError):
         return [evaluate(p, config) for p in points]
     contact = np.asarray(GAUSSIAN.sf(h), dtype=float)
+    summary = [*SUMMARY, *(ENVIRONMENT_SUMMARY if with_environment else ())]
+    summary.remove("pull_off_pressure")
+    curves = ("load", "area", *(("vdw", "capillary") if with_environment else ()))
     out = []
     for i, point in enumerate(points):
         if fast["status"][i] == REFERENCE:
             out.append(evaluate(point, config))
             continue
         material = point.material
-        values = {"law_used": "jkr", "contact_fraction": contact, "load": fast["load"][i],
-                  "area": fast["area"][i]}  # fmt: skip
+        values = {"law_used": "jkr", "contact_fraction": contact}
+        values |= {k: fast[k][i] for k in curves}
         if material.tau is not None:  # Bowden-Tabor friction, as mcsim.gw_curves
             values["friction"] = material.tau / material.K * values["area"]
             with np.errstate(invalid="ignore", divide="ignore"):
                 values["mu"] = np.where(values["load"] > 0, values["friction"] / values["load"],
                                         np.nan)  # fmt: skip
         values |= _regime(point.surface, material, "jkr")
-        values |= {k: float(fast[k][i]) for k in ("turn", "pull_off", "h_pull_off",
-                                                   "work_of_separation", "hysteresis")}  # fmt: skip
+        values |= {k: float(fast[k][i]) for k in summary}
         values["pull_off_pressure"] = values["pull_off"] * material.K
         out.append(values)
     return out

@@ -1,17 +1,21 @@
 """Sweeps over the environment (issue 22): rh, hamaker, contact_angle, cutoff, temperature
 as varied inputs, the work terms equal to ``adhesion_summary`` point by point."""
 
+import json
 import math
 import warnings
 
 import numpy as np
 import pytest
+from conftest import run_cli
 
 from mcsim import sweep
 from mcsim.model.errors import ParameterError
 from mcsim.model.presets import MATERIALS, SURFACES
 from mcsim.physics.adhesion import RegimeWarning, adhesion_summary
 from mcsim.physics.environment import Environment
+from mcsim.store.sweepfile import read_sweep
+from mcsim.studies import sweeppoint
 from mcsim.studies.sweeppoint import parse_values
 
 ENV = Environment(hamaker=1.6e-19)
@@ -60,3 +64,38 @@ def test_without_environment_the_sweep_has_no_environment_variables():
                    workers=1)  # fmt: skip
     assert not {"vdw", "capillary", "work_of_separation_vdw", "kelvin_radius"} & set(result.data)
     assert "environment" not in result.attrs
+
+
+def test_a_jkr_rh_sigma_sweep_file_equals_mcsim_adhesion_point_by_point(capsys, tmp_path,
+                                                                        monkeypatch):  # fmt: skip
+    """The compiled fast path (tolerances: tests/engine/test_designmap_environment.py) writes
+    what ``mcsim adhesion`` prints at each point, work_of_separation_vdw and _capillary too."""
+
+    def no_reference(*args, **kwargs):
+        raise AssertionError("a fast-path point went to adhesion_summary")
+
+    out = tmp_path / "F.h5"
+    with monkeypatch.context() as m:
+        m.setattr(sweeppoint, "adhesion_summary", no_reference)
+        code, _, err = run_cli(capsys, "sweep", "--surface", "intermediate", "--law", "jkr",
+                               "--hamaker", "1.6e-19J", "--vary", "rh=0.3:0.9:3", "--vary",
+                               "sigma=2nm:6nm:2", "--out", out)  # fmt: skip
+    assert code == 0, err
+    result = read_sweep(out)
+    surface = SURFACES["intermediate"]
+    for i, rh in enumerate(result.coords["rh"]):
+        for j, sigma in enumerate(result.coords["sigma"]):
+            toml = tmp_path / "s.toml"
+            toml.write_text(f'[surface]\nsigma = "{float(sigma)!r} m"\nR = "{surface.R!r} m"\n'
+                            f'eta = "{surface.eta!r} m^-2"\n')  # fmt: skip
+            code, text, err = run_cli(capsys, "adhesion", "--surface", toml, "--law", "jkr",
+                                      "--hamaker", "1.6e-19J", "--rh", repr(float(rh)), "--format",
+                                      "json")  # fmt: skip
+            assert code == 0, err
+            ref = json.loads(text)
+            assert result.data["turn"][i, j] == pytest.approx(ref["turn"], rel=0, abs=1e-10)
+            for k in ("pull_off", "work_of_separation", "hysteresis", "work_of_separation_contact",
+                      "work_of_separation_vdw", "work_of_separation_capillary"):  # fmt: skip
+                assert result.data[k][i, j] == pytest.approx(ref[k], rel=1e-9), (k, rh, sigma)
+            for k in ("kelvin_radius", "rq", "summit_offset"):
+                assert result.data[k][i, j] == ref[k], (k, rh, sigma)
