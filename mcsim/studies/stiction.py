@@ -49,6 +49,8 @@ from mcsim.engine.kernels import block_sums, sum_columns
 NODES = 4000
 #: Separations (d/σ) around the mean curve's pull-off over which the tail is maximised.
 OFFSETS = np.linspace(-0.3, 0.3, 13)
+#: Largest exponent of the tilted weights (exp(700) ≈ 1e304, below float64's overflow).
+_EXP_CAP = 700.0
 #: Below this union probability the chain bound replaces Genz's algorithm (module docstring).
 JOINT_FLOOR = 1e-3
 #: Step (in h) of the central differences of the mean loads: several quadrature nodes wide (the
@@ -83,7 +85,9 @@ def _lugannani_rice(g: np.ndarray, w: np.ndarray, y0: float) -> float:
     from scipy.stats import norm
 
     def moments(t):
-        e = w * np.exp(t * g)
+        # Capped below exp's overflow: the cap only bends K where y0 lies beyond every
+        # reachable value, which the bracketing below reports as a tail of 0 or 1.
+        e = w * np.exp(np.minimum(t * g, _EXP_CAP))
         return np.sum(e) - np.sum(w), np.sum(e * g), np.sum(e * g * g)
 
     k1, k2 = float(np.sum(w * g)), float(np.sum(w * g * g))

@@ -23,6 +23,7 @@ def test_a_1d_pads_sweep_draws_p_stick_with_its_interval_and_the_model_on_a_log_
 
 
 @pytest.mark.filterwarnings("ignore::mcsim.physics.adhesion.RegimeWarning")
+@pytest.mark.filterwarnings("error::RuntimeWarning")  # the model's tails leak no overflow
 def test_cli_plot_of_a_2d_pads_sweep_writes_a_map_with_a_log_colour_bar(tmp_path, capsys):
     path = tmp_path / "map.h5"
     sweep(SURFACES["smooth"], MATERIALS["silicon"], {"sigma": "1.5nm,2.5nm", "gamma": "0.1,0.3"},
