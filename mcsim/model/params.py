@@ -113,7 +113,7 @@ class Material:
     """Elastic and adhesive properties of a pair of contacting solids.
 
     Every quantity may also be given as a string with a unit (``E1="160 GPa"``,
-    ``gamma="500 mJ/m^2"``, ``z0="0.3 nm"``); numbers are SI.
+    ``w="500 mJ/m^2"``, ``z0="0.3 nm"``); numbers are SI.
 
     Parameters
     ----------
@@ -123,10 +123,11 @@ class Material:
     nu1, nu2 : float
         Poisson's ratios, in (-1, 0.5).
     gamma : float
-        Work of adhesion w used by Eqs. 4 and 6, J/m², in [0, 1e3]. The paper calls it the work
-        of adhesion in the introduction and a "surface energy" in the results; its
-        formulas use it as the work of adhesion (for two identical clean surfaces
-        w = 2 γ_s). mcsim uses it as written.
+        Work of adhesion w used by Eqs. 4 and 6, J/m², in [0, 1e3]: give it as ``w`` (keyword)
+        or as ``gamma``, the paper's symbol, which is the field's name (``Material.w`` reads
+        it). The paper calls it the work of adhesion in the introduction and a "surface
+        energy" in the results; its formulas use it as the work of adhesion (for two
+        identical clean surfaces w = 2 γ_s). mcsim uses it as written.
     H : float or None
         Indentation hardness of the softer solid, Pa, in [1, 1e13]. Given in the paper
         but unused by its elastic model; used by the ``elastic-plastic`` law set and
@@ -150,6 +151,18 @@ class Material:
     name: str = ""
     z0: float | None = None
     tau: float | None = None
+
+    def __init__(self, E1, E2, nu1, nu2, gamma=None, H=None, name="", z0=None, tau=None, *,
+                 w=None) -> None:  # fmt: skip
+        if (gamma is None) == (w is None):
+            given = "neither" if w is None else f"both (w = {w!r}, gamma = {gamma!r})"
+            raise ParameterError(f"w: give the work of adhesion once, as w or its alias gamma "
+                                 f"(J/m^2, in [0, 1e3]); got {given}")  # fmt: skip
+        fields = dict(E1=E1, E2=E2, nu1=nu1, nu2=nu2, gamma=w if gamma is None else gamma,
+                      H=H, name=name, z0=z0, tau=tau)  # fmt: skip
+        for attr, value in fields.items():
+            object.__setattr__(self, attr, value)
+        self.__post_init__()
 
     def __post_init__(self) -> None:
         for attr in ("E1", "E2"):

@@ -251,6 +251,16 @@ def test_the_python_api_accepts_the_unit_strings_of_the_command_line():
     assert Surface(sigma="1.4 nm", R="1.7 um", eta="17 um^-2") == Surface(**si)
 
 
+def test_the_work_of_adhesion_is_given_as_w_or_its_alias_gamma_exactly_once():
+    by_w = Material(E1="160 GPa", E2="160 GPa", nu1=0.22, nu2=0.22, w="500 mJ/m^2")
+    assert by_w == Material(E1=160e9, E2=160e9, nu1=0.22, nu2=0.22, gamma=0.5) and by_w.w == 0.5
+    assert dataclasses.replace(by_w, gamma=0.1).w == 0.1  # replace() uses the field's name
+    with pytest.raises(ParameterError, match=r"^w: give the work of adhesion once.*got neither"):
+        Material(E1=160e9, E2=160e9, nu1=0.22, nu2=0.22)
+    with pytest.raises(ParameterError, match=r"got both \(w = 0.5, gamma = 0.5\)"):
+        Material(E1=160e9, E2=160e9, nu1=0.22, nu2=0.22, w=0.5, gamma=0.5)
+
+
 @pytest.mark.parametrize(
     ("field", "value", "says"),
     [("E1", "160 nm", "unknown unit 'nm' for a pressure"), ("sigma", "1.4 GPa", "for a length")],
