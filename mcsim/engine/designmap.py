@@ -69,13 +69,12 @@ as ``_root_net`` and ``_minimum_net``: their source compiled a second time with 
 
 The kernel source is compiled once and cached on disk like the Monte Carlo kernel
 (:func:`_compiled`: a generated module whose name carries a hash of every source it runs).
-The process that compiles it gets numbers up to 5e-14 (relative) apart from every process
-that loads it from the cache, which agree bit for bit among themselves: numba links the
-separately compiled fast-math callees (:func:`gw_load`, ``_load``) differently in the two
-cases. Inlining them (``inline="always"``) makes the two identical, but without their
-fast-math flags (vectorised sums) the batch runs at half the speed (2000 against 4100 points
-per second in process) and compiles in 18 s instead of 12 (38 instead of 16 with the
-environment); all-inlined with fast-math, 36 and 95 s: measured and left as it is.
+The process in which numba compiles it would get numbers up to 5e-14 (relative) apart from
+every process that loads it from the cache, so it is compiled in a child process and loaded
+(:func:`_kernel`): the first sweep after an install gives the same bits as every later one.
+(Inlining the fast-math callees also makes the two agree, but without their flags the batch
+runs at half the speed and compiles in 18 s instead of 12, 38 instead of 16 with the
+environment; all-inlined with fast-math, 36 and 95 s.)
 """
 
 from __future__ import annotations
@@ -84,7 +83,10 @@ import functools
 import hashlib
 import inspect
 import math
+import os
 import re
+import subprocess
+import sys
 import threading
 
 import numpy as np
@@ -648,6 +650,46 @@ def _constants() -> dict:
     return {k: globals()[k] for k in names}
 
 
+#: Set in the child process that compiles the kernel (:func:`_kernel`).
+_CHILD = "MCSIM_DESIGNMAP_COMPILE"
+
+
+def _kernel(entry: str):
+    """The entry point ``entry`` (``_batch`` or ``_batch_net``) of the compiled module, run
+    from numba's on-disk cache.
+
+    The process in which numba compiles the kernel gets numbers up to 5e-14 (relative)
+    apart from those of every process that loads it from the cache, which agree bit for
+    bit among themselves (numba links the separately compiled fast-math callees differently
+    in the two cases). So that the first sweep after an install gives the same bits as
+    every later one, a kernel not yet compiled into the cache (no marker beside the
+    generated module) is compiled in a child process (:func:`_compile_in_child`) and then
+    loaded here. Should the child fail (a cache that cannot be written, say), the kernel is
+    compiled here, as numba would.
+    """
+    with _COMPILE_LOCK:
+        module = _compiled()
+        marker = f"{module.__file__}.{entry}.compiled"
+        if not os.path.exists(marker) and _CHILD not in os.environ:
+            code = f"from mcsim.engine.designmap import _compile_in_child; _compile_in_child({entry!r})"
+            path = os.pathsep.join(p for p in sys.path if isinstance(p, str))  # as imported here
+            env = os.environ | {_CHILD: "1", "PYTHONPATH": path}
+            subprocess.run([sys.executable, "-c", code], env=env, stdout=subprocess.DEVNULL,
+                           stderr=subprocess.DEVNULL, check=False)  # fmt: skip
+        return getattr(module, entry)
+
+
+def _compile_in_child(entry: str) -> None:
+    """Compile ``entry`` into the on-disk cache by one tiny batch, then leave its marker."""
+    with_environment = entry == "_batch_net"
+    environment = Environment(hamaker=1e-19, rh=0.5) if with_environment else None
+    jkr_summaries([1e-9], [1e-6], [1e13], [1e11], [4e11 / 3], [0.1], [1.0, 0.0],
+                  environment=environment)  # fmt: skip
+    module = _compiled()
+    if getattr(module, entry).stats.cache_misses:  # compiled, so now in the cache
+        open(f"{module.__file__}.{entry}.compiled", "w").close()
+
+
 def _net_source(f) -> str:
     """The source of ``f`` renamed to its net-load variant (:data:`_NET_NAMES`)."""
     text = inspect.getsource(f)
@@ -798,9 +840,7 @@ def jkr_summaries(sigma, R, eta, E_star, K, gamma, h, turn=None, environment=Non
     curves = np.empty((sigma.size, 2 if environment is None else 4, h.size))
     summary = np.empty((sigma.size, 5))
     status = np.empty(sigma.size, dtype=np.int64)
-    with _COMPILE_LOCK:
-        module = _compiled()
-    kernel = module._batch if environment is None else module._batch_net
+    kernel = _kernel("_batch" if environment is None else "_batch_net")
     kernel(np.ascontiguousarray(sigma), np.ascontiguousarray(eta / K), params, turns, h,
            *_rule(S_NODES), *np.polynomial.legendre.leggauss(NODES), curves, summary, status)  # fmt: skip
     scale = K * sigma  # load·K is force per nominal area; dd = σ dh
