@@ -680,14 +680,14 @@ def _kernel(entry: str):
 
 
 def _compile_in_child(entry: str) -> None:
-    """Compile ``entry`` into the on-disk cache by one tiny batch, then leave its marker."""
+    """Compile ``entry`` into the on-disk cache by one tiny batch (or find it there), then
+    leave its marker."""
     with_environment = entry == "_batch_net"
     environment = Environment(hamaker=1e-19, rh=0.5) if with_environment else None
     jkr_summaries([1e-9], [1e-6], [1e13], [1e11], [4e11 / 3], [0.1], [1.0, 0.0],
                   environment=environment)  # fmt: skip
-    module = _compiled()
-    if getattr(module, entry).stats.cache_misses:  # compiled, so now in the cache
-        open(f"{module.__file__}.{entry}.compiled", "w").close()
+    # Compiled into the cache, or found there (an earlier mcsim's, or another process's).
+    open(f"{_compiled().__file__}.{entry}.compiled", "w").close()
 
 
 def _net_source(f) -> str:

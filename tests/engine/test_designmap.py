@@ -186,10 +186,22 @@ def test_the_first_process_after_an_install_gives_the_bits_of_every_later_one(tm
     import sys
 
     env = os.environ | {"MCSIM_CACHE_DIR": str(tmp_path / "cache")}
-    for run in ("first", "later"):
-        subprocess.run([sys.executable, "-c", _BATCH_SCRIPT, str(tmp_path / f"{run}.npz"), kind],
+
+    def run(name):
+        subprocess.run([sys.executable, "-c", _BATCH_SCRIPT, str(tmp_path / f"{name}.npz"), kind],
                        env=env, check=True)  # fmt: skip
-    first, later = np.load(tmp_path / "first.npz"), np.load(tmp_path / "later.npz")
+        return np.load(tmp_path / f"{name}.npz")
+
+    first, later = run("first"), run("later")
     assert sorted(first.files) == sorted(later.files)
     for k in first.files:
         np.testing.assert_array_equal(first[k], later[k], err_msg=k)
+    # A cache that holds the kernel without the marker (an earlier mcsim's) gets the marker
+    # back from the child, which then finds the kernel there: no child at later starts.
+    markers = list((tmp_path / "cache" / "kernels").glob("*.compiled"))
+    assert len(markers) == 1
+    markers[0].unlink()
+    again = run("again")
+    assert markers[0].exists()
+    for k in first.files:
+        np.testing.assert_array_equal(first[k], again[k], err_msg=k)
