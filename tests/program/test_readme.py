@@ -23,9 +23,9 @@ README = ROOT / "README.md"
 
 #: Set-up commands, not run: they build or use the environment this test already runs
 #: in (``make run`` and ``make test`` create .venv and would run the paper or this very
-#: suite again, ``make lint`` is CI's own step, ``source`` only puts .venv/bin on PATH,
-#: which the test does itself).
-SETUP = ("make run", "make test", "make lint", "source .venv/bin/activate")
+#: suite again, ``make test-portable`` is part of ``make test``, ``make lint`` is CI's own
+#: step, ``source`` only puts .venv/bin on PATH, which the test does itself).
+SETUP = ("make run", "make test", "make test-portable", "make lint", "source .venv/bin/activate")
 
 #: Smaller runs than the README shows, so that the test stays short: (README text, what
 #: runs instead). Each must occur exactly once in the README (checked): the table cannot rot.
