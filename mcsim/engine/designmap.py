@@ -79,6 +79,7 @@ environment; all-inlined with fast-math, 36 and 95 s.)
 
 from __future__ import annotations
 
+import contextlib
 import functools
 import hashlib
 import inspect
@@ -674,8 +675,9 @@ def _kernel(entry: str):
             code = f"from mcsim.engine.designmap import _compile_in_child; _compile_in_child({entry!r})"
             path = os.pathsep.join(p for p in sys.path if isinstance(p, str))  # as imported here
             env = os.environ | {_CHILD: "1", "PYTHONPATH": path}
-            subprocess.run([sys.executable, "-c", code], env=env, stdout=subprocess.DEVNULL,
-                           stderr=subprocess.DEVNULL, check=False)  # fmt: skip
+            with contextlib.suppress(subprocess.TimeoutExpired):  # then compiled here
+                subprocess.run([sys.executable, "-c", code], env=env, stdout=subprocess.DEVNULL,
+                               stderr=subprocess.DEVNULL, check=False, timeout=600)  # fmt: skip
         return getattr(module, entry)
 
 
