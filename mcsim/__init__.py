@@ -4,7 +4,7 @@ The public names are imported on first use (PEP 562), so that ``mcsim --help`` a
 other light commands do not pay for SciPy, h5py or numba.
 """
 
-import importlib
+import importlib as _importlib
 
 from mcsim._version import __version__
 from mcsim.model.errors import MCSimError, ParameterError, RunFileError, UnitError
@@ -59,11 +59,11 @@ __all__ = [
 
 def __getattr__(name: str):
     if name in _LAZY:
-        value = getattr(importlib.import_module(f".{_LAZY[name]}", __name__), name)
+        value = getattr(_importlib.import_module(f".{_LAZY[name]}", __name__), name)
         globals()[name] = value
         return value
     if name in _SUBMODULES:
-        return importlib.import_module(f".{_SUBMODULES[name]}", __name__)
+        return _importlib.import_module(f".{_SUBMODULES[name]}", __name__)
     raise AttributeError(f"module 'mcsim' has no attribute {name!r}")
 
 

@@ -18,11 +18,13 @@ from mcsim.cli.options import (
     environment_of,
     inputs_of,
     parse_h,
-    parse_preload,
     resolve_law,
     seed_type,
 )
-from mcsim.model.errors import ParameterError
+
+
+def _count(n: int, noun: str) -> str:
+    return f"{n} {noun}{'' if n == 1 else 's'}"
 
 
 def _default_run_path(surface) -> Path:
@@ -56,16 +58,17 @@ def run(args) -> int:
             h = parse_h(args.h)
         extra = {} if pressure is None else {"load_control": json.dumps(
             {"pressure": pressure.tolist(), "unit": "Pa"})}  # fmt: skip
-        if args.preload is not None:
-            extra |= _preload(args, surface, material, h, environment)
+        law, notes = resolve_law(args, surface, material)
+        if args.law == "auto" and not args.quiet:
+            print_lines(notes[:1])  # the choice; regime warnings are the adhesion commands'
         out = Path(args.out) if args.out else _default_run_path(surface)
         show_progress = not args.quiet and sys.stderr.isatty()
         before = file_state(out)
         t0 = time.perf_counter()
         try:
             run = simulate(
-                surface, material, h, args.area, realizations=args.realizations, seed=args.seed, law=args.law,
-                count=args.count, cycle=args.cycle, device=args.device, workers=args.workers, scheduler=args.scheduler or args.dask,
+                surface, material, h, args.area, realizations=args.realizations, seed=args.seed, law=law,
+                count=args.count, cycle=args.cycle, preload=args.preload, device=args.device, workers=args.workers, scheduler=args.scheduler or args.dask,
                 chunk_size=args.chunk_size, keep_heights=args.keep_heights, out=out, overwrite=args.overwrite,
                 resume=args.resume, checkpoint_every=args.checkpoint_every, progress=show_progress,
                 command=cli_command(),
@@ -84,37 +87,11 @@ def run(args) -> int:
             return 0  # --resume of this finished run: its notice was the only output
         if not args.quiet:
             n = run.n_summits
-            announce(run.path, f"{run.spec.realizations} realizations x {len(h)} separations, "
+            announce(run.path, f"{_count(run.spec.realizations, 'realization')} x {_count(len(h), 'separation')}, "
                      f"N = {n.mean():.6g} summits per patch on average, {elapsed:.2f} s")  # fmt: skip
             print(f"mcsim: next: mcsim compare {run.path}   |   mcsim plot {run.path}",
                   file=sys.stderr)  # fmt: skip
     return 0
-
-
-def _preload(args, surface, material, h, environment) -> dict:
-    """Run attributes of force control: the preload (Pa) and its mean-field turn d/σ.
-
-    Each pad's own turn (the largest h where its approach load reaches P·A) is found when the
-    run is read (:meth:`mcsim.store.results.Run.pull_off`) from its summits drawn again; the
-    grid must reach below the turns, since no summit below its lowest separation is drawn.
-    """
-    from mcsim.physics.loadcontrol import preload_turn
-
-    if not args.cycle:
-        raise ParameterError(
-            "--preload: force control presses each pad before retraction; add --cycle"
-        )
-    if environment is not None:
-        raise ParameterError("--preload with an environment: each pad's force control counts "
-                             "its contact loads only (not yet the environment's attraction)")  # fmt: skip
-    pressure = parse_preload(args.preload)
-    law, _ = resolve_law(args, surface, material)
-    turn = preload_turn(surface, material, pressure, law)
-    if min(h) > turn:
-        raise ParameterError(f"--preload {args.preload}: the mean approach curve balances it at h = "
-                             f"{turn:.4g}, below the lowest --h {min(h):g}; extend --h down "
-                             "(pads under force control turn around there, some lower)")  # fmt: skip
-    return {"preload": pressure, "preload_unit": "Pa", "preload_turn_mean_field": turn}
 
 
 def add_parser(sub) -> None:

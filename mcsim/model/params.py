@@ -75,6 +75,16 @@ def check_range(
     return value
 
 
+def check_seed(seed) -> int | None:
+    """A root seed as NumPy's ``SeedSequence`` takes it: None (fresh entropy) or a whole
+    number >= 0; anything else raises, naming the field."""
+    if seed is None:
+        return None
+    if isinstance(seed, bool) or not isinstance(seed, int | np.integer) or seed < 0:
+        raise ParameterError(f"seed = {seed!r} is out of range (allowed: None or an integer >= 0)")
+    return int(seed)
+
+
 def _in_range(name: str, value: float, kind: str | None = None) -> float:
     """``value`` checked against :data:`RANGES` (``kind`` names the entry, default ``name``)."""
     low, high, unit = RANGES[kind or name]
@@ -158,6 +168,8 @@ class Material:
             given = "neither" if w is None else f"both (w = {w!r}, gamma = {gamma!r})"
             raise ParameterError(f"w: give the work of adhesion once, as w or its alias gamma "
                                  f"(J/m^2, in [0, 1e3]); got {given}")  # fmt: skip
+        if w is not None:  # checked under the name the caller used
+            w = _in_range("w", w, "gamma")
         fields = dict(E1=E1, E2=E2, nu1=nu1, nu2=nu2, gamma=w if gamma is None else gamma,
                       H=H, name=name, z0=z0, tau=tau)  # fmt: skip
         for attr, value in fields.items():

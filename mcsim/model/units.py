@@ -108,8 +108,8 @@ def unit_factor(unit: str, dimension: str) -> float:
     u = unit.strip().replace("⁻²", "^-2").replace("²", "^2").replace("⁻", "^-")
     u = u.replace("³", "^3").replace("^-^2", "^-2").replace(" ", "")
     if dimension == "dimensionless":
-        if u in ("", "1"):
-            return 1.0
+        if u in ("", "1", "%"):
+            return 0.01 if u == "%" else 1.0
     elif dimension in _TABLES:
         if u in _TABLES[dimension]:
             return _TABLES[dimension][u]
@@ -170,7 +170,7 @@ def _examples(dimension: str) -> str:
         "angle": "deg, °, rad, mrad",
         "temperature": "K (no °C: give kelvin)",
         "molar_volume": "m^3/mol, L/mol, cm^3/mol, mL/mol",
-        "dimensionless": "no unit",
+        "dimensionless": "no unit, or %",
     }[dimension]
 
 

@@ -51,6 +51,7 @@ from mcsim.model.params import Material, Surface, check_range, plasticity_index
 from mcsim.physics.analytic import gw_curves
 from mcsim.physics.environment import (
     Environment,
+    as_environment,
     environment_curves,
     environment_works,
 )
@@ -353,7 +354,8 @@ def adhesion_summary(
         under no load: the summary then has pull-off, work of separation and
         hysteresis 0, ``turn`` the top of the summit population and ``turn_from``
         saying so.
-    environment : Environment, optional
+    environment : Environment or mapping, optional
+        An Environment, or its fields as a mapping (:func:`~mcsim.physics.environment.as_environment`).
         Van der Waals and capillary attraction across the gaps (see the module
         docstring); None (default): the contact alone, exactly as without it.
 
@@ -367,6 +369,7 @@ def adhesion_summary(
     ParameterError
         A law set without a ``load`` or a retraction branch, or a missing material field.
     """
+    environment = as_environment(environment)
     from scipy import optimize
 
     laws = get_law_set(law)

@@ -39,7 +39,7 @@ import numpy as np
 
 from mcsim.model.errors import ParameterError
 from mcsim.model.params import Material, Surface, check_range, check_separations
-from mcsim.physics.environment import Environment, environment_curves
+from mcsim.physics.environment import Environment, as_environment, environment_curves
 from mcsim.physics.gapheights import gap_heights
 from mcsim.physics.laws import Edges, LawSet, get_law_set
 
@@ -249,7 +249,8 @@ def gw_curves(
     turn : float, optional
         Closest approach h_turn = d_turn/σ, retraction only; default the lowest ``h``.
         It must not lie above any ``h`` (retraction starts there).
-    environment : Environment, optional
+    environment : Environment or mapping, optional
+        An Environment, or its fields as a mapping (:func:`~mcsim.physics.environment.as_environment`).
         Adds the curves ``vdw`` and ``capillary`` (attraction per nominal area over K,
         > 0 attractive; :func:`mcsim.physics.environment.environment_curves` at the
         mean-plane gap D = hσ + summit_offset of :func:`~mcsim.physics.gapheights.gap_heights`)
@@ -267,6 +268,7 @@ def gw_curves(
         Unknown law set or branch, retraction of a law set without one, a ``turn``
         above the sweep or on approach, a material field the law set needs.
     """
+    environment = as_environment(environment)
     laws = get_law_set(law)
     h = check_separations(h)
     turn = _check_turn(laws, branch, h, turn)

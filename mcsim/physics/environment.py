@@ -27,7 +27,9 @@ the two topographies, menisci that conserve volume, disjoining pressure of adsor
 
 from __future__ import annotations
 
+import dataclasses
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass
 
 import numpy as np
@@ -203,6 +205,29 @@ class Environment:
     def laplace_pressure(self) -> float:
         """Laplace pressure γ_L/r_K of the menisci, Pa; 0 without condensation."""
         return self.surface_tension / self.kelvin_radius if self.has_capillary else 0.0
+
+
+def as_environment(value) -> Environment | None:
+    """The ``environment`` argument of the Python API: None, an :class:`Environment`, or a
+    mapping of its fields as users write them (:meth:`Environment.from_user`, e.g.
+    ``{"rh": 0.5, "hamaker": "1.6e-19 J", "contact_angle": "20 deg"}``).
+
+    Raises
+    ------
+    ParameterError
+        Anything else, or a mapping with a key that is not a field.
+    """
+    if value is None or isinstance(value, Environment):
+        return value
+    fields = [f.name for f in dataclasses.fields(Environment)]
+    if isinstance(value, Mapping):
+        unknown = [k for k in value if k not in fields]
+        if unknown:
+            raise ParameterError(f"environment: unknown field {unknown[0]!r} "
+                                 f"(allowed: {', '.join(fields)})")  # fmt: skip
+        return Environment.from_user(**value)
+    raise ParameterError(f"environment must be an Environment or a mapping of its fields "
+                         f"({', '.join(fields)}), got {type(value).__name__} {value!r}")  # fmt: skip
 
 
 def kelvin_radius(rh, temperature=298.15, surface_tension=0.072, molar_volume=1.80e-5):

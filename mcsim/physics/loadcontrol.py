@@ -34,7 +34,7 @@ from mcsim.model.params import MAX_ABS_H, Material, Surface
 from mcsim.model.units import parse_values
 from mcsim.physics.adhesion import _bottom, _top
 from mcsim.physics.analytic import AnalyticCurves, gw_curves
-from mcsim.physics.environment import Environment
+from mcsim.physics.environment import Environment, as_environment
 from mcsim.physics.laws import LawSet, get_law_set
 
 #: Points of the approach grid that brackets each root.
@@ -166,7 +166,8 @@ def load_control(
         pressure is allowed only for a law set whose approach load is tensile somewhere.
     law : str or LawSet
         Law set; for ``seed`` the balanced load is P̄ (Eq. 3), else ``load``.
-    environment : Environment, optional
+    environment : Environment or mapping, optional
+        An Environment, or its fields as a mapping (:func:`~mcsim.physics.environment.as_environment`).
         Van der Waals and capillary attraction (:func:`mcsim.gw_curves`): the pressure
         then balances the net ``load`` = contact − vdw − capillary, for every law set.
 
@@ -180,6 +181,7 @@ def load_control(
         Non-finite or empty pressures, p <= 0 without adhesion, or a pressure that
         no separation with |h| <= 1e6 reaches.
     """
+    environment = as_environment(environment)
     laws = get_law_set(law)
     quantity = balanced_quantity(laws, environment is not None)
     if isinstance(pressure, str):

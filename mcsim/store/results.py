@@ -152,7 +152,8 @@ class Run:
     analytic : dict of ndarray
         GW expected values of the estimators, per quantity.
     attrs : dict
-        Provenance (command, versions, creation time) once written or read.
+        Provenance (command, versions, creation time) once written or read; in memory, the
+        run's further attributes (``preload``, ``load_control``; see :func:`mcsim.simulate`).
     path : Path or None
         The run file, if any.
     heights : list of ndarray or None

@@ -17,7 +17,7 @@ import numpy as np
 
 from mcsim._version import __version__
 from mcsim.model.errors import MCSimError
-from mcsim.model.params import plasticity_index
+from mcsim.model.params import check_seed, plasticity_index
 from mcsim.model.presets import MATERIALS, PAPER_SURFACES, SURFACES
 from mcsim.physics.analytic import QUANTITIES, gw_curves
 from mcsim.store.outputs import check_output, write_atomic
@@ -271,7 +271,7 @@ def paper_monte_carlo(
     for path in runs:
         check_output(path, overwrite=overwrite)
     material = MATERIALS["silicon"]
-    seeds = np.random.SeedSequence(seed).spawn(len(PAPER_SURFACES))
+    seeds = np.random.SeedSequence(check_seed(seed)).spawn(len(PAPER_SURFACES))
     mc = {}
     for name, child, path in zip(PAPER_SURFACES, seeds, runs):
         run = simulate(SURFACES[name], material, MC_H, MC_AREA, seed=int(child.generate_state(1)[0]), workers=2,

@@ -10,6 +10,7 @@
 from __future__ import annotations
 
 import contextlib
+import dataclasses
 import functools
 import logging
 import shlex
@@ -23,10 +24,11 @@ from mcsim.engine import interrupt
 from mcsim.engine.cells import run_cell_sums
 from mcsim.engine.montecarlo import DEFAULT_CHUNK, MonteCarloSpec, default_workers, run_sums
 from mcsim.model.errors import ParameterError, RunFileError
-from mcsim.model.params import Material, Surface, check_range
+from mcsim.model.params import Material, Surface, check_range, check_seed, check_separations
 from mcsim.model.units import parse_quantity
-from mcsim.physics.environment import Environment
+from mcsim.physics.environment import Environment, as_environment
 from mcsim.physics.gapheights import gap_heights
+from mcsim.physics.laws import LAW_SETS, get_law_set
 from mcsim.store import files, runfile
 from mcsim.store.results import Run, assemble
 
@@ -62,6 +64,34 @@ def estimate(spec: MonteCarloSpec, workers: int) -> tuple[float, float, float]:
     return summits, pairs, (pairs / PAIRS_PER_SECOND + above / SAMPLES_PER_SECOND) / workers
 
 
+def _preload_attrs(surface, material, h, law, cycle, environment, preload) -> dict:
+    """Run attributes of force control: the preload (Pa) and its mean-field turn d/σ.
+
+    Each pad's own turn (the largest h where its approach load reaches P·A) is found when the
+    run is read (:meth:`mcsim.store.results.Run.pull_off`) from its summits drawn again; the
+    grid must reach below the turns, since no summit below its lowest separation is drawn.
+    """
+    from mcsim.physics.loadcontrol import preload_turn  # SciPy's optimizers: not at start-up
+
+    if not cycle:
+        raise ParameterError("preload: force control presses each pad before retraction; "
+                             "it needs cycle=True (--cycle)")  # fmt: skip
+    if environment is not None:
+        raise ParameterError("preload with an environment: each pad's force control counts "
+                             "its contact loads only (not yet the environment's attraction)")  # fmt: skip
+    if "load" not in get_law_set(law).names:
+        signed = [name for name in LAW_SETS if "load" in get_law_set(name).names]
+        raise ParameterError(f"preload: law = {law!r} has no signed load to balance it "
+                             f"(allowed: {', '.join(signed)})")  # fmt: skip
+    pressure = check_range("preload", preload, "Pa", low=0)
+    turn = preload_turn(surface, material, pressure, law)
+    if min(h) > turn:
+        raise ParameterError(f"preload = {pressure:g} Pa: the mean approach curve balances it at "
+                             f"h = {turn:.4g}, below the lowest h = {min(h):g}; extend h (--h) down "
+                             "(pads under force control turn around there, some lower)")  # fmt: skip
+    return {"preload": pressure, "preload_unit": "Pa", "preload_turn_mean_field": turn}
+
+
 def _api_command(**kwargs) -> str:
     shown = ", ".join(f"{k}={v!r}" for k, v in kwargs.items())
     return f"mcsim.simulate({shown})"
@@ -78,6 +108,7 @@ def simulate(
     law: str = "seed",
     count: str = "poisson",
     cycle: bool = False,
+    preload: float | str | None = None,
     device: str = "cpu",
     workers: int | None = None,
     scheduler=None,
@@ -114,6 +145,13 @@ def simulate(
     cycle : bool
         Approach over ``h`` (descending), then retraction back over the same ``h``
         after the closest approach min(h); both branches are stored.
+    preload : float or str, optional
+        Nominal pressure, Pa or with a unit (``"1 MPa"``), with ``cycle``: force control,
+        as an actuator presses a device. Each pad is pressed until its own approach load
+        reaches preload × area and retracts from there (:meth:`Run.pull_off`, which draws
+        its summits again); the run records the preload and the turn that balances it on
+        the mean curve (:func:`mcsim.physics.loadcontrol.preload_turn`), which must lie
+        within ``h``. Law sets with a signed load only, no environment.
     device : {"cpu", "cuda"}
         Sample and sum on the CPU or on the GPU (``mcsim[gpu]``; other random streams,
         so other numbers than the CPU's, equal in distribution); recorded in the run.
@@ -153,7 +191,8 @@ def simulate(
         Further root attributes of the file and its checkpoints (numbers or strings),
         e.g. ``{"load_control": '{"pressure": [...], "unit": "Pa"}'}`` (JSON) for the
         nominal pressures that the separations balance (``mcsim simulate --pressure``).
-    environment : Environment, optional
+    environment : Environment or mapping, optional
+        An Environment, or its fields as a mapping (:func:`~mcsim.physics.environment.as_environment`).
         Van der Waals and capillary condensation across the gaps: each patch's pressures
         are sampled over its cells (:mod:`mcsim.engine.cells`: one cell per summit, heights
         from ``surface.rq``/``map_heights`` or the Nayak estimate,
@@ -170,7 +209,12 @@ def simulate(
     mcsim.engine.interrupt.Interrupted
         On SIGINT (Ctrl-C) or SIGTERM, once the progress is saved (a ``KeyboardInterrupt``).
     """
+    environment = as_environment(environment)
     area_m2 = parse_quantity(area, "area", "area")
+    seed = check_seed(seed)
+    if preload is not None:
+        extra_attrs = {**(extra_attrs or {}), **_preload_attrs(
+            surface, material, check_separations(h), law, cycle, environment, preload)}  # fmt: skip
     check_range("checkpoint_every", checkpoint_every, "s", low=0.0, low_open=False)
     if resume and out is None:
         raise ParameterError("resume needs the run file to continue (out=...)")
@@ -216,6 +260,7 @@ def simulate(
                                    h=[float(x) for x in spec.h], area=area_m2, realizations=realizations,
                                    seed=seed, law=law, count=count,
                                    **({"cycle": True} if cycle else {}),
+                                   **({"preload": preload} if preload is not None else {}),
                                    **({"device": device} if device != "cpu" else {}),
                                    **({"environment": environment} if environment is not None else {}))  # fmt: skip
         n_workers = workers if isinstance(workers, int) and workers > 0 else default_workers()
@@ -259,8 +304,8 @@ def simulate(
             cells = run_cell_sums(spec, ens.n_summits, environment, gap_heights(surface),
                                   workers=n_workers, interrupt=interrupt.check)  # fmt: skip
         run = assemble(ens, cells)
-        if out is None:
-            return run
+        if out is None:  # the attributes a file would hold that the analysis reads (preload)
+            return dataclasses.replace(run, attrs=dict(extra_attrs or {}))
         run = runfile.write_run(out, run, command=command, extra=extra_attrs)
         partial.unlink(missing_ok=True)  # after the complete run is in place
         return run

@@ -50,12 +50,12 @@ from mcsim._version import __version__
 from mcsim.engine import interrupt
 from mcsim.engine.montecarlo import FIRST_CHECKPOINT, default_workers, in_order
 from mcsim.model.errors import ParameterError, RunFileError
-from mcsim.model.params import Material, Surface, check_range, check_separations
+from mcsim.model.params import Material, Surface, check_range, check_seed, check_separations
 from mcsim.model.units import parse_quantity
 from mcsim.physics.adhesion import (
     RegimeWarning,
 )
-from mcsim.physics.environment import Environment
+from mcsim.physics.environment import Environment, as_environment
 from mcsim.physics.laws import get_law_set
 from mcsim.store import files, runfile
 from mcsim.store.sweepfile import (
@@ -151,7 +151,8 @@ def sweep(
     turn : float, optional
         Closest approach d/σ before retraction for the adhesion summary (default:
         zero approach load, as ``mcsim adhesion``).
-    environment : Environment, optional
+    environment : Environment or mapping, optional
+        An Environment, or its fields as a mapping (:func:`~mcsim.physics.environment.as_environment`).
         Van der Waals and capillary attraction at every point, before the varied
         environment inputs are set (those alone start from the defaults of
         :class:`~mcsim.physics.environment.Environment`: no Hamaker constant, dry). With
@@ -217,6 +218,7 @@ def sweep(
     mcsim.engine.interrupt.Interrupted
         On SIGINT or SIGTERM, once the completed points are saved.
     """
+    environment = as_environment(environment)
     names, grid = _check_vary(vary, law, mc or bool(pads))
     restoring_force, preload = _check_pads(pads, restoring_force, preload, turn)
     check_range("checkpoint_every", checkpoint_every, "s", low=0.0, low_open=False)
@@ -264,6 +266,7 @@ def sweep(
     if environment is None and any(n in ENVIRONMENT_INPUTS for n in names):
         environment = Environment()
     _check_values(surface, material, environment, names, grid)
+    seed = check_seed(seed)
     dims = [dimension_name(n) for n in names]
     with interrupt.interruptible(), contextlib.ExitStack() as stack:
         previous = finished = None

@@ -4,6 +4,7 @@ import dataclasses
 import math
 import re
 
+import numpy as np
 import pytest
 
 from mcsim import (
@@ -15,6 +16,7 @@ from mcsim import (
     surface_energy_parameter,
 )
 from mcsim.model.errors import MCSimError
+from mcsim.model.params import check_seed
 from mcsim.model.presets import MATERIALS, PAPER_PAIRS, SURFACES
 from mcsim.model.units import parse_quantity
 
@@ -259,6 +261,21 @@ def test_the_work_of_adhesion_is_given_as_w_or_its_alias_gamma_exactly_once():
         Material(E1=160e9, E2=160e9, nu1=0.22, nu2=0.22)
     with pytest.raises(ParameterError, match=r"got both \(w = 0.5, gamma = 0.5\)"):
         Material(E1=160e9, E2=160e9, nu1=0.22, nu2=0.22, w=0.5, gamma=0.5)
+    with pytest.raises(ParameterError, match=r"^w = -0.5 J/m\^2 is out of range"):
+        Material(E1=160e9, E2=160e9, nu1=0.22, nu2=0.22, w=-0.5)  # the name the caller used
+    with pytest.raises(ParameterError, match=r"^gamma = -0.5 J/m\^2 is out of range"):
+        Material(E1=160e9, E2=160e9, nu1=0.22, nu2=0.22, gamma=-0.5)
+
+
+@pytest.mark.parametrize("seed", [-1, 1.5, "1", True, 2.0])
+def test_a_seed_that_numpy_would_refuse_or_reinterpret_is_a_parameter_error(seed):
+    with pytest.raises(ParameterError, match=rf"^seed = {re.escape(repr(seed))} is out of range"):
+        check_seed(seed)
+
+
+def test_a_seed_is_none_or_a_whole_number_kept_as_python_int():
+    assert check_seed(None) is None
+    assert check_seed(np.uint64(2**63)) == 2**63 and type(check_seed(np.int32(7))) is int
 
 
 @pytest.mark.parametrize(

@@ -92,7 +92,11 @@ def test_unit_error_is_an_mcsim_error():
             "energy_per_area",
             rf"sigma: unknown unit 'J' for an energy per area .*{ENERGY_UNITS}",
         ),
-        ("0.22 GPa", "dimensionless", r"sigma: unknown unit 'GPa' for a dimensionless .*no unit"),
+        (
+            "0.22 GPa",
+            "dimensionless",
+            r"sigma: unknown unit 'GPa' for a dimensionless .*no unit, or %",
+        ),
     ],
 )
 def test_unknown_or_wrong_dimension_unit_names_field_and_allowed_units(text, dimension, message):
@@ -229,3 +233,9 @@ def test_environment_dimensions_refuse_units_of_another_dimension(text, dimensio
 def test_temperature_message_says_kelvin_only():
     with pytest.raises(UnitError, match=r"no °C: give kelvin"):
         parse_quantity("25 °C", "temperature", "temperature")
+
+
+def test_a_fraction_may_be_written_in_percent():
+    assert parse_quantity("50%", "dimensionless", "rh") == 0.5
+    assert parse_quantity("7.5 %", "dimensionless", "rh") == 0.075
+    assert parse_quantity("0.5", "dimensionless", "rh") == 0.5

@@ -400,4 +400,4 @@ def test_a_preload_without_a_cycle_or_beyond_the_grid_is_a_one_line_error(tmp_pa
     err = one_line_error(capsys, *base, "--h=3:-1:5")
     assert "--cycle" in err
     err = one_line_error(capsys, *base, "--h=3:2.5:3", "--cycle")
-    assert "extend --h down" in err
+    assert "extend h (--h) down" in err
