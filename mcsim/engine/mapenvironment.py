@@ -1,0 +1,351 @@
+"""The design map's kernel with an environment: the same steps on the net load.
+
+With an environment (``jkr_summaries(..., environment=...)``: van der Waals attraction and
+capillary condensation across the gaps of Gaussian heights about the mean plane,
+:mod:`mcsim.physics.environment`) the steps of :mod:`mcsim.engine.mapkernel` run on the net
+load, as ``adhesion_summary(..., environment=...)`` does (:func:`_batch_net`, a kernel of
+its own: the dry one is untouched and gives the same bits as without this part). Like the
+dry kernel, this is source text compiled by :func:`mcsim.engine.designmap._compiled`:
+
+* **the attraction** at a separation h (mean-plane gap D = hσ + y_s): the capillary part
+  (γ_L/r_K) P(D0 <= g < g_K) in closed form (:func:`_capillary`, Φ by ``math.erfc``); the
+  van der Waals moment E[g⁻³; g >= D0] by :data:`VDW_PANELS` panels of :data:`VDW_NODES`
+  Gauss–Legendre nodes in u, τ = t + D0/Rq = ln(1 + eᵘ) (:func:`_gap_moments`): the
+  reference's map ξ = τ + ln τ has the same two regimes (geometric at the pole, uniform
+  beyond) and strip of analyticity, but its inverse is Wright's ω; softplus costs one exp
+  and one log1p a node. Consecutive separations within :data:`VDW_SPREAD` in
+  a = (D − D0)/Rq of each other (the points of one panel of the pull-off grid, of the
+  turn's scan, of the curves) share one rule over the union of their windows
+  (:func:`_attractions`): one exponential per node and point. The 96 nodes agree with the
+  reference's 144 to 7e-14 relative at worst, alone or shared, for Rq/D0 = 1–1000 and a
+  from −30 to 30 (both ~1e-14 from the integral);
+* **the turn**: the zero of the net approach load, the same scan and Brent root
+  (:func:`_zero_load_turn_net`); the surfaces rest apart only where the net approach
+  load is never tensile (no attraction acts and too little adhesion);
+* **the pull-off**: the lowest net retraction load on the retraction's grid and on
+  :data:`mcsim.physics.adhesion.PANELS` points from the top of the summits to where every
+  gap is open and wider than g_K (:func:`mcsim.physics.adhesion._environment_top`), where
+  the attraction alone acts, then the bounded minimiser on the net load (:func:`_point_net`);
+* **work of separation and hysteresis**: the contact's, as dry, plus the works of the
+  attraction from the turn to infinity: the reference's own vectorised functions
+  (:func:`mcsim.physics.environment.vdw_work`, :func:`~mcsim.physics.environment.capillary_work`)
+  at D_t = h_turn σ + y_s, after the kernel, over all points of the batch at once.
+
+Against ``adhesion_summary`` with the environment (tests/engine/test_designmap_environment.py):
+curves to 1e-13 of their scale, the turn to 1e-10 in h, pull-off, work of separation and its
+parts and hysteresis to 1e-9 relative (the contact work after a deep turn moves with it: 5e-11
+measured), Kelvin radius, Rq and y_s equal. ``_root`` and ``_minimum`` run on the net load
+as ``_root_net`` and ``_minimum_net``: their source compiled a second time with the names of
+:data:`mcsim.engine.designmap._NET_NAMES` replaced.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from mcsim.engine.mapkernel import (
+    _SQRT_2PI,
+    H_TOLERANCE,
+    NO_REST,
+    OK,
+    REFERENCE,
+    _load,
+    _retraction,
+    _rule,
+    gw_load,
+)
+from mcsim.physics.adhesion import GAUSSIAN_TOP, GRID, PANELS
+from mcsim.physics.environment import _TAIL as _GAP_TAIL
+
+#: Panels of :data:`VDW_NODES` Gauss–Legendre nodes of the van der Waals moment's rule
+#: (:func:`_gap_moment`; module docstring).
+VDW_PANELS = 8
+VDW_NODES = 12
+#: The van der Waals moment's Gaussian weight is cut where it has fallen by e^-VDW_TAIL,
+#: as in :mod:`mcsim.physics.environment`.
+VDW_TAIL = _GAP_TAIL
+#: Consecutive points share the van der Waals moments' rule while their a = (D − D0)/Rq
+#: lie within this of each other (their window, 2√(2 VDW_TAIL) ≈ 22 wide, widens by at
+#: most this), in runs of up to BLOCK points (module docstring).
+VDW_SPREAD = 1.0
+BLOCK = 16
+#: Columns of a point's parameters after the law's seven, with an environment
+#: (:func:`environment_params`): A/6π (J; 0: no van der Waals); Rq, D0, y_s (m); the Laplace
+#: pressure γ_L/r_K (Pa; 0: no condensation); the condensation gap g_K (m); the top of the
+#: pull-off grid above the summits (h); K (Pa).
+P_VDW, P_RQ, P_CUTOFF, P_OFFSET, P_LAPLACE, P_GAP, P_TOP, P_K = range(7, 15)
+
+
+def _vdw_rule() -> tuple[np.ndarray, np.ndarray]:
+    """:data:`VDW_PANELS` equal panels of :data:`VDW_NODES` Gauss–Legendre nodes on [0, 1]."""
+    x, w = _rule(VDW_NODES)
+    start = np.arange(VDW_PANELS)[:, None] / VDW_PANELS
+    return (start + x / VDW_PANELS).ravel(), np.tile(w / VDW_PANELS, VDW_PANELS)
+
+
+#: Nodes and weights of the van der Waals moments' rule on [0, 1] (:func:`_gap_moments`).
+VDW_U, VDW_W = _vdw_rule()
+
+
+def _gap_moments(a, n, shift, rq, out):
+    """E[g⁻³; g >= D0], m⁻³, for g = D − z, z ~ N(0, Rq²), at the first ``n`` of
+    a = (D − D0)/Rq, into ``out``, all on one rule (module docstring).
+
+    With t = (g − D0)/Rq each is ∫₀^∞ (D0 + Rq t)⁻³ φ(a − t) dt, over the t range where
+    φ exceeds e^-VDW_TAIL of its peak for one of the ``a`` (as
+    :func:`mcsim.physics.environment._gaussian_gap_moment` for one), on
+    :data:`VDW_PANELS` equal Gauss–Legendre panels in u, τ = t + D0/Rq = ln(1 + eᵘ)
+    (``shift`` = D0/Rq): geometric near the pole τ = 0, uniform far from it,
+    dτ/du = 1/(1 + e⁻ᵘ), analytic in a strip of half-width π (as the reference's
+    ξ = τ + ln τ, without its Wright ω). The nodes are shared: close ``a`` (the points of
+    one panel of the pull-off grid) cost one exponential a node each.
+    """
+    t_lo, t_hi = math.inf, 0.0
+    for k in range(n):
+        t_lo = min(t_lo, max(a[k] - math.sqrt(2.0 * VDW_TAIL), 0.0))
+        if a[k] >= 0.0:
+            t_hi = max(t_hi, a[k] + math.sqrt(2.0 * VDW_TAIL))
+        else:  # the weight falls by e^-VDW_TAIL at t² − 2at = 2 VDW_TAIL
+            t_hi = max(t_hi, 2.0 * VDW_TAIL / (math.sqrt(a[k] * a[k] + 2.0 * VDW_TAIL) - a[k]))
+        out[k] = 0.0
+    tau_lo, tau_hi = t_lo + shift, t_hi + shift
+    u_lo = tau_lo + math.log(-math.expm1(-tau_lo))  # ln(e^τ − 1), no overflow
+    span = tau_hi + math.log(-math.expm1(-tau_hi)) - u_lo
+    for j in range(VDW_U.size):
+        u = u_lo + span * VDW_U[j]
+        if u > 0.0:
+            e = math.exp(-u)
+            tau = u + math.log1p(e)
+            slope = 1.0 / (1.0 + e)
+        else:
+            e = math.exp(u)
+            tau = math.log1p(e)
+            slope = e / (1.0 + e)
+        inverse = 1.0 / (rq * tau)
+        weight = VDW_W[j] * inverse * inverse * inverse * slope
+        t = tau - shift
+        for k in range(n):
+            x = a[k] - t
+            out[k] += weight * math.exp(-0.5 * x * x)
+    for k in range(n):
+        out[k] *= span / _SQRT_2PI
+
+
+def _ndtr(x):
+    """Standard normal CDF Φ(x) = erfc(−x/√2)/2."""
+    return 0.5 * math.erfc(-x * 0.7071067811865476)
+
+
+def _capillary(D, p):
+    """Capillary pressure (Pa) at mean-plane gap D, as
+    :func:`mcsim.physics.environment.capillary_pressure`: (γ_L/r_K) P(D0 <= g < g_K)."""
+    if p[P_LAPLACE] == 0.0:
+        return 0.0
+    a = (D - p[P_CUTOFF]) / p[P_RQ]
+    b = (D - p[P_GAP]) / p[P_RQ]
+    # P(b < x <= a) from the nearer tail (no cancellation)
+    filled = _ndtr(-b) - _ndtr(-a) if b > 0.0 else _ndtr(a) - _ndtr(b)
+    return p[P_LAPLACE] * filled
+
+
+def _attractions(h, n, sigma, p, vdw, capillary):
+    """Van der Waals and capillary pressures (Pa) at the first ``n`` separations ``h``
+    (D = hσ + y_s), into ``vdw`` and ``capillary``, as
+    :func:`mcsim.physics.environment.environment_curves`, each term 0 where its coefficient
+    in ``p`` is 0; the van der Waals moments of consecutive separations within
+    :data:`VDW_SPREAD` of each other in a = (D − D0)/Rq on one rule (:func:`_gap_moments`)."""
+    rq, cutoff = p[P_RQ], p[P_CUTOFF]
+    a = np.empty(n)
+    for k in range(n):
+        D = h[k] * sigma + p[P_OFFSET]
+        a[k] = (D - cutoff) / rq
+        capillary[k] = _capillary(D, p)
+    if p[P_VDW] == 0.0:
+        vdw[:n] = 0.0
+        return
+    start = 0
+    while start < n:  # runs of points within VDW_SPREAD of each other in a share a rule
+        lo = hi = a[start]
+        end = start + 1
+        while end < n and max(hi, a[end]) - min(lo, a[end]) <= VDW_SPREAD:
+            lo, hi = min(lo, a[end]), max(hi, a[end])
+            end += 1
+        _gap_moments(a[start:end], end - start, cutoff / rq, rq, vdw[start:end])
+        start = end
+    for k in range(n):
+        vdw[k] = p[P_VDW] * vdw[k]
+
+
+def _attraction(h, sigma, p):
+    """Van der Waals plus capillary attraction per nominal area over K at separation h."""
+    x = np.empty(1)
+    vdw = np.empty(1)
+    capillary = np.empty(1)
+    x[0] = h
+    _attractions(x, 1, sigma, p, vdw, capillary)
+    return (vdw[0] + capillary[0]) / p[P_K]
+
+
+def _net_load(h, turn, retract, sigma, factor, p, nodes, weights):
+    """The net load: the contact load (:func:`_load`) minus the attraction."""
+    return _load(h, turn, retract, sigma, factor, p, nodes, weights) - _attraction(h, sigma, p)
+
+
+def _zero_load_turn_net(sigma, factor, p, nodes, weights):
+    """As :func:`_zero_load_turn` on the net load, the attraction of :data:`BLOCK` scan points
+    at a time (:func:`_attractions`)."""
+    top = GAUSSIAN_TOP - p[0] / sigma
+    bottom = -GAUSSIAN_TOP
+    grid = np.empty(GRID)
+    values = np.empty(GRID)
+    vdw, capillary = np.empty(BLOCK), np.empty(BLOCK)
+    while True:
+        for i in range(GRID):
+            grid[i] = top + (bottom - top) * i / (GRID - 1) if i < GRID - 1 else bottom
+        first_tensile = after = -1
+        i = 0
+        while i < GRID and after < 0:  # from the top down, as far as the first compressive point
+            size = min(BLOCK, GRID - i)
+            _attractions(grid[i:], size, sigma, p, vdw, capillary)
+            for k in range(size):
+                contact = _load(grid[i + k], 0.0, False, sigma, factor, p, nodes, weights)
+                values[i + k] = contact - (vdw[k] + capillary[k]) / p[P_K]
+                if first_tensile < 0 and values[i + k] < 0.0:
+                    first_tensile = i + k
+                elif first_tensile >= 0 and values[i + k] > 0.0:
+                    after = i + k
+                    break
+            i += size
+        if first_tensile < 0:
+            return top, NO_REST
+        if after >= 0 or bottom < -1e6:
+            break
+        bottom = top - 2.0 * (top - bottom)
+    if after < 0:
+        return math.nan, REFERENCE
+    a, b = grid[after], grid[after - 1]
+    turn = _root_net(a, b, values[after], values[after - 1], 1e-12, 0.0, False, sigma, factor, p,  # noqa: F821
+                     nodes, weights)  # fmt: skip
+    return turn, OK
+
+
+def _point_net(turn, sigma, factor, p, nodes, weights, gl_x, gl_w, out):
+    """As :func:`_point`, with the pull-off of the net load, also above the summits.
+
+    Work and hysteresis are the contact's. The pull-off grid is the retraction's points with
+    the attraction taken off, and :data:`PANELS` more from the top of the summits to where
+    every gap is open and wider than g_K (``p[P_TOP]``; :func:`mcsim.physics.adhesion._environment_top`),
+    where the attraction alone acts.
+    """
+    grid, values, top, work, hysteresis = _retraction(turn, sigma, factor, p, nodes, weights, gl_x,
+                                                      gl_w, PANELS)  # fmt: skip
+    n = grid.size - PANELS
+    m = gl_x.size + 1  # a panel's edge and nodes: close separations, one rule
+    vdw, capillary = np.empty(m), np.empty(m)
+    for j in range(0, n, m):
+        size = min(m, n - j)
+        _attractions(grid[j:], size, sigma, p, vdw, capillary)
+        for k in range(size):
+            values[j + k] -= (vdw[k] + capillary[k]) / p[P_K]
+    step = (p[P_TOP] - top) / PANELS
+    for j in range(1, PANELS + 1):
+        x = top + j * step if j < PANELS else p[P_TOP]
+        grid[n + j - 1] = x
+        values[n + j - 1] = _net_load(x, turn, True, sigma, factor, p, nodes, weights)
+    if step <= 0.0:  # that top lies below the summits' (given heights): sort
+        order = np.argsort(grid, kind="mergesort")
+        grid, values = grid[order], values[order]
+    i = int(np.argmin(values))
+    out[0], out[1], out[2], out[3] = 0.0, math.nan, work, hysteresis
+    if values[i] < 0.0:
+        lo, hi = grid[max(i - 1, 0)], grid[min(i + 1, grid.size - 1)]
+        x, value = _minimum_net(lo, hi, H_TOLERANCE, turn, sigma, factor, p, nodes, weights)  # noqa: F821
+        if value > values[i]:
+            x, value = grid[i], values[i]
+        out[0], out[1] = -value, x
+
+
+def _batch_net(sigma, factor, params, turns, h, nodes, weights, gl_x, gl_w, curves, summary,
+               status):  # fmt: skip
+    """As :func:`_batch` with an environment (the columns of ``params`` from :data:`P_VDW`
+    on): the van der Waals and capillary curves/K too, the turn and the pull-off of the net
+    load."""
+    out = np.empty(4)
+    vdw, capillary = np.empty(BLOCK), np.empty(BLOCK)
+    for i in range(sigma.size):
+        p = params[i]
+        for j in range(h.size):
+            curves[i, 0, j], curves[i, 1, j] = gw_load(h[j], 0.0, False, sigma[i], factor[i], p,
+                                                       nodes, weights)  # fmt: skip
+        for j in range(0, h.size, vdw.size):
+            size = min(vdw.size, h.size - j)
+            _attractions(h[j:], size, sigma[i], p, vdw, capillary)
+            for k in range(size):
+                curves[i, 2, j + k] = vdw[k] / p[P_K]
+                curves[i, 3, j + k] = capillary[k] / p[P_K]
+        turn = turns[i]
+        status[i] = OK
+        if math.isnan(turn):
+            turn, status[i] = _zero_load_turn_net(sigma[i], factor[i], p, nodes, weights)
+        summary[i, 0] = turn
+        out[0], out[1], out[2], out[3] = 0.0, math.nan, 0.0, 0.0
+        if status[i] == OK:
+            _point_net(turn, sigma[i], factor[i], p, nodes, weights, gl_x, gl_w, out)
+        for k in range(4):
+            summary[i, 1 + k] = out[k]
+
+
+def environment_params(environment, rq, summit_offset, sigma, K) -> np.ndarray:
+    """The environment's columns of the kernel's parameters (from :data:`P_VDW` on), one row
+    per point.
+
+    Parameters
+    ----------
+    environment : sequence of Environment
+        One per point.
+    rq, summit_offset, sigma, K : array_like
+        Per point: Rq and y_s of the Gaussian heights about the mean plane (m), σ (m), K (Pa).
+    """
+    rows = np.empty((len(environment), P_K - P_VDW + 1))
+    for i, env in enumerate(environment):
+        # as mcsim.physics.environment._capillary: no condensation where g_K <= D0
+        r_k = env.kelvin_radius
+        gap_k = 2 * r_k * np.cos(env.contact_angle)
+        laplace = env.surface_tension / r_k if env.has_capillary and gap_k > env.cutoff else 0.0
+        # as mcsim.physics.adhesion._environment_top
+        widest = max(env.cutoff, env.condensation_gap)
+        top = (GAUSSIAN_TOP * rq[i] + widest - summit_offset[i]) / sigma[i]
+        vdw = env.hamaker / (6 * math.pi) if env.has_vdw else 0.0
+        rows[i] = (vdw, rq[i], env.cutoff, summit_offset[i], laplace, gap_k, top, K[i])
+    return rows
+
+
+def _environment_outputs(environment, params, out, curves, sigma) -> dict[str, np.ndarray]:
+    """The net load, the attraction curves and the summary's works, over all points at once
+    (as :func:`mcsim.physics.adhesion._environment_parts` point by point)."""
+    from mcsim.physics.environment import capillary_work, vdw_work
+
+    hamaker = np.array([e.hamaker if e.has_vdw else 0.0 for e in environment])
+    field = {k: np.array([getattr(e, k) for e in environment])
+             for k in ("surface_tension", "kelvin_radius", "contact_angle")}  # fmt: skip
+    rq, cutoff, offset = params[:, P_RQ], params[:, P_CUTOFF], params[:, P_OFFSET]
+    rest = out["status"] != OK  # apart (or left to the reference): no work
+    D_t = np.where(out["status"] == REFERENCE, offset, out["turn"] * sigma + offset)
+    vdw = np.where(rest | (hamaker == 0), 0.0, vdw_work(D_t, rq, hamaker, cutoff))
+    capillary = np.where(rest, 0.0, capillary_work(D_t, rq, cutoff, field["surface_tension"],
+                                                   field["kelvin_radius"], field["contact_angle"]))  # fmt: skip
+    contact = out["work_of_separation"]
+    return {
+        "load": curves[:, 0] - curves[:, 2] - curves[:, 3],
+        "vdw": curves[:, 2],
+        "capillary": curves[:, 3],
+        "work_of_separation": np.where(rest, contact, contact + vdw + capillary),
+        "work_of_separation_contact": contact,
+        "work_of_separation_vdw": vdw,
+        "work_of_separation_capillary": capillary,
+        "kelvin_radius": field["kelvin_radius"],
+        "rq": rq,
+        "summit_offset": offset,
+    }
