@@ -60,7 +60,7 @@ from mcsim.physics.adhesion import GAUSSIAN_TOP, GRID, PANELS
 from mcsim.physics.environment import _TAIL as _GAP_TAIL
 
 #: Panels of :data:`VDW_NODES` Gauss–Legendre nodes of the van der Waals moment's rule
-#: (:func:`_gap_moment`; module docstring).
+#: (:func:`_gap_moments`; module docstring).
 VDW_PANELS = 8
 VDW_NODES = 12
 #: The van der Waals moment's Gaussian weight is cut where it has fallen by e^-VDW_TAIL,
