@@ -209,8 +209,9 @@ class Environment:
 
 def as_environment(value) -> Environment | None:
     """The ``environment`` argument of the Python API: None, an :class:`Environment`, or a
-    mapping of its fields as users write them (:meth:`Environment.from_user`, e.g.
-    ``{"rh": 0.5, "hamaker": "1.6e-19 J", "contact_angle": "20 deg"}``).
+    mapping of its fields as users write them in TOML files (:meth:`Environment.from_user`,
+    e.g. ``{"rh": 0.5, "hamaker": "1.6e-19 J", "contact_angle": "20 deg"}``; there a bare
+    ``contact_angle`` is in degrees, where ``Environment(contact_angle=...)`` takes radians).
 
     Raises
     ------
