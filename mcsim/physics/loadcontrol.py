@@ -241,4 +241,7 @@ def preload_turn(
     p = float(pressure)
     if not (np.isfinite(p) and p > 0):
         raise ParameterError(f"preload = {pressure!r} Pa: allowed a finite pressure > 0")
-    return float(load_control(surface, material, [p], law, environment=environment).h[0])
+    try:
+        return float(load_control(surface, material, [p], law, environment=environment).h[0])
+    except ParameterError as err:  # a pressure no separation carries: name the field
+        raise ParameterError(f"preload: {err}") from None

@@ -80,6 +80,7 @@ def test_simulate_with_a_preload_is_the_command_line_preload(tmp_path):
     [({"law": "jkr"}, r"needs cycle=True \(--cycle\)"),
      ({"law": "seed", "cycle": True}, r"law = 'seed' has no signed load .*allowed: jkr, dmt, maugis-dugdale, elastic-plastic"),
      ({"law": "jkr", "cycle": True, "preload": "-1 MPa"}, r"^preload = -1000000.0 Pa is out of range"),
+     ({"law": "jkr", "cycle": True, "preload": "1e30 Pa"}, r"^preload: pressure = 1e\+30 Pa is out of range \(allowed: up to "),
      ({"law": "jkr", "cycle": True, "h": [3.0, 2.5]}, r"below the lowest h = 2.5; extend h \(--h\) down")],
 )  # fmt: skip
 def test_a_preload_the_run_cannot_honour_is_refused_before_the_run(tmp_path, kwargs, says):
