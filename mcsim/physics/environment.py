@@ -1,8 +1,10 @@
 """The environment: van der Waals attraction across the gaps and capillary condensation.
 
+See docs/physics.md, section 'The environment' (with its known limitations).
+
 Proximity (pixel-by-pixel Derjaguin) model over the height distribution of the combined
 rough surface (DelRio et al., Nature Materials 4, 629, 2005; DelRio et al., Appl. Phys.
-Lett. 90, 163104, 2007; PHYSICS.md, "The environment"). Heights z about the mean plane are
+Lett. 90, 163104, 2007). Heights z about the mean plane are
 Gaussian with rms Rq, or a measured height histogram (:class:`~mcsim.empirical.Empirical`,
 a piecewise-constant density). At mean-plane gap D the local gap is g = D − z; where
 g < D0 (the cutoff) the surfaces touch and the contact law rules, elsewhere, per nominal

@@ -1,5 +1,7 @@
 """The heights of a rough surface about its mean plane, which the environment needs.
 
+See docs/physics.md, section 'The environment'.
+
 The GW summits (σ_s, R, η) measure the separation from the mean summit plane; van der
 Waals and capillary attraction act across the gaps of the whole surface, measured from its
 mean plane (:mod:`mcsim.physics.environment`). This module gives the rms height Rq and the
