@@ -50,7 +50,7 @@ DOCUMENTED_MODULES = (
 )
 
 # [text](target) or ![alt](target "title"); the target has no spaces.
-LINK = re.compile(r"!?\[[^\]\n]*\]\(([^)\s]+)(?:\s+\"[^\"]*\")?\)")
+LINK = re.compile(r"!?\[[^\]]*\]\(([^)\s]+)(?:\s+\"[^\"]*\")?\)")
 FENCE = re.compile(r"^(```|~~~)")
 # "docs/physics.md, section 'A'" or "docs/physics.md, sections 'A' and 'B'" (one line each)
 SECTION = re.compile(r"docs/physics\.md, sections? ('[^'\n]+'(?:(?:,| and) '[^'\n]+')*)")
