@@ -6,8 +6,8 @@ V_m 1.80e-5 m³/mol, T 298.15 K), θ = 0. Rq and the summit offset y_s of each s
 Nayak/McCool estimates from σ, R, η (rough at the seed's α of 2.5–4.9). The work of
 separation is taken from the mean summit plane at contact, d = 0, i.e. D_t = y_s.
 
-Published numbers (quoted from the papers' text as reported in PHYSICS.md and issue 22,
-not re-fitted here): DelRio et al., Nature Materials 4, 629 (2005): dry adhesion of
+Published numbers (quoted from the papers' text as reported in docs/physics.md and
+issue 22, not re-fitted here): DelRio et al., Nature Materials 4, 629 (2005): dry adhesion of
 polysilicon of a few nm rms is of order µJ/m², dominated by van der Waals forces across
 the non-contacting area; DelRio et al., Appl. Phys. Lett. 90, 163104 (2007): above a
 threshold RH that rises with roughness the adhesion jumps and rises toward 2γ_L cos θ =
@@ -244,7 +244,7 @@ def main() -> None:
     table_lines, table = surfaces_table(rh, 0.0)
     resting_lines, _ = surfaces_table(rh, 3.0)
     published = [
-        "Published (quoted from the papers' text as reported in PHYSICS.md and issue 22, "
+        "Published (quoted from the papers' text as reported in docs/physics.md and issue 22, "
         "not re-fitted): dry adhesion of polysilicon of a few nm rms is of order µJ/m² "
         "(DelRio et al. 2005); humid adhesion jumps above a threshold RH that rises with "
         "roughness, toward 2γ_L cos θ = 144 mJ/m² (DelRio et al. 2007)."

@@ -13,7 +13,7 @@ gap is D = d + y_s (y_s the summit offset) and the cell's gap g = D − z; it pu
 
     p_vdW = (A/6π) g⁻³ [g >= D0],     p_cap = (γ_L/r_K) [D0 <= g < g_K],
 
-the integrands of the proximity model (PHYSICS.md, "The environment"; DelRio et al.,
+the integrands of the proximity model (docs/physics.md, section 'The environment'; DelRio et al.,
 Nature Materials 4, 629, 2005). The patch's pressure is the mean over its cells, whose
 expectation is the analytic curve (:func:`mcsim.physics.environment.environment_curves`)
 whatever the cell size. The cells are uncorrelated: their number sets the variance of a

@@ -10,7 +10,7 @@ the pad at any separation is the compiled kernel's sum of the law set's per-summ
 ``load`` (:func:`mcsim.engine.kernels.block_sums`) over those heights. On them:
 
 * :func:`pull_off`: the pad's pull-off after the closest approach d_t, −min over d ≥ d_t
-  of F_r(d) = Σ f_r(z_i − d; z_i − d_t) (PHYSICS.md, "Finite pads"). The curve is smooth
+  of F_r(d) = Σ f_r(z_i − d; z_i − d_t) (docs/physics.md, section 'Finite pads'). The curve is smooth
   between the separations where a summit crosses an edge of its law set (break-off,
   jump-in, reach, breakpoints: d = z_i − e). Every such interval is evaluated at its two
   one-sided ends (:data:`EDGE` inside it: the load jumps there, e.g. JKR's break-off at

@@ -1,5 +1,7 @@
 """Estimates and standard errors of the Monte Carlo curves, and the comparison with GW.
 
+See docs/physics.md, section 'Monte Carlo statistics'.
+
 Per realization r (a patch of area A with N_r summits) the dimensionless totals are
 X̄_r = ΣX/(A K) for every force output X of the law set (the seed: P, F, T, as Eqs.
 3, 5, 7; the new sets: the signed ``load``), ΣX/A for an area output (A_r/A_n), and
@@ -20,7 +22,7 @@ i.i.d. per-summit terms (non-contacting summits add zero):
   Σx² − (ΣX)²/N;
 * N_c/N given N: binomial, p(1 − p)/ΣN;
 * μ = Σt/Σs: delta method, SE² = Σ(t − μ̂ s)²/(Σs)², the same for fixed and
-  Poisson N (PHYSICS.md).
+  Poisson N.
 
 These have the number of contacting summits as degrees of freedom, so z-scores are
 close to normal even with few realizations. The spread across realizations

@@ -1,5 +1,7 @@
 """Adhesion summary of a rough contact: pull-off force, work of separation, regime numbers.
 
+See docs/physics.md, section 'Adhesion summaries and regime numbers'.
+
 From the analytic GW curves of a contact law set (:func:`mcsim.gw_curves`) on approach
 and on retraction after a closest approach h_turn:
 

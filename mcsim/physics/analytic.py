@@ -1,5 +1,7 @@
 """Analytic Greenwood–Williamson curves (paper, Eqs. 1, 3, 5, 7, 8), for every law set.
 
+See docs/physics.md, sections 'The seed model' and 'GW integrals'.
+
 Each total force is N times the expectation of a per-summit law over the summit
 heights. Divided by A_n·K (the normalisation that makes Eqs. 3, 5 and 7 consistent;
 the paper implies it without stating it):

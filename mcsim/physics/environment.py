@@ -1,8 +1,10 @@
 """The environment: van der Waals attraction across the gaps and capillary condensation.
 
+See docs/physics.md, section 'The environment' (with its known limitations).
+
 Proximity (pixel-by-pixel Derjaguin) model over the height distribution of the combined
 rough surface (DelRio et al., Nature Materials 4, 629, 2005; DelRio et al., Appl. Phys.
-Lett. 90, 163104, 2007; PHYSICS.md, "The environment"). Heights z about the mean plane are
+Lett. 90, 163104, 2007). Heights z about the mean plane are
 Gaussian with rms Rq, or a measured height histogram (:class:`~mcsim.empirical.Empirical`,
 a piecewise-constant density). At mean-plane gap D the local gap is g = D − z; where
 g < D0 (the cutoff) the surfaces touch and the contact law rules, elsewhere, per nominal
@@ -234,7 +236,7 @@ def as_environment(value) -> Environment | None:
 def kelvin_radius(rh, temperature=298.15, surface_tension=0.072, molar_volume=1.80e-5):
     """Kelvin radius r_K = γ_L V_m / (R_g T ln(1/RH)), m, vectorised (Kelvin equation).
 
-    Israelachvili, *Intermolecular and Surface Forces*, 3rd ed., Eq. 17.19 (PHYSICS.md).
+    Israelachvili, *Intermolecular and Surface Forces*, 3rd ed., Eq. 17.19.
     Water at 25 °C: 0.525 nm / ln(1/RH).
 
     Parameters
@@ -296,7 +298,7 @@ def _gaussian_gap_moment(D, rq, cutoff, n: int):
 
 def _partial_mean(h):
     """F_1(h) = E[(X − h)⁺] = φ(h) − h Q(h) for a standard normal X and h >= 0 (GW F_1,
-    PHYSICS.md), as φ(h) (1 − h M(h)) with the Mills ratio M = Q/φ = √(π/2) erfcx(h/√2),
+    docs/physics.md), as φ(h) (1 − h M(h)) with the Mills ratio M = Q/φ = √(π/2) erfcx(h/√2),
     so the far tail keeps its relative accuracy."""
     mills = math.sqrt(math.pi / 2) * special.erfcx(h / math.sqrt(2))
     return np.exp(-0.5 * h * h) / math.sqrt(2 * math.pi) * (1 - h * mills)
@@ -389,7 +391,7 @@ def _condensate(D, heights, cutoff, gap_k):
 def vdw_pressure(D, heights, hamaker, cutoff):
     """Van der Waals attraction across the non-contacting gaps, Pa (positive: attractive).
 
-    p_vdW(D) = (A/6π) E[g⁻³; g >= D0], g = D − z (PHYSICS.md; DelRio et al. 2005; the
+    p_vdW(D) = (A/6π) E[g⁻³; g >= D0], g = D − z (DelRio et al. 2005; the
     flat-flat pressure A/(6π g³), Israelachvili Eq. 13.11).
 
     Parameters
@@ -416,7 +418,7 @@ def vdw_pressure(D, heights, hamaker, cutoff):
 def vdw_work(D_t, heights, hamaker, cutoff):
     """Van der Waals work of separation from ``D_t`` to infinity, J/m².
 
-    W_vdW(D_t) = (A/12π) E[max(D_t − z, D0)⁻²] (PHYSICS.md; DelRio et al. 2005's
+    W_vdW(D_t) = (A/12π) E[max(D_t − z, D0)⁻²] (DelRio et al. 2005's
     Σ A/(12π D_i²)); −dW/dD = :func:`vdw_pressure`. Flat surfaces at contact:
     A/(12π D0²).
 
@@ -450,7 +452,7 @@ def capillary_pressure(D, heights, cutoff, surface_tension, kelvin_radius, conta
     """Capillary attraction of the condensed liquid, Pa (positive: attractive).
 
     p_cap(D) = (γ_L/r_K) P(D0 <= g < g_K), g_K = 2 r_K cos θ: Laplace pressure on the
-    area whose gap fills by Kelvin condensation (PHYSICS.md; DelRio et al. 2007). Zero
+    area whose gap fills by Kelvin condensation (DelRio et al. 2007). Zero
     where g_K <= D0 (dry, θ >= 90°, or too little vapour to fill any open gap).
 
     Parameters
@@ -479,7 +481,7 @@ def capillary_pressure(D, heights, cutoff, surface_tension, kelvin_radius, conta
 def capillary_work(D_t, heights, cutoff, surface_tension, kelvin_radius, contact_angle):
     """Capillary work of separation from ``D_t`` to infinity, J/m².
 
-    W_cap(D_t) = (γ_L/r_K) E[(g_K − max(D0, D_t − z))⁺] (PHYSICS.md); −dW/dD =
+    W_cap(D_t) = (γ_L/r_K) E[(g_K − max(D0, D_t − z))⁺]; −dW/dD =
     :func:`capillary_pressure`. Flat surfaces at contact: 2γ_L cos θ − γ_L D0/r_K, which
     tends to 2γ_L cos θ as RH → 1 (DelRio et al. 2007's ceiling).
 
@@ -506,7 +508,7 @@ def environment_curves(h, sigma, heights, summit_offset, env: Environment) -> di
     """Van der Waals and capillary pressures over a GW separation grid, Pa.
 
     The GW separation d = h σ is measured from the mean summit plane, which lies
-    ``summit_offset`` above the mean plane: D = h σ + y_s (PHYSICS.md).
+    ``summit_offset`` above the mean plane: D = h σ + y_s.
 
     Parameters
     ----------

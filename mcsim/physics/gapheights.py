@@ -1,5 +1,7 @@
 """The heights of a rough surface about its mean plane, which the environment needs.
 
+See docs/physics.md, section 'The environment'.
+
 The GW summits (σ_s, R, η) measure the separation from the mean summit plane; van der
 Waals and capillary attraction act across the gaps of the whole surface, measured from its
 mean plane (:mod:`mcsim.physics.environment`). This module gives the rms height Rq and the
@@ -34,7 +36,7 @@ class NayakEstimate(NamedTuple):
 def nayak_heights(sigma, R, eta) -> NayakEstimate:
     """Rq and summit offset of a Gaussian surface from its summits' σ_s, R and η.
 
-    Nayak (1971) and McCool (1986) relations inverted (PHYSICS.md, "The environment"):
+    Nayak (1971) and McCool (1986) relations inverted (docs/physics.md, section 'The environment'):
     m4 = π(0.375/R)², m2 = m4/(6π√3 η), m0 = σ_s² + 0.8968 m2²/m4, α = m0 m4/m2²,
     Rq = √m0, y_s = 4√(m0/(πα)). Rough at the low α (2.5–4.9) of the paper's surfaces.
 

@@ -1,5 +1,7 @@
 """Results versus load: the separation that balances a nominal pressure (load control).
 
+See docs/physics.md, section 'Load control'.
+
 Under load control the surfaces sit where the analytic approach load equals the
 applied one: p = load·K, with ``load`` = force/(A_n K) for the contact law sets and
 the paper's external force P̄ = P/(A_n K) (Eq. 3) for the seed

@@ -32,7 +32,7 @@ carries no summit radius or density: the caller gives ``R`` and ``eta``, and
 (or a ``.asc``/``.xyz`` file) is a height map.
 
 Summit statistics depend strongly on the pixel size and the instrument bandwidth
-(PHYSICS.md, "Summit statistics from a height map"): they describe the surface *as
+(docs/physics.md, section 'Summit statistics from a height map'): they describe the surface *as
 sampled*; the pixel size is written next to them everywhere.
 """
 

@@ -236,8 +236,8 @@ def moment_std(run) -> float:
     return float(np.sqrt(second[:, j].mean())) if first[:, j].mean() < 0 else math.nan
 
 
-#: Expected contacting summits per pad below which the Monte Carlo alone decides (PHYSICS.md,
-#: "Finite pads": the pad is then decided by its tallest summits).
+#: Expected contacting summits per pad below which the Monte Carlo alone decides (docs/physics.md,
+#: section 'Finite pads': the pad is then decided by its tallest summits).
 FEW_CONTACTS = 10
 
 

@@ -1,7 +1,7 @@
 """A model of the probability that a pad sticks, from the per-summit statistics (rare events).
 
-A pad of area A holds N ~ Poisson(λ = ηA) summits with iid heights s (in σ); PHYSICS.md,
-"Finite pads: force control and rare events". To first order its pull-off X at a
+A pad of area A holds N ~ Poisson(λ = ηA) summits with iid heights s (in σ); see
+docs/physics.md, section 'The stiction model'. To first order its pull-off X at a
 separation h (d/σ) after the mean-field turn h̄ is a compound-Poisson sum:
 
 * Force control: the pad turns at h_t ≈ h̄ + (P·A − F_a(h̄))/F̄_a′(h̄), so its retraction
@@ -9,7 +9,7 @@ separation h (d/σ) after the mean-field turn h̄ is a compound-Poisson sum:
   and c = ∂_{h_t}E[F_r(h; h_t)] / ∂_{h_t}E[F_a(h_t)] at h̄ (mean-field derivatives, by
   central differences of the quadrature). Without a preload the turn is common: c = 0.
 * Y = Σ_{i≤N} g(s_i) has the cumulant generating function K(t) = λ(E[e^{tg}] − 1)
-  (PHYSICS.md), and p(h) = P(−Y − c·P·A > F_r) = P(Y < y0) is its lower tail at
+  (compound Poisson), and p(h) = P(−Y − c·P·A > F_r) = P(Y < y0) is its lower tail at
   y0 = −F_r − c·P·A, from the **Lugannani–Rice saddlepoint approximation** (Lugannani &
   Rice 1980; Daniels 1987, Eq. 2.6): K′(t̂) = y0, w = sgn(t̂)√(2(t̂y0 − K(t̂))),
   u = t̂√K″(t̂), P(Y ≤ y0) ≈ Φ(w) + φ(w)(1/w − 1/u). Chosen over a normal approximation

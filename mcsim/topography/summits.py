@@ -1,5 +1,7 @@
 """Summit statistics (σ_s, R, η) of a measured height map, by two routes.
 
+See docs/physics.md, section 'Summit statistics from a height map'.
+
 The map ``z[i, j]`` has rows along y (pitch ``dy``) and columns along x (pitch
 ``dx``), heights in m (the :class:`~mcsim.topography.readers.HeightMap` convention). Steps:
 
@@ -11,7 +13,7 @@ The map ``z[i, j]`` has rows along y (pitch ``dy``) and columns along x (pitch
 3. **Saturation**: if more than ``saturation_fraction`` of the pixels sit exactly at the
    map's minimum or maximum (detector or scanner range clipped), a
    :class:`SaturationWarning` is issued: clipped peaks bias every summit statistic.
-4. **Direct route** (Greenwood & Williamson 1966; PHYSICS.md): a summit is a pixel higher
+4. **Direct route** (Greenwood & Williamson 1966): a summit is a pixel higher
    than its 8 neighbours. Border pixels are never summits. Plateaus (equal neighbours)
    are counted once: the pixel must be strictly higher than the 4 neighbours that come
    before it in raster order (up-left, up, up-right, left) and at least as high as the

@@ -43,12 +43,12 @@ def surface(**changes) -> Surface:
 
 
 def test_silicon_K_matches_physics_notes():
-    # PHYSICS.md prints K = 112.092 GPa: three decimals in GPa
+    # docs/physics.md prints K = 112.092 GPa: three decimals in GPa
     assert SILICON.K / GPa == pytest.approx(112.092, abs=printed_tolerance("112.092"))
 
 
 def test_silicon_G_matches_physics_notes():
-    # PHYSICS.md prints G = 18.420 GPa: three decimals in GPa
+    # docs/physics.md prints G = 18.420 GPa: three decimals in GPa
     assert SILICON.G / GPa == pytest.approx(18.420, abs=printed_tolerance("18.420"))
 
 
@@ -126,7 +126,7 @@ def test_surface_energy_parameter_is_gamma_over_K_sigma():
 
 
 def test_plasticity_index_of_rough_silicon_matches_physics_notes():
-    # PHYSICS.md prints ψ = 2.48 for the rough surface: two decimals
+    # docs/physics.md prints ψ = 2.48 for the rough surface: two decimals
     psi = plasticity_index(SURFACES["rough"], SILICON)
     assert psi == pytest.approx(2.48, abs=printed_tolerance("2.48"))
 

@@ -103,7 +103,7 @@ def test_maugis_lambda_is_1_162_times_tabor():
 
 
 def test_tabor_parameters_of_the_papers_surfaces_lie_between_dmt_and_jkr():
-    """PHYSICS.md: with z0 = 0.3 nm μ_T is 0.5–1.6 for the four silicon surfaces."""
+    """docs/physics.md: with z0 = 0.3 nm μ_T is 0.5–1.6 for the four silicon surfaces."""
     mu = [tabor_parameter(SURFACES[n], MATERIAL) for n in PAPER_SURFACES]
     assert min(mu) == pytest.approx(0.5, abs=0.05) and max(mu) == pytest.approx(1.6, abs=0.05)
 

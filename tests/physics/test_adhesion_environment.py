@@ -30,7 +30,7 @@ def summary(surface=SURFACE, env=ENV, **kw):
 
 def quad_works(D_t, rq, env):
     """W_vdW = (A/12π) E[max(D_t − z, D0)⁻²] and W_cap = (γ_L/r_K) E[(g_K − max(D0, D_t − z))⁺]
-    over Gaussian z by scipy quad (PHYSICS.md, "The environment")."""
+    over Gaussian z by scipy quad (docs/physics.md, section 'The environment')."""
 
     def density(z):
         return math.exp(-0.5 * (z / rq) ** 2) / (rq * math.sqrt(2 * math.pi))

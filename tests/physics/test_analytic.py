@@ -81,7 +81,7 @@ def test_curves_match_high_precision_quadrature_to_1e9(name):
 
 
 def test_load_equals_closed_form_with_parabolic_cylinder_function():
-    """P̄ = A0 R0^-½ F_3/2(h), F_3/2 = (3/(4√2)) e^{-h²/4} D_{-5/2}(h) (PHYSICS.md, DLMF 12.5.1)."""
+    """P̄ = A0 R0^-½ F_3/2(h), F_3/2 = (3/(4√2)) e^{-h²/4} D_{-5/2}(h) (DLMF 12.5.1; table in docs/physics.md)."""
     h = np.array([-1.0, 0.0, 1.0, 2.0, 3.0, 4.0])
     table = [1.40459747047, 4.30019993662e-1, 7.56681773910e-2, 6.64817762359e-3,
              2.63967554270e-4, 4.43915595854e-6]  # fmt: skip
@@ -102,7 +102,7 @@ def test_curves_are_finite_and_non_negative_far_out():
 
 
 def test_mu_never_exceeds_the_single_summit_bound():
-    """T_a/(P_a+F_a) ≤ (2/√3)√(G/K) = √((1−ν)/(2(2−ν))) for identical materials (PHYSICS.md)."""
+    """T_a/(P_a+F_a) ≤ (2/√3)√(G/K) = √((1−ν)/(2(2−ν))) for identical materials (docs/physics.md)."""
     bound = np.sqrt((1 - 0.22) / (2 * (2 - 0.22)))
     assert bound == pytest.approx(0.46808, abs=5e-6)
     h = np.linspace(-10, 40, 501)

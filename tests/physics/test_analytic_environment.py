@@ -26,7 +26,7 @@ H = np.array([2.7, 1.1, 0.3, -0.6])
 
 def quad_pressures(D, rq, env):
     """p_vdW and p_cap (Pa) at mean-plane gap D by scipy quad over Gaussian heights
-    (PHYSICS.md: (A/6π) E[g⁻³; g >= D0] and (γ_L/r_K) P(D0 <= g < g_K), g = D − z)."""
+    (docs/physics.md: (A/6π) E[g⁻³; g >= D0] and (γ_L/r_K) P(D0 <= g < g_K), g = D − z)."""
 
     def density(z):
         return math.exp(-0.5 * (z / rq) ** 2) / (rq * math.sqrt(2 * math.pi))

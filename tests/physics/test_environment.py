@@ -1,6 +1,6 @@
 """The environment (issue 22): van der Waals across the gaps and capillary condensation.
 
-Oracles: the closed-form limits and water numbers of PHYSICS.md ("The environment"), an
+Oracles: the closed-form limits and water numbers of docs/physics.md ("The environment"), an
 independent adaptive quadrature (``scipy.integrate.quad``) of the model's definitions,
 −dW/dD = p by central differences, and a finely binned Gaussian histogram.
 """
@@ -44,7 +44,7 @@ def gaussian_histogram(rq, width):
     return Empirical.from_histogram(edges, np.diff(stats.norm.cdf(edges / rq)))
 
 
-# -- references by adaptive quadrature, straight from PHYSICS.md's definitions ---------------
+# -- references by adaptive quadrature, straight from docs/physics.md's definitions ----------
 
 
 def quad_gap_expectation(D, rq, f, lower=D0, step=None):
@@ -87,9 +87,9 @@ def quad_capillary(D, rq, rh, theta):
 # -- limits and water numbers ----------------------------------------------------------------
 
 
-# PHYSICS.md's 0.436 and 4.98 nm follow from γ_L V_m/(R_g T) = 0.525 nm, i.e. V_m = 18.07
-# cm³/mol; its stated V_m = 1.80e-5 m³/mol (the default) gives 0.5228 nm, and 0.754 nm at
-# 50 %. The tolerance, 0.5 %, covers that 0.4 % spread in the notes' own numbers.
+# 0.436 and 4.98 nm follow from γ_L V_m/(R_g T) = 0.525 nm, i.e. V_m = 18.07 cm³/mol; the
+# default V_m = 1.80e-5 m³/mol gives 0.5228 nm: 0.434, 0.754 and 4.96 nm (docs/physics.md).
+# The tolerance, 0.5 %, covers that 0.4 % spread between the two molar volumes.
 @pytest.mark.parametrize(
     ("rh", "r_k"), [(0.3, 0.436e-9), (0.5, 0.754e-9), (0.9, 4.98e-9)], ids=["30%", "50%", "90%"]
 )
@@ -114,7 +114,7 @@ def test_nayak_estimate_matches_physics_notes(name, rq, offset, half_unit):
     est = nayak_heights(s.sigma, s.R, s.eta)
     assert est.rq == pytest.approx(rq, abs=half_unit)
     assert est.summit_offset == pytest.approx(offset, abs=half_unit)
-    assert 2.5 <= est.alpha <= 4.9  # PHYSICS.md: the seed's surfaces have α 2.5–4.9
+    assert 2.5 <= est.alpha <= 4.9  # docs/physics.md: the seed's surfaces have α 2.5–4.9
 
 
 FLAT = 1e-15  # m: Rq 2e-4 D0, flat for every purpose below

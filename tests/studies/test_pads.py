@@ -382,7 +382,7 @@ def test_pad_turns_scatter_about_the_mean_field_turn(preload_run):
 
     run = read_run(preload_run)
     t = run.pull_off().h_turn
-    # To first order h_t - h_mean = (P A - F_a)/F_a' has mean zero (PHYSICS.md, finite pads).
+    # To first order h_t - h_mean = (P A - F_a)/F_a' has mean zero (docs/physics.md, 'The stiction model').
     z = (t.mean() - run.attrs["preload_turn_mean_field"]) / (t.std(ddof=1) / math.sqrt(t.size))
     assert abs(z) < 5
 

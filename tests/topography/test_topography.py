@@ -100,7 +100,7 @@ def test_direct_and_spectral_routes_agree_on_gaussian_surface():
     Tolerance: 3 standard errors of each direct-route estimate (Poisson count for η;
     0.5/√N for ⟨κ⟩, whose summit-to-summit spread is about half its mean; σ_s/√N for the mean height; σ_s/√(2N) for σ_s) plus 1 % for the
     discretisation of the 8-neighbour rule and McCool's constants (observed ≲ 2.5 % on
-    η over seeds, in line with PHYSICS.md's ~1 %).
+    η over seeds).
     """
     dx = 1e-8
     z = gaussian_surface(1024, 6.0, seed=1) * 1e-9

@@ -1,5 +1,7 @@
 """Law sets: the per-summit contact models, interchangeable parts of the engine.
 
+See docs/physics.md, section 'Contact law sets'.
+
 A :class:`LawSet` names pure, vectorised functions of the interference δ = z − d (m),
 its **outputs** (the seed: P, F, T; the new sets: ``load`` and ``area``), and its
 **edges**: where a summit carries force at all. The analytic integrals and the

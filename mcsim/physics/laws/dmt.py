@@ -1,5 +1,7 @@
 """DMT with a van der Waals attraction outside contact (Derjaguin, Muller & Toporov 1975).
 
+See docs/physics.md, section 'DMT law set'.
+
 One summit at interference δ = z − d (m):
 
 * in contact (δ > 0): the Hertz load minus the DMT attraction,

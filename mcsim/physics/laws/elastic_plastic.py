@@ -1,5 +1,7 @@
 """Elastic–plastic summits on approach (Kogut & Etsion 2002), no adhesion.
 
+See docs/physics.md, section 'Elastic-plastic law set'.
+
 Kogut & Etsion (2002, J. Appl. Mech. 69, 657–662, doi:10.1115/1.1490373) fitted
 finite-element results for a deformable sphere pressed by a rigid flat. With the
 critical interference at the onset of yield (Chang, Etsion & Bogy 1987, with Kogut &

@@ -1,5 +1,7 @@
 """The bits of a binary64 number, for law functions that index tables by them.
 
+See docs/physics.md, section 'Maugis-Dugdale law set' (the table these bits index).
+
 A positive double y = 2^(e − 1023) (1 + f/2^52) has the bits e·2^52 + f (IEEE 754), so
 its top bits are a piecewise-linear approximation of log2 y: a table on a geometric
 grid is indexed by a shift of them, with no logarithm, root or division

@@ -1,5 +1,7 @@
 """Exact JKR under fixed penetration, with approach and retraction (Fuller & Tabor 1975).
 
+See docs/physics.md, section 'JKR law set'.
+
 A summit at interference δ = z − d (m) with contact radius a obeys (Johnson, Kendall
 & Roberts 1971, in the form used by Fuller & Tabor 1975; Johnson 1985, *Contact
 Mechanics*, §5.5)::

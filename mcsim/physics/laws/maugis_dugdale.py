@@ -1,5 +1,7 @@
 """Maugis–Dugdale adhesive elastic sphere, under fixed penetration, tabulated once per run.
 
+See docs/physics.md, section 'Maugis-Dugdale law set'.
+
 Maugis (1992) replaced the surface forces by a Dugdale law: a constant tension σ0 while
 the gap is below h0, nothing beyond, so that the work of adhesion is w = σ0 h0. We take
 h0 = 0.97 z0 (Maugis' match of the Dugdale law to a Lennard-Jones law of equilibrium

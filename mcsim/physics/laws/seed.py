@@ -1,5 +1,7 @@
 """The paper's law set, as written: Hertz load, Johnson adhesion, Savkoor–Briggs friction.
 
+See docs/physics.md, sections 'Seed law set' and 'The seed model'.
+
 Pure, vectorised functions of the interference δ = z − d (m), SI in and out, zero
 for δ ≤ 0. They are plain arithmetic so that the Monte Carlo kernel compiles these
 very functions (see :mod:`mcsim.engine.kernels`); each writes the Hertz load out in δ, as the
