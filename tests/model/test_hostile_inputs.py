@@ -113,3 +113,17 @@ def test_absurd_command_line_values_are_one_line_errors(capsys, tmp_path, argv, 
 
 def test_every_error_above_is_an_mcsim_error():
     assert issubclass(ParameterError, MCSimError) and issubclass(UnitError, MCSimError)
+
+
+@pytest.mark.parametrize("path", [5, None, b"run.h5", ""])
+def test_a_file_argument_that_is_not_a_path_is_refused_by_name(path):
+    with pytest.raises(MCSimError, match=r"^path (must be a file path|= '' is not a valid file path)"):
+        mcsim.read_run(path)
+
+
+def test_an_empty_out_is_refused_instead_of_writing_the_default_path(capsys, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    argv = ["simulate", "--surface", "smooth", "--area", "1um^2", "--h=0", "--quiet", "--out", ""]
+    assert main(argv) == 2
+    assert "--out = '' is not a valid file path" in capsys.readouterr().err
+    assert not any(tmp_path.rglob("*"))  # nothing written, no runs/ folder
