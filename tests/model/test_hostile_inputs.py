@@ -49,7 +49,9 @@ def test_gw_curves_takes_preset_names_as_the_command_line_does():
     h = np.linspace(-1, 3, 5)
     by_name = mcsim.gw_curves("smooth", "silicon", h)
     by_object = mcsim.gw_curves(SURFACES["smooth"], MATERIALS["silicon"], h)
-    np.testing.assert_array_equal(by_name.values["P"], by_object.values["P"])  # the same inputs: same bits
+    np.testing.assert_array_equal(
+        by_name.values["P"], by_object.values["P"]
+    )  # the same inputs: same bits
 
 
 def test_an_unknown_preset_name_lists_the_presets():
@@ -117,7 +119,9 @@ def test_every_error_above_is_an_mcsim_error():
 
 @pytest.mark.parametrize("path", [5, None, b"run.h5", ""])
 def test_a_file_argument_that_is_not_a_path_is_refused_by_name(path):
-    with pytest.raises(MCSimError, match=r"^path (must be a file path|= '' is not a valid file path)"):
+    with pytest.raises(
+        MCSimError, match=r"^path (must be a file path|= '' is not a valid file path)"
+    ):
         mcsim.read_run(path)
 
 
@@ -127,3 +131,11 @@ def test_an_empty_out_is_refused_instead_of_writing_the_default_path(capsys, tmp
     assert main(argv) == 2
     assert "--out = '' is not a valid file path" in capsys.readouterr().err
     assert not any(tmp_path.rglob("*"))  # nothing written, no runs/ folder
+
+
+def test_a_reader_message_quoting_binary_data_stays_one_short_line():
+    from mcsim.topography.readers.base import MAX_MESSAGE, ReaderError
+
+    message = str(ReaderError("scan.ibw: not readable (" + "\x00\x07\xff" * 40_000 + ")"))
+    assert "\n" not in message and "\x00" not in message
+    assert len(message) < MAX_MESSAGE + 40 and message.endswith("characters cut)")
