@@ -24,6 +24,7 @@ chunk size, number of workers, backend (threads or Dask) and interruption/resume
 from __future__ import annotations
 
 import collections
+import concurrent.futures
 import contextlib
 import dataclasses
 import functools
@@ -382,6 +383,23 @@ def default_workers() -> int:
         return os.cpu_count() or 1
 
 
+def _done_within(future, timeout: float) -> bool:
+    """Whether ``future`` (a thread pool's or a Dask one) is done, waiting up to ``timeout`` s.
+
+    A Dask future is polled rather than asked for ``result(timeout=...)``: distributed's
+    ``sync`` can then lose the result of a task that completes as the timeout fires and
+    raise ``UnboundLocalError`` (seen on a loaded 2-core machine with distributed 2026.8 and Python 3.11).
+    """
+    if isinstance(future, concurrent.futures.Future):
+        return bool(concurrent.futures.wait([future], timeout=timeout).done)
+    deadline = time.monotonic() + timeout
+    while not future.done():
+        if time.monotonic() >= deadline:
+            return False
+        time.sleep(0.005)
+    return True
+
+
 def in_order(submit: Callable, tasks: Iterable[Task], window: int, interrupt: Callable[[], None]):
     """Yield ``(task, result)`` in task order, with at most ``window`` tasks in flight,
     calling ``interrupt()`` at least every :data:`POLL` seconds while waiting.
@@ -395,13 +413,10 @@ def in_order(submit: Callable, tasks: Iterable[Task], window: int, interrupt: Ca
             pending.append((task, submit(task)))
         while pending:
             task, future = pending[0]
-            while True:
+            interrupt()
+            while not _done_within(future, POLL):
                 interrupt()
-                try:
-                    result = future.result(timeout=POLL)
-                    break
-                except TimeoutError:
-                    continue
+            result = future.result()
             pending.popleft()
             for nxt in itertools.islice(queue, 1):
                 pending.append((nxt, submit(nxt)))
