@@ -60,6 +60,12 @@ DEVICES = ("cpu", "cuda")
 #: and 1e18 summits would take decades at ~3e8 summits per second.
 MAX_SUMMITS = 1e18
 
+#: Most memory, bytes, that one run's per-realization state may take (its sums, counts and
+#: plans, :func:`state_bytes`): the state is held whole, so a run past it is refused before
+#: anything is planned rather than left to swap (10⁸ realizations at two separations would
+#: need 20 GB). Runs that need more realizations are several runs with other seeds.
+MAX_STATE_BYTES = 2**30
+
 #: Seconds of work before the first checkpoint (later ones follow ``checkpoint_every``).
 FIRST_CHECKPOINT = 10.0
 
@@ -130,6 +136,14 @@ class MonteCarloSpec:
         if self.cycle:
             law.check_branch("retract")
         law.parameters(self.surface, self.material)  # required material fields
+        per_realization = state_bytes(self, 1)
+        if per_realization * self.realizations > MAX_STATE_BYTES:
+            raise ParameterError(
+                f"realizations = {self.realizations} need {per_realization * self.realizations:.3g} "
+                f"bytes of per-realization state at {self.rows()[0].size} rows (allowed: at most "
+                f"{MAX_STATE_BYTES // per_realization} realizations, {MAX_STATE_BYTES / 2**30:g} GiB; "
+                "run several seeds instead)"
+            )
         if self.device not in DEVICES:
             raise ParameterError(f"device = {self.device!r} is not one of {', '.join(DEVICES)}")
 
@@ -230,6 +244,13 @@ class PatchPlan:
 
     def block_size(self, b: int) -> int:
         return min(BLOCK, self.n_above - b * BLOCK)
+
+
+def state_bytes(spec: MonteCarloSpec, realizations: int) -> int:
+    """Bytes of the per-realization state of a run of ``spec`` with ``realizations``: the
+    float64 sums (rows × columns), three int64 counts and a :class:`PatchPlan` (~100 bytes)."""
+    columns = len(sum_columns(spec.law_set))
+    return realizations * (8 * spec.rows()[0].size * columns + 3 * 8 + 100)
 
 
 def _stream(entropy: int, *key: int) -> np.random.Generator:

@@ -139,3 +139,17 @@ def test_a_reader_message_quoting_binary_data_stays_one_short_line():
     message = str(ReaderError("scan.ibw: not readable (" + "\x00\x07\xff" * 40_000 + ")"))
     assert "\n" not in message and "\x00" not in message
     assert len(message) < MAX_MESSAGE + 40 and message.endswith("characters cut)")
+
+
+def test_a_run_whose_state_cannot_fit_is_refused_before_anything_is_planned():
+    from mcsim.engine.montecarlo import MAX_STATE_BYTES, MonteCarloSpec, state_bytes
+
+    inputs = dict(surface=SURFACES["smooth"], material=MATERIALS["silicon"], h=[2.0, 1.0],
+                  area=2e-12, entropy=1)  # fmt: skip
+    per = state_bytes(MonteCarloSpec(**inputs, realizations=1), 1)
+    most = MAX_STATE_BYTES // per
+    assert MonteCarloSpec(**inputs, realizations=most).realizations == most  # the bound fits
+    with pytest.raises(
+        ParameterError, match=rf"^realizations = {most + 1} need .* at most {most} realizations"
+    ):
+        MonteCarloSpec(**inputs, realizations=most + 1)
