@@ -153,18 +153,20 @@ def balancing_h(args, surface, material, environment=None):
     return [float(x) for x in result.h], pressure
 
 
-def integer(low: int):
-    """argparse type: a whole number >= ``low`` written in digits (``1e9`` is refused)."""
+def integer(low: int, high: int | None = None):
+    """argparse type: a whole number >= ``low`` (and <= ``high``) written in digits (``1e9``
+    is refused)."""
+    allowed = f"integer >= {low}" if high is None else f"integer from {low} to {high}"
 
     def parse(text: str) -> int:
         try:
             value = int(text)
         except ValueError:
             raise argparse.ArgumentTypeError(
-                f"{text!r} is not a whole number written in digits (allowed: integer >= {low})"
+                f"{text!r} is not a whole number written in digits (allowed: {allowed})"
             ) from None
-        if value < low:
-            raise argparse.ArgumentTypeError(f"{value} is out of range (allowed: integer >= {low})")
+        if value < low or (high is not None and value > high):
+            raise argparse.ArgumentTypeError(f"{value} is out of range (allowed: {allowed})")
         return value
 
     return parse
@@ -172,6 +174,8 @@ def integer(low: int):
 
 #: A root seed (numpy's SeedSequence takes non-negative integers only) and a count.
 seed_type, count_type = integer(0), integer(1)
+#: Worker threads or processes: more than any machine's cores only slows a run down.
+workers_type = integer(1, 1024)
 
 
 #: The registered law sets, for the help texts (without importing them: ``--help`` stays
@@ -221,7 +225,7 @@ def add_separations_or_loads(p, balance: str) -> None:
 
 def add_parallel(p, workers: str) -> None:
     """``--workers`` (described as ``workers``), ``--scheduler`` and ``--dask``."""
-    p.add_argument("--workers", type=count_type,
+    p.add_argument("--workers", type=workers_type,
                    help=f"{workers} (default: all cores); results do not depend on it")  # fmt: skip
     p.add_argument("--scheduler", metavar="ADDRESS",
                    help="run on an existing Dask cluster, e.g. tcp://host:8786 (needs mcsim[dask])")  # fmt: skip

@@ -10,6 +10,7 @@ from mcsim.cli.display import describe_inputs
 def run(args) -> int:
     import numpy as np
 
+    from mcsim.physics.adhesion import regime_warnings
     from mcsim.store.runfile import read_run, read_state
     from mcsim.store.sweepfile import is_sweep_file, read_sweep
 
@@ -41,6 +42,8 @@ def run(args) -> int:
         print(f"input         {line}")
     print(f"law set       {spec.law}" + (f" (cycle: approach, then retraction from h = {spec.turn:g})"
                                           if spec.cycle else ""))  # fmt: skip
+    for warning in regime_warnings(spec.surface, spec.material, spec.law):
+        print(f"regime        warning: {warning}")
     print(f"device        {spec.device}")
     print(
         f"patch         A = {spec.area * 1e12:.6g} um^2, N ~ {spec.count}, E[N] = {spec.expected_summits:.6g}"

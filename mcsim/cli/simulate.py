@@ -42,7 +42,7 @@ def run(args) -> int:
     from mcsim.engine.interrupt import Interrupted, interruptible
 
     with interruptible(), log_notes(args.quiet):  # SIGINT/SIGTERM owned before heavy imports
-        from mcsim.store.files import checkpoint_path
+        from mcsim.store.files import checkpoint_path, file_path
         from mcsim.studies.simulation import cli_command, simulate
 
         surface, material = inputs_of(args)
@@ -59,9 +59,9 @@ def run(args) -> int:
         extra = {} if pressure is None else {"load_control": json.dumps(
             {"pressure": pressure.tolist(), "unit": "Pa"})}  # fmt: skip
         law, notes = resolve_law(args, surface, material)
-        if args.law == "auto" and not args.quiet:
-            print_lines(notes[:1])  # the choice; regime warnings are the adhesion commands'
-        out = Path(args.out) if args.out else _default_run_path(surface)
+        if not args.quiet:
+            print_lines(notes)  # the choice of --law auto, and the regime warnings (as analytic)
+        out = file_path(args.out, "--out") if args.out is not None else _default_run_path(surface)
         show_progress = not args.quiet and sys.stderr.isatty()
         before = file_state(out)
         t0 = time.perf_counter()

@@ -24,6 +24,7 @@ chunk size, number of workers, backend (threads or Dask) and interruption/resume
 from __future__ import annotations
 
 import collections
+import concurrent.futures
 import contextlib
 import dataclasses
 import functools
@@ -58,6 +59,12 @@ DEVICES = ("cpu", "cuda")
 #: Most expected summits per patch, E[N] = ηA: NumPy's Poisson sampler stops near 9.2e18,
 #: and 1e18 summits would take decades at ~3e8 summits per second.
 MAX_SUMMITS = 1e18
+
+#: Most memory, bytes, that one run's per-realization state may take (its sums, counts and
+#: plans, :func:`state_bytes`): the state is held whole, so a run past it is refused before
+#: anything is planned rather than left to swap (10⁸ realizations at two separations would
+#: need 20 GB). Runs that need more realizations are several runs with other seeds.
+MAX_STATE_BYTES = 2**30
 
 #: Seconds of work before the first checkpoint (later ones follow ``checkpoint_every``).
 FIRST_CHECKPOINT = 10.0
@@ -129,6 +136,14 @@ class MonteCarloSpec:
         if self.cycle:
             law.check_branch("retract")
         law.parameters(self.surface, self.material)  # required material fields
+        per_realization = state_bytes(self, 1)
+        if per_realization * self.realizations > MAX_STATE_BYTES:
+            raise ParameterError(
+                f"realizations = {self.realizations} need {per_realization * self.realizations:.3g} "
+                f"bytes of per-realization state at {self.rows()[0].size} rows (allowed: at most "
+                f"{MAX_STATE_BYTES // per_realization} realizations, {MAX_STATE_BYTES / 2**30:g} GiB; "
+                "run several seeds instead)"
+            )
         if self.device not in DEVICES:
             raise ParameterError(f"device = {self.device!r} is not one of {', '.join(DEVICES)}")
 
@@ -229,6 +244,13 @@ class PatchPlan:
 
     def block_size(self, b: int) -> int:
         return min(BLOCK, self.n_above - b * BLOCK)
+
+
+def state_bytes(spec: MonteCarloSpec, realizations: int) -> int:
+    """Bytes of the per-realization state of a run of ``spec`` with ``realizations``: the
+    float64 sums (rows × columns), three int64 counts and a :class:`PatchPlan` (~100 bytes)."""
+    columns = len(sum_columns(spec.law_set))
+    return realizations * (8 * spec.rows()[0].size * columns + 3 * 8 + 100)
 
 
 def _stream(entropy: int, *key: int) -> np.random.Generator:
@@ -382,6 +404,23 @@ def default_workers() -> int:
         return os.cpu_count() or 1
 
 
+def _done_within(future, timeout: float) -> bool:
+    """Whether ``future`` (a thread pool's or a Dask one) is done, waiting up to ``timeout`` s.
+
+    A Dask future is polled rather than asked for ``result(timeout=...)``: distributed's
+    ``sync`` can then lose the result of a task that completes as the timeout fires and
+    raise ``UnboundLocalError`` (seen on a loaded 2-core machine with distributed 2026.8 and Python 3.11).
+    """
+    if isinstance(future, concurrent.futures.Future):
+        return bool(concurrent.futures.wait([future], timeout=timeout).done)
+    deadline = time.monotonic() + timeout
+    while not future.done():
+        if time.monotonic() >= deadline:
+            return False
+        time.sleep(0.005)
+    return True
+
+
 def in_order(submit: Callable, tasks: Iterable[Task], window: int, interrupt: Callable[[], None]):
     """Yield ``(task, result)`` in task order, with at most ``window`` tasks in flight,
     calling ``interrupt()`` at least every :data:`POLL` seconds while waiting.
@@ -395,13 +434,10 @@ def in_order(submit: Callable, tasks: Iterable[Task], window: int, interrupt: Ca
             pending.append((task, submit(task)))
         while pending:
             task, future = pending[0]
-            while True:
+            interrupt()
+            while not _done_within(future, POLL):
                 interrupt()
-                try:
-                    result = future.result(timeout=POLL)
-                    break
-                except TimeoutError:
-                    continue
+            result = future.result()
             pending.popleft()
             for nxt in itertools.islice(queue, 1):
                 pending.append((nxt, submit(nxt)))

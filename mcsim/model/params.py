@@ -54,12 +54,16 @@ def check_range(
     A string is read as a quantity with a unit (``"160 GPa"``, ``"1.4nm"``; a bare number
     is SI), as on the command line and in TOML files (:func:`mcsim.model.units.parse_quantity`).
     """
+    if isinstance(value, bool | np.bool_):  # a flag, not a number: float(True) would be 1
+        raise ParameterError(f"{name} must be a number, got {value!r}")
     if isinstance(value, str):
         value = parse_quantity(value, _DIMENSION[unit], name)
     try:
         value = float(value)
     except (TypeError, ValueError):
         raise ParameterError(f"{name} must be a number, got {value!r}") from None
+    except OverflowError:  # an integer beyond the largest float
+        value = math.inf if value > 0 else -math.inf
     if low is not None and high is not None:
         allowed = f"{'(' if low_open else '['}{low:g}, {high:g}{')' if high_open else ']'}"
     elif low is not None:
@@ -118,6 +122,21 @@ def check_separations(h) -> np.ndarray:
     return values
 
 
+def _both(name: str, value, first: str, one, second: str, two) -> tuple:
+    """``(one, two)``, or ``(value, value)`` where the shared ``name`` (``E``, ``nu``: two
+    identical solids) is given instead; exactly one way, else a ParameterError."""
+    if value is None:
+        if one is None or two is None:
+            missing = first if one is None else second
+            raise ParameterError(f"{missing}: missing (give {first} and {second}, or {name} "
+                                 "for two identical solids)")  # fmt: skip
+        return one, two
+    if one is not None or two is not None:
+        raise ParameterError(f"{name}: give either {name} (both solids) or {first} and "
+                             f"{second}, not both")  # fmt: skip
+    return value, value
+
+
 @dataclass(frozen=True)
 class Material:
     """Elastic and adhesive properties of a pair of contacting solids.
@@ -132,6 +151,9 @@ class Material:
         and G must stay <= 1e14 Pa (a huge E2 models a rigid counterface).
     nu1, nu2 : float
         Poisson's ratios, in (-1, 0.5).
+    E, nu : float or str, keyword only
+        Both solids at once (two identical solids, as ``E`` and ``nu`` in a TOML
+        file): instead of ``E1`` and ``E2``, or ``nu1`` and ``nu2``.
     gamma : float
         Work of adhesion w used by Eqs. 4 and 6, J/m², in [0, 1e3]: give it as ``w`` (keyword)
         or as ``gamma``, the paper's symbol, which is the field's name (``Material.w`` reads
@@ -162,8 +184,10 @@ class Material:
     z0: float | None = None
     tau: float | None = None
 
-    def __init__(self, E1, E2, nu1, nu2, gamma=None, H=None, name="", z0=None, tau=None, *,
-                 w=None) -> None:  # fmt: skip
+    def __init__(self, E1=None, E2=None, nu1=None, nu2=None, gamma=None, H=None, name="",
+                 z0=None, tau=None, *, w=None, E=None, nu=None) -> None:  # fmt: skip
+        E1, E2 = _both("E", E, "E1", E1, "E2", E2)
+        nu1, nu2 = _both("nu", nu, "nu1", nu1, "nu2", nu2)
         if (gamma is None) == (w is None):
             given = "neither" if w is None else f"both (w = {w!r}, gamma = {gamma!r})"
             raise ParameterError(f"w: give the work of adhesion once, as w or its alias gamma "

@@ -5,6 +5,7 @@ surfaces are Table 1's first half; combining them with
 :func:`mcsim.model.params.combine_surfaces` reproduces the combined σ and R (η is given).
 """
 
+from mcsim.model.errors import ParameterError
 from mcsim.model.params import Material, Surface
 
 #: Silicon on silicon as in the paper (E, ν, w = γ, H). The paper gives no equilibrium
@@ -43,3 +44,24 @@ PAPER_PAIRS = {
     "smooth": ("polished-polysilicon", "polished-polysilicon"),
     "super-smooth": ("single-crystal-silicon", "single-crystal-silicon"),
 }
+
+
+def as_surface(value: Surface | str, field: str = "surface") -> Surface:
+    """``value`` if it is a :class:`Surface`, the preset of that name if it is one
+    (``"smooth"``), else a ParameterError naming ``field`` and the presets."""
+    return _as(value, Surface, SURFACES, field)
+
+
+def as_material(value: Material | str, field: str = "material") -> Material:
+    """``value`` if it is a :class:`Material`, the preset of that name (``"silicon"``), else
+    a ParameterError naming ``field``."""
+    return _as(value, Material, MATERIALS, field)
+
+
+def _as(value, kind: type, presets: dict, field: str):
+    if isinstance(value, kind):
+        return value
+    if isinstance(value, str) and value in presets:
+        return presets[value]
+    raise ParameterError(f"{field} must be a {kind.__name__} or a preset name "
+                         f"({', '.join(presets)}), got {value!r}")  # fmt: skip

@@ -7,6 +7,7 @@ this module sits at the edge (TOML files, CLI options).
 import difflib
 import math
 import re
+import sys
 
 from mcsim.model.errors import UnitError
 
@@ -201,6 +202,9 @@ def parse_quantity(value: object, dimension: str, field: str) -> float:
             f"{field}: expected a number (SI) or a quantity string, got {value!r}; "
             f"units for {_allowed(dimension)}"
         )
+    if isinstance(value, int) and abs(value) > sys.float_info.max:  # float() would overflow
+        raise UnitError(f"{field}: an integer of {len(str(abs(value)))} digits is too large "
+                        "(no finite float holds it)")  # fmt: skip
     if isinstance(value, int | float):
         return _finite(float(value), value, field)
     m = _NUMBER.fullmatch(value.strip())

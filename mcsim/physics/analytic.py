@@ -41,6 +41,7 @@ import numpy as np
 
 from mcsim.model.errors import ParameterError
 from mcsim.model.params import Material, Surface, check_range, check_separations
+from mcsim.model.presets import as_material, as_surface
 from mcsim.physics.environment import Environment, as_environment, environment_curves
 from mcsim.physics.gapheights import gap_heights
 from mcsim.physics.laws import Edges, LawSet, get_law_set
@@ -237,10 +238,10 @@ def gw_curves(
 
     Parameters
     ----------
-    surface : Surface
-        Summit population (σ, R, η and the height distribution).
-    material : Material
-        Material pair (K, G, γ; z0, τ, H where the law set needs them).
+    surface : Surface or str
+        Summit population (σ, R, η and the height distribution), or a preset's name.
+    material : Material or str
+        Material pair (K, G, γ; z0, τ, H where the law set needs them), or a preset's name.
     h : array_like
         Dimensionless separations d/σ: finite, |h| <= 1e6
         (:data:`mcsim.model.params.MAX_ABS_H`); others raise a ParameterError.
@@ -270,6 +271,7 @@ def gw_curves(
         Unknown law set or branch, retraction of a law set without one, a ``turn``
         above the sweep or on approach, a material field the law set needs.
     """
+    surface, material = as_surface(surface), as_material(material)
     environment = as_environment(environment)
     laws = get_law_set(law)
     h = check_separations(h)

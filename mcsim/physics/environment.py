@@ -48,6 +48,11 @@ GAS_CONSTANT = 8.314462618
 #: the surface energy of many solids (Intermolecular and Surface Forces, 3rd ed., §13.5).
 DEFAULT_CUTOFF = 0.165e-9
 
+#: Largest Hamaker constant accepted, J: real ones lie between ~1e-21 and ~5e-19 J (metals
+#: across vacuum; Israelachvili, Intermolecular and Surface Forces, ch. 13); 1e-16 J is 200× the largest, and keeps every
+#: attraction a finite float.
+MAX_HAMAKER = 1e-16
+
 # Composite Gauss–Legendre rule on [0, 1] for the Gaussian van der Waals moments:
 # _PANELS equal panels of _NODES_PER_PANEL nodes in the mapped variable ξ = τ + ln τ.
 _PANELS = 12
@@ -74,7 +79,7 @@ class Environment:
     Parameters
     ----------
     hamaker : float or None
-        Hamaker constant A across the medium, J, >= 0; None (default) or 0: no van der
+        Hamaker constant A across the medium, J, in [0, 1e-16]; None (default) or 0: no van der
         Waals term. Silicon across air ≈ 1.6–2.0e-19 J (Israelachvili's tables).
     cutoff : float
         Cutoff gap D0, m, > 0: gaps below it are contact. Default
@@ -108,7 +113,8 @@ class Environment:
     def __post_init__(self) -> None:
         set_ = object.__setattr__
         if self.hamaker is not None:
-            set_(self, "hamaker", check_range("hamaker", self.hamaker, "J", low=0, low_open=False))
+            set_(self, "hamaker", check_range("hamaker", self.hamaker, "J", low=0, high=MAX_HAMAKER,
+                                              low_open=False, high_open=False))  # fmt: skip
         set_(self, "cutoff", check_range("cutoff", self.cutoff, "m", low=0))
         set_(self, "rh", check_range("rh", self.rh, "1", low=0, high=1, low_open=False))
         angle = check_range("contact_angle", self.contact_angle, "rad", low=0, high=math.pi,

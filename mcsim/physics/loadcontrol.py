@@ -33,6 +33,7 @@ from scipy import optimize
 
 from mcsim.model.errors import ParameterError
 from mcsim.model.params import MAX_ABS_H, Material, Surface
+from mcsim.model.presets import as_material, as_surface
 from mcsim.model.units import parse_values
 from mcsim.physics.adhesion import _bottom, _top
 from mcsim.physics.analytic import AnalyticCurves, gw_curves
@@ -160,8 +161,8 @@ def load_control(
 
     Parameters
     ----------
-    surface, material : Surface, Material
-        The inputs of :func:`mcsim.gw_curves`.
+    surface, material : Surface or str, Material or str
+        The inputs of :func:`mcsim.gw_curves` (objects or preset names).
     pressure : array_like or str
         Nominal pressures p, Pa (> 0 compressive); finite. Or a string as on the command
         line: ``"1kPa,1MPa"`` or ``"1kPa:10MPa:31:log"`` (:func:`mcsim.model.units.parse_values`). A tensile (negative) or zero
@@ -183,6 +184,7 @@ def load_control(
         Non-finite or empty pressures, p <= 0 without adhesion, or a pressure that
         no separation with |h| <= 1e6 reaches.
     """
+    surface, material = as_surface(surface), as_material(material)
     environment = as_environment(environment)
     laws = get_law_set(law)
     quantity = balanced_quantity(laws, environment is not None)

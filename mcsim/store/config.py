@@ -60,6 +60,7 @@ Unknown keys, missing keys, unknown units and out-of-range values raise a
 from __future__ import annotations
 
 import difflib
+import sys
 import tomllib
 from pathlib import Path
 from typing import Any
@@ -213,6 +214,8 @@ def _heights_from_value(
     edges = value["edges"]
     if not (isinstance(edges, list) and all(_is_number(e) for e in edges)):
         raise ParameterError(f"{where}: heights: edges must be a list of numbers, got {edges!r}")
+    if any(isinstance(e, int) and abs(e) > sys.float_info.max for e in edges):
+        raise ParameterError(f"{where}: heights: histogram edges and weights must be finite")
     try:
         return Empirical.from_histogram(
             [factor * e for e in edges],

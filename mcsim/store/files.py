@@ -22,6 +22,17 @@ import numpy as np
 from mcsim.model.errors import RunFileError
 
 
+def file_path(value, field: str = "path") -> Path:
+    """``value`` as a Path: a non-empty ``str`` or path-like without NUL bytes, else a
+    RunFileError naming ``field`` (an API caller's ``read_run(5)`` or ``out=""``)."""
+    if not isinstance(value, str | os.PathLike):
+        raise RunFileError(f"{field} must be a file path (str or pathlib.Path), got {value!r}")
+    text = os.fspath(value)
+    if not isinstance(text, str) or not text or "\0" in text:
+        raise RunFileError(f"{field} = {value!r} is not a valid file path")
+    return Path(text)
+
+
 def checkpoint_path(path: str | Path) -> Path:
     """Where a run writing ``path`` keeps its checkpoints: ``<stem>.partial<suffix>`` beside it."""
     path = Path(path)
@@ -36,7 +47,7 @@ def check_output_path(path: str | Path, overwrite: bool = False, resume: bool = 
     the checkpoint, or checks that the file holds the run asked for (see
     :func:`first_difference`), in which case there is nothing to do.
     """
-    path = Path(path)
+    path = file_path(path, "out")
     folder = path.parent
     if not folder.is_dir():
         raise RunFileError(f"{path}: output folder {folder} does not exist")

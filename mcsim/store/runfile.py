@@ -100,7 +100,7 @@ from mcsim.model.errors import MCSimError, RunFileError
 from mcsim.model.params import Material, Surface
 from mcsim.store import schema
 from mcsim.store.envgroup import read_environment, write_environment
-from mcsim.store.files import atomic_write, checksum
+from mcsim.store.files import atomic_write, checksum, file_path
 from mcsim.store.h5layout import (
     AXES,
     STAT_WORDS,
@@ -514,7 +514,7 @@ def _damaged(path: Path):
 
 def read_state(path: str | Path) -> tuple[EnsembleSums, dict]:
     """The sums and progress of a run file (complete or not), for resuming, and its attributes."""
-    path = Path(path)
+    path = file_path(path)
     with _open(path) as f, _damaged(path):
         _verified(path, f)
         return _read_state(path, f)
@@ -528,7 +528,7 @@ def read_run(path: str | Path, *, allow_incomplete: bool = False):
     unfinished run is summarised over its completed realizations (``run.complete``
     is then False).
     """
-    path = Path(path)
+    path = file_path(path)
     with _open(path) as f, _damaged(path):
         _verified(path, f)
         state, attrs = _read_state(path, f)

@@ -533,7 +533,7 @@ def is_sweep_file(path: str | Path) -> bool:
 
 def read_sweep(path: str | Path) -> Sweep:
     """Open a sweep file as a :class:`Sweep` (no xarray needed); refuses a damaged file."""
-    path = Path(path)
+    path = files.file_path(path)
     raw = read_file(path)
     grid = tuple(json.loads(raw["attrs"]["varied"]))  # checked by read_file
     coords = {d: raw["data"].pop(d) for d in (*grid, "h")}

@@ -24,6 +24,7 @@ is the caller's choice: mcsim uses it as the summit-height distribution.
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
 import numpy as np
@@ -69,6 +70,8 @@ def _validate_histogram(edges, weights) -> tuple[np.ndarray, np.ndarray]:
         weights = np.asarray(weights, dtype=float)
     except (TypeError, ValueError):
         raise ParameterError("histogram edges and weights must be numbers") from None
+    except OverflowError:  # an integer beyond the largest float
+        raise ParameterError("histogram edges and weights must be finite") from None
     if edges.ndim != 1 or weights.ndim != 1:
         raise ParameterError("histogram edges and weights must be one-dimensional")
     if weights.size < 2:
@@ -202,8 +205,12 @@ class Empirical:
         edges = edges[first : last + 2]
         width = np.diff(edges)
         centre = (edges[:-1] + edges[1:]) / 2
-        mean = float(np.sum(p * centre))
-        sigma = float(np.sqrt(np.sum(p * ((centre - mean) ** 2 + width**2 / 12))))
+        with np.errstate(over="ignore", invalid="ignore"):
+            mean = float(np.sum(p * centre))
+            sigma = float(np.sqrt(np.sum(p * ((centre - mean) ** 2 + width**2 / 12))))
+        if not math.isfinite(sigma):
+            raise ParameterError("histogram edges span too wide a range: their spread "
+                                 "overflows a float")  # fmt: skip
         s_edges = (edges - mean) / sigma
         return cls(s_edges, p / np.diff(s_edges), sigma=sigma, mean=mean, source=source)
 

@@ -81,7 +81,7 @@ def test_a_file_refuses_a_bare_hamaker_and_unknown_keys(capsys, tmp_path):
     [
         ("--rh", "1", r"--rh: rh = 1.0 is out of range \(allowed: \[0, 1\)\)"),
         ("--rh", "-0.1", r"--rh: rh = -0.1 is out of range \(allowed: \[0, 1\)\)"),
-        ("--hamaker", "-1e-20", r"--hamaker: hamaker = -1e-20 J is out of range \(allowed: >= 0 J\)"),
+        ("--hamaker", "-1e-20", r"--hamaker: hamaker = -1e-20 J is out of range \(allowed: \[0, 1e-16\] J\)"),
         ("--cutoff", "0 nm", r"--cutoff: cutoff = 0.0 m is out of range \(allowed: > 0 m\)"),
         ("--contact-angle", "180", r"--contact-angle: contact_angle = 180.0 deg is out of range \(allowed: \[0, 180\) deg\)"),
         ("--contact-angle", "-5", r"--contact-angle: contact_angle = -5.0 deg is out of range"),

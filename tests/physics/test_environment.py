@@ -329,7 +329,7 @@ def test_curves_measure_the_gap_from_the_summit_plane():
     [
         ("rh", 1.0, r"rh = 1\.0 is out of range \(allowed: \[0, 1\)\)"),
         ("rh", -0.1, r"rh = -0\.1 is out of range"),
-        ("hamaker", -1e-20, r"hamaker = -1e-20 J is out of range \(allowed: >= 0 J\)"),
+        ("hamaker", -1e-20, r"hamaker = -1e-20 J is out of range \(allowed: \[0, 1e-16\] J\)"),
         ("cutoff", 0.0, r"cutoff = 0\.0 m is out of range \(allowed: > 0 m\)"),
         (
             "contact_angle",

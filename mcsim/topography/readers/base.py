@@ -28,15 +28,22 @@ MAX_PIXELS = 2**28
 class ReaderError(MCSimError):
     """A file cannot be read as a height map or a histogram; the message names the file.
 
-    The message is kept on one line: line breaks (from a file name or from text read
-    out of the file) are shown escaped, e.g. ``\\r``.
+    The message is kept on one short line: line breaks and other control characters (from
+    a file name or from text read out of the file) are shown escaped, e.g. ``\\r``, and a
+    message longer than :data:`MAX_MESSAGE` characters (a parser quoting binary data) is
+    cut, saying how much.
     """
 
     def __init__(self, message: str) -> None:
-        super().__init__(_LINE_BREAK.sub(lambda m: repr(m.group())[1:-1], str(message)))
+        text = _CONTROL.sub(lambda m: repr(m.group())[1:-1], str(message))
+        if len(text) > MAX_MESSAGE:
+            text = f"{text[:MAX_MESSAGE]}... ({len(text) - MAX_MESSAGE} characters cut)"
+        super().__init__(text)
 
 
-_LINE_BREAK = re.compile("[\n\r\v\f\x1c\x1d\x1e\x85\u2028\u2029]")
+#: Longest reader message, in characters: a name and a reason fit, a quoted file does not.
+MAX_MESSAGE = 500
+_CONTROL = re.compile("[\x00-\x1f\x7f-\x9f\u2028\u2029]")
 
 
 @dataclass(frozen=True)
