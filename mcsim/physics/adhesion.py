@@ -6,7 +6,7 @@ From the analytic GW curves of a contact law set (:func:`mcsim.gw_curves`) on ap
 and on retraction after a closest approach h_turn:
 
 * **pull-off force**: the most tensile net load on retraction, min over h ≥ h_turn
-  of the load, located by a bounded minimisation (to 1e-6 in h) around the lowest
+  of the load, located by a bounded minimisation (to 1e-7 in h, :data:`H_TOLERANCE`) around the lowest
   point of a grid; reported as a magnitude, force/(A_n K) and as a pressure (Pa);
 * **work of separation**: ∫ max(−load, 0) dd on retraction from d_turn, J/m² of
   nominal area (d = σh, force per area = load·K);

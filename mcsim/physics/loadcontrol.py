@@ -5,7 +5,7 @@ See docs/physics.md, section 'Load control'.
 Under load control the surfaces sit where the analytic approach load equals the
 applied one: p = load·K, with ``load`` = force/(A_n K) for the contact law sets and
 the paper's external force P̄ = P/(A_n K) (Eq. 3) for the seed
-(:mod:`mcsim.physics.analytic`). Each separation is root-solved by Brent's method to 1e-9 in
+(:mod:`mcsim.physics.analytic`). Each separation is root-solved by Brent's method to 1e-12 in
 h = d/σ (bracketed on a grid of the approach curve).
 
 Adhesion makes the approach load non-monotone in h: tensile as summits jump in, then
