@@ -110,7 +110,9 @@ def main() -> None:
     for i, t in enumerate(theta):
         cells = " | ".join(f"{mc[i, j]:.6g} ({ref[i, j]:.6g})" for j in range(len(COLUMNS)))
         ft = t ** (2 / 3) / (0.75 * math.pi ** (2 / 3))
-        lines.append(f"| {t:.4g} | {ft:.4g} | {sigma[i] * 1e9:.4g} | {cells} | {rel[i].max():.1e} |")
+        lines.append(
+            f"| {t:.4g} | {ft:.4g} | {sigma[i] * 1e9:.4g} | {cells} | {rel[i].max():.1e} |"
+        )
     checks = Checks()
     excess = np.abs(mc - ref) / (RTOL * np.abs(ref) + ATOL)
     checks.at_most(f"max |mcsim - theory|/({RTOL:g}|theory| + {ATOL:g}), normalised pull-off, "

@@ -27,6 +27,7 @@ point of P(a), at a³ = 9πwR²/(8E*) > a_c³, so the fixed-grip curve passes th
 
 from __future__ import annotations
 
+import itertools
 import math
 from dataclasses import dataclass
 
@@ -114,9 +115,10 @@ class JKRSurface:
         cuts += [self.radius(k * s - d) for k in (-3, -1, 0, 1, 3) if k * s > z_lo]
         cuts.append(self.radius(TOP * s - d))
         total = sum(
-            integrate.quad(integrand, lo, hi, epsabs=EPSABS * self.p_c * s, epsrel=EPSREL,
-                           limit=200)[0]  # fmt: skip
-            for lo, hi in zip(cuts, cuts[1:])
+            integrate.quad(
+                integrand, lo, hi, epsabs=EPSABS * self.p_c * s, epsrel=EPSREL, limit=200
+            )[0]
+            for lo, hi in itertools.pairwise(cuts)
         )
         return norm * total
 
@@ -160,3 +162,32 @@ class JKRSurface:
                 return optimize.brentq(self.load, x, previous[0], xtol=1e-13 * self.sigma)
             previous = (x, value)
         return None
+
+    def works(self, turn: float) -> tuple[float, float]:
+        """Work of separation ∫ max(−p_retract, 0) dd and hysteresis ∫ (p_approach −
+        p_retract) dd from ``turn`` (m) to where the last asperity lets go, J/m².
+
+        Adaptive quadrature over d, split where the retraction load may kink
+        (d = turn − δ_c) and where it changes sign (found on a grid of 80, then by Brent).
+        """
+        end = TOP * self.sigma - self.delta_c
+        kink = turn - self.delta_c
+        grid = [turn + (end - turn) * k / 80 for k in range(81)]
+        values = [self.load(x, turn) for x in grid]
+        cuts = {turn, end, *(x for x in (kink,) if turn < x < end)}
+        for (x0, v0), (x1, v1) in zip(zip(grid, values), zip(grid[1:], values[1:])):
+            if v0 * v1 < 0:
+                cuts.add(optimize.brentq(lambda x: self.load(x, turn), x0, x1,
+                                         xtol=1e-13 * self.sigma))  # fmt: skip
+        cuts = sorted(cuts)
+        scale = self.eta * self.p_c * self.sigma  # J/m²: the size of both integrals
+
+        def integral(f) -> float:
+            return sum(
+                integrate.quad(f, lo, hi, epsabs=EPSABS * scale, epsrel=1e-10, limit=200)[0]
+                for lo, hi in itertools.pairwise(cuts)
+            )
+
+        work = integral(lambda x: max(-self.load(x, turn), 0.0))
+        hysteresis = integral(lambda x: self.load(x) - self.load(x, turn))
+        return work, hysteresis

@@ -99,7 +99,13 @@ class Checks:
         """The criteria's lines and a last line counting the failures."""
         judged = sum(not line.startswith("INFO") for line in self.lines)
         last = f"criteria: {judged - self.failed} of {judged} PASS"
-        return ["## Criteria", "", *self.lines, "", last + (f", {self.failed} FAIL" if self.failed else "")]
+        return [
+            "## Criteria",
+            "",
+            *self.lines,
+            "",
+            last + (f", {self.failed} FAIL" if self.failed else ""),
+        ]
 
     def exit(self) -> None:
         """Exit with status 1 if any criterion failed, else 0."""
