@@ -56,7 +56,7 @@ def main() -> None:
     warnings.simplefilter("ignore")
     material = MATERIALS["silicon"]
     checks = Checks()
-    lines = ["| sigma nm | preload MPa | contacting | F_r uN | p_MC [95 %] | p_model | z |",
+    lines = ["| sigma nm | preload | contacting | F_r uN | p_MC [95 %] | p_model | z |",
              "|---|---|---|---|---|---|---|"]  # fmt: skip
     cases = [(*case[:3], 100, case[4]) for case in CASES[:2]] if args.quick else CASES
     for sigma, area, preload, pads, forces in cases:
@@ -81,12 +81,12 @@ def main() -> None:
             lo, hi = clopper_pearson(k, pads)
             p = p_stick_model(spec, fr, turn=turn, h_pull_off=h_off, preload=preload)
             z_score = (k / pads - p) / math.sqrt(max(p * (1 - p), 1e-12) / pads)
-            shown = "none" if preload is None else f"{preload / 1e6:g}"
+            shown = "none" if preload is None else f"{preload / 1e6:g} MPa"
             lines.append(f"| {sigma * 1e9:.2f} | {shown} | {contacting:.0f} | {fr * 1e6:.0f} | "
                          f"{k / pads:.3f} [{lo:.3f}, {hi:.3f}] | {p:.3g} | {z_score:+.1f} |")  # fmt: skip
             worst = max(worst, abs(z_score))
         if contacting >= MODEL_FROM:
-            checks.at_most(f"sigma {sigma * 1e9:.2f} nm, preload {shown} MPa, {contacting:.0f} "
+            checks.at_most(f"sigma {sigma * 1e9:.2f} nm, preload {shown}, {contacting:.0f} "
                            f"contacting, {pads} pads: max |z| over {len(forces)} forces",
                            worst, Z_MAX)  # fmt: skip
     lines += ["", "z = (p_MC - p_model)/sqrt(p_model (1 - p_model)/pads); cases with fewer than "
