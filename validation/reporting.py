@@ -72,28 +72,31 @@ class Checks:
         self.failed = 0
         self.timing_judged = timing_judged
 
-    def _add(self, ok: bool, text: str, timing: bool) -> bool:
+    def judge(self, ok: bool, text: str, timing: bool = False) -> str:
+        """Record one criterion, ``text`` saying what was measured against what bound;
+        returns its line, ``"PASS: text"``, ``"FAIL: text"`` or (an unjudged timing) ``"INFO ..."``."""
         if timing and not self.timing_judged:
             verdict = "INFO (timing, not judged with --quick)"
         else:
             verdict = "PASS" if ok else "FAIL"
             self.failed += not ok
-        self.lines.append(f"{verdict}: {text}")
-        return ok
+        line = f"{verdict}: {text}"
+        self.lines.append(line)
+        return line
 
-    def at_most(self, name: str, value: float, bound: float, fmt=".3g", timing=False) -> bool:
+    def at_most(self, name: str, value: float, bound: float, fmt=".3g", timing=False) -> None:
         """PASS if ``value <= bound`` (NaN fails)."""
-        return self._add(bool(value <= bound), f"{name}: {value:{fmt}} (bound <= {bound:{fmt}})",
-                         timing)  # fmt: skip
+        text = f"{name}: {value:{fmt}} (bound <= {bound:{fmt}})"
+        self.judge(bool(value <= bound), text, timing)
 
-    def at_least(self, name: str, value: float, bound: float, fmt=".3g", timing=False) -> bool:
+    def at_least(self, name: str, value: float, bound: float, fmt=".3g", timing=False) -> None:
         """PASS if ``value >= bound`` (NaN fails)."""
-        return self._add(bool(value >= bound), f"{name}: {value:{fmt}} (bound >= {bound:{fmt}})",
-                         timing)  # fmt: skip
+        text = f"{name}: {value:{fmt}} (bound >= {bound:{fmt}})"
+        self.judge(bool(value >= bound), text, timing)
 
-    def holds(self, name: str, ok: bool, measured: str) -> bool:
+    def holds(self, name: str, ok: bool, measured: str) -> None:
         """PASS if ``ok``; ``measured`` says what was seen."""
-        return self._add(bool(ok), f"{name}: {measured}", False)
+        self.judge(bool(ok), f"{name}: {measured}")
 
     def summary(self) -> list[str]:
         """The criteria's lines and a last line counting the failures."""
