@@ -6,7 +6,7 @@ V_m 1.80e-5 m³/mol, T 298.15 K), θ = 0. Rq and the summit offset y_s of each s
 Nayak/McCool estimates from σ, R, η (rough at the seed's α of 2.5–4.9). The work of
 separation is taken from the mean summit plane at contact, d = 0, i.e. D_t = y_s.
 
-Published numbers (quoted from the papers' text as reported in PHYSICS.md and issue 22,
+Published numbers (quoted from the papers' text as reported in docs/physics.md and issue 22,
 not re-fitted here): DelRio et al., Nature Materials 4, 629 (2005): dry adhesion of
 polysilicon of a few nm rms is of order µJ/m², dominated by van der Waals forces across
 the non-contacting area; DelRio et al., Appl. Phys. Lett. 90, 163104 (2007): above a
@@ -272,7 +272,7 @@ def main() -> None:
     checks.at_most("largest W_cap (d = 0 and 3 sigma) / (2 gamma_L cos theta)",
                    max(table["w_cap"].max(), resting["w_cap"].max()) / CEILING, 1.0)  # fmt: skip
     published = [
-        "Published (quoted from the papers' text as reported in PHYSICS.md and issue 22, "
+        "Published (quoted from the papers' text as reported in docs/physics.md and issue 22, "
         "not re-fitted): dry adhesion of polysilicon of a few nm rms is of order µJ/m² "
         "(DelRio et al. 2005); humid adhesion jumps above a threshold RH that rises with "
         "roughness, toward 2γ_L cos θ = 144 mJ/m² (DelRio et al. 2007)."

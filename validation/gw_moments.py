@@ -1,6 +1,6 @@
 """Per-summit moments of the seed laws, by an independent quadrature (scipy ``quad``).
 
-Used by the validation scripts to predict the Monte Carlo scatter (PHYSICS.md,
+Used by the validation scripts to predict the Monte Carlo scatter (docs/physics.md,
 "Monte Carlo statistics"). For one summit with standardized height S ~ N(0, 1) at
 separation h = d/σ, the per-summit load, adhesion term and friction are
 x(S) = X_a(σ(S − h)) for S > h and 0 otherwise (Eqs. 2, 4, 6). Then, for a patch of

@@ -13,8 +13,7 @@ load at the separation h* where the mean retraction load is most tensile, whose
 variance for a Poisson count is ηA E[x²] (x the load of one summit), estimated by the
 pooled Σx² of the run (:func:`mcsim.studies.pads.moment_std`); CV_pred = that/(mean pull-off).
 
-Measured (default run, seed 20240611, 300 pads per point, 20 s on an idle machine, 2
-min under load): super-smooth follows the law at every area, CV·√(ηA) = 1.13–1.25 from
+Measured (default run, seed 20240611, 300 pads per point, 110 s on an idle core): super-smooth follows the law at every area, CV·√(ηA) = 1.13–1.25 from
 ηA = 8 to 2600, CV within |z| < 2 of CV_pred. Smooth follows it from ηA ≈ 500
 (CV·√(ηA) = 4.7 at ηA = 510 and 1700); below, the spread still matches the moments from
 ηA ≈ 50 (|z| ≤ 1.04) but the mean pad pull-off per area is inflated (each small pad pulls
@@ -34,7 +33,7 @@ against the analytic mean (z = (mean − analytic)/SE of the mean); smooth at η
 |z(CV)| < 5 (not its mean, inflated there). |z| < 5: a chance exceedance has
 probability 6e-7 per comparison if the prediction holds.
 
-Run: ``python validation/pad_variation.py`` (default ≈ 20 s) or ``--quick`` (80 pads,
+Run: ``python validation/pad_variation.py`` (default ≈ 2 min) or ``--quick`` (80 pads,
 areas 0.3, 3 and 30 µm², only the two surfaces the criteria concern).
 Writes ``pad_variation.png`` and ``pad_variation.txt`` into ``validation/out/``.
 """
