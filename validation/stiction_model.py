@@ -14,7 +14,7 @@ hold (the first two); at |z| < 5 a chance exceedance has probability 6e-7 per co
 The cases below (75 and 13 contacting summits) are printed, not judged: there the model is
 known to fail.
 
-Run: ``python validation/stiction_model.py`` (about a minute on one core; seed 1, the
+Run: ``python validation/stiction_model.py`` (20 s on an idle core, 45 s loaded; seed 1, the
 README's table) or ``--quick`` (the two judged cases, 100 pads each). Writes
 ``stiction_model.txt``.
 """
