@@ -122,17 +122,26 @@ class JKRSurface:
         )
         return norm * total
 
+    def grid(self, start: float, stop: float) -> list[float]:
+        """Separations from ``start`` to ``stop`` (m) in steps of at most 0.05σ and |δ_c|/4
+        (finer than one asperity's tensile range), at most 400 steps."""
+        step = max(min(0.05 * self.sigma, -self.delta_c / 4), abs(stop - start) / 400)
+        n = math.ceil(abs(stop - start) / step)
+        return [start + (stop - start) * k / n for k in range(n + 1)]
+
+    def retraction_grid(self, turn: float) -> list[float]:
+        """:meth:`grid` from ``turn`` to where the last asperity lets go, with the kink
+        d = turn − δ_c, where the lower limit of the retraction integral changes form."""
+        end = TOP * self.sigma - self.delta_c
+        return sorted({*self.grid(turn, end), turn - self.delta_c})
+
     def pull_off(self, turn: float) -> tuple[float, float]:
         """Most tensile retraction load from ``turn`` (m): (−p, Pa, ≥ 0; its separation, m).
 
-        A grid of separations from the turn to where the last asperity lets go (and the
-        kink d = turn − δ_c, where the lower limit of the integral changes form), then a
-        bounded Brent minimisation between the neighbours of the grid's minimum.
+        The smallest load on :meth:`retraction_grid`, then a bounded Brent minimisation
+        between its neighbours.
         """
-        end = TOP * self.sigma - self.delta_c
-        kink = turn - self.delta_c
-        grid = sorted({turn, kink, *(turn + (end - turn) * k / 40 for k in range(41))})
-        grid = [x for x in grid if turn <= x <= end]
+        grid = self.retraction_grid(turn)
         values = [self.load(x, turn) for x in grid]
         i = min(range(len(grid)), key=values.__getitem__)
         if values[i] >= 0:
@@ -148,15 +157,11 @@ class JKRSurface:
         """Separation of zero load on approach, coming from far away (m); None if the
         approach load is never tensile.
 
-        Scanned down from TOP σ to where every asperity is pressed in beyond δ = −2δ_c
-        (there the load is compressive), in steps of at most 0.05σ and |δ_c|/4 (at most
-        400 of them), then solved by Brent's method.
+        Scanned (:meth:`grid`) down from TOP σ to where every asperity is pressed in beyond
+        δ = −2δ_c (there the load is compressive), then solved by Brent's method.
         """
-        top, bottom = TOP * self.sigma, -TOP * self.sigma + 2 * self.delta_c
-        step = max(min(0.05 * self.sigma, -self.delta_c / 4), (top - bottom) / 400)
         previous = None
-        for k in range(math.ceil((top - bottom) / step) + 1):
-            x = top - k * step
+        for x in self.grid(TOP * self.sigma, -TOP * self.sigma + 2 * self.delta_c):
             value = self.load(x)
             if previous is not None and previous[1] < 0 <= value:
                 return optimize.brentq(self.load, x, previous[0], xtol=1e-13 * self.sigma)
@@ -167,14 +172,12 @@ class JKRSurface:
         """Work of separation ∫ max(−p_retract, 0) dd and hysteresis ∫ (p_approach −
         p_retract) dd from ``turn`` (m) to where the last asperity lets go, J/m².
 
-        Adaptive quadrature over d, split where the retraction load may kink
-        (d = turn − δ_c) and where it changes sign (found on a grid of 80, then by Brent).
+        Adaptive quadrature over d, split at the kink d = turn − δ_c and where the
+        retraction load changes sign (on :meth:`retraction_grid`, then by Brent's method).
         """
-        end = TOP * self.sigma - self.delta_c
-        kink = turn - self.delta_c
-        grid = [turn + (end - turn) * k / 80 for k in range(81)]
+        grid = self.retraction_grid(turn)
         values = [self.load(x, turn) for x in grid]
-        cuts = {turn, end, *(x for x in (kink,) if turn < x < end)}
+        cuts = set(grid[:: max(len(grid) // 8, 1)]) | {grid[-1], turn - self.delta_c}
         for (x0, v0), (x1, v1) in zip(zip(grid, values), zip(grid[1:], values[1:])):
             if v0 * v1 < 0:
                 cuts.add(optimize.brentq(lambda x: self.load(x, turn), x0, x1,
