@@ -11,25 +11,75 @@ hysteresis (mJ/m²), the fraction of summits in contact at the turn, the regime
 numbers and the regime flags (Johnson–Greenwood map,
 plasticity index), with what ``--law auto`` picks. Outputs ``adhesion_table.txt``
 (also printed, a Markdown table) and ``adhesion_table.csv``.
+
+Criteria (PASS/FAIL lines, exit status 1 on a FAIL):
+
+* ``jkr``: pull-off, work of separation and hysteresis at the table's turn against Fuller &
+  Tabor's theory integrated independently (``jkr_quadrature.py``, adaptive quadrature over
+  each asperity's contact radius): pull-off within 1e-9 relative (both sides are accurate
+  to ~1e-12), the two works within 1e-7 relative: mcsim integrates them on 64 panels of 8
+  Gauss–Legendre nodes, and its difference from the quadrature (up to 6.2e-8, hysteresis of
+  the intermediate surface at h_turn = 0) falls to 6e-9 with 256 panels and 2e-10 with
+  1024, so it is mcsim's rule that sets the bound; each plus an absolute 1e-12 η(3/2)πwR
+  (times σ for the works) for the rows where both are ~0; and the zero-load rest within
+  1e-9 in h where mcsim finds one (both solved to ≤ 1e-12);
+* ``dmt``: no hysteresis (its load depends on the interference only, the same on approach
+  and retraction): |hysteresis| ≤ 1e-9 × work of separation + 1e-12 η(3/2)πwRσ;
+* ``--law auto`` picks the zone of the Johnson–Greenwood map its λ falls in (DMT < 0.1 <
+  Maugis–Dugdale < 5 < JKR).
+
+``maugis-dugdale`` and ``elastic-plastic`` are tabulated without an independent check here.
 """
 
 from __future__ import annotations
 
 import csv
+import math
 import warnings
 
-from reporting import parser, write_summary
+from jkr_quadrature import JKRSurface
+from reporting import Checks, parser, write_summary
 
 from mcsim import gw_curves
 from mcsim.model.presets import MATERIALS, PAPER_SURFACES, SURFACES
-from mcsim.physics.adhesion import RegimeWarning, adhesion_summary, choose_law, regime_warnings
+from mcsim.physics.adhesion import (
+    RegimeWarning,
+    adhesion_summary,
+    choose_law,
+    maugis_parameter,
+    regime_warnings,
+)
 from mcsim.physics.laws import get_law_set
 
 LAWS = ("jkr", "dmt", "maugis-dugdale", "elastic-plastic")
 FALLBACK_TURN = 0.0
+#: Criteria (module docstring): relative bounds on the jkr pull-off and works, the absolute
+#: bound in units of η(3/2)πwR (times σ for the works), the bound on the rest h.
+RTOL_PULL_OFF, RTOL_WORK, ATOL, REST_TOL = 1e-9, 1e-7, 1e-12, 1e-9
 
 
-def row(surface, material, law: str) -> dict:
+def check_jkr(surface, material, summary, checks: Checks) -> None:
+    """The jkr row against Fuller & Tabor's theory by quadrature at the same turn."""
+    q = JKRSurface.of(surface, material)
+    unit = q.eta * q.p_c
+    turn = summary.turn * q.sigma
+    pull_off = q.pull_off(turn)[0]
+    work, hysteresis = q.works(turn)
+    name = f"{surface.name}, jkr"
+    for what, got, want, rtol, scale in (
+        ("pull-off", summary.pull_off * material.K, pull_off, RTOL_PULL_OFF, unit),
+        ("work of separation", summary.work_of_separation, work, RTOL_WORK, unit * q.sigma),
+        ("hysteresis", summary.hysteresis, hysteresis, RTOL_WORK, unit * q.sigma),
+    ):
+        checks.at_most(f"{name}: |{what} - theory|/({rtol:g}|theory| + {ATOL:g} scale), "
+                       f"theory {want:.6g}", abs(got - want) / (rtol * abs(want) + ATOL * scale), 1.0)  # fmt: skip
+    if summary.turn_from.startswith("zero load"):
+        rest = q.rest()
+        diff = math.nan if rest is None else abs(rest / q.sigma - summary.turn)
+        checks.at_most(f"{name}: |h_rest - theory's|", diff, REST_TOL)
+
+
+def row(surface, material, law: str, checks: Checks) -> dict:
     flags = "; ".join(regime_warnings(surface, material, law)) or "in regime"
     out = {"surface": surface.name, "law": law, "flags": flags}
     if not get_law_set(law).retract:
@@ -41,6 +91,13 @@ def row(surface, material, law: str) -> dict:
         if s.turn_from.startswith("none"):  # no adhesive rest: nothing to pull off at rest
             s = adhesion_summary(surface, material, law, turn=FALLBACK_TURN)
             turn = f"{s.turn:.4g} (no adhesive rest)"
+    if law == "jkr":
+        check_jkr(surface, material, s, checks)
+    if law == "dmt":
+        scale = surface.eta * 1.5 * math.pi * material.gamma * surface.R * surface.sigma
+        checks.at_most(f"{surface.name}, dmt: |hysteresis|/(1e-9 work + {ATOL:g} scale), work "
+                       f"{s.work_of_separation:.4g} J/m^2",
+                       abs(s.hysteresis) / (1e-9 * s.work_of_separation + ATOL * scale), 1.0)  # fmt: skip
     touching = gw_curves(surface, material, [s.turn], law).contact_fraction[0]
     return out | {
         "turn": turn,
@@ -61,7 +118,8 @@ def main() -> None:
     args.out.mkdir(parents=True, exist_ok=True)
     material = MATERIALS["silicon"]
     names = PAPER_SURFACES[2:] if args.quick else PAPER_SURFACES
-    rows = [row(SURFACES[n], material, law) for n in names for law in LAWS]
+    checks = Checks()
+    rows = [row(SURFACES[n], material, law, checks) for n in names for law in LAWS]
     columns = ["surface", "law", "turn", "contact_at_turn", "pull_off", "pull_off_MPa", "h_pull_off", "work_mJ_m2",
                "hysteresis_mJ_m2", "maugis_lambda", "theta", "psi", "flags"]  # fmt: skip
     with open(args.out / "adhesion_table.csv", "w", newline="") as f:
@@ -82,8 +140,15 @@ def main() -> None:
     lines += ["| " + " | ".join(r.get(c, "") for c in columns) + " |" for r in rows]
     lines.append("")
     for n in names:
-        lines.append(f"law auto for {n}: {choose_law(SURFACES[n], material)[1]}")
+        law, why = choose_law(SURFACES[n], material)
+        lines.append(f"law auto for {n}: {why}")
+        lam = maugis_parameter(SURFACES[n], material)
+        zone = "dmt" if lam < 0.1 else "jkr" if lam > 5 else "maugis-dugdale"
+        checks.holds(f"{n}: law auto picks the zone of lambda = {lam:.3g}", law == zone,
+                     f"{law} (map: {zone})")  # fmt: skip
+    lines += ["", *checks.summary()]
     write_summary(args.out / "adhesion_table.txt", lines, args)
+    checks.exit()
 
 
 if __name__ == "__main__":

@@ -17,6 +17,10 @@ h = d/σ = 4 … −1 (51 values), heights drawn above h_min = −1. Cases, in o
 A pair is a (summit, separation) with the summit in contact (Σ n_contact). Run:
 ``python validation/benchmark_cuda.py [N] [N_cpu]`` (defaults 1e9 and 2e7) or
 ``python validation/benchmark.py --device cuda``; prints a markdown table.
+
+Criteria (PASS/FAIL lines, exit status 1 on a FAIL): the bare kernel's contact counts equal
+mcsim's (the same Philox heights), and the same seed twice gives bit-identical sums.
+Speeds are measured, not judged.
 """
 
 from __future__ import annotations
@@ -27,6 +31,7 @@ import time
 
 import numpy as np
 from numba import cuda
+from reporting import Checks
 
 from mcsim.engine import cuda as mc
 from mcsim.engine.montecarlo import BLOCK, MonteCarloSpec, default_workers, plan_patch, run_sums
@@ -191,9 +196,18 @@ def main(n: int = 10**9, n_cpu: int = 2 * 10**7) -> None:
     print("| case | N | s | contacting pairs/s |\n| --- | --- | --- | --- |")
     for label, size, seconds, p in rows:
         print(f"| {label} | {size:.3g} | {seconds:.3f} | {p / seconds:.3g} |")
-    print(f"kernel / bare = {bare_best[1] / kernel:.2f}; bare counts == mcsim counts: {same}")
+    print(f"kernel / bare = {bare_best[1] / kernel:.2f}")
     again, _ = gpu_end_to_end(spec)
-    print(f"same seed twice bit-identical: {np.array_equal(again, sums)}")
+    checks = Checks()
+    checks.holds(
+        "bare kernel's contact counts equal mcsim's", same, "equal" if same else "DIFFERENT"
+    )
+    identical = np.array_equal(again, sums)
+    checks.holds(
+        "same seed twice bit-identical", identical, "identical" if identical else "DIFFERENT"
+    )
+    print("\n".join(checks.summary()))
+    checks.exit()
 
 
 if __name__ == "__main__":

@@ -8,7 +8,12 @@ c_X² = E[x²]/E[x]² (Poisson N) and c_μ from the delta method, both from an i
 quadrature of the per-summit laws (``gw_moments.py``). A weighted straight-line fit of
 log RMS against log N gives the slope, expected to be −1/2.
 
-Run: ``python validation/convergence.py`` (≈1 min on 2 cores) or ``--quick`` (seconds).
+Criteria (PASS/FAIL lines, exit status 1 on a FAIL): every measured RMS within 5 SE of
+c_X(h)/√N (SE of the RMS by the delta method on the mean square), and every fitted slope
+within 5 SE of −1/2; at |z| < 5 a chance exceedance has probability 6e-7 per comparison.
+
+Run: ``python validation/convergence.py`` (≈1 min on 2 cores) or ``--quick`` (seconds:
+N = 10³ … 10⁴, three sizes).
 Writes ``convergence.png``, ``convergence_ratio.png``, ``convergence.csv`` and
 ``convergence.txt`` into ``validation/out/``.
 """
@@ -19,7 +24,7 @@ import time
 
 import numpy as np
 from gw_moments import scatter_coefficients
-from reporting import child_seeds, parser, save_figure, write_summary
+from reporting import Checks, child_seeds, parser, save_figure, write_summary
 
 from mcsim.model.presets import MATERIALS, SURFACES
 from mcsim.physics.analytic import gw_curves
@@ -27,6 +32,8 @@ from mcsim.studies.simulation import simulate
 
 SURFACE, MATERIAL = SURFACES["smooth"], MATERIALS["silicon"]
 H = np.array([0.0, 1.0, 2.0])
+#: |z| bound of the criteria (module docstring).
+Z_MAX = 5.0
 QUANTITIES = {"P": "load P̄", "F": "adhesion term F̄", "T": "friction T̄", "mu": "friction coeff. μ"}
 
 
@@ -170,7 +177,14 @@ def main() -> None:
         " come from the same patches and are correlated)",
         f"Patches without any contact (μ undefined, left out): {int(sum(r[1] - r[7] for r in rows if r[3] == 'mu'))}",
     ]
+    checks = Checks()
+    checks.at_most(f"max |RMS/predicted - 1|/SE over {all_ratio.size} (N, h, quantity)",
+                   float(np.abs(z).max()), Z_MAX)  # fmt: skip
+    slope_z = [abs(v[0] + 0.5) / v[1] for v in fits.values()]
+    checks.at_most(f"max |slope + 1/2|/SE over {len(slope_z)} fits", max(slope_z), Z_MAX)
+    lines += ["", *checks.summary()]
     write_summary(args.out / "convergence.txt", lines, args)
+    checks.exit()
 
 
 if __name__ == "__main__":

@@ -6,12 +6,24 @@ V_m 1.80e-5 m³/mol, T 298.15 K), θ = 0. Rq and the summit offset y_s of each s
 Nayak/McCool estimates from σ, R, η (rough at the seed's α of 2.5–4.9). The work of
 separation is taken from the mean summit plane at contact, d = 0, i.e. D_t = y_s.
 
-Published numbers (quoted from the papers' text as reported in docs/physics.md and
-issue 22, not re-fitted here): DelRio et al., Nature Materials 4, 629 (2005): dry adhesion of
+Published numbers (quoted from the papers' text as reported in docs/physics.md and issue 22,
+not re-fitted here): DelRio et al., Nature Materials 4, 629 (2005): dry adhesion of
 polysilicon of a few nm rms is of order µJ/m², dominated by van der Waals forces across
 the non-contacting area; DelRio et al., Appl. Phys. Lett. 90, 163104 (2007): above a
 threshold RH that rises with roughness the adhesion jumps and rises toward 2γ_L cos θ =
 144 mJ/m².
+
+Criteria (PASS/FAIL lines, exit status 1 on a FAIL):
+
+* flat limits (Rq = 1e-15 m at D_t = D0) within 1e-5 relative of the closed forms: the
+  model's first-order corrections are Rq/D0 = 5e-6 and, for capillarity, D0/(2 r_K);
+* −dW/dD = p within 1e-6 relative: the central difference's truncation error is of order
+  (step/D0)² = 2.5e-7 at the smallest gap, D0;
+* the Gaussian terms within 1e-12 relative of adaptive quadrature (requested to 1e-13);
+* the four surfaces (d = 0): the RH where W_cap reaches half of 2γ_L cos θ rises with
+  roughness (DelRio et al. 2007), and no W_cap exceeds 2γ_L cos θ (from d = 0 and 3σ).
+
+The timings are reported, not judged; ``--quick`` times fewer repeats.
 """
 
 from __future__ import annotations
@@ -20,7 +32,7 @@ import math
 import timeit
 
 import numpy as np
-from reporting import parser, save_figure, write_summary
+from reporting import Checks, parser, save_figure, write_summary
 from scipy import integrate, stats
 
 from mcsim.model.presets import MATERIALS, PAPER_SURFACES, SURFACES
@@ -41,7 +53,7 @@ A, D0, GAMMA = 1.6e-19, 0.2e-9, 0.072
 CEILING = 2 * GAMMA  # θ = 0
 
 
-def check_limits() -> list[str]:
+def check_limits(checks: Checks) -> list[str]:
     flat = 1e-15
     r_k = float(kelvin_radius(0.8))
     rows = [
@@ -65,10 +77,11 @@ def check_limits() -> list[str]:
     ]
     for name, got, want in rows:
         lines.append(f"| {name} | {float(got):.10g} | {want:.10g} | {float(got) / want - 1:.1e} |")
+        checks.at_most(f"{name}: |model/closed form - 1|", abs(float(got) / want - 1), 1e-5)
     return lines
 
 
-def check_derivatives() -> list[str]:
+def check_derivatives(checks: Checks) -> list[str]:
     rq = 1.2e-9
     edges = np.arange(-12 * rq, 12 * rq + 0.025e-9, 0.05e-9)
     histogram = Empirical.from_histogram(edges, np.diff(stats.norm.cdf(edges / rq)))
@@ -88,6 +101,7 @@ def check_derivatives() -> list[str]:
             slope = -(work(D + step, heights, *args) - work(D - step, heights, *args)) / (2 * step)
             diff = np.max(np.abs(slope / pressure(D, heights, *args) - 1))
             lines.append(f"| {label} | {term} | {diff:.1e} |")
+            checks.at_most(f"-dW/dD = p, {label}, {term}: max |slope/p - 1|", diff, 1e-6)
     return lines
 
 
@@ -108,7 +122,7 @@ def quad_expectation(D, rq, f, extra=()):
     )
 
 
-def check_quadrature() -> list[str]:
+def check_quadrature(checks: Checks) -> list[str]:
     cases = [(0.8e-9, 0.5e-9, 0.55, 0.3), (3.3e-9, 4.4e-9, 0.9, 0.6), (12e-9, 9e-9, 0.97, 0.1)]
     lines = [
         "## Gaussian terms against adaptive quadrature (scipy.integrate.quad)",
@@ -139,8 +153,14 @@ def check_quadrature() -> list[str]:
             capillary_pressure(D, rq, *cap),
             capillary_work(D, rq, *cap),
         ]
-        diffs = " | ".join(f"{float(g) / r - 1:.1e}" for g, r in zip(got, ref))
-        lines.append(f"| {rq * 1e9:g} | {D * 1e9:g} | {rh} | {theta} | {diffs} |")
+        diffs = [float(g) / r - 1 for g, r in zip(got, ref)]
+        cells = " | ".join(f"{x:.1e}" for x in diffs)
+        lines.append(f"| {rq * 1e9:g} | {D * 1e9:g} | {rh} | {theta} | {cells} |")
+        checks.at_most(
+            f"Gaussian terms against quad, Rq {rq * 1e9:g} nm, D {D * 1e9:g} nm: max |rel. diff|",
+            max(abs(x) for x in diffs),
+            1e-12,
+        )
     return lines
 
 
@@ -171,15 +191,16 @@ def surfaces_table(rh: np.ndarray, h_t: float) -> tuple[list[str], dict]:
             f"| {name} | {SURFACES[name].sigma * 1e9:g} | {e.rq * 1e9:.3g} | "
             f"{e.summit_offset * 1e9:.3g} | {e.alpha:.2f} | {w_vdw[i] * 1e6:.3g} | {caps} | {half} |"
         )
-    return lines, {"names": names, "w_cap": w_cap, "w_vdw": w_vdw}
+    half_rh = [float(rh[np.argmax(w >= CEILING / 2)]) if w.max() >= CEILING / 2 else 1.0
+               for w in w_cap]  # fmt: skip
+    return lines, {"names": names, "w_cap": w_cap, "w_vdw": w_vdw, "half_rh": half_rh}
 
 
-def timings() -> list[str]:
+def timings(number: int) -> list[str]:
     smooth, silicon = SURFACES["smooth"], MATERIALS["silicon"]
     est = nayak_heights(smooth.sigma, smooth.R, smooth.eta)
     env = Environment(hamaker=A, cutoff=D0, rh=0.6)
     h = np.linspace(4, -1, 51)
-    number = 50
     t_env = (
         min(
             timeit.repeat(
@@ -207,7 +228,7 @@ def timings() -> list[str]:
 
     t_grid = min(timeit.repeat(grid, number=5, repeat=3)) / 5
     return [
-        "## Speed (best of 5 repeats)",
+        f"## Speed (best of 5 repeats of {number}; not judged)",
         "",
         f"- environment_curves, 51 h, smooth surface, vdW + capillary: {t_env * 1e3:.2f} ms",
         f"- gw_curves (seed laws), same 51 h: {t_gw * 1e3:.2f} ms",
@@ -241,8 +262,15 @@ def main() -> None:
     args = parser(__doc__.splitlines()[0]).parse_args()
     args.out.mkdir(parents=True, exist_ok=True)
     rh = np.linspace(0.001, 0.999, 999)
+    checks = Checks()
     table_lines, table = surfaces_table(rh, 0.0)
-    resting_lines, _ = surfaces_table(rh, 3.0)
+    resting_lines, resting = surfaces_table(rh, 3.0)
+    half = table["half_rh"]  # rough, intermediate, smooth, super-smooth
+    checks.holds("d = 0: RH at W_cap = gamma_L cos(theta) rises with roughness",
+                 bool(np.all(np.diff(half) < 0)),
+                 " > ".join(f"{x:.3f}" for x in half) + " (rough ... super-smooth)")  # fmt: skip
+    checks.at_most("largest W_cap (d = 0 and 3 sigma) / (2 gamma_L cos theta)",
+                   max(table["w_cap"].max(), resting["w_cap"].max()) / CEILING, 1.0)  # fmt: skip
     published = [
         "Published (quoted from the papers' text as reported in docs/physics.md and issue 22, "
         "not re-fitted): dry adhesion of polysilicon of a few nm rms is of order µJ/m² "
@@ -250,11 +278,11 @@ def main() -> None:
         "roughness, toward 2γ_L cos θ = 144 mJ/m² (DelRio et al. 2007)."
     ]
     lines = [
-        *check_limits(),
+        *check_limits(checks),
         "",
-        *check_derivatives(),
+        *check_derivatives(checks),
         "",
-        *check_quadrature(),
+        *check_quadrature(checks),
         "",
         *table_lines,
         "",
@@ -262,10 +290,13 @@ def main() -> None:
         "",
         *published,
         "",
-        *timings(),
+        *timings(5 if args.quick else 50),
+        "",
+        *checks.summary(),
     ]
     write_summary(args.out / "environment.txt", lines, args)
     figure(rh, table, args)
+    checks.exit()
 
 
 if __name__ == "__main__":

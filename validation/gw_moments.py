@@ -14,6 +14,14 @@ N summits,
 The expectations are computed here with adaptive quadrature in u = √(s − h) (which
 removes the δ^{3/2} branch point), independently of the Gauss–Legendre rule that
 :func:`mcsim.physics.analytic.gw_curves` uses.
+
+Run on its own (``python validation/gw_moments.py``, a second; ``--quick`` is the same),
+it checks itself, PASS/FAIL lines and exit status 1 on a FAIL: the mean Hertz load per
+summit against K R^½ σ^{3/2} F_{3/2}(h) from 40-digit mpmath values (12 digits quoted,
+so within 1e-10 relative, the quadrature's requested tolerance); the fixed-N c_P at
+h = −1 … 4 against 1.04, 1.82, 3.87, 11.1, 47, 313 (computed once from c_P² =
+F_3/F_{3/2}² − 1, to within half a unit of the last digit quoted); and the means P̄, F̄,
+T̄ against ``gw_curves`` within 1e-9 relative (both are accurate to ~1e-13).
 """
 
 from __future__ import annotations
@@ -79,3 +87,45 @@ def mean_totals(surface: Surface, material: Material, h: float) -> dict[str, flo
     scale = surface.eta / material.K
     return {"P": scale * m["p"], "F": scale * m["f"], "T": scale * m["t"],
             "mu": m["t"] / (m["p"] + m["f"])}  # fmt: skip
+
+
+#: F_{3/2}(h) from 40-digit mpmath, to 12 digits (independent reference values).
+F_3_2 = {-1.0: 1.40459747047, 0.0: 4.30019993662e-1, 1.0: 7.56681773910e-2,
+         2.0: 6.64817762359e-3, 3.0: 2.63967554270e-4, 4.0: 4.43915595854e-6}  # fmt: skip
+#: Fixed-N c_P at h = −1 … 4 (computed once, quoted to 3 digits; see the module docstring).
+C_P_FIXED = {-1.0: 1.04, 0.0: 1.82, 1.0: 3.87, 2.0: 11.1, 3.0: 47.0, 4.0: 313.0}
+
+
+def main() -> None:
+    from reporting import Checks, parser
+
+    from mcsim.model.presets import MATERIALS, SURFACES
+    from mcsim.physics.analytic import gw_curves
+
+    parser(__doc__.splitlines()[0]).parse_args()
+    surface, material = SURFACES["smooth"], MATERIALS["silicon"]
+    checks = Checks()
+    h = np.array(sorted(F_3_2))
+    exact = gw_curves(surface, material, h)
+    scale = material.K * np.sqrt(surface.R) * surface.sigma**1.5
+    load, c_p, means = [], [], []
+    for j, hj in enumerate(h):
+        m = summit_moments(surface, material, hj)
+        load.append(abs(m["p"] / (scale * F_3_2[hj]) - 1))
+        c = scatter_coefficients(surface, material, hj, "fixed")["P"]
+        digits = 10 ** (np.floor(np.log10(C_P_FIXED[hj])) - 2)  # a unit of the 3rd digit
+        c_p.append(abs(c - C_P_FIXED[hj]) / (digits / 2))
+        totals = mean_totals(surface, material, hj)
+        means += [abs(totals[q] / getattr(exact, q)[j] - 1) for q in ("P", "F", "T", "mu")]
+    checks.at_most(
+        "mean Hertz load / (K R^1/2 sigma^3/2 F_3/2) - 1, h = -1 ... 4", max(load), 1e-10
+    )
+    checks.at_most("|c_P fixed - quoted| / half a unit of its last digit, h = -1 ... 4",
+                   max(c_p), 1.0)  # fmt: skip
+    checks.at_most("means P, F, T, mu against gw_curves: max |rel. diff|", max(means), 1e-9)
+    print("\n".join(checks.summary()))
+    checks.exit()
+
+
+if __name__ == "__main__":
+    main()

@@ -17,6 +17,12 @@ sums blocks of 65 536 summits, so the peak is set by the chunk size, not by N.
 Run: ``python validation/memory.py`` (≈30 s on 2 cores) or ``--quick`` (10⁵ with one worker, 10⁶ with two).
 ``--law NAME`` measures another law set (with ``--cycle`` where it has retraction) and
 writes ``memory-NAME.*``. Writes ``memory.png`` and ``memory.txt`` into ``validation/out/``.
+
+Criteria (PASS/FAIL lines, exit status 1 on a FAIL): the peak RSS of every run below 1 GB
+(issue 5's target for 10⁸ summits); with two sizes or more at one worker count (not with
+``--quick``), the largest N's run peak at most 1.5× the smallest's (a peak ∝ N would grow
+100× from 10⁶ to 10⁸); and every run's compare() against the GW curves within |z| < 5 (a
+chance exceedance has probability 6e-7 per z-score). Run times are reported, not judged.
 """
 
 from __future__ import annotations
@@ -34,6 +40,8 @@ _T_START = time.perf_counter()
 #: Separations d/σ: 51 values from 4 to -1, as np.linspace(4, -1, 51).
 H_RANGE = (4.0, -1.0, 51)
 MB = 1024.0  # ru_maxrss is in KiB on Linux
+#: Criteria (module docstring): peak RSS bound (MiB), growth bound, |z| bound.
+RSS_MAX_MB, GROWTH_MAX, Z_MAX = 1e9 / 2**20, 1.5, 5.0
 
 
 def reset_peak() -> bool:
@@ -98,7 +106,7 @@ def child(n: float, workers: int, seed: int, law: str = "seed") -> dict:
 
 def main() -> None:
     import numpy as np
-    from reporting import child_seeds, parser, save_figure, write_summary
+    from reporting import Checks, child_seeds, parser, save_figure, write_summary
 
     p = parser(__doc__.splitlines()[0])
     p.add_argument("--child", nargs=3, metavar=("N", "WORKERS", "SEED"), help=__import__("argparse").SUPPRESS)  # fmt: skip
@@ -197,7 +205,19 @@ def main() -> None:
         "max|z| = largest |MC - GW|/SE over the separations and quantities of the run's compare() "
         f"({results[-1]['n_z']} z-scores in the largest case).",
     ]
+    checks = Checks()
+    for r in results:
+        where = f"N = {r['N']:.3g}, workers = {r['workers']}"
+        checks.at_most(f"{where}: peak RSS of the run (MiB)", r["rss_peak_run_MB"], RSS_MAX_MB)
+        checks.at_most(f"{where}: max |z| of compare() over {r['n_z']}", r["max_abs_z"], Z_MAX)
+    for w in (1, 2):
+        sel = sorted((r for r in results if r["workers"] == w), key=lambda r: r["N"])
+        if len(sel) > 1:
+            checks.at_most(f"workers = {w}: peak RSS at N = {sel[-1]['N']:.3g} / at {sel[0]['N']:.3g}",
+                           sel[-1]["rss_peak_run_MB"] / sel[0]["rss_peak_run_MB"], GROWTH_MAX)  # fmt: skip
+    lines += ["", *checks.summary()]
     write_summary(args.out / f"{stem}.txt", lines, args)
+    checks.exit()
 
 
 if __name__ == "__main__":

@@ -1,4 +1,5 @@
-"""Output helpers shared by the validation scripts: folder, provenance, figures, summaries."""
+"""Shared by the validation scripts: command line, output folder, provenance, figures,
+summaries, and the PASS/FAIL lines of their criteria (:class:`Checks`)."""
 
 from __future__ import annotations
 
@@ -19,7 +20,8 @@ OUT = Path(__file__).resolve().parent / "out"
 def parser(description: str) -> argparse.ArgumentParser:
     """Command line common to the scripts: ``--quick``, ``--out``, ``--seed``."""
     p = argparse.ArgumentParser(description=description)
-    p.add_argument("--quick", action="store_true", help="fast smoke run (seconds, coarse numbers)")
+    p.add_argument("--quick", action="store_true",
+                   help="smaller run (seconds) that still checks the criteria")  # fmt: skip
     p.add_argument("--out", type=Path, default=OUT, help=f"output folder (default {OUT})")
     p.add_argument("--seed", type=int, default=20240611, help="root seed (default %(default)s)")
     return p
@@ -55,3 +57,59 @@ def write_summary(path: Path, lines: list[str], args: argparse.Namespace) -> Non
     header = "".join(f"# {k}: {v}\n" for k, v in provenance(args).items())
     path.write_text(header + text + "\n")
     print(f"wrote {path}")
+
+
+class Checks:
+    """A script's pass/fail criteria: one ``PASS``/``FAIL`` line each, exit status 1 on a FAIL.
+
+    Each line states the measured value and its bound. A timing criterion (``timing=True``)
+    is reported but not judged when ``timing_judged`` is False (a ``--quick`` run of a
+    benchmark measures too little for its target): its line starts with ``INFO``.
+    """
+
+    def __init__(self, timing_judged: bool = True) -> None:
+        self.lines: list[str] = []
+        self.failed = 0
+        self.timing_judged = timing_judged
+
+    def judge(self, ok: bool, text: str, timing: bool = False) -> str:
+        """Record one criterion, ``text`` saying what was measured against what bound;
+        returns its line, ``"PASS: text"``, ``"FAIL: text"`` or (an unjudged timing) ``"INFO ..."``."""
+        if timing and not self.timing_judged:
+            verdict = "INFO (timing, not judged with --quick)"
+        else:
+            verdict = "PASS" if ok else "FAIL"
+            self.failed += not ok
+        line = f"{verdict}: {text}"
+        self.lines.append(line)
+        return line
+
+    def at_most(self, name: str, value: float, bound: float, fmt=".3g", timing=False) -> None:
+        """PASS if ``value <= bound`` (NaN fails)."""
+        text = f"{name}: {value:{fmt}} (bound <= {bound:{fmt}})"
+        self.judge(bool(value <= bound), text, timing)
+
+    def at_least(self, name: str, value: float, bound: float, fmt=".3g", timing=False) -> None:
+        """PASS if ``value >= bound`` (NaN fails)."""
+        text = f"{name}: {value:{fmt}} (bound >= {bound:{fmt}})"
+        self.judge(bool(value >= bound), text, timing)
+
+    def holds(self, name: str, ok: bool, measured: str) -> None:
+        """PASS if ``ok``; ``measured`` says what was seen."""
+        self.judge(bool(ok), f"{name}: {measured}")
+
+    def summary(self) -> list[str]:
+        """The criteria's lines and a last line counting the failures."""
+        judged = sum(not line.startswith("INFO") for line in self.lines)
+        last = f"criteria: {judged - self.failed} of {judged} PASS"
+        return [
+            "## Criteria",
+            "",
+            *self.lines,
+            "",
+            last + (f", {self.failed} FAIL" if self.failed else ""),
+        ]
+
+    def exit(self) -> None:
+        """Exit with status 1 if any criterion failed, else 0."""
+        sys.exit(1 if self.failed else 0)

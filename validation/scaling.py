@@ -18,6 +18,9 @@ second (``np.sqrt``, and a loop compiled like the kernel), is drawn for referenc
 
 Run: ``python validation/scaling.py`` (≈1 min on 2 cores) or ``--quick`` (seconds).
 Writes ``scaling.png`` and ``scaling.txt`` into ``validation/out/``.
+
+Criterion (PASS/FAIL lines, exit status 1 on a FAIL): the peak RSS of every N below 1 GB
+(issue 5's target for 10⁸ summits). The slopes and the cost model are measured, not judged.
 """
 
 from __future__ import annotations
@@ -41,7 +44,7 @@ from benchmark import (
     sqrt_throughput,
 )
 from benchmark import warm_up as warm_up_kernel
-from reporting import child_seeds, parser, save_figure, write_summary
+from reporting import Checks, child_seeds, parser, save_figure, write_summary
 
 from mcsim.engine.montecarlo import run_sums
 
@@ -227,8 +230,13 @@ def main() -> None:
         f"numba {info['numba']}; load average at start {info['load'][0]:.2f}, "
         f"at end {os.getloadavg()[0]:.2f}",
     ]
+    checks = Checks()
+    for r in by_n:
+        checks.at_most(f"N = {r['n']:.3g}: peak RSS (MiB)", r["rss"] / MIB, 1e9 / MIB)
+    lines += ["", *checks.summary()]
     plot(by_n, by_m, bounds, slopes, coef, args)
     write_summary(args.out / "scaling.txt", lines, args)
+    checks.exit()
 
 
 if __name__ == "__main__":

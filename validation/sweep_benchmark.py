@@ -33,6 +33,10 @@ Timings are the best of ``--repeats`` sweeps (in memory: no file written), but f
 cores) or ``--quick`` (10 × 2 analytic points, 8 Monte Carlo points, 8 × 10 environment
 points, about a minute); ``--cases environment`` (or ``analytic``, ``mc``) runs only those.
 Prints a markdown table and writes it to ``validation/out/sweep_benchmark.md``.
+
+Criteria (PASS/FAIL lines, exit status 1 on a FAIL): no failed point in any case, and the
+Monte Carlo sweep bit-identical on every number of Dask workers. Speeds are measured, not
+judged (no target).
 """
 
 from __future__ import annotations
@@ -51,7 +55,7 @@ from pathlib import Path
 
 import numpy as np
 from benchmark import MIB, best_of, machine, peak_rss
-from reporting import parser, provenance
+from reporting import Checks, parser, provenance
 
 from mcsim.model.presets import MATERIALS, SURFACES
 from mcsim.physics.adhesion import RegimeWarning
@@ -255,7 +259,13 @@ def main() -> None:
     same = {n: identical(files[1], f) for n, f in files.items()}
     for f in files.values():
         os.unlink(f)
-    lines = report(res, same, info, args, size)
+    checks = Checks()
+    for key, r in res.items():
+        checks.at_most(f"{' '.join(map(str, key))}: failed points", r["failed"], 0)
+    for n, ok in same.items():
+        checks.holds(f"Monte Carlo sweep on {n} Dask worker(s) bit-identical to 1", ok,
+                     "identical" if ok else "DIFFERENT")  # fmt: skip
+    lines = [*report(res, same, info, args, size), "", *checks.summary()]
     text = "\n".join(lines)
     print()
     print(text)
@@ -264,6 +274,7 @@ def main() -> None:
     path = args.out / "sweep_benchmark.md"
     path.write_text(header + text + "\n")
     print(f"wrote {path}")
+    checks.exit()
 
 
 def report(res: dict, same: dict, info: dict, args, size: dict) -> list[str]:
