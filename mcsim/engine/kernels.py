@@ -297,11 +297,10 @@ def _generate(law: LawSet, counting: bool = False):
         f"{sweep}\n\n"
         f"kernel = numba.njit(nogil=True, cache=True, {_kernel_options(law)})(_sweep)\n"
     )
-    called = [h for f in law.laws for h in helpers(f)]
-    sources = [text, *(inspect.getsource(f) for f in [*law.laws, *called])]
+    sources = [text, *(law_source(f) for f in law.laws)]
     digest = hashlib.sha256("\n".join([numba_version(), *sources]).encode()).hexdigest()[:16]
     _register_bitcasts()
-    for h in called:
+    for h in {h: None for f in law.laws for h in helpers(f)}:
         _register_helper(h)
     return generated_module(f"mcsim_kernel_{law.name.replace('-', '_')}_{digest}", text).kernel
 
@@ -323,6 +322,13 @@ def generated_module(name: str, text: str):
     sys.modules[name] = module  # numba's cache re-imports the module by name
     spec.loader.exec_module(module)
     return module
+
+
+def law_source(fn) -> str:
+    """The source of law function ``fn`` and of every helper it calls
+    (:func:`mcsim.physics.laws.helpers`): what its compiled code depends on, for the
+    hash that names a cached module."""
+    return "\n".join(inspect.getsource(f) for f in (fn, *helpers(fn)))
 
 
 def compile_law(fn, **options):
