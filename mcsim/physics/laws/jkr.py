@@ -75,7 +75,8 @@ def reduced_root(delta, delta_c, jkr_kappa, jkr_t_c):
     Returns
     -------
     float or ndarray
-        t, dimensionless (a = s²t², a in m); finite for every finite δ, t_c at and below δ_c.
+        t, dimensionless (a = s²t², m); finite for every finite δ, t_c (to rounding)
+        at and below δ_c.
     """
     X = np.minimum(np.maximum(delta - delta_c, 0.0), 1e30) * jkr_kappa + 1e-150
     r = np.sqrt(X)
