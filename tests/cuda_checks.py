@@ -14,6 +14,7 @@ import os
 import sys
 
 import numpy as np
+from lawset_toy import TOY
 
 from mcsim.engine import cuda as mc
 from mcsim.engine.kernels import block_sums_numpy
@@ -34,12 +35,13 @@ def relative_error(got: np.ndarray, ref: np.ndarray) -> float:
 
 def block_sums_against_numpy(n: int) -> dict:
     """GPU block sums against block_sums_numpy on the same heights, every law set and
-    branch (retraction: turned at the lowest row)."""
+    the toy (tests/lawset_toy.py: helpers calling helpers, a table), every branch
+    (retraction: turned at the lowest row)."""
     rng = np.random.default_rng(12)
     z = rng.standard_normal(n) * SURFACE.sigma
     d = np.array([2.0, -0.5, 1.0, 0.25, 3.0]) * SURFACE.sigma  # any order
     out = {}
-    for name, law in LAW_SETS.items():
+    for name, law in {**LAW_SETS, TOY.name: TOY}.items():
         args = law.arguments(SURFACE, MATERIAL)
         edges = law.edges_for(SURFACE, MATERIAL)
         for branch in ("approach", "retract") if law.retract else ("approach",):

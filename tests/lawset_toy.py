@@ -1,9 +1,11 @@
 """A test-only law set exercising everything the engine must follow beyond the seed.
 
 Stateful outputs (``delta_max``), a non-contact attraction (reach < 0), a break-off
-below the jump-in (hysteresis), a stateless output beside stateful ones, and a 1-D
-array constant (a table, as Maugis–Dugdale passes one). No physics: only the kernel
-contract. Importable by the generated kernel module (``tests`` is on ``sys.path``).
+below the jump-in (hysteresis), a stateless output beside stateful ones, a 1-D array
+constant (a table, as Maugis–Dugdale passes one), and helpers (:func:`in_contact`, which
+both stateful outputs call, and :func:`pressed`, which reads the table and calls
+:func:`overlap`). No physics: only the kernel contract. Importable by the generated kernel
+module (``tests`` is on ``sys.path``).
 """
 
 import numpy as np
@@ -11,20 +13,35 @@ import numpy as np
 from mcsim.physics.laws import Edges, LawSet, Output
 
 
+def in_contact(delta, delta_max, c):
+    """1 in contact, 0 outside (a helper both stateful outputs call)."""
+    return (delta_max > 0.0) * (delta > -c)
+
+
+def overlap(delta, c):
+    """max(δ + c, 0), m (a helper another helper calls)."""
+    return np.maximum(delta + c, 0.0)
+
+
+def pressed(delta, c, table):
+    """x^{3/2} times the table's entry at x/c, x = :func:`overlap`, m^{3/2} (a helper
+    taking an array)."""
+    x = overlap(delta, c)
+    i = np.int64(np.floor(np.minimum(x / c, 3.0)))
+    return x * np.sqrt(x) * table[i]
+
+
 def toy_load(delta, delta_max, R, K, c, table):
     """Signed load, N: compressive in contact, tensile within ``2c`` outside it."""
-    contact = (delta_max > 0.0) * (delta > -c)
-    x = np.maximum(delta + c, 0.0)
-    i = np.int64(np.floor(np.minimum(x / c, 3.0)))
+    contact = in_contact(delta, delta_max, c)
     near = (delta > -2.0 * c) * (1.0 - contact)
-    return K * np.sqrt(R) * (contact * (x * np.sqrt(x) * table[i] - c * np.sqrt(c))
+    return K * np.sqrt(R) * (contact * (pressed(delta, c, table) - c * np.sqrt(c))
                              - 30.0 * near * (delta + 2.0 * c) * np.sqrt(c))  # fmt: skip
 
 
 def toy_area(delta, delta_max, R, c):
     """Contact area, m²: only in contact."""
-    contact = (delta_max > 0.0) * (delta > -c)
-    return contact * np.pi * R * (delta + c)
+    return in_contact(delta, delta_max, c) * np.pi * R * (delta + c)
 
 
 def toy_grip(delta, R, gamma):

@@ -10,8 +10,10 @@ Each output function's *source* is executed again in a namespace whose ``np`` is
 :func:`device_numpy`, a module holding only the restricted vocabulary of
 :mod:`mcsim.physics.laws` mapped to functions the CUDA compiler knows (``np.sqrt`` →
 ``math.sqrt``, ``np.maximum`` → ``max``, ``np.cbrt`` → libdevice ``cbrt``, ...): numba's
-CUDA target cannot compile NumPy ufuncs. A law that uses anything else is rejected
-before compilation (:func:`check_vocabulary`). The per-summit loop, the moments and the
+CUDA target cannot compile NumPy ufuncs. The helpers a law calls
+(:func:`mcsim.physics.laws.helpers`) become device functions the same way, bound to their
+names in the law's namespace (:func:`device_function`). A law that uses anything else is
+rejected before compilation (:func:`check_vocabulary`). The per-summit loop, the moments and the
 columns are those of :func:`mcsim.engine.kernels.block_sums` (``sum_columns``): ``n_contact``,
 Σ of each output, Σ of each output², Σ of the products of outputs i < j.
 
@@ -47,7 +49,7 @@ import numpy as np
 
 from mcsim.engine.kernels import sum_columns
 from mcsim.model.errors import ParameterError
-from mcsim.physics.laws import Edges, LawSet, ieee
+from mcsim.physics.laws import Edges, LawSet, helpers, ieee
 
 #: Threads per CUDA block (part of the reproducibility contract: the reduction tree).
 THREADS = 256
@@ -132,27 +134,31 @@ def _np_attributes(fn) -> list[str]:
 
 
 def check_vocabulary(fn) -> None:
-    """Raise :class:`ParameterError` if law function ``fn`` uses NumPy outside
-    :data:`VOCABULARY` or a global that is neither ``np`` nor a number."""
-    bad = sorted(set(_np_attributes(fn)) - set(VOCABULARY))
-    if bad:
-        raise ParameterError(
-            f"law function {fn.__module__}.{fn.__qualname__} uses np.{bad[0]}, which has "
-            f"no CUDA equivalent (allowed: {', '.join('np.' + v for v in VOCABULARY)})"
-        )
-    for name in fn.__code__.co_names:
-        value = fn.__globals__.get(name, getattr(builtins, name, None))
-        if (
-            name != "np"
-            and name in fn.__globals__
-            and not isinstance(value, int | float)
-            and not any(value is h for h in ieee.HELPERS)
-        ):
+    """Raise :class:`ParameterError` if law function ``fn``, or a helper it calls
+    (:func:`mcsim.physics.laws.helpers`), uses NumPy outside :data:`VOCABULARY` or a global
+    that is neither ``np``, a number, a :mod:`mcsim.physics.laws.ieee` bit cast nor a
+    helper."""
+    called = helpers(fn)
+    for f in (fn, *called):
+        bad = sorted(set(_np_attributes(f)) - set(VOCABULARY))
+        if bad:
             raise ParameterError(
-                f"law function {fn.__module__}.{fn.__qualname__} uses the global {name!r}: "
-                "law functions may use only np (restricted vocabulary), numbers and "
-                "mcsim.physics.laws.ieee"
+                f"law function {f.__module__}.{f.__qualname__} uses np.{bad[0]}, which has "
+                f"no CUDA equivalent (allowed: {', '.join('np.' + v for v in VOCABULARY)})"
             )
+        for name in f.__code__.co_names:
+            value = f.__globals__.get(name, getattr(builtins, name, None))
+            if (
+                name != "np"
+                and name in f.__globals__
+                and not isinstance(value, int | float)
+                and not any(value is h for h in (*ieee.HELPERS, *called))
+            ):
+                raise ParameterError(
+                    f"law function {f.__module__}.{f.__qualname__} uses the global {name!r}: "
+                    "law functions may use only np (restricted vocabulary), numbers, "
+                    "mcsim.physics.laws.ieee and helpers defined in their own law file"
+                )
 
 
 @functools.cache
@@ -187,18 +193,30 @@ def _on_device(value):
 
 
 def device_source(fn) -> types.FunctionType:
-    """A copy of law function ``fn`` compiled from its own source with ``np`` bound to
-    :func:`device_numpy` (and the numbers and :mod:`mcsim.physics.laws.ieee` helpers it uses as
-    globals), ready for ``cuda.jit(device=True)``."""
+    """A copy of law function (or helper) ``fn`` compiled from its own source with ``np``
+    bound to :func:`device_numpy`, the numbers and :mod:`mcsim.physics.laws.ieee` bit casts
+    it uses as globals and each helper it calls as that helper's :func:`device_function`,
+    ready for ``cuda.jit(device=True)``."""
     check_vocabulary(fn)
+    called = helpers(fn)
     namespace = {"np": device_numpy(), "__builtins__": builtins}
     for name in fn.__code__.co_names:
         if name in fn.__globals__ and name != "np":
-            namespace[name] = _on_device(fn.__globals__[name])
+            value = fn.__globals__[name]
+            helper = any(value is h for h in called)
+            namespace[name] = device_function(value) if helper else _on_device(value)
     source = textwrap.dedent(inspect.getsource(fn))
     code = compile(source, f"<device {fn.__module__}.{fn.__qualname__}>", "exec")
     exec(code, namespace)
     return namespace[fn.__name__]
+
+
+@functools.cache
+def device_function(fn):
+    """Law function or helper ``fn`` as a CUDA device function (its :func:`device_source`
+    under ``cuda.jit(device=True)``), built once per process, so that the outputs calling
+    one helper call one device function."""
+    return _cuda().jit(device=True)(device_source(fn))
 
 
 # -- the kernel ---------------------------------------------------------------------
@@ -344,7 +362,7 @@ def _namespace(law: LawSet) -> dict:
     ns = {"np": np, "math": math, "cuda": cuda, "float64": float64, "THREADS": THREADS,
           "PER_THREAD": PER_THREAD, "TILE": TILE, "_HEIGHTS": _HEIGHTS, "_ndtri": ndtri}  # fmt: skip
     for i, fn in enumerate(law.laws):
-        ns[f"law{i}"] = device(device_source(fn))
+        ns[f"law{i}"] = device_function(fn)
     exec(compile(_PHILOX, "<mcsim.engine.cuda philox>", "exec"), ns)
     for name in ("_philox", "_unit", "_height"):
         ns[name] = device(ns[name])

@@ -25,6 +25,7 @@ import numpy as np
 import pytest
 from conftest import CudaChecks
 from cuda_checks import MATERIAL, SURFACE
+from lawset_toy import TOY, toy_grip
 
 from mcsim.engine import cuda as mc
 from mcsim.model.errors import ParameterError
@@ -43,14 +44,29 @@ def law_using_a_helper(delta, R):
 
 
 def _helper(delta):
-    return delta
+    return np.sqrt(np.maximum(delta, 0.0))
+
+
+def law_using_a_helper_using_where(delta, R):
+    return R * _helper_using_where(delta)
+
+
+def _helper_using_where(delta):
+    return np.where(delta > 0, delta, 0.0)
+
+
+def law_using_a_function_of_another_module(delta, R):
+    return toy_grip(delta, R, R)
 
 
 def test_a_law_outside_the_vocabulary_is_rejected_before_compilation():
     with pytest.raises(ParameterError, match=r"np\.where"):
         mc.check_vocabulary(law_using_where)
-    with pytest.raises(ParameterError, match="_helper"):
-        mc.check_vocabulary(law_using_a_helper)
+    with pytest.raises(ParameterError, match=r"_helper_using_where uses np\.where"):
+        mc.check_vocabulary(law_using_a_helper_using_where)
+    with pytest.raises(ParameterError, match="toy_grip"):
+        mc.check_vocabulary(law_using_a_function_of_another_module)
+    mc.check_vocabulary(law_using_a_helper)  # a helper of the law's own file
 
 
 def test_every_registered_law_function_keeps_to_the_vocabulary():
@@ -178,6 +194,23 @@ def test_law_functions_reach_the_cuda_compiler_through_the_device_vocabulary():
     cuda.compile_ptx(compiled, sig, device=True, cc=(9, 0))
 
 
+@needs_nvvm
+def test_a_helper_compiles_as_a_device_function_that_the_law_calls():
+    """The law's ``_helper`` is bound to its CUDA device function, which the real CUDA
+    compiler compiles for the law's call (a float64 signature) into the law's PTX."""
+    from numba import cuda, float64
+
+    compiled = mc.device_source(law_using_a_helper)
+    helper = compiled.__globals__["_helper"]
+    assert helper is mc.device_function(_helper)
+    assert isinstance(helper, cuda.dispatcher.CUDADispatcher)
+    fake = types.SimpleNamespace(compute_capability=(9, 0))
+    with mock.patch("numba.cuda.dispatcher.get_current_device", return_value=fake):
+        ptx = cuda.compile_ptx(compiled, (float64, float64), device=True, cc=(9, 0))[0]
+    assert (float64,) in helper.overloads
+    assert "_helper" in ptx
+
+
 @needs_numba_cuda
 def test_the_ieee_helpers_become_cudas_bit_casts_on_a_real_device(monkeypatch):
     """The simulator runs the NumPy helpers; the CUDA compiler gets libdevice's casts."""
@@ -227,8 +260,11 @@ def checks(request, tmp_path_factory, cuda_simulator_checks):
 
 
 def test_gpu_block_sums_equal_numpy_for_every_law_set_and_branch(checks):
-    expected = {f"{n}/approach" for n in LAW_SETS}
-    expected |= {f"{n}/retract" for n, law in LAW_SETS.items() if law.retract}
+    """Every registered law set and the toy, whose outputs call helpers (device
+    functions on the GPU), as do jkr's and elastic-plastic's."""
+    laws = {**LAW_SETS, TOY.name: TOY}
+    expected = {f"{n}/approach" for n in laws}
+    expected |= {f"{n}/retract" for n, law in laws.items() if law.retract}
     assert set(checks["block_sums"]) == expected
     for case, r in checks["block_sums"].items():
         assert r["n_contact"] == r["ref_n_contact"], case

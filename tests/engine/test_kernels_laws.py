@@ -8,7 +8,7 @@ from lawset_toy import TOY
 
 from mcsim.engine.kernels import SUM_COLUMNS, block_sums, block_sums_numpy, sum_columns
 from mcsim.model.presets import MATERIALS, SURFACES
-from mcsim.physics.laws import LAW_SETS, SEED
+from mcsim.physics.laws import LAW_SETS, SEED, helpers
 
 SMOOTH = SURFACES["smooth"]
 #: Silicon with every optional field a law set may require.
@@ -62,6 +62,54 @@ def test_fused_kernel_matches_the_reference_for_a_stateful_law_set_with_attracti
         fast = block_sums(z, d, TOY, args, d_turn=turn, edges=edges)
         ref = block_sums_numpy(z, d, TOY, args, d_turn=turn, edges=edges)
         assert_sums_close(fast, ref)
+
+
+@pytest.mark.parametrize("branch", ["approach", "retract"])
+def test_a_law_calling_helpers_compiles_them_into_the_kernel_and_matches_the_reference(branch):
+    """TOY's stateful outputs call helpers of their own file (one through another, one
+    reading the table): the kernel compiles them in and agrees with the reference."""
+    from lawset_toy import in_contact, overlap, pressed, toy_area, toy_load
+
+    assert helpers(toy_load) == (in_contact, pressed, overlap)
+    assert helpers(toy_area) == (in_contact,)
+    args, edges = TOY.arguments(SMOOTH, MATERIAL), TOY.edges_for(SMOOTH, MATERIAL)
+    rng = np.random.default_rng(23)
+    z = rng.standard_normal(5000) * SMOOTH.sigma
+    d = np.linspace(3, -1, 41) * SMOOTH.sigma
+    turn = d if branch == "approach" else np.full_like(d, d.min())
+    fast = block_sums(z, d, TOY, args, d_turn=turn, edges=edges)
+    ref = block_sums_numpy(z, d, TOY, args, d_turn=turn, edges=edges)
+    assert np.all(fast[:, 1] != 0)  # the load (helpers in_contact, pressed) acts on every row
+    assert_sums_close(fast, ref)
+
+
+def test_the_kernels_cache_key_follows_the_source_of_every_helper(monkeypatch):
+    """Editing a helper (here: overlap, called through pressed) names a new kernel
+    module, so numba's on-disk cache never serves a kernel built from the old helper."""
+    import inspect
+    import types
+
+    from lawset_toy import overlap
+
+    from mcsim.engine import kernels
+
+    names = []
+
+    def record(name, text):
+        names.append(name)
+        return types.SimpleNamespace(kernel=None)
+
+    monkeypatch.setattr(kernels, "generated_module", record)
+    original = inspect.getsource
+    for edited in (False, True):
+        suffix = "# edited\n" if edited else ""
+        monkeypatch.setattr(
+            inspect, "getsource", lambda f, s=suffix: original(f) + (s if f is overlap else "")
+        )
+        kernels._generate.cache_clear()
+        kernels._generate(TOY, True)
+    kernels._generate.cache_clear()
+    assert len(names) == 2 and names[0] != names[1]
 
 
 def test_reference_counts_contacts_and_attraction_by_the_edges():

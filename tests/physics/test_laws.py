@@ -15,7 +15,7 @@ from mcsim.engine.kernels import compile_law
 from mcsim.model.errors import ParameterError
 from mcsim.model.params import Material, Surface
 from mcsim.model.presets import MATERIALS, SURFACES
-from mcsim.physics.laws import dmt, elastic_plastic, get_law_set, ieee, jkr
+from mcsim.physics.laws import dmt, elastic_plastic, get_law_set, helpers, ieee, jkr
 from mcsim.physics.laws import maugis_dugdale as md
 from mcsim.store.config import load_material, material_from_table
 from mcsim.topography.empirical import Empirical
@@ -220,6 +220,28 @@ def test_elastic_plastic_matches_the_kogut_etsion_fits_in_every_range():
     # H is the hardness: fully plastic, the mean pressure load/area is H itself
     deep = get_law_set("elastic-plastic").evaluate(200 * w_c, SMOOTH, SILICON)
     assert deep["load"] / deep["area"] == pytest.approx(SILICON.H, rel=1e-14)
+
+
+@pytest.mark.parametrize(
+    ("c", "e"), [(1.03, 1.425), (1.40, 1.263), (0.93, 1.136), (0.94, 1.146)]
+)  # fmt: skip
+def test_the_elastic_plastic_power_is_c_x_to_the_e_within_five_ulp_from_1_to_110(c, e):
+    """The module docstring's bound, 1.1e-15 = 5 ulp relative of ``c * x**e`` (measured
+    worst: exactly that for e = 1.136), and x clamped to [1, 110] outside."""
+    x = np.geomspace(1.0, 110.0, 20001)
+    got = elastic_plastic.fit_power(x, c, e, 2.0**e)
+    np.testing.assert_allclose(got, c * x**e, rtol=5 * np.finfo(float).eps, atol=0)
+    ends = elastic_plastic.fit_power(np.array([0.5, 1e3]), c, e, 2.0**e)
+    np.testing.assert_allclose(ends, [c, c * 110.0**e], rtol=5 * np.finfo(float).eps, atol=0)
+
+
+def test_each_shared_formula_is_one_helper_that_both_outputs_call():
+    """The JKR inversion and the elastic-plastic power are written once, in helpers of
+    their law files; laws calling only NumPy and the ieee bit casts have no helpers."""
+    assert helpers(jkr.jkr_load) == helpers(jkr.jkr_area) == (jkr.reduced_root,)
+    assert helpers(elastic_plastic.elastic_plastic_load) == (elastic_plastic.fit_power,)
+    assert helpers(elastic_plastic.elastic_plastic_area) == (elastic_plastic.fit_power,)
+    assert helpers(md.load) == helpers(dmt.dmt_load) == ()
 
 
 def test_elastic_plastic_lists_its_discontinuities_as_breakpoints_in_metres():

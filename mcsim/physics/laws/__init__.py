@@ -28,7 +28,15 @@ compiles as a CUDA device function: arithmetic, comparisons, ``np.sqrt``,
 ``np.floor``, ``np.arctan``, ``np.cos``, ``np.arccos``, ``np.pi``, ``np.int64``, the bit
 casts of :mod:`mcsim.physics.laws.ieee` and integer shifts and masks, and indexing 1-D float
 arrays passed as parameters. No ``np.where``, no Python ``if``/``while`` on array
-values, no calls to other Python functions.
+values.
+
+A law function may call **helpers**: functions defined at module level in its own law
+file, written in the same vocabulary (and which may call further helpers there), so that
+a formula two outputs share is written once (the JKR inversion, the elastic–plastic
+power). :func:`helpers` finds them by the names the function uses. As written they are
+NumPy like the laws; the CPU kernel compiles each into the law that calls it (numba,
+inlined), the GPU kernel as a CUDA device function (:mod:`mcsim.engine.kernels`,
+:mod:`mcsim.engine.cuda`). No other Python function may be called.
 """
 
 from __future__ import annotations
@@ -46,6 +54,27 @@ from mcsim.physics.laws import seed
 
 Law = Callable[..., np.ndarray]
 BRANCHES = ("approach", "retract")
+
+
+def helpers(fn: Law) -> tuple[Callable, ...]:
+    """The helpers law function ``fn`` calls, directly or through one another: the
+    functions of ``fn``'s own module that it names as globals, in the order first named
+    (the module docstring)."""
+    found: list[Callable] = []
+    pending = [fn]
+    while pending:
+        f = pending.pop(0)
+        for name in f.__code__.co_names:
+            value = f.__globals__.get(name)
+            if (
+                inspect.isfunction(value)
+                and value.__module__ == fn.__module__
+                and value is not fn
+                and value not in found
+            ):
+                found.append(value)
+                pending.append(value)
+    return tuple(found)
 
 
 def contact_parameters(surface: Surface, material: Material) -> dict[str, float | None]:

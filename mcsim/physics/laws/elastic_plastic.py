@@ -31,7 +31,8 @@ here to check them.
 The powers x^e are computed without the C library's exp and log (calls the Monte Carlo
 kernel cannot vectorise): x = 2^j m with √½ ≤ m < √2, ln m by the atanh series,
 exp(e ln m) by its [6/6] Padé approximant, times (2^e)^j; within 1.1e-15 relative of
-``x**e`` for 1 ≤ x ≤ 110.
+``x**e`` for 1 ≤ x ≤ 110. Load and area call the one helper :func:`fit_power`
+(:mod:`mcsim.physics.laws`).
 
 The fits are not continuous at the range ends (they are the paper's separate fits):
 going up through x = 1 the load jumps by +3.0 % and the area by −7.0 %, through x = 6
@@ -47,6 +48,58 @@ the retraction branch is refused.
 import numpy as np
 
 from mcsim.physics.laws import Edges, LawSet, Output
+
+
+def fit_power(x, c, e, two_e):
+    """One range of the fits, c·x^e, for x clamped to [1, 110] (module docstring).
+
+    x = 2^j m with √½ ≤ m < √2, j = 4c + 2b + a found by halving, x^e = (2^e)^j m^e, and
+    m^e = exp(e ln m), ln m = 2 atanh((m − 1)/(m + 1)) by its series: no libm calls (they
+    keep the kernel from vectorising); within 1.1e-15 relative of ``c * x**e``.
+
+    Parameters
+    ----------
+    x : float or ndarray
+        Reduced interference δ/ω_c.
+    c, e : float or ndarray
+        Coefficient and exponent of the fit, |e| < 1.44 (then |e ln m| < 0.5, where the
+        Padé approximant holds).
+    two_e : float or ndarray
+        2^e, computed once by the caller.
+
+    Returns
+    -------
+    float or ndarray
+        c·x^e in the unit of ``c``.
+    """
+    xc = np.minimum(np.maximum(x, 1.0), 110.0)
+    c8 = xc >= 11.313708498984761  # √2·2³
+    x1 = xc * (1.0 - 0.9375 * c8)
+    b = x1 >= 2.8284271247461903  # √2·2
+    x2 = x1 * (1.0 - 0.75 * b)
+    a = x2 >= 1.4142135623730951  # √2
+    m = x2 * (1.0 - 0.5 * a)
+    u = (m - 1.0) / (m + 1.0)
+    u2 = u * u
+    u4 = u2 * u2
+    u8 = u4 * u4
+    series = (1.0 + 0.3333333333333333 * u2) + u4 * (0.2 + 0.14285714285714285 * u2)
+    series = series + u8 * (
+        (0.1111111111111111 + 0.09090909090909091 * u2)
+        + u4 * (0.07692307692307693 + 0.06666666666666667 * u2)
+        + u8 * ((0.058823529411764705 + 0.05263157894736842 * u2) + u4 * 0.047619047619047616)
+    )
+    y = e * (2.0 * u * series)  # e ln m, |y| < 0.5
+    # exp y by its [6/6] Padé approximant N(y)/N(−y) (error < 1e-16 for |y| < 0.5)
+    y2 = y * y
+    even = 1.0 + y2 * (
+        0.11363636363636363 + y2 * (0.0012626262626262627 + y2 * 1.503126503126503e-06)
+    )
+    odd = y * (0.5 + y2 * (0.015151515151515152 + y2 * 6.313131313131313e-05))
+    em = (even + odd) / (even - odd)
+    q2 = two_e * two_e
+    scale = (1.0 + a * (two_e - 1.0)) * (1.0 + b * (q2 - 1.0)) * (1.0 + c8 * (q2 * q2 - 1.0))
+    return c * em * scale
 
 
 def elastic_plastic_load(delta, R, E_star, H, nu):
@@ -76,39 +129,9 @@ def elastic_plastic_load(delta, R, E_star, H, nu):
     x = np.maximum(delta, 0.0) / w_c
     x0 = np.minimum(x, 1.0)
     low, high = x < 6.0, x >= 6.0
-    # one power for both elastic-plastic ranges: c x^e with x clamped to [1, 110]
-    # x^e for 1 ≤ x ≤ 110 without libm calls (they keep the kernel from vectorising):
-    # x = 2^j m, √½ ≤ m < √2, j = 4c + 2b + a found by halving, x^e = (2^e)^j m^e, and
-    # m^e = exp(e ln m), ln m = 2 atanh((m − 1)/(m + 1)) by its series
-    xc = np.minimum(np.maximum(x, 1.0), 110.0)
-    c = xc >= 11.313708498984761  # √2·2³
-    x1 = xc * (1.0 - 0.9375 * c)
-    b = x1 >= 2.8284271247461903  # √2·2
-    x2 = x1 * (1.0 - 0.75 * b)
-    a = x2 >= 1.4142135623730951  # √2
-    m = x2 * (1.0 - 0.5 * a)
-    u = (m - 1.0) / (m + 1.0)
-    u2 = u * u
-    u4 = u2 * u2
-    u8 = u4 * u4
-    series = (1.0 + 0.3333333333333333 * u2) + u4 * (0.2 + 0.14285714285714285 * u2)
-    series = series + u8 * (
-        (0.1111111111111111 + 0.09090909090909091 * u2)
-        + u4 * (0.07692307692307693 + 0.06666666666666667 * u2)
-        + u8 * ((0.058823529411764705 + 0.05263157894736842 * u2) + u4 * 0.047619047619047616)
-    )
-    y = (low * 1.425 + high * 1.263) * (2.0 * u * series)  # e ln m, |y| < 0.5
-    # exp y by its [6/6] Padé approximant N(y)/N(−y) (error < 1e-16 for |y| < 0.5)
-    y2 = y * y
-    even = 1.0 + y2 * (
-        0.11363636363636363 + y2 * (0.0012626262626262627 + y2 * 1.503126503126503e-06)
-    )
-    odd = y * (0.5 + y2 * (0.015151515151515152 + y2 * 6.313131313131313e-05))
-    em = (even + odd) / (even - odd)
-    q1 = low * 2.685145005560527 + high * 2.399942764746431  # 2^e
-    q2 = q1 * q1
-    scale = (1.0 + a * (q1 - 1.0)) * (1.0 + b * (q2 - 1.0)) * (1.0 + c * (q2 * q2 - 1.0))
-    power = (low * 1.03 + high * 1.40) * em * scale
+    # one power for both elastic-plastic ranges: 1.03 x^1.425 and 1.40 x^1.263
+    power = fit_power(x, low * 1.03 + high * 1.40, low * 1.425 + high * 1.263,
+                      low * 2.685145005560527 + high * 2.399942764746431)  # fmt: skip
     ratio = (x < 1.0) * (x0 * np.sqrt(x0)) + (x >= 1.0) * (x < 110.0) * power
     # fully plastic P = HA = 2πHRδ (= P_c 3x/k), with no division: under the kernel's
     # fast-math flags LLVM turns (3/k)·x into a division per summit
@@ -141,39 +164,9 @@ def elastic_plastic_area(delta, R, E_star, H, nu):
     a_c = np.pi * R * w_c
     x = np.maximum(delta, 0.0) / w_c
     low, high = x < 6.0, x >= 6.0
-    # one power for both elastic-plastic ranges: c x^e with x clamped to [1, 110]
-    # x^e for 1 ≤ x ≤ 110 without libm calls (they keep the kernel from vectorising):
-    # x = 2^j m, √½ ≤ m < √2, j = 4c + 2b + a found by halving, x^e = (2^e)^j m^e, and
-    # m^e = exp(e ln m), ln m = 2 atanh((m − 1)/(m + 1)) by its series
-    xc = np.minimum(np.maximum(x, 1.0), 110.0)
-    c = xc >= 11.313708498984761  # √2·2³
-    x1 = xc * (1.0 - 0.9375 * c)
-    b = x1 >= 2.8284271247461903  # √2·2
-    x2 = x1 * (1.0 - 0.75 * b)
-    a = x2 >= 1.4142135623730951  # √2
-    m = x2 * (1.0 - 0.5 * a)
-    u = (m - 1.0) / (m + 1.0)
-    u2 = u * u
-    u4 = u2 * u2
-    u8 = u4 * u4
-    series = (1.0 + 0.3333333333333333 * u2) + u4 * (0.2 + 0.14285714285714285 * u2)
-    series = series + u8 * (
-        (0.1111111111111111 + 0.09090909090909091 * u2)
-        + u4 * (0.07692307692307693 + 0.06666666666666667 * u2)
-        + u8 * ((0.058823529411764705 + 0.05263157894736842 * u2) + u4 * 0.047619047619047616)
-    )
-    y = (low * 1.136 + high * 1.146) * (2.0 * u * series)  # e ln m, |y| < 0.5
-    # exp y by its [6/6] Padé approximant N(y)/N(−y) (error < 1e-16 for |y| < 0.5)
-    y2 = y * y
-    even = 1.0 + y2 * (
-        0.11363636363636363 + y2 * (0.0012626262626262627 + y2 * 1.503126503126503e-06)
-    )
-    odd = y * (0.5 + y2 * (0.015151515151515152 + y2 * 6.313131313131313e-05))
-    em = (even + odd) / (even - odd)
-    q1 = low * 2.1977084351537592 + high * 2.2129947061845443  # 2^e
-    q2 = q1 * q1
-    scale = (1.0 + a * (q1 - 1.0)) * (1.0 + b * (q2 - 1.0)) * (1.0 + c * (q2 * q2 - 1.0))
-    power = (low * 0.93 + high * 0.94) * em * scale
+    # one power for both elastic-plastic ranges: 0.93 x^1.136 and 0.94 x^1.146
+    power = fit_power(x, low * 0.93 + high * 0.94, low * 1.136 + high * 1.146,
+                      low * 2.1977084351537592 + high * 2.2129947061845443)  # fmt: skip
     ratio = (x < 1.0) * x + (x >= 1.0) * (x < 110.0) * power + (x >= 110.0) * (2.0 * x)
     return a_c * ratio
 

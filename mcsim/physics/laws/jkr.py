@@ -43,8 +43,8 @@ ill-conditioned (da/dδ → ∞). δ − δ_c is clamped to [0, 1e30 m] and 1e-1
 input; the result is multiplied by the in-contact indicator (δ_max > 0)·(δ > δ_c).
 w = 0 gives Hertz (t_c = 0 and s⁴ = R², so t⁴ = δ/R).
 
-Each output function writes the inversion out in full, so that each compiles on its
-own in the Monte Carlo kernel (see :mod:`mcsim.physics.laws`); there the two take the same
+The inversion is written once, in the helper :func:`reduced_root` that both outputs call
+(:mod:`mcsim.physics.laws`); in the Monte Carlo kernel both are inlined with the same
 parameters and LLVM computes the inversion once for both.
 
 References: Johnson, Kendall & Roberts, Proc. R. Soc. Lond. A 324, 301 (1971); Fuller &
@@ -55,6 +55,49 @@ Tabor, Proc. R. Soc. Lond. A 345, 327 (1975); Greenwood, Proc. R. Soc. Lond. A 4
 import numpy as np
 
 from mcsim.physics.laws import Edges, LawSet, Output
+
+
+def reduced_root(delta, delta_c, jkr_kappa, jkr_t_c):
+    """Reduced root t = √a/s of the stable JKR branch at interference δ (module docstring).
+
+    The root of t⁴ − t = δR/s⁴ with t ≥ t_c: a starting value from the fitted K₁ and K₂
+    and one Halley step on G(v) = v²(v² + 4t_c v + 6t_c²) − X, X = (δ − δ_c)R/s⁴, v = t − t_c.
+
+    Parameters
+    ----------
+    delta : float or ndarray
+        Interference δ = z − d, m.
+    delta_c : float
+        Break-off interference δ_c = −¾ (π²w²R/E*²)^{1/3}, m (:func:`break_off`).
+    jkr_kappa : float
+        R/s⁴, 1/m (:func:`reduced_constants`).
+    jkr_t_c : float
+        Reduced fold t_c = 4^{-1/3} (0 without adhesion).
+
+    Returns
+    -------
+    float or ndarray
+        t, dimensionless (a = s²t², m); finite for every finite δ, t_c (to rounding)
+        at and below δ_c.
+    """
+    X = np.minimum(np.maximum(delta - delta_c, 0.0), 1e30) * jkr_kappa + 1e-150
+    r = np.sqrt(X)
+    rho = np.sqrt(r)
+    inv = 1.0 / (jkr_t_c * jkr_t_c + r)  # independent of ρ: a short dependency chain
+    y = (jkr_t_c * jkr_t_c - r) * inv
+    y2 = y * y
+    y4 = y2 * y2
+    # K₁(y) and K₂(y), degree 6, in Estrin's scheme
+    pa = (0.3800565 - 0.4921 * y) + y2 * (-0.1997725 + 0.3058172 * y)
+    pa = pa + y4 * ((0.0787893 - 0.06367068 * y) - 0.009026963 * y2)
+    pb = (-0.01694183 + 0.5828661 * y) + y2 * (-0.2408734 - 0.2788102 * y)
+    pb = pb + y4 * ((0.1251011 + 0.04789251 * y) - 0.01511029 * y2)
+    v = 2.0 * r * inv * (rho * pa + jkr_t_c * pb)
+    # one Halley step on G(v) = v²(v² + 4t_c v + 6t_c²) − X
+    t = v + jkr_t_c
+    g = v * v * (v * v + 4.0 * jkr_t_c * v + 6.0 * jkr_t_c * jkr_t_c) - X
+    g1 = 4.0 * v * (v * v + 3.0 * jkr_t_c * t)
+    return t - 2.0 * g * g1 / (2.0 * g1 * g1 - 12.0 * g * t * t)
 
 
 def jkr_load(delta, delta_max, delta_c, jkr_kappa, jkr_t_c, jkr_hertz, jkr_adhesion):
@@ -82,24 +125,7 @@ def jkr_load(delta, delta_max, delta_c, jkr_kappa, jkr_t_c, jkr_hertz, jkr_adhes
     float or ndarray
         Load, N, compressive positive; zero out of contact (δ_max ≤ 0 or δ ≤ δ_c).
     """
-    X = np.minimum(np.maximum(delta - delta_c, 0.0), 1e30) * jkr_kappa + 1e-150
-    r = np.sqrt(X)
-    rho = np.sqrt(r)
-    inv = 1.0 / (jkr_t_c * jkr_t_c + r)  # independent of ρ: a short dependency chain
-    y = (jkr_t_c * jkr_t_c - r) * inv
-    y2 = y * y
-    y4 = y2 * y2
-    # K₁(y) and K₂(y), degree 6, in Estrin's scheme
-    pa = (0.3800565 - 0.4921 * y) + y2 * (-0.1997725 + 0.3058172 * y)
-    pa = pa + y4 * ((0.0787893 - 0.06367068 * y) - 0.009026963 * y2)
-    pb = (-0.01694183 + 0.5828661 * y) + y2 * (-0.2408734 - 0.2788102 * y)
-    pb = pb + y4 * ((0.1251011 + 0.04789251 * y) - 0.01511029 * y2)
-    v = 2.0 * r * inv * (rho * pa + jkr_t_c * pb)
-    # one Halley step on G(v) = v²(v² + 4t_c v + 6t_c²) − X
-    t = v + jkr_t_c
-    g = v * v * (v * v + 4.0 * jkr_t_c * v + 6.0 * jkr_t_c * jkr_t_c) - X
-    g1 = 4.0 * v * (v * v + 3.0 * jkr_t_c * t)
-    t = t - 2.0 * g * g1 / (2.0 * g1 * g1 - 12.0 * g * t * t)
+    t = reduced_root(delta, delta_c, jkr_kappa, jkr_t_c)
     t3 = t * t * t
     return (delta_max > 0) * (delta > delta_c) * ((jkr_hertz * t3 - jkr_adhesion) * t3)
 
@@ -127,24 +153,7 @@ def jkr_area(delta, delta_max, delta_c, jkr_kappa, jkr_t_c, jkr_area_unit):
     float or ndarray
         Area, m²; zero out of contact (δ_max ≤ 0 or δ ≤ δ_c).
     """
-    X = np.minimum(np.maximum(delta - delta_c, 0.0), 1e30) * jkr_kappa + 1e-150
-    r = np.sqrt(X)
-    rho = np.sqrt(r)
-    inv = 1.0 / (jkr_t_c * jkr_t_c + r)  # independent of ρ: a short dependency chain
-    y = (jkr_t_c * jkr_t_c - r) * inv
-    y2 = y * y
-    y4 = y2 * y2
-    # K₁(y) and K₂(y), degree 6, in Estrin's scheme
-    pa = (0.3800565 - 0.4921 * y) + y2 * (-0.1997725 + 0.3058172 * y)
-    pa = pa + y4 * ((0.0787893 - 0.06367068 * y) - 0.009026963 * y2)
-    pb = (-0.01694183 + 0.5828661 * y) + y2 * (-0.2408734 - 0.2788102 * y)
-    pb = pb + y4 * ((0.1251011 + 0.04789251 * y) - 0.01511029 * y2)
-    v = 2.0 * r * inv * (rho * pa + jkr_t_c * pb)
-    # one Halley step on G(v) = v²(v² + 4t_c v + 6t_c²) − X
-    t = v + jkr_t_c
-    g = v * v * (v * v + 4.0 * jkr_t_c * v + 6.0 * jkr_t_c * jkr_t_c) - X
-    g1 = 4.0 * v * (v * v + 3.0 * jkr_t_c * t)
-    t = t - 2.0 * g * g1 / (2.0 * g1 * g1 - 12.0 * g * t * t)
+    t = reduced_root(delta, delta_c, jkr_kappa, jkr_t_c)
     t2 = t * t
     return (delta_max > 0) * (delta > delta_c) * (jkr_area_unit * t2 * t2)
 
