@@ -24,13 +24,11 @@ Tolerances, and why:
 
 import dataclasses
 import math
-import os
-import subprocess
-import sys
 import warnings
 
 import numpy as np
 import pytest
+from designmap_checks import assert_agree, inputs, run_elsewhere, summaries
 
 from mcsim.engine.designmap import NO_REST, OK, jkr_summaries
 from mcsim.model.presets import MATERIALS, SURFACES
@@ -164,86 +162,14 @@ def test_a_jkr_sweep_stores_the_fast_summaries_and_friction_within_their_toleran
                                           curves.contact_fraction)  # fmt: skip
 
 
-#: The kernel run by the interpreter, or compiled in another process, against the one
-#: compiled here: the same arithmetic, rounded differently (the GW sums reassociated and
-#: contracted under fast-math, another math library), so
-#:
-#: * curves: 1e-14 of their scale (a 32-node sum rounded in another order: ~32ε = 7e-15);
-#: * turn: 3e-12 in h (each a Brent root within 1e-12 + 4ε|h| of the zero of loads that
-#:   agree to rounding, so the two may stop at either side);
-#: * pull-off, work of separation, hysteresis: 2e-10 relative (the retraction moves with
-#:   the turn, δ_max = σ(s − turn): up to 40 times the turn's 3e-12,
-#:   tests/engine/test_designmap_environment.py; the pull-off is a minimum: second order);
-#: * pull-off location: 1e-7 in h (the bounded minimiser stops within 2(√ε x + 1e-8/3) of
-#:   the minimum, x its distance from the bracket's start, at most a few grid steps < 1:
-#:   3.7e-8 each, 7.4e-8 apart at most).
-#:
-#: Measured: 3e-14 (summary), 3e-8 (location), 6e-16 (curves).
-AGREE = {"curve": 1e-14, "turn": 3e-12, "summary": 2e-10, "h_pull_off": 1e-7}
-
-#: ``jkr_summaries`` on the inputs of the .npz file argv[1] (with an environment where it
-#: holds ``hamaker``), its outputs into argv[2].
-_RUN = """
-import sys
-import numpy as np
-from mcsim.engine.designmap import jkr_summaries
-from mcsim.physics.environment import Environment
-a = np.load(sys.argv[1])
-env = None
-if "hamaker" in a.files:
-    env = [Environment(hamaker=x or None, rh=rh, contact_angle=t, cutoff=c)
-           for x, rh, t, c in zip(a["hamaker"], a["rh"], a["contact_angle"], a["cutoff"])]
-names = ("sigma", "R", "eta", "E_star", "K", "gamma", "h")
-np.savez(sys.argv[2], **jkr_summaries(*(a[k] for k in names), environment=env))
-"""
-
-
-def inputs(points, environments=None) -> dict[str, np.ndarray]:
-    """The arguments of ``jkr_summaries`` at ``points`` ((surface, material) pairs), as arrays."""
-    s, m = zip(*points)
-    out = {"sigma": [x.sigma for x in s], "R": [x.R for x in s], "eta": [x.eta for x in s],
-           "E_star": [x.E_star for x in m], "K": [x.K for x in m], "gamma": [x.gamma for x in m],
-           "h": H}  # fmt: skip
-    if environments is not None:
-        out |= {k: [getattr(e, k) or 0.0 for e in environments]
-                for k in ("hamaker", "rh", "contact_angle", "cutoff")}  # fmt: skip
-    return {k: np.asarray(v, dtype=float) for k, v in out.items()}
-
-
-def run_elsewhere(arguments: dict, tmp_path, name: str, check: str = "", **environ) -> dict:
-    """``jkr_summaries`` at ``arguments`` (:func:`inputs`) in a fresh Python process with
-    the environment variables ``environ``, then the statements ``check`` there."""
-    np.savez(tmp_path / "in.npz", **arguments)
-    out = tmp_path / f"{name}.npz"
-    subprocess.run([sys.executable, "-c", _RUN + check, str(tmp_path / "in.npz"), str(out)],
-                   env=os.environ | environ, check=True)  # fmt: skip
-    return dict(np.load(out))
-
-
-def assert_agree(got: dict, expected: dict, tolerance: dict = AGREE) -> None:
-    """Every output of ``got`` within ``tolerance`` (:data:`AGREE`) of ``expected``."""
-    assert sorted(got) == sorted(expected)
-    for k, v in expected.items():
-        v = np.asarray(v, dtype=float)
-        if v.ndim == 2:  # curves: of their scale
-            scale = np.max(np.abs(v), axis=1, keepdims=True)
-            assert np.all(np.abs(got[k] - v) <= tolerance["curve"] * scale), k
-        elif k in ("turn", "h_pull_off"):
-            np.testing.assert_allclose(got[k], v, rtol=0, atol=tolerance[k], err_msg=k)
-        elif k == "status":
-            np.testing.assert_array_equal(got[k], v, err_msg=k)
-        else:
-            np.testing.assert_allclose(got[k], v, rtol=tolerance.get(k, tolerance["summary"]),
-                                       atol=0, err_msg=k)  # fmt: skip
-
-
 def test_the_kernel_run_by_the_interpreter_agrees_with_the_compiled_one(tmp_path):
     """The kernel is plain Python: with ``NUMBA_DISABLE_JIT=1`` the interpreter runs every
-    function, and gets the compiled numbers within rounding (:data:`AGREE`)."""
+    function, and gets the compiled numbers within rounding (tests/designmap_checks.py:
+    ``AGREE``)."""
     surface = dataclasses.replace(SMOOTH, sigma=5e-9)  # the surfaces rest apart
     points = [*random_points(3, seed=11), (surface, dataclasses.replace(SILICON, gamma=0.05))]
-    arguments = inputs(points)
-    compiled = jkr_summaries(**arguments)
+    arguments = inputs(points, H)
+    compiled = summaries(arguments)
     assert compiled["status"][-1] == NO_REST and np.sum(compiled["pull_off"] > 0) >= 2
     interpreted = run_elsewhere(arguments, tmp_path, "interpreted", NUMBA_DISABLE_JIT="1")
     assert_agree(interpreted, compiled)
@@ -254,7 +180,7 @@ def test_stale_modules_are_removed_and_the_kernel_compiled_once_is_loaded_after(
     versions (and numba's files of them), and compiles the kernel into the cache; a later
     process loads every function from there. The first process's numbers differ from the
     later one's by rounding (the module docstring of ``mcsim.engine.designmap``), within
-    :data:`AGREE`, dry and with an environment."""
+    ``AGREE`` (tests/designmap_checks.py), dry and with an environment."""
     from mcsim.physics.environment import Environment
 
     kernels = tmp_path / "cache" / "kernels"
@@ -268,19 +194,16 @@ def test_stale_modules_are_removed_and_the_kernel_compiled_once_is_loaded_after(
         path.write_text("")
     environ = {"MCSIM_CACHE_DIR": str(tmp_path / "cache")}
     points = random_points(2, seed=12)
-    dry = inputs(points)
-    wet = inputs(points, [Environment(hamaker=1.6e-19, rh=0.6)] * 2)
+    dry = inputs(points, H)
+    wet = inputs(points, H, [Environment(hamaker=1.6e-19, rh=0.6)] * 2)
     first = [run_elsewhere(a, tmp_path, f"first{i}", **environ) for i, a in enumerate((dry, wet))]
     assert not any(path.exists() for path in stale) and kept.exists()
-    cached = sorted(p.name for p in (tmp_path / "cache" / "designmap").glob("*.nbi"))
-    assert "mapkernel._batch-0.py311.nbi" in cached
-    assert "mapenvironment._batch_net-0.py311.nbi" in cached
-    # every function from the cache: a compile would count a miss
-    check = ("from mcsim.engine.designmap import _kernels\n"
-             "assert not any(k.stats.cache_misses for k in _kernels()), 'compiled again'\n"
-             "assert any(k.stats.cache_hits for k in _kernels())\n")  # fmt: skip
+    cache = tmp_path / "cache" / "designmap"
+    assert [*cache.glob("mapkernel._batch-*.nbi")] and [
+        *cache.glob("mapenvironment._batch_net-*.nbi")
+    ]
     for i, arguments in enumerate((dry, wet)):
-        later = run_elsewhere(arguments, tmp_path, f"later{i}", check, **environ)
+        later = run_elsewhere(arguments, tmp_path, f"later{i}", "--from-cache", **environ)
         assert_agree(later, first[i])
 
 
