@@ -394,11 +394,9 @@ def _closure(fn) -> tuple[list, dict]:
         if f in found:
             continue
         found.append(f)
-        code = (f.py_func if isinstance(f, Dispatcher) else f).__code__
-        names = [n for c in _codes(code) for n in c.co_names]
-        glob = (f.py_func if isinstance(f, Dispatcher) else f).__globals__
-        for name in names:
-            value = glob.get(name)
+        py_func = f.py_func if isinstance(f, Dispatcher) else f
+        for name in (n for c in _codes(py_func.__code__) for n in c.co_names):
+            value = py_func.__globals__.get(name)
             if isinstance(value, (Dispatcher, types.FunctionType)):
                 pending.append(value)
             elif isinstance(value, (bool, int, float, tuple, np.ndarray)):
@@ -430,7 +428,7 @@ def fingerprint(fn) -> str:
             digest.update(code.co_code + repr(code.co_names).encode())
             consts = (c for c in code.co_consts if c is not f.__doc__)
             digest.update(repr([c for c in consts if not isinstance(c, types.CodeType)]).encode())
-    for name, value in sorted(constants.items(), key=lambda item: item[0]):
+    for name, value in sorted(constants.items()):
         data = (
             value.tobytes() + repr((value.dtype, value.shape)).encode()
             if isinstance(value, np.ndarray)
