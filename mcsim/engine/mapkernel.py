@@ -29,8 +29,11 @@ Each function follows a step of :func:`mcsim.physics.adhesion.adhesion_summary`:
   the reference's 1e-7).
 
 The root finder and the minimiser take the load they work on as their first argument, a
-compiled function: numba compiles one specialisation per load (the contact's
-:func:`_load` here, the net load with an environment in :mod:`mcsim.engine.mapenvironment`).
+compiled function (the contact's :func:`_load` here, the net load with an environment in
+:mod:`mcsim.engine.mapenvironment`), and numba inlines them into each caller
+(``inline="always"``), so the load is resolved where it is compiled: a function passed
+to a function compiled on its own would be passed as the address of its Python object,
+which numba cannot cache on disk.
 
 **The on-disk cache** (:func:`enable_cache`). numba's own (``cache=True``) stamps a
 function's cache with its source file alone: a changed callee in another file (the law
@@ -39,7 +42,10 @@ a changed docstring would recompile it. Here each function's cache, in
 ``<mcsim.engine.kernels.cache_dir()>/designmap``, is stamped with what numba compiles into
 it (:func:`fingerprint`): the bytecode, constants and options of the function and of
 every function it calls, and the values of the module constants they read; not
-docstrings, comments or line numbers.
+docstrings, comments or line numbers. A changed kernel replaces its files there (numba
+keeps one index per function), so nothing stale accumulates; two installs of different
+kernels that share one cache folder replace each other's, each compiling again after the
+other ran.
 """
 
 from __future__ import annotations
