@@ -5,7 +5,7 @@ capillary condensation across the gaps of Gaussian heights about the mean plane,
 :mod:`mcsim.physics.environment`) the steps of :mod:`mcsim.engine.mapkernel` run on the net
 load, as ``adhesion_summary(..., environment=...)`` does (:func:`_batch_net`, a kernel of
 its own: the dry one is untouched and gives the same bits as without this part). Like the
-dry kernel, this is source text compiled by :func:`mcsim.engine.designmap._compiled`:
+dry kernel, these are plain numba functions that the interpreter also runs:
 
 * **the attraction** at a separation h (mean-plane gap D = hσ + y_s): the capillary part
   (γ_L/r_K) P(D0 <= g < g_K) in closed form (:func:`_capillary`, Φ by ``math.erfc``); the
@@ -34,25 +34,27 @@ dry kernel, this is source text compiled by :func:`mcsim.engine.designmap._compi
 Against ``adhesion_summary`` with the environment (tests/engine/test_designmap_environment.py):
 curves to 1e-13 of their scale, the turn to 1e-10 in h, pull-off, work of separation and its
 parts and hysteresis to 1e-9 relative (the contact work after a deep turn moves with it: 5e-11
-measured), Kelvin radius, Rq and y_s equal. ``_root`` and ``_minimum`` run on the net load
-as ``_root_net`` and ``_minimum_net``: their source compiled a second time with the names of
-:data:`mcsim.engine.designmap._NET_NAMES` replaced.
+measured), Kelvin radius, Rq and y_s equal. The dry kernel's root finder and minimiser
+(:func:`~mcsim.engine.mapkernel._root`, :func:`~mcsim.engine.mapkernel._minimum`) run on the
+net load (:func:`_net_load`) given as their first argument.
 """
 
 from __future__ import annotations
 
 import math
 
+import numba
 import numpy as np
 
+from mcsim.engine.designmap import NO_REST, OK, REFERENCE
 from mcsim.engine.mapkernel import (
     _SQRT_2PI,
     H_TOLERANCE,
-    NO_REST,
-    OK,
-    REFERENCE,
+    OPTIONS,
     _load,
+    _minimum,
     _retraction,
+    _root,
     _rule,
     gw_load,
 )
@@ -89,6 +91,7 @@ def _vdw_rule() -> tuple[np.ndarray, np.ndarray]:
 VDW_U, VDW_W = _vdw_rule()
 
 
+@numba.njit(**OPTIONS)
 def _gap_moments(a, n, shift, rq, out):
     """E[g⁻³; g >= D0], m⁻³, for g = D − z, z ~ N(0, Rq²), at the first ``n`` of
     a = (D − D0)/Rq, into ``out``, all on one rule (module docstring).
@@ -133,11 +136,13 @@ def _gap_moments(a, n, shift, rq, out):
         out[k] *= span / _SQRT_2PI
 
 
+@numba.njit(**OPTIONS)
 def _ndtr(x):
     """Standard normal CDF Φ(x) = erfc(−x/√2)/2."""
     return 0.5 * math.erfc(-x * 0.7071067811865476)
 
 
+@numba.njit(**OPTIONS)
 def _capillary(D, p):
     """Capillary pressure (Pa) at mean-plane gap D, as
     :func:`mcsim.physics.environment.capillary_pressure`: (γ_L/r_K) P(D0 <= g < g_K)."""
@@ -150,6 +155,7 @@ def _capillary(D, p):
     return p[P_LAPLACE] * filled
 
 
+@numba.njit(**OPTIONS)
 def _attractions(h, n, sigma, p, vdw, capillary):
     """Van der Waals and capillary pressures (Pa) at the first ``n`` separations ``h``
     (D = hσ + y_s), into ``vdw`` and ``capillary``, as
@@ -178,6 +184,7 @@ def _attractions(h, n, sigma, p, vdw, capillary):
         vdw[k] = p[P_VDW] * vdw[k]
 
 
+@numba.njit(**OPTIONS)
 def _attraction(h, sigma, p):
     """Van der Waals plus capillary attraction per nominal area over K at separation h."""
     x = np.empty(1)
@@ -188,11 +195,13 @@ def _attraction(h, sigma, p):
     return (vdw[0] + capillary[0]) / p[P_K]
 
 
+@numba.njit(**OPTIONS)
 def _net_load(h, turn, retract, sigma, factor, p, nodes, weights):
     """The net load: the contact load (:func:`_load`) minus the attraction."""
     return _load(h, turn, retract, sigma, factor, p, nodes, weights) - _attraction(h, sigma, p)
 
 
+@numba.njit(**OPTIONS)
 def _zero_load_turn_net(sigma, factor, p, nodes, weights):
     """As :func:`_zero_load_turn` on the net load, the attraction of :data:`BLOCK` scan points
     at a time (:func:`_attractions`)."""
@@ -226,11 +235,12 @@ def _zero_load_turn_net(sigma, factor, p, nodes, weights):
     if after < 0:
         return math.nan, REFERENCE
     a, b = grid[after], grid[after - 1]
-    turn = _root_net(a, b, values[after], values[after - 1], 1e-12, 0.0, False, sigma, factor, p,  # noqa: F821
-                     nodes, weights)  # fmt: skip
+    turn = _root(_net_load, a, b, values[after], values[after - 1], 1e-12, 0.0, False, sigma,
+                 factor, p, nodes, weights)  # fmt: skip
     return turn, OK
 
 
+@numba.njit(**OPTIONS)
 def _point_net(turn, sigma, factor, p, nodes, weights, gl_x, gl_w, out):
     """As :func:`_point`, with the pull-off of the net load, also above the summits.
 
@@ -261,12 +271,14 @@ def _point_net(turn, sigma, factor, p, nodes, weights, gl_x, gl_w, out):
     out[0], out[1], out[2], out[3] = 0.0, math.nan, work, hysteresis
     if values[i] < 0.0:
         lo, hi = grid[max(i - 1, 0)], grid[min(i + 1, grid.size - 1)]
-        x, value = _minimum_net(lo, hi, H_TOLERANCE, turn, sigma, factor, p, nodes, weights)  # noqa: F821
+        x, value = _minimum(_net_load, lo, hi, H_TOLERANCE, turn, sigma, factor, p, nodes,
+                            weights)  # fmt: skip
         if value > values[i]:
             x, value = grid[i], values[i]
         out[0], out[1] = -value, x
 
 
+@numba.njit(**OPTIONS)
 def _batch_net(sigma, factor, params, turns, h, nodes, weights, gl_x, gl_w, curves, summary,
                status):  # fmt: skip
     """As :func:`_batch` with an environment (the columns of ``params`` from :data:`P_VDW`

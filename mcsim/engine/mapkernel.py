@@ -1,8 +1,8 @@
 """The design map's kernel without an environment: the jkr summaries of one batch, dry.
 
-Plain Python source, not called here: :func:`mcsim.engine.designmap._compiled` copies the
-text of these functions, with the constants they read, into a generated module and compiles
-it with numba (``load_law`` and ``area_law``, the JKR law functions, are defined there).
+Plain numba functions (:func:`_batch` the entry point), which the interpreter also runs
+(``NUMBA_DISABLE_JIT=1``, or each function's ``py_func``); the JKR law functions
+(:mod:`mcsim.physics.laws.jkr`) are compiled into them (:data:`load_law`, :data:`area_law`).
 Each function follows a step of :func:`mcsim.physics.adhesion.adhesion_summary`:
 
 * **the GW integrals** (:func:`gw_load`): E[P(σ(S − h)); in contact] for a standard normal
@@ -27,15 +27,42 @@ Each function follows a step of :func:`mcsim.physics.adhesion.adhesion_summary`:
   ``scipy.optimize.minimize_scalar(method="bounded")``) between the neighbours of the
   lowest of the panel edges and nodes, to :data:`H_TOLERANCE` in h (ten times finer than
   the reference's 1e-7).
+
+The root finder and the minimiser take the load they work on as their first argument, a
+compiled function (the contact's :func:`_load` here, the net load with an environment in
+:mod:`mcsim.engine.mapenvironment`), and numba inlines them into each caller
+(``inline="always"``), so the load is resolved where it is compiled: a function passed
+to a function compiled on its own would be passed as the address of its Python object,
+which numba cannot cache on disk.
+
+**The on-disk cache** (:func:`enable_cache`). numba's own (``cache=True``) stamps a
+function's cache with its source file alone: a changed callee in another file (the law
+functions, the constants of :mod:`mcsim.physics.adhesion`) would leave a stale kernel, and
+a changed docstring would recompile it. Here each function's cache, in
+``<mcsim.engine.kernels.cache_dir()>/designmap``, is stamped with what numba compiles into
+it (:func:`fingerprint`): the bytecode, constants and options of the function and of
+every function it calls, and the values of the module constants they read; not
+docstrings, comments or line numbers. A changed kernel replaces its files there (numba
+keeps one index per function), so nothing stale accumulates; two installs of different
+kernels that share one cache folder replace each other's, each compiling again after the
+other ran.
 """
 
 from __future__ import annotations
 
+import hashlib
 import math
+import types
 
+import numba
 import numpy as np
+from numba.core import caching
+from numba.core.dispatcher import Dispatcher
 
+from mcsim.engine.designmap import NO_REST, OK, REFERENCE
+from mcsim.engine.kernels import cache_dir, compile_law
 from mcsim.physics.adhesion import GAUSSIAN_TOP, GRID, PANELS
+from mcsim.physics.laws.jkr import jkr_area, jkr_load
 
 #: Gauss–Legendre nodes of the one-panel rule in u (module docstring).
 S_NODES = 32
@@ -44,15 +71,22 @@ S_NODES = 32
 APPROACH_PANELS = 16
 #: Tolerance of the pull-off separation in h (the bounded minimiser's ``xatol``).
 H_TOLERANCE = 1e-8
-#: Status of a point: summarised; the approach load is never tensile (the surfaces rest
-#: apart: zero pull-off, work and hysteresis); outside the fast path (the approach load
-#: stays tensile down to h = -1e6: the reference path reports it).
-OK, NO_REST, REFERENCE = 0, 1, 2
 
 _SQRT_2PI = math.sqrt(2.0 * math.pi)
 _TAIL = 82.0  # GAUSSIAN_TOP²: the weight above e^-41 of its peak
 
+#: numba options of the kernel's functions: a float division by zero gives inf or nan as in
+#: NumPy, no ZeroDivisionError check in the loops.
+OPTIONS = {"nogil": True, "error_model": "numpy"}
+#: Those of the GW integrals: their sums over the s nodes may be reordered (vectorised);
+#: NaN (the turn not given) is tested outside them, so no flag that assumes it away.
+FAST = OPTIONS | {"fastmath": {"reassoc", "contract", "nsz"}}
+#: The JKR law functions, inlined into the GW integrals (so the fast-math flags reach them).
+load_law = compile_law(jkr_load, inline="always", error_model="numpy")
+area_law = compile_law(jkr_area, inline="always", error_model="numpy")
 
+
+@numba.njit(**FAST)
 def gw_load(h, turn, retract, sigma, factor, p, nodes, weights):
     """Load/(A_n K) and A_r/A_n of the JKR law set at separation ``h`` (see the module doc).
 
@@ -79,12 +113,13 @@ def gw_load(h, turn, retract, sigma, factor, p, nodes, weights):
         w = math.exp(0.5 * (peak - s) * (peak + s)) * u * weights[k]
         delta = sigma * delta_h
         delta_max = sigma * (s - turn) if retract else delta
-        load += w * load_law(delta, delta_max, p[0], p[1], p[2], p[3], p[4])  # noqa: F821
-        area += w * area_law(delta, delta_max, p[0], p[1], p[2], p[5])  # noqa: F821
+        load += w * load_law(delta, delta_max, p[0], p[1], p[2], p[3], p[4])
+        area += w * area_law(delta, delta_max, p[0], p[1], p[2], p[5])
     scale = math.exp(-0.5 * peak * peak) * 2.0 * span / _SQRT_2PI
     return factor * scale * load, p[6] * scale * area
 
 
+@numba.njit(**FAST)
 def _load(h, turn, retract, sigma, factor, p, nodes, weights):
     """Load/(A_n K) alone, as :func:`gw_load` (the area's inversion is not computed)."""
     b = p[0] / sigma
@@ -111,13 +146,14 @@ def _load(h, turn, retract, sigma, factor, p, nodes, weights):
     load = 0.0
     for k in range(n):
         d = sigma * delta[k]
-        load += w[k] * load_law(d, d + lag, p[0], p[1], p[2], p[3], p[4])  # noqa: F821
+        load += w[k] * load_law(d, d + lag, p[0], p[1], p[2], p[3], p[4])
     return factor * math.exp(-0.5 * peak * peak) * 2.0 * span / _SQRT_2PI * load
 
 
-def _root(a, b, fa, fb, xtol, turn, retract, sigma, factor, p, nodes, weights):
-    """Zero of the load in [a, b] (fa·fb < 0) by Brent's method, as ``scipy.optimize.brentq``
-    (Brent 1973, ch. 4), to ``xtol`` + 4ε|x| in h."""
+@numba.njit(inline="always", **OPTIONS)
+def _root(load, a, b, fa, fb, xtol, turn, retract, sigma, factor, p, nodes, weights):
+    """Zero of ``load`` (:func:`_load` or the net load) in [a, b] (fa·fb < 0) by Brent's
+    method, as ``scipy.optimize.brentq`` (Brent 1973, ch. 4), to ``xtol`` + 4ε|x| in h."""
     rtol = 4.0 * 2.220446049250313e-16
     pre, fpre, cur, fcur = a, fa, b, fb
     blk = fblk = spre = scur = 0.0
@@ -150,12 +186,13 @@ def _root(a, b, fa, fb, xtol, turn, retract, sigma, factor, p, nodes, weights):
             cur += scur
         else:
             cur += delta if sbis > 0 else -delta
-        fcur = _load(cur, turn, retract, sigma, factor, p, nodes, weights)
+        fcur = load(cur, turn, retract, sigma, factor, p, nodes, weights)
     return cur
 
 
-def _minimum(a, b, xatol, turn, sigma, factor, p, nodes, weights):
-    """Minimum of the retraction load on [a, b] by Brent's bounded method (golden section
+@numba.njit(inline="always", **OPTIONS)
+def _minimum(load, a, b, xatol, turn, sigma, factor, p, nodes, weights):
+    """Minimum of the retraction ``load`` (:func:`_load` or the net load) on [a, b] by Brent's bounded method (golden section
     and parabolic steps), as ``scipy.optimize.minimize_scalar(method="bounded")``, in the
     distance from ``a`` (so that the stop rule's relative term, √ε times the abscissa,
     is √ε times at most the bracket's width, not times |h|); returns (h, load)."""
@@ -166,7 +203,7 @@ def _minimum(a, b, xatol, turn, sigma, factor, p, nodes, weights):
     nfc, xf = fulc, fulc
     rat = e = 0.0
     x = xf
-    fx = _load(origin + x, turn, True, sigma, factor, p, nodes, weights)
+    fx = load(origin + x, turn, True, sigma, factor, p, nodes, weights)
     ffulc = fnfc = fx
     xm = 0.5 * (a + b)
     tol1 = sqrt_eps * abs(xf) + xatol / 3.0
@@ -194,7 +231,7 @@ def _minimum(a, b, xatol, turn, sigma, factor, p, nodes, weights):
             e = (a - xf) if xf >= xm else (b - xf)
             rat = golden * e
         x = xf + (rat if abs(rat) >= tol1 else (tol1 if rat >= 0 else -tol1))
-        fu = _load(origin + x, turn, True, sigma, factor, p, nodes, weights)
+        fu = load(origin + x, turn, True, sigma, factor, p, nodes, weights)
         if fu <= fx:
             if x >= xf:
                 a = xf
@@ -219,6 +256,7 @@ def _minimum(a, b, xatol, turn, sigma, factor, p, nodes, weights):
     return origin + xf, fx
 
 
+@numba.njit(**OPTIONS)
 def _zero_load_turn(sigma, factor, p, nodes, weights):
     """The zero of the approach load coming from far away, as
     :func:`mcsim.physics.adhesion.zero_load_separation`; (turn, status)."""
@@ -244,11 +282,12 @@ def _zero_load_turn(sigma, factor, p, nodes, weights):
     if after < 0:
         return math.nan, REFERENCE
     a, b = grid[after], grid[after - 1]
-    turn = _root(a, b, values[after], values[after - 1], 1e-12, 0.0, False, sigma, factor, p,
+    turn = _root(_load, a, b, values[after], values[after - 1], 1e-12, 0.0, False, sigma, factor, p,
                  nodes, weights)  # fmt: skip
     return turn, OK
 
 
+@numba.njit(**OPTIONS)
 def _retraction(turn, sigma, factor, p, nodes, weights, gl_x, gl_w, extra):
     """The retraction's panel edges and nodes on [turn, top] with their loads (``extra``
     more slots at the end), top, and the work and hysteresis (in load·dh units)."""
@@ -266,7 +305,7 @@ def _retraction(turn, sigma, factor, p, nodes, weights, gl_x, gl_w, extra):
         cuts[n] = coarse[j]
         n += 1
         if j < PANELS and on_coarse[j] * on_coarse[j + 1] < 0.0:
-            cuts[n] = _root(coarse[j], coarse[j + 1], on_coarse[j], on_coarse[j + 1], 1e-13,
+            cuts[n] = _root(_load, coarse[j], coarse[j + 1], on_coarse[j], on_coarse[j + 1], 1e-13,
                             turn, True, sigma, factor, p, nodes, weights)  # fmt: skip
             n += 1
     kink = turn - p[0] / sigma
@@ -308,6 +347,7 @@ def _retraction(turn, sigma, factor, p, nodes, weights, gl_x, gl_w, extra):
     return grid, values, top, work, hysteresis
 
 
+@numba.njit(**OPTIONS)
 def _point(turn, sigma, factor, p, nodes, weights, gl_x, gl_w, out):
     """Pull-off, its separation, work and hysteresis (in load·dh units) after ``turn``."""
     grid, values, _, work, hysteresis = _retraction(turn, sigma, factor, p, nodes, weights, gl_x,
@@ -316,12 +356,13 @@ def _point(turn, sigma, factor, p, nodes, weights, gl_x, gl_w, out):
     out[0], out[1], out[2], out[3] = 0.0, math.nan, work, hysteresis
     if values[i] < 0.0:
         lo, hi = grid[max(i - 1, 0)], grid[min(i + 1, grid.size - 1)]
-        x, value = _minimum(lo, hi, H_TOLERANCE, turn, sigma, factor, p, nodes, weights)
+        x, value = _minimum(_load, lo, hi, H_TOLERANCE, turn, sigma, factor, p, nodes, weights)
         if value > values[i]:
             x, value = grid[i], values[i]
         out[0], out[1] = -value, x
 
 
+@numba.njit(**OPTIONS)
 def _batch(sigma, factor, params, turns, h, nodes, weights, gl_x, gl_w, curves, summary, status):
     """Every point of a batch: approach curves at ``h`` and the summary (``_point``)."""
     out = np.empty(4)
@@ -346,3 +387,111 @@ def _rule(n: int) -> tuple[np.ndarray, np.ndarray]:
     """Gauss–Legendre nodes and weights on [0, 1]."""
     x, w = np.polynomial.legendre.leggauss(n)
     return (x + 1.0) / 2.0, w / 2.0
+
+
+def _closure(fn) -> tuple[list, dict]:
+    """The compiled functions and the Python functions that ``fn`` is made of (itself and
+    every function it calls, directly or not: a list of dispatchers and functions), and the
+    module constants they read, by name."""
+    found, constants = [], {}
+    pending = [fn]
+    while pending:
+        f = pending.pop()
+        if f in found:
+            continue
+        found.append(f)
+        py_func = f.py_func if isinstance(f, Dispatcher) else f
+        for name in (n for c in _codes(py_func.__code__) for n in c.co_names):
+            value = py_func.__globals__.get(name)
+            if isinstance(value, (Dispatcher, types.FunctionType)):
+                pending.append(value)
+            elif isinstance(value, (bool, int, float, tuple, np.ndarray)):
+                constants[name] = value
+    return found, constants
+
+
+def _codes(code: types.CodeType):
+    """``code`` and the code objects nested in it (comprehensions, inner functions)."""
+    yield code
+    for c in code.co_consts:
+        if isinstance(c, types.CodeType):
+            yield from _codes(c)
+
+
+def fingerprint(fn) -> str:
+    """A hash of what numba compiles into ``fn`` (a dispatcher): the bytecode, constants
+    and numba options of it and of every function it calls, and the values of the module
+    constants they read; not docstrings, comments or line numbers (module docstring)."""
+    digest = hashlib.sha256()
+    functions, constants = _closure(fn)
+    for f in functions:
+        if isinstance(f, Dispatcher):
+            options = sorted((k, sorted(v) if isinstance(v, set) else v)
+                             for k, v in f.targetoptions.items())  # fmt: skip
+            digest.update(repr(options).encode())
+            f = f.py_func
+        for code in _codes(f.__code__):
+            digest.update(code.co_code + repr(code.co_names).encode())
+            consts = (c for c in code.co_consts if c is not f.__doc__)
+            digest.update(repr([c for c in consts if not isinstance(c, types.CodeType)]).encode())
+    for name, value in sorted(constants.items()):
+        data = (
+            value.tobytes() + repr((value.dtype, value.shape)).encode()
+            if isinstance(value, np.ndarray)
+            else repr(value).encode()
+        )
+        digest.update(name.encode() + data)
+    return digest.hexdigest()
+
+
+class _Locator(caching._CacheLocator):
+    """Where numba caches a kernel function (``<cache_dir()>/designmap``), and its stamp
+    (:func:`fingerprint`; module docstring)."""
+
+    def __init__(self, py_func, py_file):
+        self._py_file = py_file  # where numba's warnings point
+        self._path = str(cache_dir() / "designmap")
+        self._stamp = fingerprint(py_func.__globals__[py_func.__name__])
+
+    def get_cache_path(self):
+        return self._path
+
+    def get_source_stamp(self):
+        return self._stamp
+
+    def get_disambiguator(self):
+        return "0"  # the qualified name is unique in its module: no line number
+
+    @classmethod
+    def from_function(cls, py_func, py_file):
+        locator = cls(py_func, py_file)
+        try:
+            locator.ensure_cache_path()
+        except OSError:  # not writable: no cache
+            return None
+        return locator
+
+
+class _CacheImpl(caching.CompileResultCacheImpl):
+    _locator_classes = (_Locator,)
+
+
+class _Cache(caching.FunctionCache):
+    """numba's cache of compiled functions, located and stamped by :class:`_Locator`."""
+
+    _impl_class = _CacheImpl
+
+
+def enable_cache(*entries) -> None:
+    """Cache on disk every compiled function that ``entries`` are made of (module docstring).
+
+    Where the cache cannot be written, nothing is cached: the kernel compiles in every
+    process. Interpreted (``NUMBA_DISABLE_JIT=1``) there is nothing to cache.
+    """
+    for entry in entries:
+        for f in _closure(entry)[0]:
+            if isinstance(f, Dispatcher) and not isinstance(f._cache, _Cache):
+                try:
+                    f._cache = _Cache(f.py_func)
+                except RuntimeError:  # no locator: the cache folder cannot be written
+                    return

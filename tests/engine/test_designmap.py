@@ -28,6 +28,7 @@ import warnings
 
 import numpy as np
 import pytest
+from designmap_checks import assert_agree, inputs, run_elsewhere, summaries
 
 from mcsim.engine.designmap import NO_REST, OK, jkr_summaries
 from mcsim.model.presets import MATERIALS, SURFACES
@@ -161,49 +162,70 @@ def test_a_jkr_sweep_stores_the_fast_summaries_and_friction_within_their_toleran
                                           curves.contact_fraction)  # fmt: skip
 
 
-_BATCH_SCRIPT = """
-import sys
-import numpy as np
-from mcsim.engine import designmap
-from mcsim.physics.environment import Environment
-sigma = np.geomspace(0.3e-9, 20e-9, 12)
-out = {}
-for kind, env in (("dry", None), ("environment", Environment(hamaker=1.6e-19, rh=0.6))):
-    got = designmap.jkr_summaries(sigma, 1.7e-6, 17e12, 8.7e10, 1.16e11, 0.1,
-                                  np.linspace(4, -1, 51), environment=env)
-    out |= {f"{kind}/{k}": np.asarray(v, float) for k, v in got.items()}
-for entry in ("_batch", "_batch_net"):
-    assert not getattr(designmap._compiled(), entry).stats.cache_misses, "compiled here"
-np.savez(sys.argv[1], **out)
-"""
+def test_the_kernel_run_by_the_interpreter_agrees_with_the_compiled_one(tmp_path):
+    """The kernel is plain Python: with ``NUMBA_DISABLE_JIT=1`` the interpreter runs every
+    function, and gets the compiled numbers within rounding (tests/designmap_checks.py:
+    ``AGREE``)."""
+    surface = dataclasses.replace(SMOOTH, sigma=5e-9)  # the surfaces rest apart
+    points = [*random_points(3, seed=11), (surface, dataclasses.replace(SILICON, gamma=0.05))]
+    arguments = inputs(points, H)
+    compiled = summaries(arguments)
+    assert compiled["status"][-1] == NO_REST and np.sum(compiled["pull_off"] > 0) >= 2
+    interpreted = run_elsewhere(arguments, tmp_path, "interpreted", NUMBA_DISABLE_JIT="1")
+    assert_agree(interpreted, compiled)
 
 
-def test_the_first_process_after_an_install_gives_the_bits_of_every_later_one(tmp_path):
-    """Compiled in this process, the kernels' numbers differed by up to 5e-14 from those of
-    a process loading them from numba's cache: they are compiled in a child and loaded, so a
-    fresh cache's first run and a later run agree bit for bit, dry and with an environment."""
-    import os
-    import subprocess
-    import sys
+def test_stale_modules_are_removed_and_the_kernel_compiled_once_is_loaded_after(tmp_path):
+    """In a fresh cache, the first call removes the generated modules of earlier mcsim
+    versions (and numba's files of them), and compiles the kernel into the cache; a later
+    process loads every function from there. The first process's numbers differ from the
+    later one's by rounding (the module docstring of ``mcsim.engine.designmap``), within
+    ``AGREE`` (tests/designmap_checks.py), dry and with an environment."""
+    from mcsim.physics.environment import Environment
 
-    env = os.environ | {"MCSIM_CACHE_DIR": str(tmp_path / "cache")}
+    kernels = tmp_path / "cache" / "kernels"
+    stale = [kernels / "mcsim_designmap_jkr_0123456789abcdef.py",
+             kernels / "mcsim_designmap_jkr_0123456789abcdef.py._batch_net.compiled",
+             kernels / "__pycache__" / "mcsim_designmap_jkr_0123456789abcdef._batch-215.py311.nbi",
+             kernels / "__pycache__" / "mcsim_designmap_jkr_0123456789abcdef._batch-215.py311.1.nbc"]  # fmt: skip
+    kept = kernels / "mcsim_kernel_seed_0123456789abcdef.py"  # the Monte Carlo kernel's
+    for path in [*stale, kept]:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        path.write_text("")
+    environ = {"MCSIM_CACHE_DIR": str(tmp_path / "cache")}
+    points = random_points(2, seed=12)
+    dry = inputs(points, H)
+    wet = inputs(points, H, [Environment(hamaker=1.6e-19, rh=0.6)] * 2)
+    first = [run_elsewhere(a, tmp_path, f"first{i}", **environ) for i, a in enumerate((dry, wet))]
+    assert not any(path.exists() for path in stale) and kept.exists()
+    cache = tmp_path / "cache" / "designmap"
+    assert [*cache.glob("mapkernel._batch-*.nbi")] and [
+        *cache.glob("mapenvironment._batch_net-*.nbi")
+    ]
+    for i, arguments in enumerate((dry, wet)):
+        later = run_elsewhere(arguments, tmp_path, f"later{i}", "--from-cache", **environ)
+        assert_agree(later, first[i])
 
-    def run(name):
-        subprocess.run([sys.executable, "-c", _BATCH_SCRIPT, str(tmp_path / f"{name}.npz")],
-                       env=env, check=True)  # fmt: skip
-        return np.load(tmp_path / f"{name}.npz")
 
-    first, later = run("first"), run("later")
-    assert sorted(first.files) == sorted(later.files)
-    for k in first.files:
-        np.testing.assert_array_equal(first[k], later[k], err_msg=k)
-    # A cache that holds the kernels without their markers (an earlier mcsim's) gets the
-    # markers back from the child, which then finds the kernels there: no child later.
-    markers = sorted((tmp_path / "cache" / "kernels").glob("*.compiled"))
-    assert len(markers) == 2
-    for marker in markers:
-        marker.unlink()
-    again = run("again")
-    assert all(marker.exists() for marker in markers)
-    for k in first.files:
-        np.testing.assert_array_equal(first[k], again[k], err_msg=k)
+def _toy_kernel(doc="One line.", scale="2.0", offset=1.0, options=""):
+    """A compiled function ``outer`` calling ``inner`` and reading the constant ``OFFSET``."""
+    import numba
+
+    namespace = {"numba": numba, "OFFSET": offset}
+    source = (
+        f"@numba.njit({options})\ndef inner(x):\n    return x * {scale}\n\n\n"
+        f'@numba.njit\ndef outer(x):\n    """{doc}"""\n    return inner(x) + OFFSET\n'
+    )
+    exec(compile(source, "<toy kernel>", "exec"), namespace)
+    return namespace["outer"]
+
+
+def test_the_cache_stamp_follows_the_code_constants_and_options_not_the_docstrings():
+    from mcsim.engine.mapkernel import fingerprint
+
+    base = fingerprint(_toy_kernel())
+    assert fingerprint(_toy_kernel()) == base
+    assert fingerprint(_toy_kernel(doc="Two\n\n    paragraphs: the code lines move.")) == base
+    assert fingerprint(_toy_kernel(scale="2.0000000001")) != base, "a callee's code"
+    assert fingerprint(_toy_kernel(offset=1.0 + 1e-15)) != base, "a module constant"
+    assert fingerprint(_toy_kernel(options="fastmath=True")) != base, "a callee's options"

@@ -25,6 +25,7 @@ import warnings
 
 import numpy as np
 import pytest
+from designmap_checks import assert_agree, inputs, run_elsewhere, summaries
 
 from mcsim.engine.designmap import NO_REST, OK, jkr_summaries
 from mcsim.model.presets import MATERIALS, SURFACES
@@ -193,3 +194,17 @@ def test_one_environment_for_every_point_and_nayak_heights_by_default():
     full = fast([(a, b, env) for a, b in zip(s, m)])
     for k, v in full.items():
         np.testing.assert_array_equal(short[k], v, err_msg=k)
+
+
+def test_the_kernel_with_an_environment_run_by_the_interpreter_agrees_with_the_compiled_one(
+    tmp_path,
+):
+    """With ``NUMBA_DISABLE_JIT=1`` the interpreter runs every function of the kernel, and
+    gets the compiled numbers within rounding (tests/designmap_checks.py: ``AGREE``)."""
+    cases = random_cases(2, seed=13) + CORNERS[:3]
+    s, m, e = zip(*cases)
+    arguments = inputs(list(zip(s, m)), H, e)
+    compiled = summaries(arguments)
+    assert np.all(compiled["status"] == OK)
+    interpreted = run_elsewhere(arguments, tmp_path, "interpreted", NUMBA_DISABLE_JIT="1")
+    assert_agree(interpreted, compiled)
