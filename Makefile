@@ -25,7 +25,7 @@ test: $(BIN)/.installed
 # disabled leaves NumPy's baseline build (X86_V2). Baseline features cannot be disabled.
 NPY_FOUND = import numpy; print(*numpy.show_config("dicts")["SIMD Extensions"]["found"])
 
-# The golden and run-file tests once more on another code path of this machine: numba
+# The golden, run-file and example-file tests once more on another code path of this machine: numba
 # compiling for a generic x86-64 (no AVX, no FMA) into a fresh cache (never the native
 # kernels), NumPy's dispatch narrowed to its baseline (an ImportWarning, i.e. a value
 # NumPy refuses, is an error). The numbers then differ from the native ones by rounding,
@@ -34,7 +34,8 @@ test-portable: $(BIN)/.installed
 	cache=$$(mktemp -d) && trap 'rm -rf "$$cache"' EXIT && \
 	NUMBA_CPU_NAME=generic NUMBA_CACHE_DIR="$$cache" MCSIM_CACHE_DIR="$$cache" \
 	NPY_DISABLE_CPU_FEATURES="$$($(BIN)/python -c '$(NPY_FOUND)')" \
-	$(BIN)/python -W error::ImportWarning -m pytest -q tests/program/test_seed_golden.py tests/store/test_runfile.py
+	$(BIN)/python -W error::ImportWarning -m pytest -q tests/program/test_seed_golden.py tests/store/test_runfile.py \
+		tests/program/test_examples.py
 
 lint: $(BIN)/.installed
 	$(BIN)/ruff check . && $(BIN)/ruff format --check .
