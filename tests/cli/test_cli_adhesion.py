@@ -151,7 +151,6 @@ tau = "100 MPa"
 """
 
 
-@pytest.mark.skipif("jkr" not in LAW_SETS, reason="jkr not registered yet")
 def test_analytic_jkr_with_a_material_file_giving_z0_and_tau(capsys, tmp_path):
     from mcsim.store.config import load_material
 
@@ -169,7 +168,6 @@ def test_analytic_jkr_with_a_material_file_giving_z0_and_tau(capsys, tmp_path):
     np.testing.assert_array_equal([float(r["friction"]) for r in rows], ref.friction)
 
 
-@pytest.mark.skipif("maugis-dugdale" not in LAW_SETS, reason="maugis-dugdale not registered")
 def test_adhesion_law_auto_on_the_silicon_preset_picks_maugis_dugdale(capsys):
     code, out, err = run_cli(capsys, "adhesion", "--surface", "smooth", "--format", "json")
     assert code == 0

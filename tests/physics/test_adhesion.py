@@ -3,8 +3,7 @@
 Checked on the test-local contact model (tests/toy_laws.py) against independent
 computations: a dense grid and a tight minimisation for the pull-off, adaptive
 quadrature for the integrals; the regime numbers against their formulas and the
-values quoted for the paper's surfaces. The real law sets' limits are checked where
-they are registered.
+values quoted for the paper's surfaces; the real law sets' limits too.
 """
 
 import dataclasses
@@ -28,7 +27,6 @@ from mcsim.physics.adhesion import (
     tabor_parameter,
     zero_load_separation,
 )
-from mcsim.physics.laws import LAW_SETS
 
 SMOOTH = SURFACES["smooth"]
 
@@ -180,7 +178,7 @@ def test_non_finite_turn_is_refused_naming_turn():
         adhesion_summary(SMOOTH, MATERIAL, TOY, turn=math.inf)
 
 
-# -- the real law sets' limits, where registered ---------------------------------------------
+# -- the real law sets' limits ----------------------------------------------------------------
 
 
 #: Summits all but at one height (σ ≪ the JKR length), all pressed in at the turn (h = −10):
@@ -188,7 +186,6 @@ def test_non_finite_turn_is_refused_naming_turn():
 FLAT = dataclasses.replace(SMOOTH, sigma=1e-12)
 
 
-@pytest.mark.skipif("jkr" not in LAW_SETS, reason="jkr not registered yet")
 def test_jkr_pull_off_of_a_flat_population_is_n_times_one_and_a_half_pi_w_r():
     """JKR's minimum load on its stable branch is −(3/2)πwR (Johnson et al. 1971)."""
     with warnings.catch_warnings():
@@ -198,7 +195,6 @@ def test_jkr_pull_off_of_a_flat_population_is_n_times_one_and_a_half_pi_w_r():
     assert s.pull_off * MATERIAL.K / SMOOTH.eta == pytest.approx(single, rel=1e-3)
 
 
-@pytest.mark.skipif("dmt" not in LAW_SETS, reason="dmt not registered yet")
 def test_dmt_pull_off_of_a_flat_population_is_n_times_two_pi_w_r():
     """DMT's pull-off is −2πwR at δ = 0 (Derjaguin, Muller & Toporov 1975)."""
     with warnings.catch_warnings():

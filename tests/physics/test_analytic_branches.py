@@ -92,11 +92,12 @@ def test_retraction_from_an_earlier_turn_matches_adaptive_quadrature():
                              turn=-0.3)  # fmt: skip
 
 
-NEW_SETS = sorted(set(LAW_SETS) - {"seed"})
+#: The contact law sets beside the seed, named (not read off the registry: a law set dropped
+#: from it fails here rather than leaving the test without a case).
+NEW_SETS = ["dmt", "elastic-plastic", "jkr", "maugis-dugdale"]
 MATERIAL_ALL = dataclasses.replace(MATERIAL, H=12.5e9)
 
 
-@pytest.mark.skipif(not NEW_SETS, reason="no contact-model law sets registered yet")
 @pytest.mark.parametrize("name", NEW_SETS)
 @pytest.mark.parametrize("branch", ["approach", "retract"])
 @pytest.mark.parametrize("heights", ["gaussian", "histogram"])
