@@ -1,7 +1,7 @@
 """Regenerate ``tests/data/seed_golden.npz``: the seed law set's numbers as mcsim 0.1 gave them.
 
 Run once, from the commit that defines the reference (0.1, before the law-set
-generalisation); ``tests/test_seed_golden.py`` then checks every later version against
+generalisation); ``tests/program/test_seed_golden.py`` then checks every later version against
 them within the tolerances of its table. Not collected by pytest (no ``test_`` prefix).
 """
 
@@ -16,7 +16,7 @@ from mcsim.physics.laws import SEED
 from mcsim.studies.simulation import simulate
 from mcsim.topography.empirical import Empirical
 
-OUT = Path(__file__).parents[1] / "data" / "seed_golden.npz"
+OUT = Path(__file__).parent / "data" / "seed_golden.npz"  # where the tests read it
 H = np.linspace(4.0, -1.0, 11)
 #: The Monte Carlo cases: patch area (m²), realizations, seed.
 AREA, REALIZATIONS, ENTROPY = 2e-10, 3, 7

@@ -35,7 +35,14 @@ from mcsim.model.presets import MATERIALS, SURFACES
 from mcsim.physics.analytic import gw_curves
 from mcsim.physics.laws import SEED
 
-GOLDEN = np.load(Path(__file__).parents[1] / "data" / "seed_golden.npz")
+GOLDEN_PATH = Path(__file__).parents[1] / "data" / "seed_golden.npz"
+GOLDEN = np.load(GOLDEN_PATH)
+
+
+def test_the_golden_script_writes_where_this_file_reads():
+    import make_seed_golden  # tests/ is on the path (pyproject: pythonpath)
+
+    assert make_seed_golden.OUT.resolve() == GOLDEN_PATH.resolve()
 
 # --- the goldens -------------------------------------------------------------------------
 
