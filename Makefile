@@ -37,6 +37,14 @@ test-portable: $(BIN)/.installed
 	$(BIN)/python -W error::ImportWarning -m pytest -q tests/program/test_seed_golden.py tests/store/test_runfile.py \
 		tests/program/test_examples.py
 
+# The benchmarks (validation/README.md: what each measures and its targets), about 10 minutes
+# on 2 cores; each writes its table to validation/out/ and exits 1 if a target is missed.
+bench: $(BIN)/.installed
+	$(BIN)/python validation/benchmark.py
+	$(BIN)/python validation/sweep_benchmark.py
+	$(BIN)/python validation/scaling.py
+	$(BIN)/python validation/memory.py
+
 lint: $(BIN)/.installed
 	$(BIN)/ruff check . && $(BIN)/ruff format --check .
 	$(BIN)/lint-imports
