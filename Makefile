@@ -39,11 +39,10 @@ test-portable: $(BIN)/.installed
 
 # The benchmarks (validation/README.md: what each measures and its targets), about 10 minutes
 # on 2 cores; each writes its table to validation/out/ and exits 1 if a target is missed.
+# Every benchmark runs even when one misses its target (timings move with the machine's load).
 bench: $(BIN)/.installed
-	$(BIN)/python validation/benchmark.py
-	$(BIN)/python validation/sweep_benchmark.py
-	$(BIN)/python validation/scaling.py
-	$(BIN)/python validation/memory.py
+	status=0; for script in benchmark sweep_benchmark scaling memory; do \
+		$(BIN)/python validation/$$script.py || status=1; done; exit $$status
 
 lint: $(BIN)/.installed
 	$(BIN)/ruff check . && $(BIN)/ruff format --check .
