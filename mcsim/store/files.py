@@ -209,4 +209,3 @@ def atomic_write(path: Path, fill) -> None:
 def _reason(err: Exception) -> str:
     """The system's words for a failed write, on one line."""
     return " ".join((getattr(err, "strerror", None) or str(err)).split())
-

@@ -96,8 +96,8 @@ def _preload_attrs(surface, material, h, law, cycle, environment, preload) -> di
 
 
 def simulate(
-    surface: Surface,
-    material: Material,
+    surface: Surface | str,
+    material: Material | str,
     h,
     area: float | str,
     *,
@@ -125,8 +125,9 @@ def simulate(
 
     Parameters
     ----------
-    surface, material : Surface, Material
-        Inputs (see :mod:`mcsim.model.presets` and :mod:`mcsim.store.config`).
+    surface, material : Surface, Material or str
+        Inputs, or the names of presets (``"smooth"``, ``"silicon"``; see
+        :mod:`mcsim.model.presets` and :mod:`mcsim.store.config`).
     h : array_like
         Dimensionless separations d/σ.
     area : float or str
@@ -154,8 +155,8 @@ def simulate(
         Sample and sum on the CPU or on the GPU (``mcsim[gpu]``; other random streams,
         so other numbers than the CPU's, equal in distribution); recorded in the run.
     workers : int, optional
-        Local worker threads, all cores by default; or worker processes of a local
-        Dask cluster. The numbers do not depend on it.
+        Local worker threads (1 to 1024), all cores by default; or worker processes of a
+        local Dask cluster. The numbers do not depend on it.
     scheduler : str or dask.distributed.Client, optional
         Run on Dask: ``"local"`` (a local cluster of ``workers`` processes), the
         address of an existing scheduler (``"tcp://host:8786"``) or a client.
@@ -180,7 +181,7 @@ def simulate(
         ``seed``, any seed), it is returned untouched with a notice; a finished run
         of other inputs is refused, naming the first that differs.
     checkpoint_every : float
-        Seconds between checkpoints.
+        Seconds between checkpoints (a number, s, >= 0).
     progress : bool
         Show a progress bar on stderr.
     command : str, optional

@@ -94,8 +94,8 @@ DEFAULT_H = tuple(np.linspace(4.0, -1.0, 51).tolist())
 
 
 def sweep(
-    surface: Surface,
-    material: Material,
+    surface: Surface | str,
+    material: Material | str,
     vary: Mapping,
     *,
     law: str | None = None,
@@ -123,8 +123,9 @@ def sweep(
 
     Parameters
     ----------
-    surface, material : Surface, Material
-        The inputs at every point, before the varied ones are set.
+    surface, material : Surface, Material or str
+        The inputs at every point, before the varied ones are set, or the names of
+        presets (``"smooth"``, ``"silicon"``).
     vary : mapping of str to spec
         Input name to its values, in grid order: ``sigma``, ``R``, ``eta`` (surface),
         ``E`` (both E1 and E2), ``E1``, ``E2``, ``nu`` (both), ``nu1``, ``nu2``,
@@ -176,7 +177,7 @@ def sweep(
         Where the Monte Carlo runs sample and sum (``"cuda"``: this machine's GPU, see
         :func:`mcsim.simulate`; points then run one after another, not on Dask).
     workers : int, optional
-        Local worker threads (all cores by default), or processes of ``"local"`` Dask.
+        Local worker threads (1 to 1024; all cores by default), or processes of ``"local"`` Dask.
     scheduler : str or dask.distributed.Client, optional
         ``"local"``, a scheduler address or a client, as in :func:`mcsim.simulate`.
     out : path, optional
@@ -190,7 +191,7 @@ def sweep(
         ``seed``, any seed), it is returned untouched with a notice; a finished sweep of
         other inputs is refused, naming the first that differs.
     checkpoint_every : float
-        Seconds between checkpoints (the first after 10 s).
+        Seconds between checkpoints (a number, s, >= 0; the first after 10 s).
     progress : bool
         A progress bar over the points on stderr.
     command : str, optional
