@@ -26,6 +26,8 @@ _LAZY = {
     "surface_energy_parameter": "model.params",
     "LoadControl": "physics.loadcontrol",
     "load_control": "physics.loadcontrol",
+    "PadReport": "studies.pads",
+    "pad_report": "studies.pads",
     "Run": "store.results",
     "simulate": "studies.simulation",
     "Sweep": "store.sweepfile",

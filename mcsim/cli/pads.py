@@ -16,11 +16,9 @@ _INTERVAL_NAMES = {"clopper-pearson": "Clopper-Pearson", "wilson": "Wilson"}
 
 
 def run(args) -> int:
-    import numpy as np
-
     from mcsim.model.units import parse_quantity
     from mcsim.store.runfile import read_run
-    from mcsim.studies.pads import analytic_pad_pull_off, pad_statistics
+    from mcsim.studies.pads import FEW_CONTACTS, pad_report
 
     fr = None
     if args.restoring_force is not None:
@@ -38,11 +36,10 @@ def run(args) -> int:
         check_output(args.plot, inputs=[args.run], overwrite=args.overwrite)
     run = read_run(args.run, allow_incomplete=args.partial)
     try:
-        pull_off = run.pull_off()
+        report = pad_report(run, fr, args.interval)
     except ParameterError as err:
         raise ParameterError(f"{args.run}: {err}") from None
-    stats = pad_statistics(pull_off.force, fr, args.interval)
-    analytic = analytic_pad_pull_off(run.spec)
+    pull_off, stats = report.pull_off, report.statistics
     interval = f"{_INTERVAL_NAMES[args.interval]} 95 %"
     if pull_off.past_grid_top:
         print(f"mcsim: note: {pull_off.past_grid_top} of {stats.pads} pad(s) pull off beyond the top "
@@ -51,19 +48,11 @@ def run(args) -> int:
     if not run.complete:
         print(f"mcsim: note: {run.path} is incomplete: statistics over its {stats.pads} completed "
               f"pad(s) of {run.attrs.get('realizations')}", file=sys.stderr)  # fmt: skip
-    turns = {}
-    if pull_off.preload is not None:  # the analytic mean after the mean-field turn
-        t = pull_off.h_turn
-        turns = {"preload": pull_off.preload, "h_turn_mean_field": run.attrs.get("preload_turn_mean_field"),
-                 "h_turn_min": float(np.min(t)), "h_turn_q50": float(np.median(t)),
-                 "h_turn_max": float(np.max(t))}  # fmt: skip
-        analytic = analytic_pad_pull_off(run.spec, turns["h_turn_mean_field"])
-    model = (
-        None
-        if fr is None
-        else _model(run.spec, fr, pull_off.preload, turns.get("h_turn_mean_field"))
-    )
-    fields = _fields(stats, fr, model, analytic, turns)
+    if fr is not None and report.contacts < FEW_CONTACTS:
+        print(f"mcsim: warning: a pad touches with {report.contacts:.3g} summits on average (fewer "
+              f"than {FEW_CONTACTS}): its tallest summits decide it; trust the Monte Carlo p_stick, "
+              "not p_stick_model", file=sys.stderr)  # fmt: skip
+    fields = report.quantities()
     method = _method(pull_off)
     if args.format == "json":  # the same fields as the table, with their units
         clean = {k: (None if isinstance(v, float) and not math.isfinite(v) else v)
@@ -93,28 +82,11 @@ def run(args) -> int:
         if fr is not None:
             stick = {"p_stick": fields["p_stick"][0], "interval_name": interval, "interval": (
                 fields["p_stick_ci_low"][0], fields["p_stick_ci_high"][0])}  # fmt: skip
-        fig = pads_figure(pull_off.force, analytic, restoring_force=fr, **stick,
+        fig = pads_figure(pull_off.force, report.analytic_mean, restoring_force=fr, **stick,
                           title=f"{Path(args.run).name}: pull-off of {stats.pads} pads")  # fmt: skip
         save(fig, args.plot, overwrite=args.overwrite, inputs=[args.run])
         announce(args.plot, quiet=args.quiet)
     return 0
-
-
-def _fields(stats, fr, model, analytic, turns) -> dict[str, tuple[float, str]]:
-    """Every quantity ``pads`` reports, with its unit: the table and json carry the same."""
-    out = stats.to_dict()
-    ci = out.pop("p_stick_ci", None)
-    fields = {
-        k: (out[k], "1" if k == "pads" else "N")
-        for k in ("pads", "mean", "se", "std", "q05", "q50", "q95")
-    }
-    if fr is not None:
-        fields |= {"restoring_force": (fr, "N"), "p_stick": (out["p_stick"], "1"),
-                   "p_stick_ci_low": (ci[0], "1"), "p_stick_ci_high": (ci[1], "1"),
-                   "p_stick_model": (model, "1")}  # fmt: skip
-    fields["analytic_mean"] = (analytic, "N")
-    fields |= {k: (v, "Pa" if k == "preload" else "1") for k, v in turns.items()}
-    return fields
 
 
 def _print_pads(pull_off) -> None:
@@ -134,29 +106,6 @@ def _print_pads(pull_off) -> None:
         pull_off.force, pull_off.h, pull_off.h_turn, turn_load, pull_off.grid_force,
         pull_off.grid_h))]  # fmt: skip
     print_rows(rows, columns, "csv")
-
-
-def _model(spec, fr: float, preload: float | None, turn: float | None) -> float:
-    """p_stick_model after the mean-field turn (the run's min(h) without a preload); one line
-    on stderr when a pad touches with fewer than ~10 summits on average."""
-    import warnings
-
-    from mcsim.physics.adhesion import RegimeWarning, adhesion_summary
-    from mcsim.studies.pads import FEW_CONTACTS
-    from mcsim.studies.stiction import p_stick_model
-
-    turn = spec.turn if turn is None else float(turn)
-    contacts = spec.surface.eta * spec.area * float(spec.surface.heights.sf(turn))
-    if contacts < FEW_CONTACTS:
-        print(f"mcsim: warning: a pad touches with {contacts:.3g} summits on average (fewer than "
-              f"{FEW_CONTACTS}): its tallest summits decide it; trust the Monte Carlo p_stick, not "
-              "p_stick_model", file=sys.stderr)  # fmt: skip
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", RegimeWarning)
-        h_off = adhesion_summary(spec.surface, spec.material, spec.law, turn=turn).h_pull_off
-    if not math.isfinite(h_off):
-        return 0.0
-    return p_stick_model(spec, fr, turn=turn, h_pull_off=h_off, preload=preload)
 
 
 def _method(pull_off) -> str:

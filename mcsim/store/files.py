@@ -209,13 +209,3 @@ def atomic_write(path: Path, fill) -> None:
 def _reason(err: Exception) -> str:
     """The system's words for a failed write, on one line."""
     return " ".join((getattr(err, "strerror", None) or str(err)).split())
-
-
-def claim(stack, out, *, overwrite: bool, resume: bool) -> tuple[Path, Path]:
-    """``out`` checked (:func:`check_output_path`), its lock held for the life of ``stack``
-    (a :class:`contextlib.ExitStack`), checked again under the lock (another writer may
-    have finished meanwhile); with the path of its checkpoint."""
-    out = check_output_path(out, overwrite=overwrite, resume=resume)
-    stack.enter_context(lock(out))
-    check_output_path(out, overwrite=overwrite, resume=resume)
-    return out, checkpoint_path(out)

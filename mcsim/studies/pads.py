@@ -300,3 +300,109 @@ def finite_pads(spec, restoring_force: float, *, preload: float | None = None, t
             "contacting_summits": lam * float(spec.surface.heights.sf(turn)),
             "p_stick_model": p_stick_model(spec, restoring_force, turn=turn, h_pull_off=h_pull_off,
                                            preload=preload) if math.isfinite(h_pull_off) else 0.0}  # fmt: skip
+
+
+@dataclass(frozen=True)
+class PadReport:
+    """The pads of a cycle run, as ``mcsim pads`` reports them (forces in N).
+
+    Attributes
+    ----------
+    pull_off : mcsim.store.results.PullOff
+        Each pad's pull-off (:meth:`mcsim.store.results.Run.pull_off`).
+    statistics : PadStatistics
+        Their statistics and, with a restoring force, the probability of sticking.
+    analytic_mean : float
+        GW mean pull-off of one pad after the mean-field turn (:func:`analytic_pad_pull_off`), N.
+    contacts : float
+        Expected contacting summits of a pad at the mean-field turn, ηA Φ(turn) (dimensionless):
+        below :data:`FEW_CONTACTS` a pad's tallest summits decide it, and ``p_stick_model``
+        is not to be trusted.
+    p_stick_model : float or None
+        With a restoring force: the rare-event model's probability of sticking
+        (:func:`mcsim.studies.stiction.p_stick_model`; 0 where the mean curve never pulls off).
+    turns : dict
+        Under a preload: ``preload`` (Pa), the mean-field turn ``h_turn_mean_field`` and the
+        pads' own turns ``h_turn_min``, ``h_turn_q50``, ``h_turn_max`` (d/σ); else empty.
+    """
+
+    pull_off: object
+    statistics: PadStatistics
+    analytic_mean: float
+    contacts: float
+    p_stick_model: float | None
+    turns: dict
+
+    def quantities(self) -> dict[str, tuple[float, str]]:
+        """Every reported quantity with its unit (``"N"``, ``"Pa"``, ``"1"``), in report order."""
+        out = self.statistics.to_dict()
+        ci = out.pop("p_stick_ci", None)
+        fields = {
+            k: (out[k], "1" if k == "pads" else "N")
+            for k in ("pads", "mean", "se", "std", "q05", "q50", "q95")
+        }
+        if self.statistics.restoring_force is not None:
+            fields |= {"restoring_force": (self.statistics.restoring_force, "N"),
+                       "p_stick": (out["p_stick"], "1"), "p_stick_ci_low": (ci[0], "1"),
+                       "p_stick_ci_high": (ci[1], "1"), "p_stick_model": (self.p_stick_model, "1")}  # fmt: skip
+        fields["analytic_mean"] = (self.analytic_mean, "N")
+        fields |= {k: (v, "Pa" if k == "preload" else "1") for k, v in self.turns.items()}
+        return fields
+
+
+def pad_report(
+    run, restoring_force: float | None = None, interval: str = "clopper-pearson"
+) -> PadReport:
+    """Pull-off statistics of the pads of a cycle run (one pad per realization), as ``mcsim pads``.
+
+    Parameters
+    ----------
+    run : mcsim.Run
+        A ``cycle`` run of a law set with a signed load (complete, or a checkpoint's
+        completed pads).
+    restoring_force : float, optional
+        F_r, N (≥ 0): a pad sticks when its pull-off exceeds it; adds the probability of
+        sticking, its interval and the model's estimate.
+    interval : {"clopper-pearson", "wilson"}
+        Interval of the probability of sticking (:func:`pad_statistics`).
+
+    Returns
+    -------
+    PadReport
+
+    Raises
+    ------
+    ParameterError
+        Not a cycle run of a law set with a signed load, or a bad F_r or interval.
+    """
+    pull_off = run.pull_off()
+    statistics = pad_statistics(pull_off.force, restoring_force, interval)
+    spec, turns, turn = run.spec, {}, None
+    if pull_off.preload is not None:  # the analytic mean after the mean-field turn
+        t, turn = pull_off.h_turn, run.attrs.get("preload_turn_mean_field")
+        turns = {"preload": pull_off.preload, "h_turn_mean_field": turn,
+                 "h_turn_min": float(np.min(t)), "h_turn_q50": float(np.median(t)),
+                 "h_turn_max": float(np.max(t))}  # fmt: skip
+    turn = spec.turn if turn is None else float(turn)
+    contacts = spec.surface.eta * spec.area * float(spec.surface.heights.sf(turn))
+    model = None
+    if restoring_force is not None:
+        model = _p_stick_model(spec, statistics.restoring_force, pull_off.preload, turn)
+    return PadReport(
+        pull_off, statistics, analytic_pad_pull_off(spec, turn), contacts, model, turns
+    )
+
+
+def _p_stick_model(spec, fr: float, preload: float | None, turn: float) -> float:
+    """p_stick_model after the mean-field ``turn`` (0 where the mean curve never pulls off)."""
+    import warnings
+
+    from mcsim.physics.adhesion import RegimeWarning, adhesion_summary
+    from mcsim.studies.stiction import p_stick_model
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RegimeWarning)
+        h_off = adhesion_summary(spec.surface, spec.material, spec.law, turn=turn).h_pull_off
+    if not math.isfinite(h_off):
+        return 0.0
+    return p_stick_model(spec, fr, turn=turn, h_pull_off=h_off, preload=preload)

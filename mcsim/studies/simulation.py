@@ -23,14 +23,17 @@ from mcsim._version import __version__
 from mcsim.engine import interrupt
 from mcsim.engine.cells import run_cell_sums
 from mcsim.engine.montecarlo import DEFAULT_CHUNK, MonteCarloSpec, default_workers, run_sums
-from mcsim.model.errors import ParameterError, RunFileError
+from mcsim.model.errors import ParameterError
 from mcsim.model.params import Material, Surface, check_range, check_seed, check_separations
+from mcsim.model.presets import as_material, as_surface
 from mcsim.model.units import parse_quantity
 from mcsim.physics.environment import Environment, as_environment
 from mcsim.physics.gapheights import gap_heights
 from mcsim.physics.laws import LAW_SETS, get_law_set
-from mcsim.store import files, runfile
+from mcsim.store import runfile
+from mcsim.store.claim import Claim, claim_output
 from mcsim.store.results import Run, assemble
+from mcsim.studies.runoptions import check_checkpoint_every, check_workers
 
 log = logging.getLogger(__name__)
 
@@ -92,14 +95,9 @@ def _preload_attrs(surface, material, h, law, cycle, environment, preload) -> di
     return {"preload": pressure, "preload_unit": "Pa", "preload_turn_mean_field": turn}
 
 
-def _api_command(**kwargs) -> str:
-    shown = ", ".join(f"{k}={v!r}" for k, v in kwargs.items())
-    return f"mcsim.simulate({shown})"
-
-
 def simulate(
-    surface: Surface,
-    material: Material,
+    surface: Surface | str,
+    material: Material | str,
     h,
     area: float | str,
     *,
@@ -127,8 +125,9 @@ def simulate(
 
     Parameters
     ----------
-    surface, material : Surface, Material
-        Inputs (see :mod:`mcsim.model.presets` and :mod:`mcsim.store.config`).
+    surface, material : Surface, Material or str
+        Inputs, or the names of presets (``"smooth"``, ``"silicon"``; see
+        :mod:`mcsim.model.presets` and :mod:`mcsim.store.config`).
     h : array_like
         Dimensionless separations d/σ.
     area : float or str
@@ -156,8 +155,8 @@ def simulate(
         Sample and sum on the CPU or on the GPU (``mcsim[gpu]``; other random streams,
         so other numbers than the CPU's, equal in distribution); recorded in the run.
     workers : int, optional
-        Local worker threads, all cores by default; or worker processes of a local
-        Dask cluster. The numbers do not depend on it.
+        Local worker threads (1 to 1024), all cores by default; or worker processes of a
+        local Dask cluster. The numbers do not depend on it.
     scheduler : str or dask.distributed.Client, optional
         Run on Dask: ``"local"`` (a local cluster of ``workers`` processes), the
         address of an existing scheduler (``"tcp://host:8786"``) or a client.
@@ -182,7 +181,7 @@ def simulate(
         ``seed``, any seed), it is returned untouched with a notice; a finished run
         of other inputs is refused, naming the first that differs.
     checkpoint_every : float
-        Seconds between checkpoints.
+        Seconds between checkpoints (a number, s, >= 0).
     progress : bool
         Show a progress bar on stderr.
     command : str, optional
@@ -209,106 +208,107 @@ def simulate(
     mcsim.engine.interrupt.Interrupted
         On SIGINT (Ctrl-C) or SIGTERM, once the progress is saved (a ``KeyboardInterrupt``).
     """
+    surface, material = as_surface(surface), as_material(material)
     environment = as_environment(environment)
     area_m2 = parse_quantity(area, "area", "area")
     seed = check_seed(seed)
+    workers = check_workers(workers)
+    checkpoint_every = check_checkpoint_every(checkpoint_every)
     if preload is not None:
         extra_attrs = {**(extra_attrs or {}), **_preload_attrs(
             surface, material, check_separations(h), law, cycle, environment, preload)}  # fmt: skip
-    check_range("checkpoint_every", checkpoint_every, "s", low=0.0, low_open=False)
+    extra_attrs = extra_attrs or {}
     if resume and out is None:
         raise ParameterError("resume needs the run file to continue (out=...)")
     with interrupt.interruptible(), contextlib.ExitStack() as stack:
-        previous = partial = finished = None
-        seed_given = seed is not None
+        claim = None
         if out is not None:
-            out, partial = files.claim(stack, out, overwrite=overwrite, resume=resume)
-            if resume and not overwrite and out.exists():
-                finished = runfile.read_run(out)  # checksum verified: damage is refused
-                seed = finished.spec.entropy if seed is None else seed
-            elif resume and partial.exists():
-                previous, attrs = runfile.read_state(partial)
-                if attrs.get("complete"):
-                    raise RunFileError(f"{partial}: damaged checkpoint: it holds a complete run")
-                if attrs.get("mcsim_version") != __version__:
-                    raise RunFileError(
-                        f"{partial}: written by mcsim {attrs.get('mcsim_version')}; resume it with that version"
-                    )
-                seed = previous.spec.entropy if seed is None else seed
-            elif resume:
-                log.warning("%s: nothing to resume (no checkpoint %s): starting the run from "
-                            "the beginning", out, partial.name)  # fmt: skip
-            else:
-                partial.unlink(missing_ok=True)  # --overwrite: start again
+            claim = claim_output(stack, out, overwrite=overwrite, resume=resume, what="run",
+                                 read_finished=runfile.read_run, read_checkpoint=runfile.read_state)  # fmt: skip
+        seed_given = seed is not None
+        if seed is None and claim is not None:
+            seed = _recorded_seed(claim)
         entropy = np.random.SeedSequence(seed).entropy
         spec = MonteCarloSpec(
             surface, material, h, area_m2, realizations, entropy, law, count, cycle, device
         )
-        if finished is not None:
-            return _already_finished(out, finished, spec, keep_heights, extra_attrs, seed_given)
-        if previous is not None:
-            recorded = {k: attrs.get(k) for k in extra_attrs or {}}
-            differs = files.first_difference(
-                _inputs(previous.spec, recorded), _inputs(spec, extra_attrs or {})
+        if claim is not None and claim.finished is not None:
+            return _already_finished(claim, spec, keep_heights, extra_attrs, seed_given)
+        if claim is not None and claim.checkpoint is not None:
+            recorded = {k: claim.checkpoint_attrs.get(k) for k in extra_attrs}
+            claim.check_checkpoint(
+                _inputs(claim.checkpoint.spec, recorded), _inputs(spec, extra_attrs)
             )
-            if differs:
-                raise ParameterError(
-                    f"cannot resume {out}: its checkpoint {partial.name} holds a run with a different {differs}"
-                )
         if command is None:
-            command = _api_command(surface=surface.name or surface, material=material.name or material,
-                                   h=[float(x) for x in spec.h], area=area_m2, realizations=realizations,
-                                   seed=seed, law=law, count=count,
-                                   **({"cycle": True} if cycle else {}),
-                                   **({"preload": preload} if preload is not None else {}),
-                                   **({"device": device} if device != "cpu" else {}),
-                                   **({"environment": environment} if environment is not None else {}))  # fmt: skip
-        n_workers = workers if isinstance(workers, int) and workers > 0 else default_workers()
-        summits, pairs, seconds = estimate(spec, n_workers)
-        if seconds > ESTIMATE_ABOVE:
-            log.info("long run: %.3g summits, %.3g contacting (summit, h) pairs: about %s on %d "
-                     "worker(s) at an assumed %.2g pairs/s each; Ctrl-C stops it%s", summits, pairs,
-                     _duration(seconds), n_workers, PAIRS_PER_SECOND,
-                     " (progress is saved)" if out is not None and not keep_heights else "")  # fmt: skip
+            command = _api_command(spec, seed=seed, preload=preload, environment=environment)
         checkpoint = None
-        if out is not None and not keep_heights:
+        if claim is not None and not keep_heights:
             checkpoint = functools.partial(
-                runfile.write_checkpoint, partial, command=command, extra=extra_attrs
+                runfile.write_checkpoint, claim.partial, command=command, extra=extra_attrs
             )
-        if progress:
-            from tqdm import tqdm
+        run = _run(stack, spec, environment, workers=workers, scheduler=scheduler,
+                   chunk_size=chunk_size, keep_heights=keep_heights, progress=progress,
+                   resume=None if claim is None else claim.checkpoint, checkpoint=checkpoint,
+                   checkpoint_every=checkpoint_every)  # fmt: skip
+        if claim is None:  # the attributes a file would hold that the analysis reads (preload)
+            return dataclasses.replace(run, attrs=dict(extra_attrs))
+        return claim.finish(
+            lambda path: runfile.write_run(path, run, command=command, extra=extra_attrs)
+        )
 
-            total = (
-                spec.realizations * spec.expected_summits * float(surface.heights.sf(spec.s_min))
-            )
-            bar = stack.enter_context(
-                tqdm(
-                    total=round(total),
-                    unit=" summits",
-                    unit_scale=True,
-                    file=sys.stderr,
-                    leave=False,
-                )
-            )
-        client = scheduler
-        if isinstance(scheduler, str):
-            from mcsim.engine.cluster import dask_client
 
-            client = stack.enter_context(dask_client(scheduler, workers))
-        ens = run_sums(spec, workers=workers, chunk_size=chunk_size, keep_heights=keep_heights,
-                       progress=bar.update if progress else None, client=client, resume=previous,
-                       checkpoint=checkpoint, checkpoint_every=checkpoint_every,
-                       interrupt=interrupt.check)  # fmt: skip
-        cells = None
-        if environment is not None:
-            cells = run_cell_sums(spec, ens.n_summits, environment, gap_heights(surface),
-                                  workers=n_workers, interrupt=interrupt.check)  # fmt: skip
-        run = assemble(ens, cells)
-        if out is None:  # the attributes a file would hold that the analysis reads (preload)
-            return dataclasses.replace(run, attrs=dict(extra_attrs or {}))
-        run = runfile.write_run(out, run, command=command, extra=extra_attrs)
-        partial.unlink(missing_ok=True)  # after the complete run is in place
-        return run
+def _recorded_seed(claim: Claim) -> int | None:
+    """The seed of the finished run or checkpoint a resume found (None: neither)."""
+    found = claim.finished if claim.finished is not None else claim.checkpoint
+    return None if found is None else found.spec.entropy
+
+
+def _api_command(spec: MonteCarloSpec, *, seed, preload, environment) -> str:
+    """The call that makes ``spec``, for the provenance of a run the Python API started."""
+    s = spec
+    kwargs = {"surface": s.surface.name or s.surface, "material": s.material.name or s.material,
+              "h": [float(x) for x in s.h], "area": s.area, "realizations": s.realizations,
+              "seed": seed, "law": s.law, "count": s.count,
+              **({"cycle": True} if s.cycle else {}),
+              **({"preload": preload} if preload is not None else {}),
+              **({"device": s.device} if s.device != "cpu" else {}),
+              **({"environment": environment} if environment is not None else {})}  # fmt: skip
+    return f"mcsim.simulate({', '.join(f'{k}={v!r}' for k, v in kwargs.items())})"
+
+
+def _run(stack, spec: MonteCarloSpec, environment, *, workers, scheduler, chunk_size,
+         keep_heights, progress, resume, checkpoint, checkpoint_every) -> Run:  # fmt: skip
+    """The contact sums of ``spec`` (continuing ``resume``), then the environment's cells."""
+    n_workers = default_workers() if workers is None else workers
+    summits, pairs, seconds = estimate(spec, n_workers)
+    if seconds > ESTIMATE_ABOVE:
+        log.info("long run: %.3g summits, %.3g contacting (summit, h) pairs: about %s on %d "
+                 "worker(s) at an assumed %.2g pairs/s each; Ctrl-C stops it%s", summits, pairs,
+                 _duration(seconds), n_workers, PAIRS_PER_SECOND,
+                 " (progress is saved)" if checkpoint is not None else "")  # fmt: skip
+    bar = None
+    if progress:
+        from tqdm import tqdm
+
+        total = (
+            spec.realizations * spec.expected_summits * float(spec.surface.heights.sf(spec.s_min))
+        )
+        bar = stack.enter_context(tqdm(total=round(total), unit=" summits", unit_scale=True,
+                                       file=sys.stderr, leave=False))  # fmt: skip
+    client = scheduler
+    if isinstance(scheduler, str):
+        from mcsim.engine.cluster import dask_client
+
+        client = stack.enter_context(dask_client(scheduler, workers))
+    ens = run_sums(spec, workers=workers, chunk_size=chunk_size, keep_heights=keep_heights,
+                   progress=None if bar is None else bar.update, client=client, resume=resume,
+                   checkpoint=checkpoint, checkpoint_every=checkpoint_every,
+                   interrupt=interrupt.check)  # fmt: skip
+    cells = None
+    if environment is not None:
+        cells = run_cell_sums(spec, ens.n_summits, environment, gap_heights(spec.surface),
+                              workers=n_workers, interrupt=interrupt.check)  # fmt: skip
+    return assemble(ens, cells)
 
 
 def _inputs(spec: MonteCarloSpec, extra: dict) -> dict:
@@ -318,30 +318,22 @@ def _inputs(spec: MonteCarloSpec, extra: dict) -> dict:
     return named | extra
 
 
-def _already_finished(out: Path, finished: Run, spec: MonteCarloSpec, keep_heights: bool,
-                      extra: dict | None, seed_given: bool) -> Run:  # fmt: skip
-    """``finished``, the complete run at ``out``, if it is the run asked for: resuming it
-    is then a no-op (the file is not touched; a checkpoint left beside it by a kill
-    after the final write is removed). Otherwise refuse, naming the first input that
-    differs. The mcsim version and whether heights are kept count as inputs."""
-    recorded = _inputs(finished.spec, {k: finished.attrs.get(k) for k in extra or {}}) | {
+def _already_finished(claim: Claim, spec: MonteCarloSpec, keep_heights: bool, extra: dict,
+                      seed_given: bool) -> Run:  # fmt: skip
+    """The complete run at the claimed output, if it is the run asked for (see
+    :meth:`mcsim.store.claim.Claim.already_finished`). The mcsim version and whether
+    heights are kept count as inputs."""
+    finished = claim.finished
+    recorded = _inputs(finished.spec, {k: finished.attrs.get(k) for k in extra}) | {
         "keep_heights": finished.heights is not None,
         "mcsim version": finished.attrs.get("mcsim_version"),
     }
-    asked = _inputs(spec, extra or {}) | {
-        "keep_heights": keep_heights,
-        "mcsim version": __version__,
-    }
-    differs = files.first_difference(recorded, asked)
-    if differs:
-        raise RunFileError(f"{out}: already holds a finished run with a different {differs}; "
-                           "use --overwrite to replace it or another --out")  # fmt: skip
-    partial = files.checkpoint_path(out)
-    if partial.exists() and runfile.read_state(partial)[0].spec == finished.spec:
-        partial.unlink()  # the finished run's own checkpoint: killed before removing it
-    seed = "" if seed_given else f" (no seed given: taken as the file's, {spec.entropy})"
-    log.warning("%s: already holds this finished run%s: nothing to do", out, seed)
-    return finished
+    asked = _inputs(spec, extra) | {"keep_heights": keep_heights, "mcsim version": __version__}
+    return claim.already_finished(
+        recorded, asked,
+        own_checkpoint=lambda partial: runfile.read_state(partial)[0].spec == finished.spec,
+        seed_note="" if seed_given else f" (no seed given: taken as the file's, {spec.entropy})",
+    )  # fmt: skip
 
 
 def cli_command() -> str:

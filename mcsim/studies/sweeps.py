@@ -51,13 +51,15 @@ from mcsim.engine import interrupt
 from mcsim.engine.montecarlo import FIRST_CHECKPOINT, default_workers, in_order
 from mcsim.model.errors import ParameterError, RunFileError
 from mcsim.model.params import Material, Surface, check_range, check_seed, check_separations
+from mcsim.model.presets import as_material, as_surface
 from mcsim.model.units import parse_quantity
 from mcsim.physics.adhesion import (
     RegimeWarning,
 )
 from mcsim.physics.environment import Environment, as_environment
 from mcsim.physics.laws import get_law_set
-from mcsim.store import files, runfile
+from mcsim.store import runfile
+from mcsim.store.claim import claim_output
 from mcsim.store.sweepfile import (
     ENVIRONMENT_INPUTS,
     INPUTS,
@@ -70,6 +72,7 @@ from mcsim.store.sweepfile import (
     read_sweep,
     write_sweep,
 )
+from mcsim.studies.runoptions import check_checkpoint_every, check_workers
 from mcsim.studies.sweeppoint import (
     MAX_POINTS,
     Config,
@@ -90,21 +93,9 @@ log = logging.getLogger(__name__)
 DEFAULT_H = tuple(np.linspace(4.0, -1.0, 51).tolist())
 
 
-# --- the grid ----------------------------------------------------------------------------
-
-
-# --- one point -----------------------------------------------------------------------------
-
-
-# --- the result ----------------------------------------------------------------------------
-
-
-# --- the sweep -----------------------------------------------------------------------------
-
-
 def sweep(
-    surface: Surface,
-    material: Material,
+    surface: Surface | str,
+    material: Material | str,
     vary: Mapping,
     *,
     law: str | None = None,
@@ -132,8 +123,9 @@ def sweep(
 
     Parameters
     ----------
-    surface, material : Surface, Material
-        The inputs at every point, before the varied ones are set.
+    surface, material : Surface, Material or str
+        The inputs at every point, before the varied ones are set, or the names of
+        presets (``"smooth"``, ``"silicon"``).
     vary : mapping of str to spec
         Input name to its values, in grid order: ``sigma``, ``R``, ``eta`` (surface),
         ``E`` (both E1 and E2), ``E1``, ``E2``, ``nu`` (both), ``nu1``, ``nu2``,
@@ -185,7 +177,7 @@ def sweep(
         Where the Monte Carlo runs sample and sum (``"cuda"``: this machine's GPU, see
         :func:`mcsim.simulate`; points then run one after another, not on Dask).
     workers : int, optional
-        Local worker threads (all cores by default), or processes of ``"local"`` Dask.
+        Local worker threads (1 to 1024; all cores by default), or processes of ``"local"`` Dask.
     scheduler : str or dask.distributed.Client, optional
         ``"local"``, a scheduler address or a client, as in :func:`mcsim.simulate`.
     out : path, optional
@@ -199,7 +191,7 @@ def sweep(
         ``seed``, any seed), it is returned untouched with a notice; a finished sweep of
         other inputs is refused, naming the first that differs.
     checkpoint_every : float
-        Seconds between checkpoints (the first after 10 s).
+        Seconds between checkpoints (a number, s, >= 0; the first after 10 s).
     progress : bool
         A progress bar over the points on stderr.
     command : str, optional
@@ -218,15 +210,77 @@ def sweep(
     mcsim.engine.interrupt.Interrupted
         On SIGINT or SIGTERM, once the completed points are saved.
     """
+    surface, material = as_surface(surface), as_material(material)
     environment = as_environment(environment)
     names, grid = _check_vary(vary, law, mc or bool(pads))
     restoring_force, preload = _check_pads(pads, restoring_force, preload, turn)
-    check_range("checkpoint_every", checkpoint_every, "s", low=0.0, low_open=False)
+    checkpoint_every = check_checkpoint_every(checkpoint_every)
+    workers = check_workers(workers)
     law = "seed" if law is None else law
     if law != "auto":
         get_law_set(law)
     h = tuple(check_separations(h).tolist())
     turn = None if turn is None else check_range("turn", turn, "1")
+    area_m2 = _check_monte_carlo(mc, pads, area, names, realizations, device, scheduler)
+    if mc and device == "cuda":
+        workers = 1  # one GPU; each point's run keeps it busy
+    if resume and out is None:
+        raise ParameterError("resume needs the sweep file to continue (out=...)")
+    shape = tuple(len(v) for v in grid)
+    if math.prod(shape) > MAX_POINTS:
+        raise ParameterError(f"vary: the grid has {math.prod(shape)} points "
+                             f"({' x '.join(map(str, shape))}), more than the limit of {MAX_POINTS}")  # fmt: skip
+    if environment is None and any(n in ENVIRONMENT_INPUTS for n in names):
+        environment = Environment()
+    _check_values(surface, material, environment, names, grid)
+    seed = check_seed(seed)
+    dims = [dimension_name(n) for n in names]
+    with interrupt.interruptible(), contextlib.ExitStack() as stack:
+        claim = None
+        if out is not None:
+            claim = claim_output(stack, out, overwrite=overwrite, resume=resume, what="sweep",
+                                 read_finished=read_sweep, read_checkpoint=_read_checkpoint)  # fmt: skip
+        seed_given = seed is not None
+        if seed is None and claim is not None:
+            seed = _recorded_seed(claim)
+        entropy = np.random.SeedSequence(seed).entropy if mc or pads else None
+        config = Config(h, turn, mc, realizations, entropy, device, pads, restoring_force, preload)
+        result = _empty_result(material, law, names, dims, grid, config, environment is not None)
+        if command is None:
+            command = (
+                f"mcsim.sweep(vary={ {n: _shown(v) for n, v in zip(names, grid)} }, law={law!r})"
+            )
+        attrs = _attrs(surface, material, environment, law, dims, grid, config, area_m2, command)
+        if claim is not None and claim.finished is not None:
+            return _already_finished(claim, attrs, seed_given)
+        done = np.zeros(shape, dtype=bool)
+        if claim is not None and claim.checkpoint is not None:
+            done = _restore(claim, result, attrs, shape)
+        points = (
+            make_point(surface, material, environment, law, area_m2, names, values, index)
+            for index, values in enumerate(_product(grid))
+            if not done.flat[index]
+        )
+        checkpoint = None
+        if claim is not None:
+            checkpoint = functools.partial(
+                write_sweep, claim.partial, result, attrs, complete=False
+            )
+        # Recorded per point instead; restored only once the last point has stopped.
+        stack.enter_context(warnings.catch_warnings())
+        warnings.simplefilter("ignore", RegimeWarning)
+        _run(stack, points, config, result, done, workers, scheduler, progress, checkpoint,
+             checkpoint_every)  # fmt: skip
+        if claim is None:
+            return dataclasses.replace(result, attrs=attrs)
+        claim.finish(lambda path: write_sweep(path, result, attrs, complete=True))
+        return dataclasses.replace(result, attrs=attrs, path=claim.out)
+
+
+def _check_monte_carlo(
+    mc: bool, pads, area, names, realizations, device, scheduler
+) -> float | None:
+    """Check the options of the Monte Carlo runs and the pads; the patch area (m²) if given."""
     area_m2 = None
     if mc or pads:
         if area is None and "area" not in names:
@@ -248,7 +302,6 @@ def sweep(
                 raise ParameterError(
                     "device = 'cuda' runs on this machine's GPU: drop the Dask scheduler"
                 )
-            workers = 1  # one GPU; each point's run keeps it busy
     elif device != "cpu":
         raise ParameterError(
             f"device = {device!r}: the device applies to the Monte Carlo runs only (add mc / --mc)"
@@ -257,85 +310,45 @@ def sweep(
         raise ParameterError(
             "area: the pad area applies to the Monte Carlo runs only, or the pads (add mc / --mc or pads / --pads)"
         )
-    if resume and out is None:
-        raise ParameterError("resume needs the sweep file to continue (out=...)")
-    shape = tuple(len(v) for v in grid)
-    if math.prod(shape) > MAX_POINTS:
-        raise ParameterError(f"vary: the grid has {math.prod(shape)} points "
-                             f"({' x '.join(map(str, shape))}), more than the limit of {MAX_POINTS}")  # fmt: skip
-    if environment is None and any(n in ENVIRONMENT_INPUTS for n in names):
-        environment = Environment()
-    _check_values(surface, material, environment, names, grid)
-    seed = check_seed(seed)
-    dims = [dimension_name(n) for n in names]
-    with interrupt.interruptible(), contextlib.ExitStack() as stack:
-        previous = finished = None
-        seed_given = seed is not None
-        if out is not None:
-            out, partial = files.claim(stack, out, overwrite=overwrite, resume=resume)
-            if resume and not overwrite and out.exists():
-                finished = read_sweep(out)  # checksum verified: damage is refused
-                recorded = finished.attrs.get("seed_entropy")
-                if seed is None and recorded:
-                    seed = int(recorded)
-            elif resume and partial.exists():
-                previous = read_partial(partial)
-                recorded = previous["attrs"].get("seed_entropy")
-                if seed is None and recorded:
-                    seed = int(recorded)
-            elif resume:
-                log.warning("%s: nothing to resume (no checkpoint %s): starting the sweep from "
-                            "the beginning", out, partial.name)  # fmt: skip
-            else:
-                partial.unlink(missing_ok=True)
-        entropy = np.random.SeedSequence(seed).entropy if mc or pads else None
-        config = Config(h, turn, mc, realizations, entropy, device, pads, restoring_force, preload)
-        laws = list(grid[names.index("law")]) if "law" in names else [law]
-        with_env = environment is not None
-        curve_names = _union(point_curves(x, material, with_env) for x in laws)
-        if "tau" in names and material.tau is None:
-            curve_names = _union([curve_names, point_curves(laws[0], dataclasses.replace(material, tau=1.0), with_env)])  # fmt: skip
-        summary = any(has_summary(x) for x in laws)
-        result = empty_sweep(dims, grid, h, curve_names, summary, mc, with_env, pads=bool(pads))
-        if command is None:
-            command = (
-                f"mcsim.sweep(vary={ {n: _shown(v) for n, v in zip(names, grid)} }, law={law!r})"
-            )
-        attrs = _attrs(surface, material, environment, law, dims, grid, config, area_m2, command)
-        if finished is not None:
-            return _already_finished(out, finished, attrs, seed_given)
-        done = np.zeros(shape, dtype=bool)
-        if previous is not None:
-            if previous["attrs"].get("mcsim_version") != __version__:
-                raise RunFileError(f"{partial}: written by mcsim "
-                                   f"{previous['attrs'].get('mcsim_version')}; resume it with that version")  # fmt: skip
-            differs = files.first_difference(
-                _inputs(partial, previous["attrs"]), _inputs(out, attrs)
-            )
-            if differs:
-                raise ParameterError(f"cannot resume {out}: its checkpoint {partial.name} holds a "
-                                     f"sweep with a different {differs}")  # fmt: skip
-            done = _recorded(partial, previous, result, done.shape)
-            for k in result.data:
-                result.data[k][done] = previous["data"][k][done]
-        points = (
-            make_point(surface, material, environment, law, area_m2, names, values, index)
-            for index, values in enumerate(_product(grid))
-            if not done.flat[index]
-        )
-        checkpoint = None
-        if out is not None:
-            checkpoint = functools.partial(write_sweep, partial, result, attrs, complete=False)
-        # Recorded per point instead; restored only once the last point has stopped.
-        stack.enter_context(warnings.catch_warnings())
-        warnings.simplefilter("ignore", RegimeWarning)
-        _run(stack, points, config, result, done, workers, scheduler, progress, checkpoint,
-             checkpoint_every)  # fmt: skip
-        if out is None:
-            return dataclasses.replace(result, attrs=attrs)
-        write_sweep(out, result, attrs, complete=True)
-        partial.unlink(missing_ok=True)
-        return dataclasses.replace(result, attrs=attrs, path=out)
+    return area_m2
+
+
+def _empty_result(material: Material, law: str, names, dims, grid, config: Config,
+                  with_env: bool) -> Sweep:  # fmt: skip
+    """The sweep of every variable the grid's points give, all NaN (no point done)."""
+    laws = list(grid[names.index("law")]) if "law" in names else [law]
+    curve_names = _union(point_curves(x, material, with_env) for x in laws)
+    if "tau" in names and material.tau is None:
+        curve_names = _union([curve_names, point_curves(laws[0], dataclasses.replace(material, tau=1.0), with_env)])  # fmt: skip
+    summary = any(has_summary(x) for x in laws)
+    return empty_sweep(dims, grid, config.h, curve_names, summary, config.mc, with_env,
+                       pads=bool(config.pads))  # fmt: skip
+
+
+def _read_checkpoint(partial: Path) -> tuple[dict, dict]:
+    """A sweep checkpoint (:func:`mcsim.store.sweepfile.read_partial`) and its attributes."""
+    previous = read_partial(partial)
+    return previous, previous["attrs"]
+
+
+def _recorded_seed(claim) -> int | None:
+    """The seed of the finished sweep or checkpoint a resume found (None: neither, or no seed)."""
+    if claim.finished is not None:
+        recorded = claim.finished.attrs.get("seed_entropy")
+    else:
+        recorded = claim.checkpoint_attrs.get("seed_entropy")
+    return int(recorded) if recorded else None
+
+
+def _restore(claim, result: Sweep, attrs: dict, shape: tuple) -> np.ndarray:
+    """The points a checkpoint completed, copied into ``result``, once its inputs are those
+    asked for (``attrs``); which points are done."""
+    previous = claim.checkpoint
+    claim.check_checkpoint(_inputs(claim.partial, previous["attrs"]), _inputs(claim.out, attrs))
+    done = _recorded(claim.partial, previous, result, shape)
+    for k in result.data:
+        result.data[k][done] = previous["data"][k][done]
+    return done
 
 
 #: The names a resume's message gives the entries of a sweep's ``definition``.
@@ -357,24 +370,18 @@ def _inputs(path: Path, attrs: dict) -> dict:
     return {_INPUT_NAMES.get(k, k): v for k, v in inputs.items()}
 
 
-def _already_finished(out: Path, finished: Sweep, attrs: dict, seed_given: bool) -> Sweep:
-    """``finished``, the complete sweep at ``out``, if it is the sweep asked for (the same
-    ``definition`` as ``attrs``): resuming it is then a no-op (the file is not touched;
-    a checkpoint left beside it by a kill after the final write is removed). Otherwise
-    refuse, naming the first input that differs."""
-    if not finished.attrs.get("complete"):
+def _already_finished(claim, attrs: dict, seed_given: bool) -> Sweep:
+    """The complete sweep at the claimed output, if it is the sweep asked for (the same
+    ``definition`` as ``attrs``; see :meth:`mcsim.store.claim.Claim.already_finished`)."""
+    out = claim.out
+    if not claim.finished.attrs.get("complete"):
         raise RunFileError(f"{out}: damaged sweep file: it holds an unfinished sweep")
-    differs = files.first_difference(_inputs(out, finished.attrs), _inputs(out, attrs))
-    if differs:
-        raise RunFileError(f"{out}: already holds a finished sweep with a different {differs}; "
-                           "use --overwrite to replace it or another --out")  # fmt: skip
-    partial = files.checkpoint_path(out)
-    if partial.exists() and read_partial(partial)["attrs"].get("definition") == attrs["definition"]:
-        partial.unlink()  # the finished sweep's own checkpoint: killed before removing it
     seed = attrs.get("seed_entropy")
-    note = f" (no seed given: taken as the file's, {seed})" if seed and not seed_given else ""
-    log.warning("%s: already holds this finished sweep%s: nothing to do", out, note)
-    return finished
+    return claim.already_finished(
+        _inputs(out, claim.finished.attrs), _inputs(out, attrs),
+        own_checkpoint=lambda partial: read_partial(partial)["attrs"].get("definition") == attrs["definition"],
+        seed_note=f" (no seed given: taken as the file's, {seed})" if seed and not seed_given else "",
+    )  # fmt: skip
 
 
 def _recorded(partial: Path, previous: dict, result: Sweep, shape: tuple) -> np.ndarray:
@@ -524,8 +531,6 @@ def _run(stack, points, config, result: Sweep, done, workers, scheduler, progres
          checkpoint, checkpoint_every) -> None:  # fmt: skip
     """Evaluate the points on threads or Dask, storing each result as it arrives (in order)."""
     n_workers = default_workers() if workers is None else workers
-    if isinstance(n_workers, bool) or not isinstance(n_workers, int) or n_workers < 1:
-        raise ParameterError(f"workers = {workers!r} is out of range (allowed: integer >= 1)")
     bar = None
     if progress:
         from tqdm import tqdm
@@ -573,6 +578,3 @@ def _store(result: Sweep, done: np.ndarray, index: int, values: dict) -> None:
     for k, v in values.items():
         result.data[k][idx] = v
     done[idx] = True
-
-
-# --- the file -------------------------------------------------------------------------------

@@ -99,3 +99,44 @@ def test_simulate_law_auto_runs_the_law_set_the_adhesion_map_chooses(tmp_path, c
     err = capsys.readouterr().err
     assert code == 0 and read_run(tmp_path / "a.h5").spec.law == chosen == "maugis-dugdale"
     assert err.startswith(f"mcsim: law auto: {chosen} (") and "1 realization x 1 separation," in err
+
+
+def test_simulate_and_sweep_take_preset_names_as_the_command_line_does():
+    by_name = mcsim.simulate("smooth", "silicon", [1.0, 0.0], "1 um^2", realizations=2, seed=3)
+    by_obj = mcsim.simulate(SMOOTH, SILICON, [1.0, 0.0], "1 um^2", realizations=2, seed=3)
+    assert by_name.spec == by_obj.spec and np.array_equal(by_name.sums, by_obj.sums)
+    swept = mcsim.sweep("smooth", "silicon", {"gamma": [0.5, 1.0]}, h=[1.0, 0.0])
+    same = mcsim.sweep(SMOOTH, SILICON, {"gamma": [0.5, 1.0]}, h=[1.0, 0.0])
+    assert swept.attrs["definition"] == same.attrs["definition"]
+    assert np.array_equal(swept.data["F"], same.data["F"])
+
+
+@pytest.mark.parametrize(
+    ("inputs", "says"),
+    [(("glass", SILICON), r"^surface must be a Surface or a preset name \(rough, .*got 'glass'"),
+     ((SMOOTH, 5), r"^material must be a Material or a preset name \(.*got 5")],
+)  # fmt: skip
+def test_a_surface_or_material_that_is_neither_nor_a_preset_is_refused_naming_it(inputs, says):
+    with pytest.raises(ParameterError, match=says):
+        mcsim.simulate(*inputs, [1.0], "1 um^2", seed=1)
+    with pytest.raises(ParameterError, match=says):
+        mcsim.sweep(*inputs, {"gamma": [0.5]})
+
+
+@pytest.mark.parametrize(
+    ("options", "says"),
+    [({"checkpoint_every": "5"}, r"^checkpoint_every must be a number of seconds, got '5'"),
+     ({"checkpoint_every": -1}, r"^checkpoint_every = -1.0 s is out of range \(allowed: >= 0 s\)"),
+     ({"workers": 10**30}, r"^workers = 10{30} is out of range \(allowed: None or an integer from 1 to 1024\)"),
+     ({"workers": 0}, r"^workers = 0 is out of range"),
+     ({"workers": 2.0}, r"^workers = 2.0 is out of range"),
+     ({"workers": True}, r"^workers = True is out of range")],
+)  # fmt: skip
+def test_run_options_the_command_line_refuses_are_refused_before_any_file_is_claimed(
+    tmp_path, options, says
+):
+    with pytest.raises(ParameterError, match=says):
+        mcsim.simulate(SMOOTH, SILICON, [1.0], "1 um^2", seed=1, out=tmp_path / "r.h5", **options)
+    with pytest.raises(ParameterError, match=says):
+        mcsim.sweep(SMOOTH, SILICON, {"gamma": [0.5]}, out=tmp_path / "s.h5", **options)
+    assert list(tmp_path.iterdir()) == []
