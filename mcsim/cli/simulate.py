@@ -59,8 +59,8 @@ def run(args) -> int:
         extra = {} if pressure is None else {"load_control": json.dumps(
             {"pressure": pressure.tolist(), "unit": "Pa"})}  # fmt: skip
         law, notes = resolve_law(args, surface, material)
-        if not args.quiet:
-            print_lines(notes)  # the choice of --law auto, and the regime warnings (as analytic)
+        if args.law == "auto" and not args.quiet:
+            print_lines(notes[:1])  # the choice; simulate() logs the regime warnings
         out = file_path(args.out, "--out") if args.out is not None else _default_run_path(surface)
         show_progress = not args.quiet and sys.stderr.isatty()
         before = file_state(out)

@@ -27,6 +27,7 @@ from mcsim.model.errors import ParameterError
 from mcsim.model.params import Material, Surface, check_range, check_seed, check_separations
 from mcsim.model.presets import as_material, as_surface
 from mcsim.model.units import parse_quantity
+from mcsim.physics.adhesion import regime_warnings
 from mcsim.physics.environment import Environment, as_environment
 from mcsim.physics.gapheights import gap_heights
 from mcsim.physics.laws import LAW_SETS, get_law_set
@@ -279,6 +280,8 @@ def _api_command(spec: MonteCarloSpec, *, seed, preload, environment) -> str:
 def _run(stack, spec: MonteCarloSpec, environment, *, workers, scheduler, chunk_size,
          keep_heights, progress, resume, checkpoint, checkpoint_every) -> Run:  # fmt: skip
     """The contact sums of ``spec`` (continuing ``resume``), then the environment's cells."""
+    for warning in regime_warnings(spec.surface, spec.material, spec.law):
+        log.info("warning: %s", warning)  # once the inputs are accepted: no error follows
     n_workers = default_workers() if workers is None else workers
     summits, pairs, seconds = estimate(spec, n_workers)
     if seconds > ESTIMATE_ABOVE:
