@@ -30,7 +30,7 @@ class ReaderError(MCSimError):
 
     The message is kept on one short line: line breaks and other control characters (from
     a file name or from text read out of the file) are shown escaped, e.g. ``\\r``, and a
-    message longer than :data:`MAX_MESSAGE` characters (a parser quoting binary data) is
+    message longer than :data:`MAX_MESSAGE` (2000) characters (a parser quoting binary data) is
     cut, saying how much.
     """
 
@@ -41,8 +41,9 @@ class ReaderError(MCSimError):
         super().__init__(text)
 
 
-#: Longest reader message, in characters: a name and a reason fit, a quoted file does not.
-MAX_MESSAGE = 500
+#: Longest reader message, in characters: a path and a reason fit (a channel list of a few
+#: dozen names included), a quoted binary file does not.
+MAX_MESSAGE = 2000
 _CONTROL = re.compile("[\x00-\x1f\x7f-\x9f\u2028\u2029]")
 
 
