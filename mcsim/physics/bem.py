@@ -230,7 +230,9 @@ def count_patches(mask: np.ndarray, periodic: bool) -> int:
 def _check(heights, pressure: float, E_star: float, tol: float) -> np.ndarray:
     z = np.asarray(heights, dtype=float)
     if z.ndim != 2 or min(z.shape) < 2:
-        raise ParameterError(f"`heights` must be a 2-D map of at least 2 x 2 pixels, got shape {z.shape}")
+        raise ParameterError(
+            f"`heights` must be a 2-D map of at least 2 x 2 pixels, got shape {z.shape}"
+        )
     if not np.all(np.isfinite(z)):
         raise ParameterError("`heights` must be finite: fill or crop the map's missing pixels")
     if not (np.isfinite(pressure) and pressure > 0):

@@ -119,7 +119,9 @@ def gw_hertz(surface: Surface, E_star: float, pressure: np.ndarray):
         while log_ratio(lo, target) < 0:
             lo = 2 * lo
             if lo < -1e6:
-                raise ParameterError(f"pressure {target:g} Pa: GW reaches no separation that carries it")
+                raise ParameterError(
+                    f"pressure {target:g} Pa: GW reaches no separation that carries it"
+                )
         h[i] = optimize.brentq(log_ratio, lo, hi, args=(target,), xtol=1e-12)
     f1 = moments(h)[0]
     offset = surface.summit_offset or 0.0
@@ -227,7 +229,12 @@ class ContactResult:
                 ds.attrs.update({"units": unit, "long_name": long_name})
             for name, data, unit, long_name in (
                 ("pressure_field", self.pressure_fields, "Pa", "contact pressure"),
-                ("gap_field", self.gap_fields, "m", "gap between the deformed surface and the flat"),
+                (
+                    "gap_field",
+                    self.gap_fields,
+                    "m",
+                    "gap between the deformed surface and the flat",
+                ),
             ):
                 ds = f.create_dataset(name, data=data, **storage(data))
                 ds.attrs.update({"units": unit, "long_name": long_name,
@@ -283,12 +290,16 @@ def contact_map(
         pressure = parse_values(pressure, "pressure", "pressure", limit=1000)
     p = np.sort(np.atleast_1d(np.asarray(pressure, dtype=float)))
     if p.ndim != 1 or p.size == 0 or not np.all(np.isfinite(p) & (p > 0)):
-        raise ParameterError(f"pressure = {pressure!r}: give one or more positive, finite values, Pa")
+        raise ParameterError(
+            f"pressure = {pressure!r}: give one or more positive, finite values, Pa"
+        )
     ingested = ingest_file(path, unit=unit, pixel_size=pixel_size, level=level, channel=channel)
     hmap = read_height_map(path, unit=unit, pixel_size=pixel_size, channel=channel)
     z = level_heights(hmap.heights, LEVELS[level])
     if not np.all(np.isfinite(z)):
-        raise ParameterError(f"{path}: the map has missing pixels: fill or crop them for a contact solve")
+        raise ParameterError(
+            f"{path}: the map has missing pixels: fill or crop them for a contact solve"
+        )
     if periodic is None:
         steps = edge_steps(z)
         periodic = max(steps) < EDGE_JOIN
@@ -297,7 +308,9 @@ def contact_map(
                   f"{'edges join' if periodic else 'edges do not join'})")  # fmt: skip
     else:
         reason = "as asked"
-    solutions = bem.solve_loads(z, (hmap.dx, hmap.dy), material.E_star, p, periodic=periodic, tol=tol)
+    solutions = bem.solve_loads(
+        z, (hmap.dx, hmap.dy), material.E_star, p, periodic=periodic, tol=tol
+    )
     if progress and z.size > PROGRESS_PIXELS:
         import sys
 
