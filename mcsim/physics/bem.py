@@ -296,15 +296,16 @@ def solve_contact(
         p = np.full(z.shape, pressure)
     p *= total / p.sum()
     t = np.zeros_like(z)
-    norm_old, conjugate, residual = 1.0, False, np.inf
-    for iteration in range(1, max_iter + 1):
+    norm_old, conjugate, iterations = 1.0, False, 0
+    while True:
         g = displace(p) - z
         on = p > 0
         g -= g[on].mean()  # the flat's height: the gap vanishes on average where loaded
         gap_on = g[on]
-        residual = max(np.abs(gap_on).max(), max(-g[~on].min(initial=0.0), 0.0)) / scale
-        if residual <= tol:
+        residual = max(np.abs(gap_on).max(), -g[~on].min(initial=0.0)) / scale
+        if residual <= tol or iterations == max_iter:
             break
+        iterations += 1
         norm = float(gap_on @ gap_on)
         t = np.where(on, g + (norm / norm_old if conjugate else 0.0) * t, 0.0)
         norm_old = norm
@@ -316,13 +317,11 @@ def solve_contact(
         conjugate = not overlap.any()
         p[overlap] -= tau * g[overlap]
         p *= total / p.sum()
-    else:
-        iteration = max_iter
-    on = p > 0
+    gap = np.where(on, 0.0, g)
     return ContactSolution(
-        pressure=float(pressure), pressure_field=p, gap_field=np.where(on, 0.0, g),
-        area_fraction=float(on.mean()), mean_gap=float(np.where(on, 0.0, g).mean()),
-        patches=count_patches(on, periodic), iterations=iteration, residual=float(residual),
+        pressure=float(pressure), pressure_field=p, gap_field=gap,
+        area_fraction=float(on.mean()), mean_gap=float(gap.mean()),
+        patches=count_patches(on, periodic), iterations=iterations, residual=float(residual),
         converged=bool(residual <= tol),
     )  # fmt: skip
 

@@ -218,7 +218,7 @@ class ContactResult:
 
         def fill(f):
             f.attrs.update({"schema": SCHEMA, "mcsim_version": __version__,
-                            "created": dt.datetime.now(dt.timezone.utc).isoformat(timespec="seconds"),
+                            "created": dt.datetime.now(dt.UTC).isoformat(timespec="seconds"),
                             "command": command, "source": str(self.source), "channel": self.channel,
                             "level": self.level, "dx": self.dx, "dy": self.dy,
                             "periodic": self.periodic, "periodic_reason": self.periodic_reason,
