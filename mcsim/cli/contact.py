@@ -57,8 +57,8 @@ def run(args) -> int:
                   f"E* = {result.E_star / 1e9:.4g} GPa; exact: FFT boundary elements, tolerance "
                   f"{result.tol:g}; GW: Hertz summits, sigma_s = {s.sigma * 1e9:.4g} nm, "
                   f"R = {s.R * 1e6:.4g} um, eta = {s.eta * 1e-12:.4g} um^-2 (direct route)",
-                  "pressure Pa; area fractions A_r/A_n; mean gaps m (flat above the map's mean plane); "
-                  "exact numbers hold at this pixel size"]  # fmt: skip
+                  "pressure Pa; area fractions A_r/A_n; mean gaps m (exact: mean of the gap field; GW: "
+                  "the flat above the map's mean plane); exact numbers hold at this pixel size"]  # fmt: skip
         print_rows(rows, list(table), args.format, header)
     if args.out:
         announce(result.write(args.out, command=cli_command(), overwrite=args.overwrite),

@@ -2,6 +2,7 @@
 
 import json
 import math
+from pathlib import Path
 
 import h5py
 import numpy as np
@@ -13,6 +14,7 @@ from mcsim.model.params import Surface
 from mcsim.model.presets import MATERIALS
 from mcsim.studies.contact import contact_map, gw_hertz
 
+ROOT = Path(__file__).resolve().parents[2]
 SCAN = "examples/scan.npy"  # periodic, 100 x 100 pixels of 10 nm, heights in m
 MAP = ("--unit", "m", "--pixel-size", "10nm")
 LOADS = "10MPa:100MPa:2:log"
@@ -107,3 +109,17 @@ def test_gw_hertz_matches_the_gaussian_closed_forms():
             ai, math.pi * surface.eta * surface.R * surface.sigma * f1, rtol=1e-8
         )
         np.testing.assert_allclose(gi, surface.sigma * hi + 2e-9, rtol=1e-12, err_msg="mean gap")
+
+
+def test_the_documented_run_and_its_ratios_are_current(capsys):
+    # docs/contact.md shows one run and quotes GW's area over the exact one and the mean gaps'
+    # ratio at the top load: rerun here, the table compared line by line, the ratios to 2 digits.
+    text = (ROOT / "docs" / "contact.md").read_text()
+    block = text.split("```console\n")[1].split("```")[0].splitlines()
+    argv = block[0].removeprefix("$ mcsim ").split()
+    code, out, _ = run_cli(capsys, *argv)
+    assert code == 0 and out.splitlines() == block[1:]
+    r = contact_map(SCAN, MATERIALS["silicon"], [1e6, 1e7, 1e8, 1e9], unit="m", pixel_size=1e-8)
+    ratios = ", ".join(f"{x:.2f}" for x in (r.gw_area_fraction / r.area_fraction)[1:3])
+    assert f"{ratios} and {r.gw_area_fraction[3] / r.area_fraction[3]:.2f} of the exact" in text
+    assert f"{r.mean_gap[3] / r.gw_mean_gap[3]:.1f} times smaller" in text
