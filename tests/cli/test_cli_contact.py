@@ -118,7 +118,17 @@ def test_the_documented_run_and_its_ratios_are_current(capsys):
     block = text.split("```console\n")[1].split("```")[0].splitlines()
     argv = block[0].removeprefix("$ mcsim ").split()
     code, out, _ = run_cli(capsys, *argv)
-    assert code == 0 and out.splitlines() == block[1:]
+    lines, shown = out.splitlines(), block[1:]
+    assert code == 0 and len(lines) == len(shown)
+    for got, doc in zip(lines, shown, strict=True):
+        if got.startswith(("#", "pressure")):
+            assert got == doc
+            continue
+        # converged to tol 1e-6 of the rms height: the 6-digit gaps may move in their last digit,
+        # and the iteration count by a few, with another machine's rounding
+        (*cells, iterations, pixel), (*ref, ref_iterations, ref_pixel) = got.split(), doc.split()
+        np.testing.assert_allclose(np.float64(cells), np.float64(ref), rtol=2e-5, err_msg=got)
+        assert abs(int(iterations) - int(ref_iterations)) <= 3 and pixel == ref_pixel
     r = contact_map(SCAN, MATERIALS["silicon"], [1e6, 1e7, 1e8, 1e9], unit="m", pixel_size=1e-8)
     ratios = ", ".join(f"{x:.2f}" for x in (r.gw_area_fraction / r.area_fraction)[1:3])
     assert f"{ratios} and {r.gw_area_fraction[3] / r.area_fraction[3]:.2f} of the exact" in text
