@@ -47,7 +47,7 @@ from scipy import optimize
 from mcsim.model.errors import ParameterError
 from mcsim.model.params import Material, Surface
 from mcsim.physics import bem
-from mcsim.studies.ingest import ingest_file
+from mcsim.studies.ingest import _is_histogram_file, ingest_file
 from mcsim.studies.ingested import LEVELS
 from mcsim.topography.readers import read_height_map
 from mcsim.topography.summits import level as level_heights
@@ -293,6 +293,8 @@ def contact_map(
         raise ParameterError(
             f"pressure = {pressure!r}: give one or more positive, finite values, Pa"
         )
+    if _is_histogram_file(Path(path)):
+        raise ParameterError(f"{path}: a height histogram has no map to press: give a height map")
     ingested = ingest_file(path, unit=unit, pixel_size=pixel_size, level=level, channel=channel)
     hmap = read_height_map(path, unit=unit, pixel_size=pixel_size, channel=channel)
     z = level_heights(hmap.heights, LEVELS[level])

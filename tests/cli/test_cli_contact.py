@@ -92,6 +92,11 @@ def test_a_bad_pressure_is_one_line_naming_it(capsys, pressure, message):
     assert code == 2 and err.count("\n") == 1 and message in err
 
 
+def test_a_histogram_is_refused_as_no_map(capsys):
+    code, _, err = run_cli(capsys, "contact", "examples/hist.csv", "--pressure", "1MPa")
+    assert code == 2 and err.count("\n") == 1 and "a height histogram has no map" in err
+
+
 def test_gw_hertz_matches_the_gaussian_closed_forms():
     # Gaussian heights: F_1(h) = φ(h) - h Q(h) in closed form, F_3/2(h) by adaptive quadrature;
     # p = η (4/3)E* R^½ σ^{3/2} F_3/2(h) and A_r/A_n = π η R σ F_1(h) (GW 1966). Both to 1e-8.
