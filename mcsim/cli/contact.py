@@ -36,7 +36,7 @@ def run(args) -> int:
     )
     result = contact_map(
         args.file, material, parse_values(args.pressure, "pressure", "--pressure"), unit=args.unit, pixel_size=pixel, channel=args.channel,
-        level=args.level, periodic=args.periodic, keep_fields=bool(args.out or args.plot),
+        level=args.level, periodic=args.periodic, **({} if args.tol is None else {"tol": args.tol}), keep_fields=bool(args.out or args.plot),
         progress=not args.quiet,
     )  # fmt: skip
     table = result.columns()
@@ -99,6 +99,9 @@ def add_parser(sub) -> None:
                    help="solve the map as periodic (--periodic) or zero-padded (--no-periodic); default: "
                    "periodic when opposite edges join (rms step across them < 1.5 x the rms "
                    "neighbour step), said in the output")  # fmt: skip
+    p.add_argument("--tol", type=float,
+                   help="solver tolerance: largest gap where loaded and largest overlap elsewhere, over the "
+                   "rms height (default: 1e-6)")  # fmt: skip
     p.add_argument("--format", choices=FORMATS, default="table")
     p.add_argument(
         "--out", metavar="FILE.h5", help="write the pressure and gap fields of every load"

@@ -2,6 +2,7 @@
 
 import json
 import math
+import re
 from pathlib import Path
 
 import h5py
@@ -10,6 +11,7 @@ import pytest
 from conftest import rows_of, run_cli
 from scipy import integrate, stats
 
+from mcsim.cli.main import main
 from mcsim.model.params import Surface
 from mcsim.model.presets import MATERIALS
 from mcsim.studies.contact import contact_map, gw_hertz
@@ -35,6 +37,21 @@ def test_table_states_the_pixel_size_and_why_the_map_is_periodic(capsys):
     assert code == 0
     assert "100 x 100 pixels of 10 x 10 nm" in out
     assert "periodic: edge steps" in out and "edges join" in out
+
+
+def test_tolerance_defaults_to_the_solver_s_and_is_obeyed(capsys):
+    from mcsim.physics.bem import TOL
+
+    _, out, _ = run_cli(capsys, "contact", SCAN, *MAP, "--pressure", "1GPa", "--format", "json")
+    _, loose, _ = run_cli(capsys, "contact", SCAN, *MAP, "--pressure", "1GPa", "--format", "json",
+                          "--tol", "1e-3")  # fmt: skip
+    assert json.loads(out)["tol"] == TOL and json.loads(loose)["tol"] == 1e-3
+    assert json.loads(loose)["rows"][0]["iterations"] < json.loads(out)["rows"][0]["iterations"]
+    assert main(["contact", "--help"]) == 0
+    stated = re.search(
+        r"--tol TOL .*?\(default: ([0-9.e+-]+)\)", " ".join(capsys.readouterr().out.split())
+    )
+    assert float(stated[1]) == TOL
 
 
 def test_a_cut_out_map_is_not_periodic_by_default(tmp_path, capsys):

@@ -36,6 +36,23 @@ def test_hertz_contact_radius_and_peak_pressure_within_one_percent():
                                rtol=0.01, err_msg="peak pressure")  # fmt: skip
 
 
+@pytest.mark.parametrize("periodic", [True, False])
+def test_rectangular_pixels_keep_the_hertz_circle(periodic):
+    # Pixels twice as long in x as in y (96 x 192 pixels over a square 1 µm): the contact stays
+    # a circle of the Hertz radius (a = L/5: 19 pixels in x, 38 in y) in both directions, to
+    # 1.5 pixels in x (the rim's sampling). A periodic map's images at L barely load it (a/L = 0.2).
+    L, R = 1e-6, 1e-6
+    dx, dy = L / 96, L / 192
+    x = (np.arange(96) - 48 + 0.5) * dx
+    y = (np.arange(192) - 96 + 0.5) * dy
+    z = -(x[None, :] ** 2 + y[:, None] ** 2) / (2 * R)
+    a = L / 5
+    s = bem.solve_contact(z, (dx, dy), E_STAR, 4 * E_STAR * a**3 / (3 * R) / L**2, periodic=periodic)
+    on = s.pressure_field > 0
+    width_x, width_y = on.any(axis=0).sum() * dx, on.any(axis=1).sum() * dy
+    np.testing.assert_allclose([width_x, width_y], [2 * a, 2 * a], atol=1.5 * dx)
+
+
 @pytest.mark.parametrize("load", [0.1, 0.3, 0.6])
 def test_westergaard_sinusoid_area_within_one_percent(load):
     # z = h cos(2πx/λ), periodic: p/p* = sin²(πa/λ), p* = π E* h/λ (Westergaard 1939; Johnson
