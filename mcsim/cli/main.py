@@ -16,6 +16,7 @@ from mcsim.cli import (
     adhesion,
     analytic,
     compare,
+    contact,
     ingest,
     pads,
     paper,
@@ -27,7 +28,7 @@ from mcsim.cli import (
 from mcsim.model.errors import MCSimError
 
 #: The commands, in the order of ``mcsim --help``.
-COMMANDS = (analytic, adhesion, paper, simulate, sweep, compare, show, plot, pads, ingest)
+COMMANDS = (analytic, adhesion, paper, simulate, sweep, compare, show, plot, pads, ingest, contact)
 
 
 # --- commands ----------------------------------------------------------------------------

@@ -1,0 +1,341 @@
+"""How good is GW on a measured map: the exact elastic contact beside GW's, ``mcsim contact``.
+
+:func:`contact_map` reads a height map as ``mcsim ingest`` does (same readers, units, channel
+and levelling), solves its frictionless, non-adhesive contact against a rigid flat exactly
+at each pressure (:mod:`mcsim.physics.bem`), and puts GW's answer on the same map beside it.
+
+GW on the map
+-------------
+The GW surface is the one ``mcsim ingest`` writes (direct-route summits: σ_s, R, η and the
+measured summit-height histogram). As the exact solve is non-adhesive, so is GW here: Hertz
+summits (Greenwood & Williamson 1966; the paper's Eq. 2 summed), with h = d/σ the flat's
+separation from the summits' mean plane in units of σ = σ_s and
+F_n(h) = ∫ Δⁿ φ(h + Δ) dΔ over Δ > 0 (φ the summit-height density):
+
+* nominal pressure p = η K R^½ σ^{3/2} F_{3/2}(h), K = (4/3) E*, solved for h;
+* real contact area fraction A_r/A_n = π η R σ F_1(h) (each summit's Hertz area π R δ);
+* mean gap: the flat's height above the map's mean plane, σ h + ``summit_offset`` (the
+  summits' mean height above that plane). GW deforms the summits only, each locally, so this
+  is its mean gap; it turns negative once the flat passes below the mean plane, which a
+  real gap cannot.
+
+The exact mean gap is the mean of the gap field over the map's pixels. On a periodic map the
+mean displacement is zero, so it too is the flat's height above the mean plane; on a
+non-periodic (zero-padded) map the half-space also sinks as a whole under the load.
+
+Periodic or not
+---------------
+Synthetic maps often repeat, measured ones do not. Unless told, the map is taken as periodic
+when its opposite edges join: the rms height step across each pair of opposite edges is
+less than :data:`EDGE_JOIN` times the rms step between neighbouring pixels along that axis
+(for a periodic map the two are the same statistic; for a cut-out map the edge step is of
+the order of the rms height). The decision and its numbers are reported.
+
+Every exact number depends on the map's resolution (the real contact area converges slowly
+as the pixels shrink): the pixel size is reported beside them.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+from scipy import optimize
+
+from mcsim.model.errors import ParameterError
+from mcsim.model.params import Material, Surface
+from mcsim.physics import bem
+from mcsim.studies.ingest import _is_histogram_file, ingest_file
+from mcsim.studies.ingested import LEVELS
+from mcsim.topography.readers import read_height_map
+from mcsim.topography.summits import level as level_heights
+
+#: A map is periodic when the rms step across opposite edges is below this many rms neighbour steps.
+EDGE_JOIN = 1.5
+#: Maps of more pixels than this show a progress bar over the loads.
+PROGRESS_PIXELS = 128 * 128
+#: HDF5 layout version of ``mcsim contact --out`` files (separate from the package version).
+SCHEMA = 1
+
+
+def edge_steps(z: np.ndarray) -> tuple[float, float]:
+    """Rms step across opposite edges over the rms step between neighbours, along y and along x.
+
+    Parameters
+    ----------
+    z : ndarray
+        Height map, any unit.
+
+    Returns
+    -------
+    (float, float)
+        The ratios for rows (top against bottom edge) and columns (left against right edge).
+    """
+    ratios = []
+    for axis in (0, 1):
+        inner = np.sqrt(np.mean(np.diff(z, axis=axis) ** 2))
+        across = np.sqrt(np.mean((np.take(z, 0, axis=axis) - np.take(z, -1, axis=axis)) ** 2))
+        ratios.append(float(across / inner) if inner > 0 else math.inf)
+    return ratios[0], ratios[1]
+
+
+def gw_hertz(surface: Surface, E_star: float, pressure: np.ndarray):
+    """GW's non-adhesive contact at nominal pressures: separation, area fraction, mean gap.
+
+    Parameters
+    ----------
+    surface : Surface
+        GW surface (σ, R, η, summit heights; ``summit_offset`` in m, 0 if None).
+    E_star : float
+        Contact modulus E*, Pa.
+    pressure : ndarray
+        Nominal pressures, Pa, > 0.
+
+    Returns
+    -------
+    h, area_fraction, mean_gap : ndarray
+        h = d/σ; A_r/A_n (dimensionless); mean gap, m (module docstring).
+    """
+    sigma, R, eta = surface.sigma, surface.R, surface.eta
+    K = 4.0 * E_star / 3.0
+
+    def moments(h):
+        scale, integral = surface.heights.gw_integrals(
+            lambda d: np.stack([d, d * np.sqrt(d)]), np.atleast_1d(h)
+        )
+        return scale * integral  # F_1(h), F_3/2(h)
+
+    def log_ratio(h, target):  # log p(h)/target, decreasing in h
+        f32 = moments(h)[1][0] * eta * K * math.sqrt(R) * sigma**1.5
+        return math.log(f32 / target) if f32 > 0 else -math.inf
+
+    h = np.empty(pressure.size)
+    for i, target in enumerate(pressure):
+        hi, lo = 1.0, -1.0
+        while log_ratio(hi, target) > 0:
+            hi *= 2
+        while log_ratio(lo, target) < 0:
+            lo = 2 * lo
+            if lo < -1e6:
+                raise ParameterError(
+                    f"pressure {target:g} Pa: GW reaches no separation that carries it"
+                )
+        h[i] = optimize.brentq(log_ratio, lo, hi, args=(target,), xtol=1e-12)
+    f1 = moments(h)[0]
+    offset = surface.summit_offset or 0.0
+    return h, math.pi * eta * R * sigma * f1, sigma * h + offset
+
+
+@dataclass(frozen=True)
+class ContactResult:
+    """The exact contact of a map and GW's on it, per pressure.
+
+    Attributes
+    ----------
+    source : Path
+        The map file.
+    channel, level : str
+        Its channel and the levelling applied.
+    dx, dy : float
+        Pixel size along x and y, m: every exact number belongs to it.
+    shape : (int, int)
+        Map shape (rows, columns).
+    periodic : bool
+        Solved as a periodic map (else zero-padded).
+    periodic_reason : str
+        Why: the option given, or the edge check's numbers.
+    E_star : float
+        Contact modulus, Pa.
+    tol : float
+        Solver tolerance (:func:`mcsim.physics.bem.solve_contact`).
+    pressure : ndarray
+        Nominal pressures, Pa.
+    area_fraction, mean_gap, patches, iterations, residual : ndarray
+        Exact: A_r/A_n, mean gap (m), contact patches, CG iterations, final residual.
+    gw_h, gw_area_fraction, gw_mean_gap : ndarray
+        GW on the same map: h = d/σ, A_r/A_n, mean gap (m) (module docstring).
+    surface : Surface
+        The GW surface.
+    pressure_fields, gap_fields : ndarray or None
+        Per pressure (first axis), Pa and m; kept only when asked for.
+    """
+
+    source: Path
+    channel: str
+    level: str
+    dx: float
+    dy: float
+    shape: tuple[int, int]
+    periodic: bool
+    periodic_reason: str
+    E_star: float
+    tol: float
+    pressure: np.ndarray
+    area_fraction: np.ndarray
+    mean_gap: np.ndarray
+    patches: np.ndarray
+    iterations: np.ndarray
+    residual: np.ndarray
+    gw_h: np.ndarray
+    gw_area_fraction: np.ndarray
+    gw_mean_gap: np.ndarray
+    surface: Surface
+    pressure_fields: np.ndarray | None = field(default=None, repr=False)
+    gap_fields: np.ndarray | None = field(default=None, repr=False)
+
+    def columns(self) -> dict[str, np.ndarray]:
+        """The per-pressure numbers, SI (pressure Pa, gaps m), pixel size beside them."""
+        n = self.pressure.size
+        return {"pressure": self.pressure, "area_fraction": self.area_fraction,
+                "mean_gap": self.mean_gap, "patches": self.patches,
+                "gw_area_fraction": self.gw_area_fraction, "gw_mean_gap": self.gw_mean_gap,
+                "iterations": self.iterations, "pixel_size": np.full(n, self.dx)}  # fmt: skip
+
+    def write(self, path: str | Path, *, command: str = "", overwrite: bool = False) -> Path:
+        """Write the fields and the numbers to an HDF5 file, atomically (:mod:`mcsim.store.outputs` rules).
+
+        Datasets carry CF ``units`` and ``long_name``; the fields are compressed
+        (:func:`mcsim.store.files.storage`). Root attributes: schema version, mcsim version,
+        creation time, command line, source, pixel size, periodicity, E*, tolerance.
+        """
+        import datetime as dt
+
+        from mcsim._version import __version__
+        from mcsim.store.files import atomic_write, storage
+        from mcsim.store.outputs import check_output
+
+        if self.pressure_fields is None or self.gap_fields is None:
+            raise ParameterError("no fields kept: call contact_map(..., keep_fields=True)")
+        path = check_output(path, inputs=[self.source], overwrite=overwrite)
+        units = {"pressure": ("Pa", "nominal pressure"),
+                 "area_fraction": ("1", "real over nominal contact area (exact)"),
+                 "mean_gap": ("m", "mean gap (exact)"), "patches": ("1", "contact patches"),
+                 "iterations": ("1", "conjugate-gradient iterations"),
+                 "gw_area_fraction": ("1", "real over nominal contact area (GW)"),
+                 "gw_mean_gap": ("m", "mean gap (GW)")}  # fmt: skip
+
+        def fill(f):
+            f.attrs.update({"schema": SCHEMA, "mcsim_version": __version__,
+                            "created": dt.datetime.now(dt.UTC).isoformat(timespec="seconds"),
+                            "command": command, "source": str(self.source), "channel": self.channel,
+                            "level": self.level, "dx": self.dx, "dy": self.dy,
+                            "periodic": self.periodic, "periodic_reason": self.periodic_reason,
+                            "E_star": self.E_star, "tol": self.tol})  # fmt: skip
+            columns = self.columns()
+            for name, (unit, long_name) in units.items():
+                ds = f.create_dataset(name, data=columns[name])
+                ds.attrs.update({"units": unit, "long_name": long_name})
+            for name, data, unit, long_name in (
+                ("pressure_field", self.pressure_fields, "Pa", "contact pressure"),
+                (
+                    "gap_field",
+                    self.gap_fields,
+                    "m",
+                    "gap between the deformed surface and the flat",
+                ),
+            ):
+                ds = f.create_dataset(name, data=data, **storage(data))
+                ds.attrs.update({"units": unit, "long_name": long_name,
+                                 "dimensions": "pressure, y, x"})  # fmt: skip
+
+        atomic_write(path, fill)
+        return path
+
+
+def contact_map(
+    path: str | Path,
+    material: Material,
+    pressure,
+    *,
+    unit: str | None = None,
+    pixel_size: float | tuple[float, float] | None = None,
+    channel: str | None = None,
+    level: str = "plane",
+    periodic: bool | None = None,
+    tol: float = bem.TOL,
+    keep_fields: bool = False,
+    progress: bool = False,
+) -> ContactResult:
+    """Exact elastic contact of a measured map against a flat, with GW's on the same map.
+
+    Parameters
+    ----------
+    path : path-like
+        Height map, any format ``mcsim ingest`` reads.
+    material : Material
+        Its contact modulus ``E_star`` (Pa) is used.
+    pressure : array_like or str
+        Nominal pressures, Pa, > 0; or a string such as ``"1kPa:10MPa:5:log"``
+        (:func:`mcsim.model.units.parse_values`). Solved in ascending order.
+    unit, pixel_size, channel, level
+        As for :func:`mcsim.studies.ingest.ingest_file` (pixel size in m).
+    periodic : bool, optional
+        Solve the map as periodic or zero-padded; None: decided by :func:`edge_steps`.
+    tol : float
+        Solver tolerance (:func:`mcsim.physics.bem.solve_contact`).
+    keep_fields : bool
+        Keep the pressure and gap fields of every load (memory grows with the loads).
+    progress : bool
+        A progress bar over the loads for maps above :data:`PROGRESS_PIXELS` pixels.
+
+    Returns
+    -------
+    ContactResult
+    """
+    from mcsim.model.units import parse_values
+
+    if isinstance(pressure, str):
+        pressure = parse_values(pressure, "pressure", "pressure", limit=1000)
+    p = np.sort(np.atleast_1d(np.asarray(pressure, dtype=float)))
+    if p.ndim != 1 or p.size == 0 or not np.all(np.isfinite(p) & (p > 0)):
+        raise ParameterError(
+            f"pressure = {pressure!r}: give one or more positive, finite values, Pa"
+        )
+    if _is_histogram_file(Path(path)):
+        raise ParameterError(f"{path}: a height histogram has no map to press: give a height map")
+    ingested = ingest_file(path, unit=unit, pixel_size=pixel_size, level=level, channel=channel)
+    hmap = read_height_map(path, unit=unit, pixel_size=pixel_size, channel=channel)
+    z = level_heights(hmap.heights, LEVELS[level])
+    if not np.all(np.isfinite(z)):
+        raise ParameterError(
+            f"{path}: the map has missing pixels: fill or crop them for a contact solve"
+        )
+    if periodic is None:
+        steps = edge_steps(z)
+        periodic = max(steps) < EDGE_JOIN
+        reason = (f"edge steps {steps[0]:.2f}, {steps[1]:.2f} x the neighbour step "
+                  f"({'<' if periodic else '>='} {EDGE_JOIN:g}: "
+                  f"{'edges join' if periodic else 'edges do not join'})")  # fmt: skip
+    else:
+        reason = "as asked"
+    solutions = bem.solve_loads(
+        z, (hmap.dx, hmap.dy), material.E_star, p, periodic=periodic, tol=tol
+    )
+    if progress and z.size > PROGRESS_PIXELS:
+        import sys
+
+        from tqdm import tqdm
+
+        solutions = tqdm(solutions, total=p.size, unit=" loads", file=sys.stderr, leave=False)
+    rows, pressures, gaps = [], [], []
+    for s in solutions:
+        if not s.converged:
+            raise ParameterError(f"pressure {s.pressure:g} Pa: the solver did not converge in "
+                                 f"{s.iterations} iterations (residual {s.residual:.2g} > tol {tol:g})")  # fmt: skip
+        rows.append((s.area_fraction, s.mean_gap, s.patches, s.iterations, s.residual))
+        if keep_fields:
+            pressures.append(s.pressure_field)
+            gaps.append(s.gap_field)
+    area, gap, patches, iterations, residual = (np.array(c) for c in zip(*rows, strict=True))
+    gw_h, gw_area, gw_gap = gw_hertz(ingested.surface, material.E_star, p)
+    return ContactResult(
+        source=Path(path), channel=hmap.channel, level=level, dx=hmap.dx, dy=hmap.dy,
+        shape=z.shape, periodic=periodic, periodic_reason=reason, E_star=material.E_star,
+        tol=tol, pressure=p, area_fraction=area, mean_gap=gap, patches=patches.astype(int),
+        iterations=iterations.astype(int), residual=residual, gw_h=gw_h,
+        gw_area_fraction=gw_area, gw_mean_gap=gw_gap, surface=ingested.surface,
+        pressure_fields=np.stack(pressures) if keep_fields else None,
+        gap_fields=np.stack(gaps) if keep_fields else None,
+    )  # fmt: skip
