@@ -1,0 +1,93 @@
+"""What a reader sees (issue 33, "Figures and text"): legends name only what is drawn and
+cover no data, no text is cut at the figure's edge or sits on the line it names, bars on a
+log axis do not run off to its edge, and figure and printout give one σ."""
+
+import dataclasses
+import re
+
+import numpy as np
+from conftest import run_cli
+
+from mcsim.model.presets import MATERIALS, PAPER_SURFACES, SURFACES
+from mcsim.physics.analytic import gw_curves
+
+SMOOTH, SILICON = SURFACES["smooth"], MATERIALS["silicon"]
+
+
+def _renderer(fig):
+    """Draw the figure (Agg) and return its renderer: text extents are then final."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    canvas = FigureCanvasAgg(fig)
+    canvas.draw()
+    return canvas.get_renderer()
+
+
+def _legend_texts(ax) -> list[str]:
+    legend = ax.get_legend()
+    return [] if legend is None else [t.get_text() for t in legend.get_texts()]
+
+
+def test_simulate_help_states_the_defaults_of_count_and_chunk_size(capsys):
+    from mcsim.engine.montecarlo import DEFAULT_CHUNK
+
+    code, out, _ = run_cli(capsys, "simulate", "--help")
+    text = " ".join(out.split())
+    assert code == 0
+    assert re.search(r"--count \{poisson,fixed\} N ~ Poisson\(eta A\) or round\(eta A\) "
+                     r"\(default: poisson\)", text), text  # fmt: skip
+    assert f"summits per task (default: {DEFAULT_CHUNK};" in text
+
+
+def test_fig6_draws_the_single_summit_limit_above_the_curves_in_a_colour_of_its_own():
+    from mcsim.figures.curves import curve_figure
+
+    h = np.linspace(4, -1, 11)
+    curves = {name: gw_curves(name, "silicon", h) for name in PAPER_SURFACES}
+    ax = curve_figure("mu", curves).axes[0]
+    lines = {line.get_label(): line for line in ax.get_lines()}
+    (limit,) = [v for k, v in lines.items() if k.startswith("single-summit limit")]
+    surfaces = [v for k, v in lines.items() if not k.startswith("single-summit limit")]
+    assert len(surfaces) == 4
+    # super-smooth runs along the limit (mu within 1 % of it): the limit must stay visible
+    assert limit.get_zorder() > max(line.get_zorder() for line in surfaces)
+    assert limit.get_color() not in {line.get_color() for line in surfaces}
+    assert limit.get_linestyle() == "--"
+
+
+def test_load_control_legend_names_no_jump_where_no_point_jumped():
+    from mcsim.figures.loadcontrol import load_control_figure
+    from mcsim.physics.loadcontrol import load_control
+
+    material = dataclasses.replace(SILICON, tau=1e8)  # a friction panel with its legend
+    result = load_control(SMOOTH, material, np.geomspace(1e4, 1e8, 5), "maugis-dugdale")
+    assert not result.jump.any()
+    area_ax, friction_ax = load_control_figure(result).axes
+    assert _legend_texts(friction_ax)[0] == "maugis-dugdale"
+    assert not any("jump" in text for ax in (area_ax, friction_ax) for text in _legend_texts(ax))
+
+
+def test_load_run_figure_cuts_a_bar_that_reaches_zero_on_the_log_panel_and_marks_it(
+    capsys, tmp_path
+):
+    from mcsim.figures.loadcontrol import ARROW_DECADES, load_run_figure
+    from mcsim.store.runfile import read_run
+
+    out = tmp_path / "load.h5"
+    code, _, err = run_cli(capsys, "simulate", "--surface", "smooth", "--law", "maugis-dugdale",
+                           "--pressure", "100kPa,10MPa", "--area", "100um^2", "--realizations",
+                           "20", "--seed", "1", "--workers", "1", "--quiet", "--out", out)  # fmt: skip
+    assert code == 0, err
+    run = read_run(out)
+    material = run.spec.material
+    x = run.summary.mean["load"] * material.K / material.E_star
+    xe = 2 * run.summary.se["load"] * material.K / material.E_star
+    assert x[0] - xe[0] <= 0 < x[1] - xe[1]  # at 100 kPa the 2-SE bar reaches p <= 0 (seed 1)
+    ax = load_run_figure(run).axes[0]
+    bars = ax.containers[0]
+    segments = np.concatenate([c.get_segments() for c in bars.lines[2]])
+    assert np.all(segments > 0), "a bar on the log-log panel reaches p <= 0"
+    np.testing.assert_allclose(segments[:, :, 0].min(), x[0] * 10**-ARROW_DECADES, rtol=1e-12)
+    (arrow,) = [line for line in ax.get_lines() if line.get_marker() == "<"]
+    np.testing.assert_allclose(arrow.get_xdata(), [x[0] * 10**-ARROW_DECADES], rtol=1e-12)
+    assert "2 SE reaches 0: bar cut, arrow" in _legend_texts(ax)
