@@ -4,6 +4,7 @@ log axis do not run off to its edge, and figure and printout give one σ."""
 
 import dataclasses
 import re
+from pathlib import Path
 
 import numpy as np
 from conftest import run_cli
@@ -91,3 +92,17 @@ def test_load_run_figure_cuts_a_bar_that_reaches_zero_on_the_log_panel_and_marks
     (arrow,) = [line for line in ax.get_lines() if line.get_marker() == "<"]
     np.testing.assert_allclose(arrow.get_xdata(), [x[0] * 10**-ARROW_DECADES], rtol=1e-12)
     assert "2 SE reaches 0: bar cut, arrow" in _legend_texts(ax)
+
+
+def test_ingest_histogram_legend_gives_the_sigma_the_printout_gives(capsys, tmp_path, monkeypatch):
+    import mcsim.figures.style
+
+    drawn = []
+    monkeypatch.setattr(mcsim.figures.style, "save", lambda fig, path, **_: drawn.append(fig))
+    scan = Path(__file__).parents[2] / "examples" / "scan.gwy"
+    code, out, err = run_cli(capsys, "ingest", scan, "--out", tmp_path / "scan.toml")
+    assert code == 0, err
+    (printed,) = re.findall(r"^surface +sigma = ([0-9.]+) nm", out, flags=re.MULTILINE)
+    texts = [t for ax in drawn[0].axes for t in _legend_texts(ax)]
+    # 2.521 nm (the summits' standard deviation); the binned histogram's own is 2.56 nm
+    assert re.findall(r"sigma\$ = ([0-9.]+) nm", " ".join(texts)) == [printed], (texts, out)
