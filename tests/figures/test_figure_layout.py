@@ -106,3 +106,27 @@ def test_ingest_histogram_legend_gives_the_sigma_the_printout_gives(capsys, tmp_
     texts = [t for ax in drawn[0].axes for t in _legend_texts(ax)]
     # 2.521 nm (the summits' standard deviation); the binned histogram's own is 2.56 nm
     assert re.findall(r"sigma\$ = ([0-9.]+) nm", " ".join(texts)) == [printed], (texts, out)
+
+
+def _overlaps(a, b) -> bool:
+    """Whether two display-space boxes share an area (touching edges do not count)."""
+    return a.x0 < b.x1 and b.x0 < a.x1 and a.y0 < b.y1 and b.y0 < a.y1
+
+
+def test_the_pads_figure_has_one_legend_below_its_panels_covering_neither():
+    from mcsim.figures.stiction import pads_figure
+    from mcsim.studies.pads import pad_statistics
+
+    force = np.random.default_rng(1).normal(93e-6, 30e-6, 300)
+    stats = pad_statistics(force, 130e-6)
+    fig = pads_figure(force, 81e-6, restoring_force=130e-6, p_stick=stats.p_stick,
+                      interval=stats.p_stick_ci, interval_name="Clopper-Pearson 95 %")  # fmt: skip
+    renderer = _renderer(fig)
+    assert all(ax.get_legend() is None for ax in fig.axes)
+    (legend,) = fig.legends
+    texts = [t.get_text() for t in legend.get_texts()]
+    assert len(texts) == len(set(texts)) == 6  # bars, CDF, 3 lines shared by both panels, p_stick
+    box = legend.get_window_extent(renderer)
+    for ax in fig.axes:
+        assert not _overlaps(box, ax.get_window_extent(renderer)), ax.get_ylabel()
+    assert fig.bbox.x0 <= box.x0 and box.x1 <= fig.bbox.x1 and fig.bbox.y0 <= box.y0
