@@ -130,3 +130,77 @@ def test_the_pads_figure_has_one_legend_below_its_panels_covering_neither():
     for ax in fig.axes:
         assert not _overlaps(box, ax.get_window_extent(renderer)), ax.get_ylabel()
     assert fig.bbox.x0 <= box.x0 and box.x1 <= fig.bbox.x1 and fig.bbox.y0 <= box.y0
+
+
+def _rh_sweep(surface: str, rh):
+    from mcsim.studies.sweeps import sweep
+
+    return sweep(SURFACES[surface], SILICON, {"rh": rh}, law="auto",
+                 environment={"hamaker": 1.6e-19}, workers=1)  # fmt: skip
+
+
+def _line_points(ax, renderer) -> np.ndarray:
+    """Every drawn data point of the axes' lines (and 40 points along each segment), in pixels."""
+    points = []
+    for line in ax.get_lines():
+        xy = ax.transData.transform(np.column_stack(line.get_data()).astype(float))
+        xy = xy[np.all(np.isfinite(xy), axis=1)]
+        t = np.linspace(0, 1, 40)[:, None, None]
+        points.append(xy if len(xy) < 2 else (xy[:-1] + t * (xy[1:] - xy[:-1])).reshape(-1, 2))
+    return np.concatenate(points)
+
+
+def _covers(box, points) -> bool:
+    x, y = points[:, 0], points[:, 1]
+    return bool(np.any((box.x0 < x) & (x < box.x1) & (box.y0 < y) & (y < box.y1)))
+
+
+def test_humidity_figure_draws_no_empty_part_no_single_regime_and_no_cut_title_or_end_point():
+    from mcsim.figures.environment import humidity_figure
+
+    # intermediate: no summit touches at rest (contact work 0) and the capillary work stays
+    # below 10 % of the ceiling up to 95 %: dry over the whole sweep
+    result = _rh_sweep("intermediate", [0.05, 0.5, 0.95])
+    assert np.all(result.data["work_of_separation_contact"] == 0)
+    fig = humidity_figure(result)
+    ax = fig.axes[0]
+    renderer = _renderer(fig)
+    texts = [t.get_text() for t in fig.legends[0].get_texts()]
+    assert texts[0] == "total" and "contact (summits)" not in texts
+    title = ax.title.get_text()
+    assert (
+        "contact (summits): 0 at every RH" in title and "regime: dry over the whole sweep" in title
+    )
+    assert len(ax.patches) == len(ax.texts) == 0  # no shading, no regime name, for one regime
+    box = ax.title.get_window_extent(renderer)
+    assert fig.bbox.x0 <= box.x0 and box.x1 <= fig.bbox.x1 and box.y1 <= fig.bbox.y1
+    low, high = ax.get_xlim()
+    assert low < 5 and high > 95  # the markers at 5 % and 95 % are drawn whole
+
+
+def test_humidity_figure_names_its_regimes_where_no_curve_runs():
+    from mcsim.figures.environment import humidity_figure
+
+    fig = humidity_figure(_rh_sweep("smooth", [0.05, 0.5, 0.85, 0.95]))
+    ax = fig.axes[0]
+    renderer = _renderer(fig)
+    names = {t.get_text(): t for t in ax.texts}
+    assert set(names) == {"transition", "saturated"}  # 90 % of the ceiling at RH = 93 %
+    points, frame = _line_points(ax, renderer), ax.get_window_extent(renderer)
+    for text in names.values():
+        box = text.get_window_extent(renderer)
+        assert not _covers(box, points), text.get_text()
+        assert frame.x0 <= box.x0 and box.x1 <= frame.x1, text.get_text()
+
+
+def test_the_rh_sweep_note_says_rh_is_varied_and_gives_no_kelvin_radius_at_rh_0(capsys, tmp_path):
+    code, out, err = run_cli(capsys, "sweep", "--surface", "smooth", "--law", "dmt", "--hamaker",
+                             "1.6e-19 J", "--vary", "rh=0.3,0.6", "--h=1,0", "--out",
+                             tmp_path / "rh.h5")  # fmt: skip
+    assert code == 0, err
+    (note,) = [line for line in (out + err).splitlines() if "environment: Hamaker" in line]
+    assert "RH = varied (--vary rh)" in note and "RH = 0," not in note
+    assert note.endswith("Kelvin radius = per point (kelvin_radius in the sweep file)")
+    code, out, err = run_cli(capsys, "adhesion", "--surface", "smooth", "--hamaker", "1.6e-19 J")
+    (note,) = [line for line in (out + err).splitlines() if "environment: Hamaker" in line]
+    assert code == 0 and note.endswith("Kelvin radius = none (RH = 0: no condensation)")
