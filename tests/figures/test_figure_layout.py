@@ -7,6 +7,7 @@ import re
 from pathlib import Path
 
 import numpy as np
+import pytest
 from conftest import run_cli
 
 from mcsim.model.presets import MATERIALS, PAPER_SURFACES, SURFACES
@@ -204,3 +205,57 @@ def test_the_rh_sweep_note_says_rh_is_varied_and_gives_no_kelvin_radius_at_rh_0(
     code, out, err = run_cli(capsys, "adhesion", "--surface", "smooth", "--hamaker", "1.6e-19 J")
     (note,) = [line for line in (out + err).splitlines() if "environment: Hamaker" in line]
     assert code == 0 and note.endswith("Kelvin radius = none (RH = 0: no condensation)")
+
+
+@pytest.fixture(scope="module")
+def design_map():
+    """σ × w over the smooth surface (law auto), crossing λ = 0.1 and 5 and ψ = 1."""
+    from mcsim.studies.sweeps import sweep
+
+    vary = {"sigma": "0.3nm:100nm:6:log", "gamma": "0.002:5:4:log"}
+    return sweep(SMOOTH, SILICON, vary, law="auto", workers=1)
+
+
+def _contour_points(ax, gid: str) -> np.ndarray:
+    """The contour lines with this gid, 40 points along each segment, in pixels."""
+    (cs,) = [c for c in ax.collections if c.get_gid() == gid]
+    points = []
+    for path in cs.get_paths():
+        for piece in path.to_polygons(closed_only=False):
+            xy = ax.transData.transform(piece)
+            t = np.linspace(0, 1, 40)[:, None, None]
+            points.append((xy[:-1] + t * (xy[1:] - xy[:-1])).reshape(-1, 2))
+    return np.concatenate(points)
+
+
+def test_the_design_map_names_each_boundary_beside_its_line_not_over_it(design_map):
+    from mcsim.figures.sweeps import sweep_figure
+
+    fig = sweep_figure(design_map, kind="map")
+    renderer = _renderer(fig)
+    ax = fig.axes[0]
+    texts = {t.get_text(): t for t in ax.texts}
+    for gid, names in (("plasticity-boundary", ["ψ = 1"]),
+                       ("regime-boundaries", ["λ = 0.1", "λ = 5"])):  # fmt: skip
+        points = _contour_points(ax, gid)
+        for name in names:
+            box = texts[name].get_window_extent(renderer)
+            assert not _covers(box, points), name
+            # beside it: within 12 points of the line
+            gap = min(np.hypot(np.clip(points[:, 0], box.x0, box.x1) - points[:, 0],
+                               np.clip(points[:, 1], box.y0, box.y1) - points[:, 1]))  # fmt: skip
+            assert gap < 12 * fig.dpi / 72, name
+
+
+def test_the_design_lines_put_no_text_over_a_curve(design_map):
+    from mcsim.figures.sweeps import sweep_figure
+
+    fig = sweep_figure(design_map, kind="lines")
+    renderer = _renderer(fig)
+    for ax in fig.axes:
+        if not ax.get_lines():
+            continue  # a colour bar
+        points = _line_points(ax, renderer)
+        for text in ax.texts:
+            assert not _covers(text.get_window_extent(renderer), points), text.get_text()
+    assert "no adhesive contact at rest" in fig.axes[0].get_title()
