@@ -56,7 +56,7 @@ def histogram_figure(empirical, gaussian_sigma: float, *, title: str | None = No
     -------
     matplotlib.figure.Figure
         Linear and logarithmic density panels side by side (the log panel shows the
-        upper tail, where contact starts).
+        upper tail, where contact starts), one legend below them.
     """
     from matplotlib.figure import Figure
 
@@ -87,8 +87,8 @@ def histogram_figure(empirical, gaussian_sigma: float, *, title: str | None = No
             positive = density_nm[density_nm > 0]
             ax.set_yscale("log")
             ax.set_ylim(0.3 * positive.min(), 3 * max(positive.max(), gauss.max()))
-        else:
-            ax.legend(fontsize=8)
+    fig.legend(*ax.get_legend_handles_labels(), loc="outside lower center", ncols=2, fontsize=8,
+               frameon=False)  # below the panels: it covers no bar  # fmt: skip
     fig.suptitle(title or empirical.source, fontsize=10)
     return fig
 

@@ -104,7 +104,7 @@ def test_ingest_histogram_legend_gives_the_sigma_the_printout_gives(capsys, tmp_
     code, out, err = run_cli(capsys, "ingest", scan, "--out", tmp_path / "scan.toml")
     assert code == 0, err
     (printed,) = re.findall(r"^surface +sigma = ([0-9.]+) nm", out, flags=re.MULTILINE)
-    texts = [t for ax in drawn[0].axes for t in _legend_texts(ax)]
+    texts = [t.get_text() for t in drawn[0].legends[0].get_texts()]
     # 2.521 nm (the summits' standard deviation); the binned histogram's own is 2.56 nm
     assert re.findall(r"sigma\$ = ([0-9.]+) nm", " ".join(texts)) == [printed], (texts, out)
 
