@@ -172,9 +172,11 @@ def log_notes(quiet: bool):
         logger.propagate = propagate
 
 
-def environment_notes(surface, environment) -> list[str]:
+def environment_notes(surface, environment, varied=()) -> list[str]:
     """The environment's inputs, the heights it uses (given or estimated) and why no liquid
-    condenses, if none does: one line each (empty without an environment)."""
+    condenses, if none does: one line each (empty without an environment). The inputs in
+    ``varied`` (a sweep's ``--vary`` names) are said to be varied, not given their base value;
+    at RH = 0 there is no Kelvin radius (no condensation)."""
     if environment is None:
         return []
     import math
@@ -182,11 +184,21 @@ def environment_notes(surface, environment) -> list[str]:
     from mcsim.physics.gapheights import gap_heights
 
     env, gap = environment, gap_heights(surface)
+
+    def value(name: str, text: str) -> str:
+        return f"varied (--vary {name})" if name in varied else text
+
     hamaker = "none" if not env.has_vdw else f"{env.hamaker:.4g} J"
-    lines = [f"environment: Hamaker A = {hamaker}, cutoff D0 = {env.cutoff * 1e9:.4g} nm, RH = "
-             f"{env.rh:.4g}, contact angle = {math.degrees(env.contact_angle):.4g} deg, T = "
-             f"{env.temperature:.5g} K, gamma_L = {env.surface_tension:.4g} J/m^2, V_m = "
-             f"{env.molar_volume:.4g} m^3/mol, Kelvin radius = {env.kelvin_radius * 1e9:.4g} nm",
+    kelvin = (f"{env.kelvin_radius * 1e9:.4g} nm" if not env.is_dry
+              else "none (RH = 0: no condensation)")  # fmt: skip
+    if {"rh", "temperature"} & set(varied):
+        kelvin = "per point (kelvin_radius in the sweep file)"
+    lines = [f"environment: Hamaker A = {value('hamaker', hamaker)}, cutoff D0 = "
+             f"{value('cutoff', f'{env.cutoff * 1e9:.4g} nm')}, RH = {value('rh', f'{env.rh:.4g}')}, "
+             f"contact angle = {value('contact_angle', f'{math.degrees(env.contact_angle):.4g} deg')}, "
+             f"T = {value('temperature', f'{env.temperature:.5g} K')}, gamma_L = "
+             f"{env.surface_tension:.4g} J/m^2, V_m = {env.molar_volume:.4g} m^3/mol, "
+             f"Kelvin radius = {kelvin}",
              f"environment heights: rq = {gap.rq * 1e9:.4g} nm, summit_offset = "
              f"{gap.summit_offset * 1e9:.4g} nm ({gap.source})"]  # fmt: skip
     if gap.source != "given":

@@ -49,7 +49,7 @@ def run(args) -> int:
     from mcsim.figures.topography import comparison_figure, histogram_figure
 
     title = f"{result.heights_from}: {Path(args.file).name}"
-    save(histogram_figure(result.distribution, result.distribution.sigma, title=title), figures[0],
+    save(histogram_figure(result.distribution, result.surface.sigma, title=title), figures[0],
          overwrite=args.overwrite, inputs=[args.file])  # fmt: skip
     if args.plot:
         s = result.surface

@@ -119,7 +119,7 @@ def add_parser(sub) -> None:
         "--count",
         choices=("poisson", "fixed"),
         default="poisson",
-        help="N ~ Poisson(eta A) or round(eta A)",
+        help="N ~ Poisson(eta A) or round(eta A) (default: %(default)s)",
     )
     p.add_argument(
         "--cycle",
@@ -144,7 +144,7 @@ def add_parser(sub) -> None:
         "--chunk-size",
         type=count_type,
         default=1 << 18,
-        help="summits per task (results do not depend on it)",
+        help="summits per task (default: %(default)s; results do not depend on it)",
     )
     p.add_argument(
         "--keep-heights", action="store_true", help="store the sampled heights (compressed)"

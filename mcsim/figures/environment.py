@@ -14,6 +14,10 @@ the ceiling (linear interpolation between the sweep's points):
 * dry: W_cap < 10 % of the ceiling, the van der Waals and contact works dominate;
 * transition: the menisci spread over the gaps as r_K grows;
 * saturated: W_cap > 90 % of the ceiling, the liquid fills almost every gap.
+
+The regimes are shaded and named (above the ceiling, where no curve runs) only where the
+sweep crosses from one to another; a sweep inside one regime says so in its title, as it
+names a part that is 0 at every RH (not drawn on the log axis). The legend sits below.
 """
 
 from __future__ import annotations
@@ -88,29 +92,43 @@ def humidity_figure(sweep):
     order = np.argsort(rh)
     rh = rh[order]
     data = {k: np.ravel(sweep.data[k])[order] for k in PARTS}
-    fig = Figure(figsize=(6.4, 4.6), layout="constrained")
+    fig = Figure(figsize=(6.4, 5.2), layout="constrained")
     ax = fig.subplots()
     positive = np.concatenate([v[v > 0] for v in data.values()] + [[ceiling]])
     low = max(positive.min(), ceiling * 1e-6)
+    left, right = 100 * rh[0], 100 * rh[-1]
+    margin = 0.03 * (right - left) or 1.0  # end markers drawn whole
+    lo, hi = left - margin, right + margin
+    absent = []
     for key, (label, style) in PARTS.items():
         y = data[key]
+        if not np.any(y > 0):  # nothing to draw on a log axis: said in the title instead
+            absent.append(label)
+            continue
         ax.plot(100 * rh, np.where(y > 0, y, np.nan), marker="o", ms=3, label=label, **style)
     ax.axhline(
         ceiling, color="0.4", lw=1, label=rf"ceiling $2\gamma_L\cos\theta$ = {ceiling:.3g} J/m$^2$"
     )
     dry, saturated = regime_bounds(rh, data["work_of_separation_capillary"], ceiling)
-    left, right = 100 * rh[0], 100 * rh[-1]
-    edges = [left, *(left if v == -math.inf else right if v != v else 100 * v
-                     for v in (dry, saturated)), right]  # fmt: skip
-    for (a, b), name, shade in zip(itertools.pairwise(edges), ("dry", "transition", "saturated"),
-                                   ("#56B4E9", "#E69F00", "#CC79A7")):  # fmt: skip
-        if b > a:
+    edges = [
+        lo,
+        *(lo if v == -math.inf else hi if v != v else 100 * v for v in (dry, saturated)),
+        hi,
+    ]
+    spans = [(a, b, name, shade) for (a, b), name, shade in zip(
+        itertools.pairwise(edges), ("dry", "transition", "saturated"), ("#56B4E9", "#E69F00", "#CC79A7"))
+        if b > a]  # fmt: skip
+    if (
+        len(spans) > 1
+    ):  # shaded and named (above the ceiling, where no curve runs) only if it changes
+        for a, b, name, shade in spans:
             ax.axvspan(a, b, color=shade, alpha=0.12, lw=0)
-            ax.text((a + b) / 2, 0.02, name, transform=ax.get_xaxis_transform(), ha="center",
-                    va="bottom", fontsize=9)  # fmt: skip
+            narrow = b - a < 0.2 * (hi - lo)  # upright, the name would spill out of its band
+            ax.text((a + b) / 2, 0.98, name, transform=ax.get_xaxis_transform(), ha="center",
+                    va="top", fontsize=9, rotation=90 if narrow else 0)  # fmt: skip
     ax.set_yscale("log")
-    ax.set_ylim(low / 2, ceiling * 3)
-    ax.set_xlim(left, right)
+    ax.set_ylim(low / 2, ceiling * 10)
+    ax.set_xlim(lo, hi)
     ax.set_xlabel("Relative humidity RH (%)")
     ax.set_ylabel(r"Work of separation (J/m$^2$)")
 
@@ -119,8 +137,13 @@ def humidity_figure(sweep):
             return f"below RH = {left:.0f} %"
         return f"at RH = {100 * v:.0f} %" if v == v else f"not reached by RH = {right:.0f} %"
 
-    bounds = f"10 % of the ceiling {bound(dry)}, 90 % {bound(saturated)}"
-    ax.set_title(f"Work of separation against humidity ({sweep.attrs.get('law', '')})\n"
-                 f"regimes: capillary work {bounds}", fontsize=9)  # fmt: skip
-    ax.legend(fontsize=8, loc="upper left")
+    lines = [f"Work of separation against humidity ({sweep.attrs.get('law', '')})",
+             f"capillary work at 10 % of the ceiling {bound(dry)},",
+             f"at 90 % {bound(saturated)}"]  # fmt: skip
+    if len(spans) == 1:
+        lines.append(f"regime: {spans[0][2]} over the whole sweep")
+    if absent:
+        lines.append(f"{', '.join(absent)}: 0 at every RH (not drawn on a log axis)")
+    ax.set_title("\n".join(lines), fontsize=9)
+    fig.legend(loc="outside lower center", ncols=2, fontsize=8, frameon=False)
     return fig

@@ -47,7 +47,8 @@ def load_control_figure(result):
         (:func:`light_load_ratio`, Hertz summits without adhesion) at the lightest
         load's separation h₀ dashed. Right: friction (seed: T, Eq. 7; other sets: τA_r)
         against the applied force per nominal area, both in MPa, with the light-load
-        line τ κ p/E* for the contact law sets; points reached through a jump are ringed.
+        line τ κ p/E* for the contact law sets; points reached through a jump are ringed
+        (and named in the legend only if there are any).
     """
     from matplotlib.figure import Figure
 
@@ -78,8 +79,9 @@ def load_control_figure(result):
             right.plot(p_mpa, material.tau * kappa * x / 1e6, "k--", lw=1,
                        label=f"GW light load: tau A_r = {material.tau * kappa / material.E_star:.3g} p")  # fmt: skip
         jumped = result.jump[ok]
-        right.plot(p_mpa[jumped], friction[jumped], "o", mfc="none",
-                   ms=8, color="k", label="reached through a jump")  # fmt: skip
+        if jumped.any():  # a legend entry only for what is drawn
+            right.plot(p_mpa[jumped], friction[jumped], "o", mfc="none",
+                       ms=8, color="k", label="reached through a jump")  # fmt: skip
         right.legend(fontsize="small")
     else:
         right.text(0.5, 0.5, "no friction (give tau)", ha="center", transform=right.transAxes)
@@ -87,6 +89,17 @@ def load_control_figure(result):
     right.set_ylabel("friction force per nominal area (MPa)")
     fig.suptitle(f"{curves.surface.name or 'surface'}, law set {curves.law}: load control")
     return fig
+
+
+#: Length, in decades, of a bar on a log axis whose lower end is ≤ 0 (drawn with an arrowhead).
+ARROW_DECADES = 0.25
+
+
+def _log_bars(value: np.ndarray, error: np.ndarray, cut) -> np.ndarray:
+    """Lower and upper bar lengths: where ``cut`` (a lower end ≤ 0 on a log axis) the lower
+    bar is :data:`ARROW_DECADES` long instead."""
+    lower = np.where(cut, value * (1 - 10**-ARROW_DECADES), error)
+    return np.vstack([lower, error])
 
 
 def load_run_figure(run):
@@ -109,7 +122,10 @@ def load_run_figure(run):
         Left: A_r/A_n (seed: N_c/N) against p/E*, log–log, with the GW light-load
         line A_r/A_n = κ(h₀) p/E* at the largest h₀ (:func:`light_load_ratio`); right:
         friction per nominal area against p, MPa (seed: T, Eq. 7). Points with p ≤ 0
-        (tensile patches) are left off the log–log panel, and counted in its legend.
+        (tensile patches) are left off the log–log panel, and counted in its legend; on
+        that panel a bar whose lower end is ≤ 0 is drawn :data:`ARROW_DECADES` long and
+        ends in an arrowhead (it cannot reach 0 on a log axis; drawn to the axis edge it
+        would look like another curve).
     """
     from matplotlib.figure import Figure
 
@@ -151,8 +167,16 @@ def load_run_figure(run):
         keep = (xa > 0) & (ya > 0) if log else np.isfinite(ya)
         ax.plot(xa[keep], ya[keep], "-", color="0.2", lw=1.2, label="analytic GW (approach)")
         ok = (xm > 0) & (ym > 0) if log else np.isfinite(xm) & np.isfinite(ym)
-        ax.errorbar(xm[ok], ym[ok], xerr=xe[ok], yerr=ye[ok], fmt="o", ms=4, color="C3",
-                    capsize=2, label="Monte Carlo mean ± 2 SE (both axes)")  # fmt: skip
+        xm, ym, xe, ye = xm[ok], ym[ok], xe[ok], ye[ok]
+        xcut, ycut = (xm - xe <= 0, ym - ye <= 0) if log else (False, False)
+        ax.errorbar(xm, ym, xerr=_log_bars(xm, xe, xcut), yerr=_log_bars(ym, ye, ycut), fmt="o",
+                    ms=4, color="C3", capsize=2, label="Monte Carlo mean ± 2 SE (both axes)")  # fmt: skip
+        short, label = 10**-ARROW_DECADES, "2 SE reaches 0: bar cut, arrow"
+        if np.any(xcut):
+            ax.plot(xm[xcut] * short, ym[xcut], "<", ms=5, color="C3", label=label)
+            label = None
+        if np.any(ycut):
+            ax.plot(xm[ycut], ym[ycut] * short, "v", ms=5, color="C3", label=label)
         if log:
             ax.set_xscale("log")
             ax.set_yscale("log")

@@ -146,12 +146,12 @@ def pads_figure(force, analytic_mean: float | None = None, *, restoring_force: f
     Returns
     -------
     matplotlib.figure.Figure
-        Built without pyplot (headless).
+        Built without pyplot (headless); one legend for both panels, below them.
     """
     from matplotlib.figure import Figure
 
     f = np.sort(np.asarray(force, dtype=float).ravel()) * 1e6
-    fig = Figure(figsize=(9, 3.8), layout="constrained")
+    fig = Figure(figsize=(9, 4.4), layout="constrained")
     hist, ecdf = fig.subplots(1, 2)
     hist.hist(f, bins=max(10, min(60, int(np.sqrt(f.size)))), density=True, color="0.7",
               edgecolor="0.4", label=f"Monte Carlo, {f.size} pads")  # fmt: skip
@@ -172,8 +172,15 @@ def pads_figure(force, analytic_mean: float | None = None, *, restoring_force: f
         ecdf.errorbar([restoring_force * 1e6], [1 - p_stick], yerr=[[high - p_stick], [p_stick - low]],
                       color="C2", marker="o", capsize=3,
                       label=f"$p_{{stick}}$ = {p_stick:.3g} [{low:.3g}, {high:.3g}] {interval_name}")  # fmt: skip
-        ecdf.legend(fontsize="small", loc="lower right")
-    hist.legend(fontsize="small")
+    # one legend for both panels (the lines are the same), below them: it covers no bar and no step
+    handles, labels = hist.get_legend_handles_labels()
+    for handle, label in zip(*ecdf.get_legend_handles_labels()):
+        if label not in labels:
+            handles.append(handle)
+            labels.append(label)
+    fig.legend(
+        handles, labels, loc="outside lower center", ncols=3, fontsize="small", frameon=False
+    )
     if title:
         fig.suptitle(title)
     return fig

@@ -311,11 +311,10 @@ def _lines_figure(sweep, dims: list[str], rows: list[int], name: str):
             ax.set_xscale("log")
         if categorical:
             ax.set_xlim(-0.5, x.size - 0.5)
-        if log_y and zeros:  # the surfaces rest apart there: nothing pulls off
+        if log_y and zeros:  # the surfaces rest apart there: nothing pulls off (above the panel)
             total = sum(y.size for _, y, _, _ in lines)
-            ax.text(0.03, 0.03, f"0 at {zeros} of {total} points (not drawn on a log axis):\n"
-                    "no adhesive contact at rest", transform=ax.transAxes, fontsize=8,
-                    va="bottom", ha="left")  # fmt: skip
+            ax.set_title(f"0 at {zeros} of {total} points (not drawn on a log axis):\n"
+                         "no adhesive contact at rest", fontsize=8)  # fmt: skip
         if log_y:
             ax.set_yscale("log")
             top = ax.dataLim.y1
@@ -395,9 +394,10 @@ def _legend_title(sweep, other, per_h) -> str | None:
 
 
 def _mark_table1(ax, sweep, lines, log_y: bool) -> None:
-    """The σ of the paper's four Table-1 surfaces: a dotted line each, and a ◆ on the first
-    line of the panel where that σ is a point of the grid (the computed value there; between
-    grid points a marker would show an interpolation, not a computed value)."""
+    """The σ of the paper's four Table-1 surfaces: a dotted line each, named on a top axis
+    (over the curves a name would hide them), and a ◆ on the first line of the panel where
+    that σ is a point of the grid (the computed value there; between grid points a marker
+    would show an interpolation, not a computed value)."""
     sigma = sweep.coords["sigma"].astype(float)
     lo, hi = sigma.min(), sigma.max()
     _, y, *_ = lines[0]
@@ -410,8 +410,7 @@ def _mark_table1(ax, sweep, lines, log_y: bool) -> None:
         at = np.flatnonzero(np.isclose(sigma, s, rtol=1e-9, atol=0.0))
         if at.size and np.isfinite(y[at[0]]) and (y[at[0]] > 0 or not log_y):
             ax.plot(xs, y[at[0]], "D", color="k", ms=5, zorder=5)
-        ax.text(xs, 0.99, f" {name}", transform=ax.get_xaxis_transform(), rotation=90,
-                va="top", ha="right", fontsize=7, color="0.35")  # fmt: skip
+    _table1_names(ax, [n for n in PAPER_SURFACES if lo <= SURFACES[n].sigma <= hi])
 
 
 # --- maps -----------------------------------------------------------------------------------
@@ -471,13 +470,13 @@ def _map_figure(sweep, dims: list[str], row: int, name: str):
         mesh = ax.pcolormesh(xe, ye, np.ma.masked_invalid(shown), cmap=cmap, norm=norm)
         per_h = sweep.dims[key][-1] == "h"
         fig.colorbar(mesh, ax=ax, label=_label(key, h if per_h else None), extend=extend)
-        _regimes(ax, sweep, x, y, grid_values)
         if log_x:
             ax.set_xscale("log")
         if log_y:
             ax.set_yscale("log")
         ax.set_xlim(xe[0], xe[-1])
         ax.set_ylim(ye[0], ye[-1])
+        _regimes(ax, sweep, x, y, grid_values)
         _readable_log_ticks(ax.xaxis)
         _readable_log_ticks(ax.yaxis)
         ax.set_xlabel(axis_label(sweep, x_dim), fontsize=9)
@@ -503,8 +502,14 @@ def _table1_axis(ax, x) -> None:
     marks = {s: v for s, v in marks.items() if x.min() <= v <= x.max()}
     for v in marks.values():
         ax.axvline(v, color="w", lw=0.7, ls=":")
+    _table1_names(ax, list(marks))
+
+
+def _table1_names(ax, names: list[str]) -> None:
+    """The Table-1 surfaces ``names`` on a top axis, at their σ (nm)."""
     top = ax.secondary_xaxis("top")
-    top.set_xticks(list(marks.values()), list(marks), fontsize=7, rotation=30, ha="left")
+    top.set_xticks([SURFACES[s].sigma * 1e9 for s in names], names, fontsize=7, rotation=30,
+                   ha="left")  # fmt: skip
     top.minorticks_off()
 
 
@@ -540,10 +545,22 @@ def _regimes(ax, sweep, x, y, grid_values) -> None:
 
 
 def _contour_labels(ax, cs, fmt: dict) -> None:
-    """Labels on the contour lines, not cut into them (cutting misplaces gaps on log axes)."""
-    for text in ax.clabel(cs, fmt=fmt, fontsize=7, inline=False):
-        text.set_bbox({"facecolor": "white", "alpha": 0.8, "edgecolor": "none", "pad": 1})
-        text.set_color("k")
+    """Each level named beside its line, not over it: a quarter of the way along its longest
+    piece (clear of the region names, which sit mid-region), above a line that runs across the
+    map, left of one that runs up it (the axes' scales and limits must be set first)."""
+    to_axes = ax.transScale + ax.transLimits
+    for level, path in zip(cs.levels, cs.get_paths()):
+        pieces = [p for p in path.to_polygons(closed_only=False) if len(p)]
+        if level not in fmt or not pieces:
+            continue
+        piece = to_axes.transform(max(pieces, key=len))
+        across = np.ptp(piece[:, 0]) >= np.ptp(piece[:, 1])
+        along = np.argsort(piece[:, 0] if across else piece[:, 1])
+        ax.annotate(fmt[level], piece[along[len(along) // 4]], xycoords="axes fraction",
+                    xytext=(0, 4) if across else (-4, 0), textcoords="offset points",
+                    ha="center" if across else "right", va="bottom" if across else "center",
+                    rotation=0 if across else 90, fontsize=7,
+                    bbox={"facecolor": "white", "alpha": 0.8, "edgecolor": "none", "pad": 1})  # fmt: skip
 
 
 def _region_label(ax, x, y, inside: np.ndarray, label: str, colour: str = "k",

@@ -45,8 +45,10 @@ def histogram_figure(empirical, gaussian_sigma: float, *, title: str | None = No
         The measured distribution; drawn in physical heights (its ``mean`` and
         ``sigma``), as a probability density per nm.
     gaussian_sigma : float
-        Standard deviation of the Gaussian drawn for comparison, m (usually
-        ``empirical.sigma``).
+        Standard deviation of the Gaussian drawn for comparison, m: usually the σ of the
+        surface built from the histogram (``mcsim ingest`` prints it as ``surface sigma``),
+        written in the legend as the printout writes it (4 digits). The histogram's own
+        binned σ (:attr:`Empirical.sigma`) includes the w²/12 of its bins and is not shown.
     title : str, optional
         Figure title; by default the histogram's ``source``.
 
@@ -54,7 +56,7 @@ def histogram_figure(empirical, gaussian_sigma: float, *, title: str | None = No
     -------
     matplotlib.figure.Figure
         Linear and logarithmic density panels side by side (the log panel shows the
-        upper tail, where contact starts).
+        upper tail, where contact starts), one legend below them.
     """
     from matplotlib.figure import Figure
 
@@ -76,9 +78,8 @@ def histogram_figure(empirical, gaussian_sigma: float, *, title: str | None = No
     fig = Figure(figsize=(10, 4), layout="constrained")
     for ax, log in zip(fig.subplots(1, 2), (False, True)):
         ax.stairs(density_nm, edges_nm, fill=True, color=_COLOURS[0], alpha=0.45,
-                  label=f"measured ({empirical.densities.size} bins{shown}, $\\sigma$ = "
-                  f"{empirical.sigma * 1e9:.3g} nm)")  # fmt: skip
-        ax.plot(z, gauss, color=_COLOURS[4], lw=1.5, label=f"Gaussian, $\\sigma$ = {s_nm:.3g} nm")
+                  label=f"measured ({empirical.densities.size} bins{shown})")  # fmt: skip
+        ax.plot(z, gauss, color=_COLOURS[4], lw=1.5, label=f"Gaussian, $\\sigma$ = {s_nm:.4g} nm")
         ax.set_xlabel("Height above the mean plane $z$ (nm)")
         ax.set_ylabel("Probability density (1/nm)")
         ax.grid(True, alpha=0.4)
@@ -86,8 +87,8 @@ def histogram_figure(empirical, gaussian_sigma: float, *, title: str | None = No
             positive = density_nm[density_nm > 0]
             ax.set_yscale("log")
             ax.set_ylim(0.3 * positive.min(), 3 * max(positive.max(), gauss.max()))
-        else:
-            ax.legend(fontsize=8)
+    fig.legend(*ax.get_legend_handles_labels(), loc="outside lower center", ncols=2, fontsize=8,
+               frameon=False)  # below the panels: it covers no bar  # fmt: skip
     fig.suptitle(title or empirical.source, fontsize=10)
     return fig
 

@@ -33,10 +33,11 @@ def test_plot_of_an_rh_sweep_is_the_humidity_figure(capsys, tmp_path):
     assert code == 0 and png.stat().st_size > 0, err
     from mcsim.store.sweepfile import read_sweep
 
-    ax = humidity_figure(read_sweep(out)).axes[0]
+    fig = humidity_figure(read_sweep(out))
+    ax = fig.axes[0]
     assert ax.get_xlabel() == "Relative humidity RH (%)"
     assert ax.get_ylabel() == r"Work of separation (J/m$^2$)"
-    labels = [t.get_text() for t in ax.get_legend().get_texts()]
+    labels = [t.get_text() for t in fig.legends[0].get_texts()]
     assert labels[:4] == [
         "total",
         "contact (summits)",

@@ -51,5 +51,5 @@ def test_the_pads_figure_shows_p_stick_and_its_interval_at_the_restoring_force()
     assert x[0] == pytest.approx(5.5) and y[0] == pytest.approx(1 - stats.p_stick)  # µN, CDF
     (segment,) = bars.lines[2][0].get_segments()
     assert sorted(segment[:, 1]) == pytest.approx([1 - high, 1 - low])
-    assert any("p_{stick}" in t.get_text() for t in ecdf.get_legend().get_texts())
+    assert any("p_{stick}" in t.get_text() for t in fig.legends[0].get_texts())
     assert ecdf.get_xlabel() == "pad pull-off force F (µN)"
