@@ -3,7 +3,7 @@ PYTHON ?= python3
 VENV ?= .venv
 BIN := $(VENV)/bin
 
-.PHONY: run test test-portable lint bench clean
+.PHONY: run test test-portable lint bench docs clean
 
 $(BIN)/.installed: pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -35,6 +35,11 @@ test-portable: $(BIN)/.installed
 	NUMBA_CPU_NAME=generic NUMBA_CACHE_DIR="$$cache" MCSIM_CACHE_DIR="$$cache" \
 	NPY_DISABLE_CPU_FEATURES="$$($(BIN)/python -c '$(NPY_FOUND)')" \
 	$(BIN)/python -W error::ImportWarning -m pytest -q tests/program/test_seed_golden.py tests/store/test_runfile.py
+
+# Every figure in docs/ and docs/figures.json, the digest of each figure's inputs that
+# tests/program/test_docs_figures.py checks (a few minutes on 2 cores)
+docs: $(BIN)/.installed
+	$(BIN)/python docs/make_figures.py
 
 lint: $(BIN)/.installed
 	$(BIN)/ruff check . && $(BIN)/ruff format --check .

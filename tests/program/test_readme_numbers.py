@@ -1,0 +1,233 @@
+"""Every number README.md quotes outside "Performance" is computed here and compared.
+
+Each claim is a pattern that must match README.md exactly once (line breaks read as
+spaces) and a function computing the quoted numbers. Inputs and constants (presets,
+ranges, defaults) must equal the code's value; results (``rounded``) must print as quoted
+at the precision quoted: "90.8" is compared with the computed value written with one
+decimal, "2.600e-5" with four significant digits. Changing the code or the README alone
+fails the test, naming the README text.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import re
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from mcsim.engine.statistics import MIN_CONTACTS
+from mcsim.model.params import MAX_ABS_H, RANGES, plasticity_index
+from mcsim.model.presets import MATERIALS, SURFACES
+from mcsim.physics import adhesion
+from mcsim.physics.adhesion import adhesion_summary, maugis_parameter, tabor_parameter
+from mcsim.physics.environment import DEFAULT_CUTOFF, Environment
+from mcsim.physics.loadcontrol import XTOL
+
+README = Path(__file__).resolve().parents[2] / "README.md"
+TEXT = " ".join(README.read_text().split())
+
+SILICON = MATERIALS["silicon"]
+SMOOTH = SURFACES["smooth"]
+
+
+def quoted(pattern: str) -> tuple[str, ...]:
+    """The groups of the one match of `pattern` in the README (whitespace collapsed)."""
+    matches = list(re.finditer(pattern, TEXT))
+    assert len(matches) == 1, f"README.md: {len(matches)} matches of {pattern!r}, expected 1"
+    return matches[0].groups()
+
+
+def at_precision(text: str, value: float) -> str:
+    """`value` written as `text` is: the same decimals, or significant digits in e-notation."""
+    if "e" in text:
+        mantissa, exponent = text.split("e")
+        digits = len(mantissa.split(".")[1]) if "." in mantissa else 0
+        m, e = f"{value:.{digits}e}".split("e")
+        return f"{m}e{int(e)}"
+    digits = len(text.split(".")[1]) if "." in text else 0
+    return f"{value:.{digits}f}"
+
+
+def check_rounded(pattern: str, *values: float) -> None:
+    """The README's numbers (groups of `pattern`) print as the computed `values`."""
+    texts = tuple(t.replace("−", "-") for t in quoted(pattern))
+    assert len(texts) == len(values)
+    computed = tuple(at_precision(t, v) for t, v in zip(texts, values, strict=True))
+    assert computed == texts, f"README.md says {texts} for {pattern!r}; the code gives {computed}"
+
+
+def check_exact(pattern: str, *values: float) -> None:
+    """The README's numbers (groups of `pattern`) equal the code's inputs or constants."""
+    texts = quoted(pattern)
+    parsed = tuple(float(t.replace(",", "")) for t in texts)
+    np.testing.assert_allclose(parsed, values, rtol=1e-12, err_msg=f"README.md: {pattern!r}")
+
+
+# Inputs and constants ---------------------------------------------------------------------
+
+
+def test_silicon_preset():
+    check_exact(
+        r"E = (\S+) GPa, ν = (\S+), H = (\S+) GPa, γ = (\S+) J/m², and an assumed equilibrium "
+        r"spacing z0 = (\S+) nm",
+        SILICON.E1 / 1e9, SILICON.nu1, SILICON.H / 1e9, SILICON.gamma, SILICON.z0 * 1e9,
+    )  # fmt: skip
+    assert (SILICON.E1, SILICON.nu1) == (SILICON.E2, SILICON.nu2)
+
+
+def test_table1_eta_of_the_rough_surface():
+    check_exact(r'"14,700" in the table means η = (\S+) µm⁻²', SURFACES["rough"].eta / 1e12)
+
+
+def test_smooth_surface_of_the_toml_example():
+    check_exact(
+        r'sigma = "(\S+) nm" # std of summit heights R = "(\S+) um" # summit radius '
+        r'eta = "(\S+) um\^-2"',
+        SMOOTH.sigma * 1e9, SMOOTH.R * 1e6, SMOOTH.eta / 1e12,
+    )  # fmt: skip
+
+
+def test_parameter_ranges():
+    check_exact(r"E >= (\S+) Pa \(with K, G <= 10¹⁴ Pa\)", RANGES["E"][0])
+    assert RANGES["K"][1] == 1e14
+    check_exact(r"0 <= γ <= 10³ J/m², (\S+) Pa <= H <= 10¹³ Pa", RANGES["H"][0])
+    assert (RANGES["gamma"], RANGES["H"][1]) == ((0.0, 1e3, "J/m^2"), 1e13)
+    check_exact(r"1 pm <= σ <= 1 cm, (\S+) nm <= R <= (\S+) m", RANGES["R"][0] * 1e9, RANGES["R"][1])
+    assert RANGES["sigma"][:2] == (1e-12, 1e-2)
+    check_exact(r"(\S+) <= η <= 10²⁰ m⁻²", RANGES["eta"][0])
+    assert RANGES["eta"][1] == 1e20
+    assert quoted(r"(each finite with \|h\| <= 10⁶)") and MAX_ABS_H == 1e6
+
+
+def test_adhesion_map_thresholds():
+    check_exact(
+        r"\(DMT for λ < (\S+), JKR for λ > (\S+), Maugis–Dugdale between\)",
+        adhesion.DMT_BELOW, adhesion.JKR_ABOVE,
+    )  # fmt: skip
+
+
+def test_environment_defaults():
+    env = Environment()
+    check_exact(r"default (\S+) nm\), `--rh`", DEFAULT_CUTOFF * 1e9)
+    check_exact(r"`--temperature` \(kelvin only, default (\S+) K\)", env.temperature)
+    check_exact(r"\(default water, (\S+) J/m²\)", env.surface_tension)
+    check_exact(r"\(default water, (\S+) m³/mol\)", env.molar_volume)
+    check_rounded(r"up to 2γ_L cos θ ≈ (\S+) J/m²", 2 * env.surface_tension)
+
+
+def test_load_control_tolerance_and_z_threshold():
+    check_exact(r"Brent's method to (\S+) in h\)", XTOL)
+    check_exact(r"Where fewer than (\S+) contacting summits are expected", MIN_CONTACTS)
+
+
+def test_zero_sticking_pads_bound():
+    # Clopper-Pearson's upper 95 % bound for 0 of n is 1 - 0.025^(1/n) ≈ -ln(0.025)/n
+    check_rounded(r"0 sticking pads out of n only says p < (\S+)/n", -math.log(0.025))
+
+
+# Computed results -------------------------------------------------------------------------
+
+
+def test_friction_bound_of_identical_materials():
+    # (2/√3)√(G/K) with the code's G and K of silicon (README point 5)
+    check_rounded(
+        r"√\(\(1−ν\)/\(2\(2−ν\)\)\) = (\S+) at ν = 0.22",
+        2 / math.sqrt(3) * math.sqrt(SILICON.G / SILICON.K),
+    )
+
+
+def test_plasticity_indices():
+    check_rounded(
+        r"ψ = \(E\*/H\)√\(σ/R\): (\S+) for the rough surface .{0,80}?, (\S+) intermediate, "
+        r"(\S+) smooth, (\S+) super-smooth",
+        *(plasticity_index(SURFACES[s], SILICON) for s in ("rough", "intermediate", "smooth", "super-smooth")),
+    )  # fmt: skip
+
+
+def test_maugis_lambda_of_the_smooth_surface():
+    check_rounded(r"\(Maugis λ = (\S+): the JKR–DMT", maugis_parameter(SMOOTH, SILICON))
+    ratio = maugis_parameter(SMOOTH, SILICON) / tabor_parameter(SMOOTH, SILICON)
+    check_rounded(r"`maugis_lambda` \(λ = (\S+) μ_T\)", ratio)
+    check_rounded(r"the thresholds `--law auto` uses; λ = (\S+) μ_T\)", ratio)
+
+
+def test_humidity_example_smooth_at_60_percent():
+    summary = adhesion_summary(
+        SMOOTH, SILICON, "maugis-dugdale", environment=Environment(hamaker=1.6e-19, rh=0.6)
+    )
+    check_rounded(
+        r"gives a work of separation of (\S+) J/m²: (\S+) from the summits' contact law, (\S+) "
+        r"from van der Waals across the gaps and (\S+) from the menisci \(Kelvin radius (\S+) "
+        r"nm\), at the rest of zero net load h_turn = (\S+)\.",
+        summary.work_of_separation, summary.work_of_separation_contact,
+        summary.work_of_separation_vdw, summary.work_of_separation_capillary,
+        summary.kelvin_radius * 1e9, summary.turn,
+    )  # fmt: skip
+
+
+def _pull_off_pressure(sigma: float, w: float = SILICON.gamma) -> float:
+    """Analytic pull-off per nominal area (Pa) of the smooth surface at `sigma`, law auto."""
+    surface = type(SMOOTH)(sigma=sigma, R=SMOOTH.R, eta=SMOOTH.eta)
+    material = type(SILICON)(E1=SILICON.E1, E2=SILICON.E2, nu1=SILICON.nu1, nu2=SILICON.nu2,
+                              gamma=w, H=SILICON.H, z0=SILICON.z0)  # fmt: skip
+    law, _ = adhesion.choose_law(surface, material)
+    return adhesion_summary(surface, material, law).pull_off_pressure
+
+
+def test_design_sigma_numbers():
+    p1, p2, p5 = (_pull_off_pressure(s * 1e-9) for s in (1, 2, 5))
+    check_rounded(
+        r"Between σ = 2 nm and 5 nm the pull-off pressure falls by more than six decades \((\S+) MPa to "
+        r"(\S+) Pa\); at σ = 1 nm it is (\S+) MPa: a 10 µm × 10 µm pad then holds on with (\S+) mN",
+        p2 / 1e6, p5, p1 / 1e6, p1 * 1e-10 * 1e3,
+    )  # fmt: skip
+    assert 6 < math.log10(p2 / p5) < 7
+    # the first σ of the README's 40-point grid (0.3 nm … 20 nm, log) with no tensile approach
+    grid = np.geomspace(0.3e-9, 20e-9, 40)
+    low, high = np.searchsorted(grid, 5e-9), len(grid) - 1  # pull-off > 0 at low, 0 at high
+    assert _pull_off_pressure(grid[low]) > 0 and _pull_off_pressure(grid[high]) == 0
+    while high - low > 1:  # the pull-off falls with σ: bisect for the first zero
+        middle = (low + high) // 2
+        low, high = (middle, high) if _pull_off_pressure(grid[middle]) > 0 else (low, middle)
+    check_rounded(r"From σ ≈ (\S+) nm up the approach load is never tensile", grid[high] * 1e9)
+
+
+@pytest.fixture(scope="module")
+def pads_run(tmp_path_factory) -> Path:
+    """The README's run of 300 pads (step 2 of "Designing against stiction"), ~3 s."""
+    out = tmp_path_factory.mktemp("pads") / "pads.h5"
+    args = ("simulate --surface smooth --law maugis-dugdale --cycle --h=4:0:41 --area 10um^2 "
+            "--realizations 300 --seed 1")
+    readme = r"(--area 10um\^2 \\ --realizations 300 --seed 1 --out pads\.h5)"
+    assert quoted(r"maugis-dugdale --cycle --h=4:0:41 " + readme)  # the README's command
+    mcsim(*args.split(), "--out", str(out), "--quiet")
+    return out
+
+
+def mcsim(*args: str) -> str:
+    """Standard output of the ``mcsim`` command of this interpreter's environment."""
+    command = [str(Path(sys.executable).parent / "mcsim"), *args]
+    return subprocess.run(command, capture_output=True, text=True, check=True).stdout
+
+
+def test_pad_statistics(pads_run):
+    cp, wilson = (
+        json.loads(mcsim("pads", str(pads_run), "--restoring-force", "130uN", "--format", "json",
+                         *extra))
+        for extra in ((), ("--interval", "wilson"))
+    )  # fmt: skip
+    check_rounded(
+        r"Here (\S+) pads of 10 µm² \(E\[N\] = (\S+) summits\) pull off with (\S+) ± (\S+) µN "
+        r"\(std (\S+) µN, 5–95 %: (\S+)–(\S+) µN\), and (\S+) of the 300 stick against 130 µN: "
+        r"p_stick = (\S+), 95 % interval (\S+)–(\S+) \(Clopper–Pearson\) or (\S+)–(\S+) \(Wilson\)",
+        cp["pads"], 10e-12 * SMOOTH.eta, *(1e6 * cp[k] for k in ("mean", "se", "std", "q05", "q95")),
+        cp["p_stick"] * cp["pads"], cp["p_stick"], cp["p_stick_ci_low"], cp["p_stick_ci_high"],
+        wilson["p_stick_ci_low"], wilson["p_stick_ci_high"],
+    )  # fmt: skip
+    check_rounded(r"give the GW analytic mean \(the analytic pull-off × A K, (\S+) µN here\)",
+                  1e6 * cp["analytic_mean"])  # fmt: skip
