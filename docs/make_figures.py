@@ -55,8 +55,8 @@ class Figure:
     made : str
         The PNG the plot commands write, in ``{work}``.
     slow : bool
-        True where the data commands are a Monte Carlo run or a large sweep (seconds to a
-        minute): the test recomputes those only with ``--runslow``.
+        True where the data commands take more than a few seconds (a Monte Carlo run or a
+        large sweep): the test recomputes those only with ``MCSIM_DOCS_FIGURES=1``.
     """
 
     data: tuple[tuple[str, ...], ...]
@@ -115,7 +115,7 @@ FIGURES = {
         ),
         inputs=("pads.h5",),
         made="stiction_pads.png",
-        slow=True,
+        slow=False,
     ),
     "stiction_sweep.png": Figure(
         data=(

@@ -45,7 +45,7 @@ def quoted(pattern: str) -> tuple[str, ...]:
 def at_precision(text: str, value: float) -> str:
     """`value` written as `text` is: the same decimals, or significant digits in e-notation."""
     if "e" in text:
-        mantissa, exponent = text.split("e")
+        mantissa = text.split("e")[0]
         digits = len(mantissa.split(".")[1]) if "." in mantissa else 0
         m, e = f"{value:.{digits}e}".split("e")
         return f"{m}e{int(e)}"
@@ -97,7 +97,9 @@ def test_parameter_ranges():
     assert RANGES["K"][1] == 1e14
     check_exact(r"0 <= γ <= 10³ J/m², (\S+) Pa <= H <= 10¹³ Pa", RANGES["H"][0])
     assert (RANGES["gamma"], RANGES["H"][1]) == ((0.0, 1e3, "J/m^2"), 1e13)
-    check_exact(r"1 pm <= σ <= 1 cm, (\S+) nm <= R <= (\S+) m", RANGES["R"][0] * 1e9, RANGES["R"][1])
+    check_exact(
+        r"1 pm <= σ <= 1 cm, (\S+) nm <= R <= (\S+) m", RANGES["R"][0] * 1e9, RANGES["R"][1]
+    )
     assert RANGES["sigma"][:2] == (1e-12, 1e-2)
     check_exact(r"(\S+) <= η <= 10²⁰ m⁻²", RANGES["eta"][0])
     assert RANGES["eta"][1] == 1e20
@@ -201,8 +203,10 @@ def test_design_sigma_numbers():
 def pads_run(tmp_path_factory) -> Path:
     """The README's run of 300 pads (step 2 of "Designing against stiction"), ~3 s."""
     out = tmp_path_factory.mktemp("pads") / "pads.h5"
-    args = ("simulate --surface smooth --law maugis-dugdale --cycle --h=4:0:41 --area 10um^2 "
-            "--realizations 300 --seed 1")
+    args = (
+        "simulate --surface smooth --law maugis-dugdale --cycle --h=4:0:41 --area 10um^2 "
+        "--realizations 300 --seed 1"
+    )
     readme = r"(--area 10um\^2 \\ --realizations 300 --seed 1 --out pads\.h5)"
     assert quoted(r"maugis-dugdale --cycle --h=4:0:41 " + readme)  # the README's command
     mcsim(*args.split(), "--out", str(out), "--quiet")
