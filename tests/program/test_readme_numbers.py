@@ -235,3 +235,25 @@ def test_pad_statistics(pads_run):
     )  # fmt: skip
     check_rounded(r"give the GW analytic mean \(the analytic pull-off × A K, (\S+) µN here\)",
                   1e6 * cp["analytic_mean"])  # fmt: skip
+
+
+def test_design_map_stiction_boundary():
+    # the largest σ of the map's grid (0.3 nm … 100 nm, 25 log) with a pull-off above 1 kPa,
+    # at two w of its grid (0.002 … 5 J/m², 13 log); the pull-off falls with σ: bisect
+    sigmas, ws = np.geomspace(0.3e-9, 100e-9, 25), np.geomspace(0.002, 5, 13)
+    largest = []
+    for w in (ws[3], ws[11]):
+        low, high = 0, len(sigmas) - 1  # above 1 kPa at low, not at high
+        assert _pull_off_pressure(sigmas[low], w) > 1e3 >= _pull_off_pressure(sigmas[high], w)
+        while high - low > 1:
+            middle = (low + high) // 2
+            above = _pull_off_pressure(sigmas[middle], w) > 1e3
+            low, high = (middle, high) if above else (low, middle)
+        largest.append(sigmas[low] * 1e9)
+    check_rounded(
+        r"grows with w, from (\S+) nm at w = (\S+) J/m² to (\S+) nm at (\S+) J/m²",
+        largest[0],
+        ws[3],
+        largest[1],
+        ws[11],
+    )
