@@ -257,3 +257,47 @@ def test_design_map_stiction_boundary():
         largest[1],
         ws[11],
     )
+
+
+def test_engine_and_file_constants():
+    from mcsim.engine import montecarlo, padcurves
+    from mcsim.model import distributions
+    from mcsim.store.schema import MAX_EXPANSION
+    from mcsim.studies.ingest import BYTES_PER_PIXEL
+    from mcsim.studies.pads import FEW_CONTACTS
+    from mcsim.studies.paper import MC_AREA
+
+    check_exact(r"located to (\S+) in h\) at `h_pull_off`", adhesion.H_TOLERANCE)
+    check_exact(r"the minimum of the mean curve, located to (\S+) in h", adhesion.H_TOLERANCE)
+    check_exact(r"located in continuous h to (\S+) between the grid's", padcurves.XTOL)
+    check_exact(r"drawn in fixed blocks of (\S+) summits", montecarlo.BLOCK)
+    assert quoted(r"(ηA is limited to 10¹⁸ summits)") and montecarlo.MAX_SUMMITS == 1e18
+    check_exact(r"\(after (\S+) s of work, then every", montecarlo.FIRST_CHECKPOINT)
+    check_exact(r"no more than (\S+) times the file's size", MAX_EXPANSION)
+    check_exact(r"one Monte Carlo patch of (\S+) mm² per surface", MC_AREA * 1e6)
+    check_exact(r"fewer than ~(\S+) summits the sweep warns", FEW_CONTACTS)
+    check_exact(
+        r"for the Gaussian p \((\S+)×(\S+)-point Gauss–Legendre",
+        distributions._PANELS, distributions._NODES_PER_PANEL,
+    )  # fmt: skip
+    check_exact(r"needs about (\S+) bytes per pixel", BYTES_PER_PIXEL)
+    check_rounded(r"\(a 16384² map: (\S+) GB\)", BYTES_PER_PIXEL * 16384**2 / 1e9)
+
+
+def test_humidity_threshold_of_the_intermediate_surface():
+    # the README's sweep, rh = 0.05 … 0.95 in 10 steps, law auto; the work of separation
+    # grows with rh: its ends below the threshold and the two points above it suffice
+    surface = SURFACES["intermediate"]
+    law, _ = adhesion.choose_law(surface, SILICON)
+
+    def work(rh: float) -> float:
+        environment = Environment(hamaker=1.6e-19, rh=rh)
+        return adhesion_summary(surface, SILICON, law, environment=environment).work_of_separation
+
+    low, threshold, above, top = (work(rh) for rh in (0.05, 0.75, 0.85, 0.95))
+    check_rounded(
+        r"stays at (\S+)–(\S+) µJ/m² \(van der Waals\) up to RH ≈ 75 % and rises to (\S+) J/m² "
+        r"at 95 %",
+        low * 1e6, threshold * 1e6, top,
+    )  # fmt: skip
+    assert above > 1.5 * threshold, f"RH ≈ 75 % is where the rise starts: {above} J/m² at 85 %"
