@@ -301,3 +301,23 @@ def test_humidity_threshold_of_the_intermediate_surface():
         low * 1e6, threshold * 1e6, top,
     )  # fmt: skip
     assert above > 1.5 * threshold, f"RH ≈ 75 % is where the rise starts: {above} J/m² at 85 %"
+
+
+@pytest.mark.slow
+def test_p_stick_table(tmp_path):
+    # the README's sweep of "How likely is my device to stick?" (about 8 s of CPU)
+    import xarray as xr
+
+    args = quoted(
+        r"mcsim (sweep --surface smooth --law jkr --vary sigma=1\.5nm:3nm:4 --preload "
+        r"1MPa \\ --pads 100 --area 30um\^2 --restoring-force 20uN --seed 1) --out stick"
+    )
+    mcsim(*args[0].replace("\\ ", "").split(), "--out", str(tmp_path / "stick.h5"), "--quiet")
+    with xr.open_dataset(tmp_path / "stick.h5", engine="h5netcdf") as ds:
+        for i, sigma in enumerate(ds.sigma.values):
+            row = ds.isel(sigma=i)
+            check_rounded(
+                rf"\| ({sigma * 1e9:.1f}) \| (\S+) \[(\S+), (\S+)\] \| (\S+) \| (\S+)",
+                sigma * 1e9, *(float(row[v]) for v in ("p_stick", "p_stick_low", "p_stick_high",
+                                                      "p_stick_model", "contacting_summits")),
+            )  # fmt: skip
