@@ -321,3 +321,36 @@ def test_p_stick_table(tmp_path):
                 sigma * 1e9, *(float(row[v]) for v in ("p_stick", "p_stick_low", "p_stick_high",
                                                       "p_stick_model", "contacting_summits")),
             )  # fmt: skip
+
+
+@pytest.mark.slow
+def test_force_control_against_a_common_turn():
+    # "Force control matters": 400 jkr pads of 30 µm² at σ = 2.5 nm (seed 1, the sweep's
+    # default grid h = 4 … −1), each pressed to 1 MPa, then all turned at the mean-field turn
+    # (about 5 s of CPU)
+    import dataclasses
+
+    from mcsim.engine import padcurves
+    from mcsim.engine.montecarlo import MonteCarloSpec
+    from mcsim.physics.loadcontrol import preload_turn
+    from mcsim.studies.pads import pad_statistics
+
+    surface, area = dataclasses.replace(SMOOTH, sigma=2.5e-9), 30e-12
+    turn = preload_turn(surface, SILICON, 1e6, "jkr")
+    spec = MonteCarloSpec(surface, SILICON, np.linspace(4, -1, 51), area, 400, 1, "jkr", cycle=True)
+    own, common, turns = [], [], []
+    for r in range(spec.realizations):
+        z = padcurves.patch_heights(spec, r)
+        d_turn, _ = padcurves.force_turn(spec, z, 1e6 * area)
+        turns.append(d_turn)
+        own.append(padcurves.pull_off(spec, z, d_turn)[0])
+        common.append(padcurves.pull_off(spec, z, turn * surface.sigma)[0])
+    stats = [pad_statistics(np.array(f), restoring_force=20e-6) for f in (own, common)]
+    check_rounded(
+        r"pull off with mean (\S+) N, standard deviation (\S+) N and p_stick (\S+) \[(\S+), (\S+)\];"
+        r" retracted from the common mean-field turn h̄ = (\S+) the same pads give (\S+) N, (\S+) N "
+        r"and (\S+) \[(\S+), (\S+)\]\. .{0,100}\(correlation (\S+) between the turn",
+        stats[0].mean, stats[0].std, stats[0].p_stick, *stats[0].p_stick_ci, turn,
+        stats[1].mean, stats[1].std, stats[1].p_stick, *stats[1].p_stick_ci,
+        np.corrcoef(turns, own)[0, 1],
+    )  # fmt: skip
