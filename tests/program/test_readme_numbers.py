@@ -64,7 +64,7 @@ def check_rounded(pattern: str, *values: float) -> None:
 def check_exact(pattern: str, *values: float) -> None:
     """The README's numbers (groups of `pattern`) equal the code's inputs or constants."""
     texts = quoted(pattern)
-    parsed = tuple(float(t.replace(",", "")) for t in texts)
+    parsed = tuple(float(re.sub(r"[,\s]", "", t)) for t in texts)  # "14,700", "10 000"
     np.testing.assert_allclose(parsed, values, rtol=1e-12, err_msg=f"README.md: {pattern!r}")
 
 
@@ -354,3 +354,13 @@ def test_force_control_against_a_common_turn():
         stats[1].mean, stats[1].std, stats[1].p_stick, *stats[1].p_stick_ci,
         np.corrcoef(turns, own)[0, 1],
     )  # fmt: skip
+
+
+def test_separation_limits_and_bandwidth_of_the_paper_surfaces():
+    from mcsim.cli.options import MAX_SEPARATIONS
+    from mcsim.physics.gapheights import nayak_heights
+
+    check_exact(r"inclusive\), at most (\d+\s\d+) separations", MAX_SEPARATIONS)
+    alphas = [nayak_heights(SURFACES[s].sigma, SURFACES[s].R, SURFACES[s].eta).alpha
+              for s in ("rough", "intermediate", "smooth", "super-smooth")]  # fmt: skip
+    check_rounded(r"have a low bandwidth parameter α \((\S+)–(\S+)\)", min(alphas), max(alphas))
