@@ -10,7 +10,7 @@ what is plotted, not of the PNG (matplotlib's bytes are not stable across versio
 inputs changed without ``make docs``.
 
 Usage, from the repository root: ``python docs/make_figures.py [NAME.png ...]`` (all
-figures when no name is given; about 2 minutes on 2 cores).
+figures when no name is given; about 3 minutes on a busy 2-core machine, 50 s of CPU).
 """
 
 from __future__ import annotations
