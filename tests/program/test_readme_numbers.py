@@ -364,3 +364,13 @@ def test_separation_limits_and_bandwidth_of_the_paper_surfaces():
     alphas = [nayak_heights(SURFACES[s].sigma, SURFACES[s].R, SURFACES[s].eta).alpha
               for s in ("rough", "intermediate", "smooth", "super-smooth")]  # fmt: skip
     check_rounded(r"have a low bandwidth parameter α \((\S+)–(\S+)\)", min(alphas), max(alphas))
+
+
+def test_paper_mu_table_separations_and_pad_summits():
+    from mcsim.studies.paper import MU_TABLE_H
+
+    texts = quoted(r"prints μ at h = (\S+), (\S+), (\S+), (\S+), (\S+) and the plasticity index")
+    assert tuple(float(t.replace("−", "-")) for t in texts) == tuple(MU_TABLE_H)
+    check_rounded(
+        r"A pad of 30 µm² on the smooth surface holds ~(\S+) summits", 30e-12 * SMOOTH.eta
+    )
