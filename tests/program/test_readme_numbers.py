@@ -374,3 +374,10 @@ def test_paper_mu_table_separations_and_pad_summits():
     check_rounded(
         r"A pad of 30 µm² on the smooth surface holds ~(\S+) summits", 30e-12 * SMOOTH.eta
     )
+
+
+def test_every_file_the_readme_names_exists():
+    named = set(re.findall(r"`((?:tests|validation|docs|examples|runs)/[\w./-]+\.(?:py|toml|md))`",
+                           README.read_text()))  # fmt: skip
+    missing = sorted(p for p in named if not (README.parent / p).exists())
+    assert named and not missing, f"README.md names files that do not exist: {missing}"
