@@ -3,7 +3,7 @@ PYTHON ?= python3
 VENV ?= .venv
 BIN := $(VENV)/bin
 
-.PHONY: run test test-portable lint bench clean
+.PHONY: run test test-portable lint bench docs clean
 
 $(BIN)/.installed: pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -43,6 +43,11 @@ test-portable: $(BIN)/.installed
 bench: $(BIN)/.installed
 	status=0; for script in benchmark sweep_benchmark scaling memory; do \
 		$(BIN)/python validation/$$script.py || status=1; done; exit $$status
+
+# Every figure in docs/ and docs/figures.json, the digest of each figure's inputs that
+# tests/program/test_docs_figures.py checks (a few minutes on 2 cores)
+docs: $(BIN)/.installed
+	$(BIN)/python docs/make_figures.py
 
 lint: $(BIN)/.installed
 	$(BIN)/ruff check . && $(BIN)/ruff format --check .

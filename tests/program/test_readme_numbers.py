@@ -1,0 +1,383 @@
+"""Every number README.md quotes outside "Performance" is computed here and compared.
+
+Each claim is a pattern that must match README.md exactly once (line breaks read as
+spaces) and a function computing the quoted numbers. Inputs and constants (presets,
+ranges, defaults) must equal the code's value; results (``rounded``) must print as quoted
+at the precision quoted: "90.8" is compared with the computed value written with one
+decimal, "2.600e-5" with four significant digits. Changing the code or the README alone
+fails the test, naming the README text.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import re
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from mcsim.engine.statistics import MIN_CONTACTS
+from mcsim.model.params import MAX_ABS_H, RANGES, plasticity_index
+from mcsim.model.presets import MATERIALS, SURFACES
+from mcsim.physics import adhesion
+from mcsim.physics.adhesion import adhesion_summary, maugis_parameter, tabor_parameter
+from mcsim.physics.environment import DEFAULT_CUTOFF, Environment
+from mcsim.physics.loadcontrol import XTOL
+
+README = Path(__file__).resolve().parents[2] / "README.md"
+TEXT = " ".join(README.read_text().split())
+
+SILICON = MATERIALS["silicon"]
+SMOOTH = SURFACES["smooth"]
+
+
+def quoted(pattern: str) -> tuple[str, ...]:
+    """The groups of the one match of `pattern` in the README (whitespace collapsed)."""
+    matches = list(re.finditer(pattern, TEXT))
+    assert len(matches) == 1, f"README.md: {len(matches)} matches of {pattern!r}, expected 1"
+    return matches[0].groups()
+
+
+def at_precision(text: str, value: float) -> str:
+    """`value` written as `text` is: the same decimals, or significant digits in e-notation."""
+    if "e" in text:
+        mantissa = text.split("e")[0]
+        digits = len(mantissa.split(".")[1]) if "." in mantissa else 0
+        m, e = f"{value:.{digits}e}".split("e")
+        return f"{m}e{int(e)}"
+    digits = len(text.split(".")[1]) if "." in text else 0
+    return f"{value:.{digits}f}"
+
+
+def check_rounded(pattern: str, *values: float) -> None:
+    """The README's numbers (groups of `pattern`) print as the computed `values`."""
+    texts = tuple(t.replace("−", "-") for t in quoted(pattern))
+    assert len(texts) == len(values)
+    computed = tuple(at_precision(t, v) for t, v in zip(texts, values, strict=True))
+    assert computed == texts, f"README.md says {texts} for {pattern!r}; the code gives {computed}"
+
+
+def check_exact(pattern: str, *values: float) -> None:
+    """The README's numbers (groups of `pattern`) equal the code's inputs or constants."""
+    texts = quoted(pattern)
+    parsed = tuple(float(re.sub(r"[,\s]", "", t)) for t in texts)  # "14,700", "10 000"
+    np.testing.assert_allclose(parsed, values, rtol=1e-12, err_msg=f"README.md: {pattern!r}")
+
+
+# Inputs and constants ---------------------------------------------------------------------
+
+
+def test_silicon_preset():
+    check_exact(
+        r"E = (\S+) GPa, ν = (\S+), H = (\S+) GPa, γ = (\S+) J/m², and an assumed equilibrium "
+        r"spacing z0 = (\S+) nm",
+        SILICON.E1 / 1e9, SILICON.nu1, SILICON.H / 1e9, SILICON.gamma, SILICON.z0 * 1e9,
+    )  # fmt: skip
+    assert (SILICON.E1, SILICON.nu1) == (SILICON.E2, SILICON.nu2)
+
+
+def test_table1_eta_of_the_rough_surface():
+    check_exact(r'"14,700" in the table means η = (\S+) µm⁻²', SURFACES["rough"].eta / 1e12)
+
+
+def test_smooth_surface_of_the_toml_example():
+    check_exact(
+        r'sigma = "(\S+) nm" # std of summit heights R = "(\S+) um" # summit radius '
+        r'eta = "(\S+) um\^-2"',
+        SMOOTH.sigma * 1e9, SMOOTH.R * 1e6, SMOOTH.eta / 1e12,
+    )  # fmt: skip
+
+
+def test_parameter_ranges():
+    check_exact(r"E >= (\S+) Pa \(with K, G <= 10¹⁴ Pa\)", RANGES["E"][0])
+    assert RANGES["K"][1] == 1e14
+    check_exact(r"0 <= γ <= 10³ J/m², (\S+) Pa <= H <= 10¹³ Pa", RANGES["H"][0])
+    assert (RANGES["gamma"], RANGES["H"][1]) == ((0.0, 1e3, "J/m^2"), 1e13)
+    check_exact(
+        r"1 pm <= σ <= 1 cm, (\S+) nm <= R <= (\S+) m", RANGES["R"][0] * 1e9, RANGES["R"][1]
+    )
+    assert RANGES["sigma"][:2] == (1e-12, 1e-2)
+    check_exact(r"(\S+) <= η <= 10²⁰ m⁻²", RANGES["eta"][0])
+    assert RANGES["eta"][1] == 1e20
+    assert quoted(r"(each finite with \|h\| <= 10⁶)") and MAX_ABS_H == 1e6
+
+
+def test_adhesion_map_thresholds():
+    check_exact(
+        r"\(DMT for λ < (\S+), JKR for λ > (\S+), Maugis–Dugdale between\)",
+        adhesion.DMT_BELOW, adhesion.JKR_ABOVE,
+    )  # fmt: skip
+
+
+def test_environment_defaults():
+    env = Environment()
+    check_exact(r"default (\S+) nm\), `--rh`", DEFAULT_CUTOFF * 1e9)
+    check_exact(r"`--temperature` \(kelvin only, default (\S+) K\)", env.temperature)
+    check_exact(r"\(default water, (\S+) J/m²\)", env.surface_tension)
+    check_exact(r"\(default water, (\S+) m³/mol\)", env.molar_volume)
+    check_rounded(r"up to 2γ_L cos θ ≈ (\S+) J/m²", 2 * env.surface_tension)
+
+
+def test_load_control_tolerance_and_z_threshold():
+    check_exact(r"Brent's method to (\S+) in h\)", XTOL)
+    check_exact(r"Where fewer than (\S+) contacting summits are expected", MIN_CONTACTS)
+
+
+def test_zero_sticking_pads_bound():
+    # Clopper-Pearson's upper 95 % bound for 0 of n is 1 - 0.025^(1/n) ≈ -ln(0.025)/n
+    check_rounded(r"0 sticking pads out of n only says p < (\S+)/n", -math.log(0.025))
+
+
+# Computed results -------------------------------------------------------------------------
+
+
+def test_friction_bound_of_identical_materials():
+    # (2/√3)√(G/K) with the code's G and K of silicon (README point 5)
+    check_rounded(
+        r"√\(\(1−ν\)/\(2\(2−ν\)\)\) = (\S+) at ν = 0.22",
+        2 / math.sqrt(3) * math.sqrt(SILICON.G / SILICON.K),
+    )
+
+
+def test_plasticity_indices():
+    check_rounded(
+        r"ψ = \(E\*/H\)√\(σ/R\): (\S+) for the rough surface .{0,80}?, (\S+) intermediate, "
+        r"(\S+) smooth, (\S+) super-smooth",
+        *(plasticity_index(SURFACES[s], SILICON) for s in ("rough", "intermediate", "smooth", "super-smooth")),
+    )  # fmt: skip
+
+
+def test_maugis_lambda_of_the_smooth_surface():
+    check_rounded(r"\(Maugis λ = (\S+): the JKR–DMT", maugis_parameter(SMOOTH, SILICON))
+    ratio = maugis_parameter(SMOOTH, SILICON) / tabor_parameter(SMOOTH, SILICON)
+    check_rounded(r"`maugis_lambda` \(λ = (\S+) μ_T\)", ratio)
+    check_rounded(r"the thresholds `--law auto` uses; λ = (\S+) μ_T\)", ratio)
+
+
+def test_humidity_example_smooth_at_60_percent():
+    summary = adhesion_summary(
+        SMOOTH, SILICON, "maugis-dugdale", environment=Environment(hamaker=1.6e-19, rh=0.6)
+    )
+    check_rounded(
+        r"gives a work of separation of (\S+) J/m²: (\S+) from the summits' contact law, (\S+) "
+        r"from van der Waals across the gaps and (\S+) from the menisci \(Kelvin radius (\S+) "
+        r"nm\), at the rest of zero net load h_turn = (\S+)\.",
+        summary.work_of_separation, summary.work_of_separation_contact,
+        summary.work_of_separation_vdw, summary.work_of_separation_capillary,
+        summary.kelvin_radius * 1e9, summary.turn,
+    )  # fmt: skip
+
+
+def _pull_off_pressure(sigma: float, w: float = SILICON.gamma) -> float:
+    """Analytic pull-off per nominal area (Pa) of the smooth surface at `sigma`, law auto."""
+    surface = type(SMOOTH)(sigma=sigma, R=SMOOTH.R, eta=SMOOTH.eta)
+    material = type(SILICON)(E1=SILICON.E1, E2=SILICON.E2, nu1=SILICON.nu1, nu2=SILICON.nu2,
+                              gamma=w, H=SILICON.H, z0=SILICON.z0)  # fmt: skip
+    law, _ = adhesion.choose_law(surface, material)
+    return adhesion_summary(surface, material, law).pull_off_pressure
+
+
+def test_design_sigma_numbers():
+    p1, p2, p5 = (_pull_off_pressure(s * 1e-9) for s in (1, 2, 5))
+    check_rounded(
+        r"Between σ = 2 nm and 5 nm the pull-off pressure falls by more than six decades \((\S+) MPa to "
+        r"(\S+) Pa\); at σ = 1 nm it is (\S+) MPa: a 10 µm × 10 µm pad then holds on with (\S+) mN",
+        p2 / 1e6, p5, p1 / 1e6, p1 * 1e-10 * 1e3,
+    )  # fmt: skip
+    assert 6 < math.log10(p2 / p5) < 7
+    # the first σ of the README's 40-point grid (0.3 nm … 20 nm, log) with no tensile approach
+    grid = np.geomspace(0.3e-9, 20e-9, 40)
+    low, high = np.searchsorted(grid, 5e-9), len(grid) - 1  # pull-off > 0 at low, 0 at high
+    assert _pull_off_pressure(grid[low]) > 0 and _pull_off_pressure(grid[high]) == 0
+    while high - low > 1:  # the pull-off falls with σ: bisect for the first zero
+        middle = (low + high) // 2
+        low, high = (middle, high) if _pull_off_pressure(grid[middle]) > 0 else (low, middle)
+    check_rounded(r"From σ ≈ (\S+) nm up the approach load is never tensile", grid[high] * 1e9)
+
+
+@pytest.fixture(scope="module")
+def pads_run(tmp_path_factory) -> Path:
+    """The README's run of 300 pads (step 2 of "Designing against stiction"), ~3 s."""
+    out = tmp_path_factory.mktemp("pads") / "pads.h5"
+    args = (
+        "simulate --surface smooth --law maugis-dugdale --cycle --h=4:0:41 --area 10um^2 "
+        "--realizations 300 --seed 1"
+    )
+    readme = r"(--area 10um\^2 \\ --realizations 300 --seed 1 --out pads\.h5)"
+    assert quoted(r"maugis-dugdale --cycle --h=4:0:41 " + readme)  # the README's command
+    mcsim(*args.split(), "--out", str(out), "--quiet")
+    return out
+
+
+def mcsim(*args: str) -> str:
+    """Standard output of the ``mcsim`` command of this interpreter's environment."""
+    command = [str(Path(sys.executable).parent / "mcsim"), *args]
+    return subprocess.run(command, capture_output=True, text=True, check=True).stdout
+
+
+def test_pad_statistics(pads_run):
+    cp, wilson = (
+        json.loads(mcsim("pads", str(pads_run), "--restoring-force", "130uN", "--format", "json",
+                         *extra))
+        for extra in ((), ("--interval", "wilson"))
+    )  # fmt: skip
+    check_rounded(
+        r"Here (\S+) pads of 10 µm² \(E\[N\] = (\S+) summits\) pull off with (\S+) ± (\S+) µN "
+        r"\(std (\S+) µN, 5–95 %: (\S+)–(\S+) µN\), and (\S+) of the 300 stick against 130 µN: "
+        r"p_stick = (\S+), 95 % interval (\S+)–(\S+) \(Clopper–Pearson\) or (\S+)–(\S+) \(Wilson\)",
+        cp["pads"], 10e-12 * SMOOTH.eta, *(1e6 * cp[k] for k in ("mean", "se", "std", "q05", "q95")),
+        cp["p_stick"] * cp["pads"], cp["p_stick"], cp["p_stick_ci_low"], cp["p_stick_ci_high"],
+        wilson["p_stick_ci_low"], wilson["p_stick_ci_high"],
+    )  # fmt: skip
+    check_rounded(r"give the GW analytic mean \(the analytic pull-off × A K, (\S+) µN here\)",
+                  1e6 * cp["analytic_mean"])  # fmt: skip
+
+
+def test_design_map_stiction_boundary():
+    # the largest σ of the map's grid (0.3 nm … 100 nm, 25 log) with a pull-off above 1 kPa,
+    # at two w of its grid (0.002 … 5 J/m², 13 log); the pull-off falls with σ: bisect
+    sigmas, ws = np.geomspace(0.3e-9, 100e-9, 25), np.geomspace(0.002, 5, 13)
+    largest = []
+    for w in (ws[3], ws[11]):
+        low, high = 0, len(sigmas) - 1  # above 1 kPa at low, not at high
+        assert _pull_off_pressure(sigmas[low], w) > 1e3 >= _pull_off_pressure(sigmas[high], w)
+        while high - low > 1:
+            middle = (low + high) // 2
+            above = _pull_off_pressure(sigmas[middle], w) > 1e3
+            low, high = (middle, high) if above else (low, middle)
+        largest.append(sigmas[low] * 1e9)
+    check_rounded(
+        r"grows with w, from (\S+) nm at w = (\S+) J/m² to (\S+) nm at (\S+) J/m²",
+        largest[0],
+        ws[3],
+        largest[1],
+        ws[11],
+    )
+
+
+def test_engine_and_file_constants():
+    from mcsim.engine import montecarlo, padcurves
+    from mcsim.model import distributions
+    from mcsim.store.schema import MAX_EXPANSION
+    from mcsim.studies.ingest import BYTES_PER_PIXEL
+    from mcsim.studies.pads import FEW_CONTACTS
+    from mcsim.studies.paper import MC_AREA
+
+    check_exact(r"located to (\S+) in h\) at `h_pull_off`", adhesion.H_TOLERANCE)
+    check_exact(r"the minimum of the mean curve, located to (\S+) in h", adhesion.H_TOLERANCE)
+    check_exact(r"located in continuous h to (\S+) between the grid's", padcurves.XTOL)
+    check_exact(r"drawn in fixed blocks of (\S+) summits", montecarlo.BLOCK)
+    assert quoted(r"(ηA is limited to 10¹⁸ summits)") and montecarlo.MAX_SUMMITS == 1e18
+    check_exact(r"\(after (\S+) s of work, then every", montecarlo.FIRST_CHECKPOINT)
+    check_exact(r"no more than (\S+) times the file's size", MAX_EXPANSION)
+    check_exact(r"one Monte Carlo patch of (\S+) mm² per surface", MC_AREA * 1e6)
+    check_exact(r"fewer than ~(\S+) summits the sweep warns", FEW_CONTACTS)
+    check_exact(
+        r"for the Gaussian p \((\S+)×(\S+)-point Gauss–Legendre",
+        distributions._PANELS, distributions._NODES_PER_PANEL,
+    )  # fmt: skip
+    check_exact(r"needs about (\S+) bytes per pixel", BYTES_PER_PIXEL)
+    check_rounded(r"\(a 16384² map: (\S+) GB\)", BYTES_PER_PIXEL * 16384**2 / 1e9)
+
+
+def test_humidity_threshold_of_the_intermediate_surface():
+    # the README's sweep, rh = 0.05 … 0.95 in 10 steps, law auto; the work of separation
+    # grows with rh: its ends below the threshold and the two points above it suffice
+    surface = SURFACES["intermediate"]
+    law, _ = adhesion.choose_law(surface, SILICON)
+
+    def work(rh: float) -> float:
+        environment = Environment(hamaker=1.6e-19, rh=rh)
+        return adhesion_summary(surface, SILICON, law, environment=environment).work_of_separation
+
+    low, threshold, above, top = (work(rh) for rh in (0.05, 0.75, 0.85, 0.95))
+    check_rounded(
+        r"stays at (\S+)–(\S+) µJ/m² \(van der Waals\) up to RH ≈ 75 % and rises to (\S+) J/m² "
+        r"at 95 %",
+        low * 1e6, threshold * 1e6, top,
+    )  # fmt: skip
+    assert above > 1.5 * threshold, f"RH ≈ 75 % is where the rise starts: {above} J/m² at 85 %"
+
+
+@pytest.mark.slow
+def test_p_stick_table(tmp_path):
+    # the README's sweep of "How likely is my device to stick?" (about 8 s of CPU)
+    import xarray as xr
+
+    args = quoted(
+        r"mcsim (sweep --surface smooth --law jkr --vary sigma=1\.5nm:3nm:4 --preload "
+        r"1MPa \\ --pads 100 --area 30um\^2 --restoring-force 20uN --seed 1) --out stick"
+    )
+    mcsim(*args[0].replace("\\ ", "").split(), "--out", str(tmp_path / "stick.h5"), "--quiet")
+    with xr.open_dataset(tmp_path / "stick.h5", engine="h5netcdf") as ds:
+        for i, sigma in enumerate(ds.sigma.values):
+            row = ds.isel(sigma=i)
+            check_rounded(
+                rf"\| ({sigma * 1e9:.1f}) \| (\S+) \[(\S+), (\S+)\] \| (\S+) \| (\S+)",
+                sigma * 1e9, *(float(row[v]) for v in ("p_stick", "p_stick_low", "p_stick_high",
+                                                      "p_stick_model", "contacting_summits")),
+            )  # fmt: skip
+
+
+@pytest.mark.slow
+def test_force_control_against_a_common_turn():
+    # "Force control matters": 400 jkr pads of 30 µm² at σ = 2.5 nm (seed 1, the sweep's
+    # default grid h = 4 … −1), each pressed to 1 MPa, then all turned at the mean-field turn
+    # (about 5 s of CPU)
+    import dataclasses
+
+    from mcsim.engine import padcurves
+    from mcsim.engine.montecarlo import MonteCarloSpec
+    from mcsim.physics.loadcontrol import preload_turn
+    from mcsim.studies.pads import pad_statistics
+
+    surface, area = dataclasses.replace(SMOOTH, sigma=2.5e-9), 30e-12
+    turn = preload_turn(surface, SILICON, 1e6, "jkr")
+    spec = MonteCarloSpec(surface, SILICON, np.linspace(4, -1, 51), area, 400, 1, "jkr", cycle=True)
+    own, common, turns = [], [], []
+    for r in range(spec.realizations):
+        z = padcurves.patch_heights(spec, r)
+        d_turn, _ = padcurves.force_turn(spec, z, 1e6 * area)
+        turns.append(d_turn)
+        own.append(padcurves.pull_off(spec, z, d_turn)[0])
+        common.append(padcurves.pull_off(spec, z, turn * surface.sigma)[0])
+    stats = [pad_statistics(np.array(f), restoring_force=20e-6) for f in (own, common)]
+    check_rounded(
+        r"pull off with mean (\S+) N, standard deviation (\S+) N and p_stick (\S+) \[(\S+), (\S+)\];"
+        r" retracted from the common mean-field turn h̄ = (\S+) the same pads give (\S+) N, (\S+) N "
+        r"and (\S+) \[(\S+), (\S+)\]\. .{0,100}\(correlation (\S+) between the turn",
+        stats[0].mean, stats[0].std, stats[0].p_stick, *stats[0].p_stick_ci, turn,
+        stats[1].mean, stats[1].std, stats[1].p_stick, *stats[1].p_stick_ci,
+        np.corrcoef(turns, own)[0, 1],
+    )  # fmt: skip
+
+
+def test_separation_limits_and_bandwidth_of_the_paper_surfaces():
+    from mcsim.cli.options import MAX_SEPARATIONS
+    from mcsim.physics.gapheights import nayak_heights
+
+    check_exact(r"inclusive\), at most (\d+\s\d+) separations", MAX_SEPARATIONS)
+    alphas = [nayak_heights(SURFACES[s].sigma, SURFACES[s].R, SURFACES[s].eta).alpha
+              for s in ("rough", "intermediate", "smooth", "super-smooth")]  # fmt: skip
+    check_rounded(r"have a low bandwidth parameter α \((\S+)–(\S+)\)", min(alphas), max(alphas))
+
+
+def test_paper_mu_table_separations_and_pad_summits():
+    from mcsim.studies.paper import MU_TABLE_H
+
+    texts = quoted(r"prints μ at h = (\S+), (\S+), (\S+), (\S+), (\S+) and the plasticity index")
+    assert tuple(float(t.replace("−", "-")) for t in texts) == tuple(MU_TABLE_H)
+    check_rounded(
+        r"A pad of 30 µm² on the smooth surface holds ~(\S+) summits", 30e-12 * SMOOTH.eta
+    )
+
+
+def test_every_file_the_readme_names_exists():
+    named = set(re.findall(r"`((?:tests|validation|docs|examples|runs)/[\w./-]+\.(?:py|toml|md))`",
+                           README.read_text()))  # fmt: skip
+    missing = sorted(p for p in named if not (README.parent / p).exists())
+    assert named and not missing, f"README.md names files that do not exist: {missing}"
