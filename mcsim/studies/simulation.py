@@ -40,8 +40,9 @@ log = logging.getLogger(__name__)
 
 #: Assumed speed of one worker, for the up-front estimate of a long run: contacting
 #: (summit, separation) pairs per second, and summits above h_min sampled per second
-#: (README, Performance, one worker: 1.7e8 pairs/s at h = 4 … −1; 2.3e5 summits
-#: sampled and summed in 0.021 s at h = 4 … 2, 1.1e7/s).
+#: (``validation/benchmark.py``, one worker, once: 1.7e8 pairs/s at h = 4 … −1; 2.3e5
+#: summits sampled and summed in 0.021 s at h = 4 … 2, 1.1e7/s; README, Performance, has
+#: today's figures).
 PAIRS_PER_SECOND = 1.5e8
 SAMPLES_PER_SECOND = 1e7
 

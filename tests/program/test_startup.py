@@ -2,7 +2,7 @@
 
 Each test runs a fresh interpreter, so that what it loads is its own. No timings are
 asserted: the tests pin down what the start-up does (which libraries it imports, how
-the garbage collector treats its objects); README "Performance" gives the seconds.
+the garbage collector treats its objects); docs/performance.md gives the seconds.
 """
 
 import subprocess
