@@ -2,6 +2,7 @@
 
 import numpy as np
 import pytest
+from tolerances import ROUNDING_FEW
 from toy_laws import MATERIAL, TOY
 
 from mcsim.figures.adhesion import adhesion_figure, fuller_tabor_figure
@@ -22,7 +23,7 @@ def test_cycle_figure_marks_the_pull_off_in_mpa(cycle):
     (marker,) = [line for line in ax.lines if line.get_marker() == "o"]
     x, y = marker.get_data()
     assert x[0] == summary.h_pull_off
-    assert y[0] == pytest.approx(-summary.pull_off_pressure / 1e6, rel=1e-15)
+    assert y[0] == pytest.approx(-summary.pull_off_pressure / 1e6, rel=ROUNDING_FEW)
     assert "pull-off" in marker.get_label()
 
 
