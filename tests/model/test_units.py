@@ -154,7 +154,7 @@ def test_non_number_value_names_field_and_allowed_units(value, shown):
     ],
 )  # fmt: skip
 def test_common_unit_spellings_are_accepted(text, dimension, si):
-    assert parse_quantity(text, dimension, "field") == pytest.approx(si, rel=1e-14)
+    assert parse_quantity(text, dimension, "field") == pytest.approx(si, rel=ROUNDING_FORMULA)
 
 
 @pytest.mark.parametrize(

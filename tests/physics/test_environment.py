@@ -10,7 +10,7 @@ import math
 import numpy as np
 import pytest
 from scipy import integrate, stats
-from tolerances import QUAD_RTOL
+from tolerances import QUAD_RTOL, ROUNDING_FEW
 
 from mcsim.model.errors import ParameterError, UnitError
 from mcsim.model.presets import SURFACES
@@ -358,9 +358,9 @@ def test_out_of_range_field_is_refused_with_its_name_value_and_range(field, valu
 def test_from_user_reads_degrees_and_units():
     env = Environment.from_user(hamaker=1.6e-19, cutoff="0.2 nm", rh="0.6", contact_angle=20,
                                 surface_tension="72 mJ/m^2")  # fmt: skip
-    assert env.contact_angle == pytest.approx(math.radians(20))
-    assert env.cutoff == pytest.approx(0.2e-9)
-    assert env.surface_tension == pytest.approx(0.072)
+    assert env.contact_angle == pytest.approx(math.radians(20), rel=ROUNDING_FEW)
+    assert env.cutoff == pytest.approx(0.2e-9, rel=ROUNDING_FEW)
+    assert env.surface_tension == pytest.approx(0.072, rel=ROUNDING_FEW)
     assert env.rh == 0.6
 
 

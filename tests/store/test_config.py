@@ -468,13 +468,15 @@ def test_surface_file_gives_rq_summit_offset_and_map_heights(tmp_path):
     )
     # the histogram's shape, standardized: P(z > 0) = 2/7 of its mass lies above 1 nm (edge 1)
     z_edge = (1e-9 - surface.map_heights.mean) / surface.map_heights.sigma
-    assert float(surface.map_heights.sf(z_edge)) == pytest.approx(2 / 7)
+    assert float(surface.map_heights.sf(z_edge)) == pytest.approx(2 / 7, rel=ROUNDING_FORMULA)
 
 
 def test_rq_defaults_to_the_map_histograms_own_rms(tmp_path):
     text = SMOOTH_TOML + '[surface.map_heights]\nedges = [-1, 0, 1]\ncounts = [1, 1]\nunit = "nm"\n'
     surface = load_surface(write(tmp_path, text))
-    assert surface.rq == pytest.approx(2e-9 / 12**0.5)  # uniform on [-1, 1] nm
+    assert surface.rq == pytest.approx(
+        2e-9 / 12**0.5, rel=ROUNDING_FORMULA
+    )  # uniform on [-1, 1] nm
     assert surface.summit_offset is None
 
 

@@ -313,7 +313,7 @@ def test_pads_interval_wilson_replaces_the_interval_and_names_it(cycle_run, caps
     data = json.loads(out)
     k = int(np.count_nonzero(force > fr))
     ci = [data["p_stick_ci_low"], data["p_stick_ci_high"]]
-    assert code == 0 and ci == pytest.approx(list(wilson(k, 40)), rel=1e-15)
+    assert code == 0 and ci == pytest.approx(list(wilson(k, 40)), rel=ROUNDING_FEW)
     assert data["interval"].startswith("Wilson") and "Clopper" not in err
     code, out, _ = run_cli(capsys, "pads", cycle_run, "--restoring-force=1nN", "--interval",
                            "wilson")  # fmt: skip
@@ -351,8 +351,9 @@ def test_pads_partial_reads_the_completed_pads_of_a_checkpoint_and_says_how_many
                              "json")  # fmt: skip
     expected = pad_statistics(assemble(partial.completed()).pull_off().force).to_dict()
     data = json.loads(out)
+    # JSON keeps repr: the same numbers, within ROUNDING_FEW
     assert code == 0 and {k: data[k] for k in KEYS} == pytest.approx(
-        expected, rel=1e-15, nan_ok=True
+        expected, rel=ROUNDING_FEW, nan_ok=True
     )
     assert json.loads(out)["pads"] == 2 and "2 completed pad(s) of 4" in err
 

@@ -97,7 +97,7 @@ def test_ascii_matrix_reads_gwyddion_header(tmp_path):
     text = "# Channel: Height\n# Width: 4.000 µm\n# Height: 3.000 µm\n# Value units: m\n"
     text += "\n".join("\t".join(f"{v:g}" for v in row) for row in PATTERN)
     m = read_height_map(write(tmp_path, "m.txt", text))
-    assert (m.dx, m.dy) == pytest.approx((1e-6, 1e-6))
+    assert (m.dx, m.dy) == pytest.approx((1e-6, 1e-6), rel=ROUNDING_FEW)
     assert m.heights[0, 1] == 1.0
 
 
