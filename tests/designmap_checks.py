@@ -84,6 +84,7 @@ def assert_agree(got: dict, expected: dict) -> None:
         elif k == "status":
             np.testing.assert_array_equal(got[k], v, err_msg=k)
         else:
+            # AGREE: the reason of each tolerance sits above its definition
             np.testing.assert_allclose(got[k], v, rtol=AGREE["summary"], atol=0, err_msg=k)
 
 

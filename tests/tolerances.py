@@ -1,7 +1,9 @@
 """The tolerance table: how far two CPUs may disagree on each quantity of a seed run.
 
 Used by the goldens (``tests/program/test_seed_golden.py``) and by the run files written by
-earlier versions (``tests/store/test_runfile.py``).
+earlier versions (``tests/store/test_runfile.py``); the named tolerances of single
+comparisons (``ROUNDING_FEW`` … ``ROUNDING_SUM``) by every test that compares one value
+computed two ways.
 
 Rounding-error bounds (Higham, *Accuracy and Stability of Numerical Algorithms*, 2nd ed.
 2002, §4.2, Eq. 4.4): a floating-point sum of n terms, in *any* order or tree, is off by at
@@ -39,6 +41,34 @@ QUADRATURE = 6 * 4 * 12
 #: NumPy's SIMD (SVML) exp and < 1 ulp in glibc's; the rest is correctly rounded
 #: arithmetic, the same on every IEEE machine.
 EXP = 5
+
+
+# --- tolerances of single comparisons ----------------------------------------------------
+# Relative, for values of one sign; where a value can be zero or cross zero, a test scales
+# the same number by the magnitude of the terms that cancel and uses it as an absolute one.
+#: ≈ 4.5ε: the same value through a handful (≤ 9) of correctly rounded IEEE-754 operations
+#: on each side, each within ½ε (Higham §2.2), e.g. decimal text times a unit factor, or a
+#: product of the same inputs in another order: holds on any IEEE machine, FMA or not.
+ROUNDING_FEW = 1e-15
+#: ≈ 45ε: a closed-form expression of tens of operations, libm's sqrt, pow, cbrt, exp among
+#: them (≤ 4 ulp each in glibc and NumPy's SIMD), evaluated two ways.
+ROUNDING_FORMULA = 1e-14
+#: ≈ 450ε: the same, where a power amplifies the inputs' rounding (x**1.5 multiplies a
+#: relative error of x by 1.5, a cube root of a difference by its cancellation) or a chain of
+#: such formulas (a root found, then a law evaluated at it).
+ROUNDING_CHAIN = 1e-13
+#: ≈ 4500ε: a sum of up to ~4500 terms of one sign taken in two orders or trees (a kernel
+#: against its NumPy reference, blocks against one sum): Higham Eq. 4.4, ≤ n·ε·Σ|x_i|
+#: (the worst case; rounding errors of random sign grow as √n·ε).
+ROUNDING_SUM = 1e-12
+#: 100× the relative accuracy asked of scipy.integrate.quad by a reference integral
+#: (epsrel ≤ 1e-12): QUADPACK's error estimate is an estimate, not a bound. The quantities
+#: compared this way were measured to agree to ~1e-14.
+QUAD_RTOL = 1e-10
+#: Load control (mcsim.physics.loadcontrol): h is root-solved to XTOL = 1e-12 and the load
+#: there matches the target to 1e-10, but where the load is a small difference of large
+#: attractive and repulsive terms one ulp of h moves it by ~1e-9 relative (its docstring).
+LOAD_CONTROL_RTOL = 1e-9
 
 
 @dataclass(frozen=True)

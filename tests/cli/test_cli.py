@@ -12,6 +12,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 from conftest import interrupt, run_cli
+from tolerances import ROUNDING_FORMULA
 
 from mcsim.cli.main import main
 from mcsim.model.presets import MATERIALS, SURFACES
@@ -47,8 +48,10 @@ def test_analytic_reads_a_surface_file_with_units(capsys, tmp_path):
     f.write_text('[surface]\nsigma = "1.4 nm"\nR = "1.7 um"\neta = "17 um^-2"\n')
     _, a, _ = run_cli(capsys, "analytic", "--surface", str(f), "--h=0,1", "--format", "csv")
     _, b, _ = run_cli(capsys, "analytic", "--surface", "smooth", "--h=0,1", "--format", "csv")
+    # the preset and the same surface typed in a file (decimal text times units):
+    # ROUNDING_FORMULA
     np.testing.assert_allclose(np.loadtxt(io.StringIO(a), delimiter=",", skiprows=1),
-                               np.loadtxt(io.StringIO(b), delimiter=",", skiprows=1), rtol=1e-14)  # fmt: skip
+                               np.loadtxt(io.StringIO(b), delimiter=",", skiprows=1), rtol=ROUNDING_FORMULA)  # fmt: skip
 
 
 def test_simulate_then_compare_csv_rows_have_small_z(capsys, tmp_path):

@@ -6,6 +6,7 @@ import math
 import numpy as np
 import pytest
 from conftest import rows_of, run_cli
+from tolerances import ROUNDING_FEW
 
 from mcsim import gw_curves
 from mcsim.model.presets import MATERIALS, SURFACES
@@ -35,7 +36,9 @@ def test_analytic_columns_match_gw_curves_with_the_environment(capsys):
         "load",
     ]
     env = Environment.from_user(hamaker="0.16 aJ", cutoff="0.2 nm", rh=0.6, contact_angle=20)
-    assert env.hamaker == pytest.approx(1.6e-19) and env.contact_angle == math.radians(20)
+    assert env.hamaker == pytest.approx(
+        1.6e-19, rel=ROUNDING_FEW
+    ) and env.contact_angle == math.radians(20)
     ref = gw_curves(SURFACES["smooth"], MATERIALS["silicon"], [2, 1, 0], environment=env)
     for q in ("vdw", "capillary", "load"):
         np.testing.assert_array_equal([float(r[q]) for r in rows], ref.values[q], err_msg=q)

@@ -5,6 +5,7 @@ import dataclasses
 import numpy as np
 import pytest
 from lawset_toy import TOY
+from tolerances import ROUNDING_SUM
 
 from mcsim.engine.kernels import SUM_COLUMNS, block_sums, block_sums_numpy, sum_columns
 from mcsim.model.presets import MATERIALS, SURFACES
@@ -24,7 +25,7 @@ def _private_cache(law_set_cache):
     mp.undo()
 
 
-def assert_sums_close(fast, ref, rtol=1e-12):
+def assert_sums_close(fast, ref, rtol=ROUNDING_SUM):
     """Counts exactly; moments to ``rtol`` of each column's largest magnitude (signed
     sums may cancel to zero, where a purely relative bound means nothing)."""
     np.testing.assert_array_equal(fast[:, 0], ref[:, 0], err_msg="contact counts")

@@ -6,6 +6,7 @@ import dataclasses
 import numpy as np
 import pytest
 from scipy import stats
+from tolerances import ROUNDING_SUM, assert_close
 
 from mcsim import ParameterError
 from mcsim.cli.options import LAW_SET_NAMES
@@ -44,7 +45,8 @@ def test_fused_kernel_matches_numpy_reference_to_1e12(name):
         fast = block_sums(z, d, SEED, args)
         ref = block_sums_numpy(z, d, SEED, args)
         np.testing.assert_array_equal(fast[:, 0], ref[:, 0], err_msg="contact counts")
-        np.testing.assert_allclose(fast, ref, rtol=1e-12, atol=0)
+        # sums over < 5000 summits, in the kernel's order and NumPy's (pairwise); all terms of one sign
+        np.testing.assert_allclose(fast, ref, rtol=ROUNDING_SUM, atol=0)
 
 
 def test_kernel_counts_a_summit_exactly_at_the_separation_as_not_touching():
@@ -218,8 +220,11 @@ def test_changing_a_law_compiles_a_new_kernel_instead_of_reusing_a_stale_cache(
     args = law.arguments(SMOOTH, SILICON)
     z, d = np.array([1e-9, 2e-9]), np.array([0.0])
     fast = block_sums(z, d, law, args)
-    np.testing.assert_allclose(fast, block_sums_numpy(z, d, law, args), rtol=1e-12)
-    np.testing.assert_allclose(fast[0, 1], 2 * block_sums(z, d, SEED, args)[0, 1], rtol=1e-12)
+    # two summits, the same sums in two codes; ROUNDING_SUM: the same sums taken in two orders
+    np.testing.assert_allclose(fast, block_sums_numpy(z, d, law, args), rtol=ROUNDING_SUM)
+    np.testing.assert_allclose(
+        fast[0, 1], 2 * block_sums(z, d, SEED, args)[0, 1], rtol=ROUNDING_SUM
+    )
     module = kernels._compiled(law).py_func.__module__
     assert module.startswith("mcsim_kernel_doubled_")
     assert (tmp_path / "cache" / "kernels" / f"{module}.py").exists()
@@ -333,7 +338,10 @@ def test_a_cycle_run_sums_every_row_of_every_sampled_summit(toy):
     for r, z in enumerate(ens.heights):
         ref = block_sums_numpy(z, d, TOY, args, d_turn=d_turn, edges=edges)
         np.testing.assert_array_equal(ens.sums[r, :, 0], ref[:, 0])
-        np.testing.assert_allclose(ens.sums[r], ref, rtol=1e-11, atol=0)
+        # the same sums in two orders over ≤ ~17 000 summits (η A = 17e12 m⁻² × 1e-9 m²):
+        # n·ε ≤ 4e-12 (Higham Eq. 4.4); absolute per column, scaled by its largest sum, as
+        # the toy's attraction makes the load sums signed
+        assert_close(ens.sums[r], ref, 1e-11 * np.abs(ref).max(axis=0), "toy sums")
 
 
 def test_retraction_is_refused_for_a_law_set_without_a_retraction_branch(toy):

@@ -6,6 +6,7 @@ import math
 import numpy as np
 import pytest
 from conftest import run_cli
+from tolerances import ROUNDING_FORMULA
 
 from mcsim.figures.environment import humidity_figure, regime_bounds
 from mcsim.model.errors import ParameterError
@@ -14,8 +15,8 @@ from mcsim.model.errors import ParameterError
 def test_regime_bounds_interpolate_between_the_points():
     rh = np.array([0.1, 0.5, 0.9])
     dry, saturated = regime_bounds(rh, np.array([0.0, 0.2, 1.0]), 1.0)
-    assert dry == pytest.approx(0.1 + 0.1 / 0.2 * 0.4)
-    assert saturated == pytest.approx(0.5 + 0.7 / 0.8 * 0.4)
+    assert dry == pytest.approx(0.1 + 0.1 / 0.2 * 0.4, rel=ROUNDING_FORMULA)
+    assert saturated == pytest.approx(0.5 + 0.7 / 0.8 * 0.4, rel=ROUNDING_FORMULA)
 
 
 def test_regime_bounds_outside_the_sweep():

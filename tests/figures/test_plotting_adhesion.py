@@ -2,6 +2,7 @@
 
 import numpy as np
 import pytest
+from tolerances import ROUNDING_FEW
 from toy_laws import MATERIAL, TOY
 
 from mcsim.figures.adhesion import adhesion_figure, fuller_tabor_figure
@@ -22,7 +23,7 @@ def test_cycle_figure_marks_the_pull_off_in_mpa(cycle):
     (marker,) = [line for line in ax.lines if line.get_marker() == "o"]
     x, y = marker.get_data()
     assert x[0] == summary.h_pull_off
-    assert y[0] == pytest.approx(-summary.pull_off_pressure / 1e6, rel=1e-15)
+    assert y[0] == pytest.approx(-summary.pull_off_pressure / 1e6, rel=ROUNDING_FEW)
     assert "pull-off" in marker.get_label()
 
 
@@ -34,7 +35,7 @@ def test_cycle_figure_shows_both_branches_with_physical_axes(cycle):
     assert any(label.startswith("retraction from") for label in labels)
     assert "MPa" in ax.get_ylabel() and "h = d/" in ax.get_xlabel()
     assert ax.get_xlim()[0] > ax.get_xlim()[1]  # h decreasing left to right
-    assert ax.get_xlim()[1] == pytest.approx(summary.turn)
+    assert ax.get_xlim()[1] == pytest.approx(summary.turn, rel=ROUNDING_FEW)
 
 
 def test_fuller_tabor_figure_has_one_curve_per_turn_on_a_log_axis():

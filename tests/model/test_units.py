@@ -4,6 +4,7 @@ import math
 import re
 
 import pytest
+from tolerances import ROUNDING_FEW, ROUNDING_FORMULA
 
 from mcsim.model.errors import MCSimError, ParameterError, UnitError
 from mcsim.model.units import parse_quantity, parse_values, unit_factor
@@ -60,7 +61,8 @@ def test_plain_number_is_taken_as_si(number, dimension):
     [("nm", "length", 1e-9), ("um^2", "area", 1e-12), ("um^-2", "density", 1e12)],
 )
 def test_unit_factor_converts_a_unit_to_si(unit, dimension, factor):
-    assert unit_factor(unit, dimension) == pytest.approx(factor, rel=1e-14)
+    # a prefix times a base factor, possibly through a power (um^-2): a few roundings
+    assert unit_factor(unit, dimension) == pytest.approx(factor, rel=ROUNDING_FORMULA)
 
 
 def test_unit_factor_refuses_an_unknown_dimension():
@@ -152,7 +154,7 @@ def test_non_number_value_names_field_and_allowed_units(value, shown):
     ],
 )  # fmt: skip
 def test_common_unit_spellings_are_accepted(text, dimension, si):
-    assert parse_quantity(text, dimension, "field") == pytest.approx(si, rel=1e-14)
+    assert parse_quantity(text, dimension, "field") == pytest.approx(si, rel=ROUNDING_FORMULA)
 
 
 @pytest.mark.parametrize(
@@ -170,7 +172,7 @@ def test_a_near_miss_unit_suggests_the_intended_one(text, dimension, closest):
 def test_values_are_a_list_or_an_inclusive_range_with_units_a_bare_number_being_si():
     assert parse_values("1kPa, 2MPa", "pressure", "p", limit=10) == [1e3, 2e6]
     assert parse_values("1kPa:100kPa:3:log", "pressure", "p", limit=10) == pytest.approx(
-        [1e3, 1e4, 1e5], rel=1e-15
+        [1e3, 1e4, 1e5], rel=ROUNDING_FEW
     )
     assert parse_values("3:1:3", "pressure", "p", limit=10) == [3.0, 2.0, 1.0]
 
@@ -215,7 +217,7 @@ def test_bad_value_specs_name_the_field_and_what_is_allowed(spec, kwargs, messag
     ],
 )
 def test_environment_dimensions_convert_to_si(text, dimension, si):
-    assert parse_quantity(text, dimension, "x") == pytest.approx(si, rel=1e-15)
+    assert parse_quantity(text, dimension, "x") == pytest.approx(si, rel=ROUNDING_FEW)
 
 
 @pytest.mark.parametrize(

@@ -8,6 +8,7 @@ import math
 import numpy as np
 import pytest
 from scipy import integrate
+from tolerances import LOAD_CONTROL_RTOL, QUAD_RTOL
 
 from mcsim import gw_curves
 from mcsim.model.params import Material, Surface
@@ -47,8 +48,10 @@ def test_vdw_and_capillary_columns_agree_with_quad(surface, law):
     gap = gap_heights(surface)
     for i, h in enumerate(H):
         vdw, cap = quad_pressures(h * surface.sigma + gap.summit_offset, gap.rq, ENV)
-        assert curves.vdw[i] * MATERIAL.K == pytest.approx(vdw, rel=2e-3), f"vdw at h = {h}"
-        assert curves.capillary[i] * MATERIAL.K == pytest.approx(cap, rel=2e-3), f"cap at h = {h}"
+        assert curves.vdw[i] * MATERIAL.K == pytest.approx(vdw, rel=QUAD_RTOL), f"vdw at h = {h}"
+        assert curves.capillary[i] * MATERIAL.K == pytest.approx(cap, rel=QUAD_RTOL), (
+            f"cap at h = {h}"
+        )
 
 
 def test_seed_keeps_its_columns_and_adds_the_net_load():
@@ -94,7 +97,7 @@ def test_load_control_balances_the_net_load():
     result = load_control(GIVEN, MATERIAL, pressure, "dmt", environment=ENV)
     assert result.quantity == "load"
     again = gw_curves(GIVEN, MATERIAL, result.h, "dmt", environment=ENV)
-    np.testing.assert_allclose(again.load * MATERIAL.K, pressure, rtol=1e-6)
+    np.testing.assert_allclose(again.load * MATERIAL.K, pressure, rtol=LOAD_CONTROL_RTOL)
     seed = load_control(GIVEN, MATERIAL, pressure, "seed", environment=ENV)
     assert seed.quantity == "load"
-    np.testing.assert_allclose(seed.curves.load * MATERIAL.K, pressure, rtol=1e-6)
+    np.testing.assert_allclose(seed.curves.load * MATERIAL.K, pressure, rtol=LOAD_CONTROL_RTOL)

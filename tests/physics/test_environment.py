@@ -10,6 +10,7 @@ import math
 import numpy as np
 import pytest
 from scipy import integrate, stats
+from tolerances import QUAD_RTOL, ROUNDING_FEW
 
 from mcsim.model.errors import ParameterError, UnitError
 from mcsim.model.presets import SURFACES
@@ -94,10 +95,12 @@ def quad_capillary(D, rq, rh, theta):
     ("rh", "r_k"), [(0.3, 0.436e-9), (0.5, 0.754e-9), (0.9, 4.98e-9)], ids=["30%", "50%", "90%"]
 )
 def test_kelvin_radius_of_water_matches_physics_notes(rh, r_k):
+    # the notes' three digits; 0.5 %: the molar volumes' 0.4 % spread (above)
     assert Environment(rh=rh).kelvin_radius == pytest.approx(r_k, rel=5e-3)
 
 
 def test_laplace_pressure_of_water_at_50_percent_is_95_mpa():
+    # 95 MPa in the notes, two digits: half a unit of the last
     assert Environment(rh=0.5).laplace_pressure == pytest.approx(95e6, abs=0.5e6)
 
 
@@ -112,6 +115,7 @@ def test_kelvin_radius_vanishes_when_dry():
 def test_nayak_estimate_matches_physics_notes(name, rq, offset, half_unit):
     s = SURFACES[name]
     est = nayak_heights(s.sigma, s.R, s.eta)
+    # the notes' values, to half a unit of their last digit
     assert est.rq == pytest.approx(rq, abs=half_unit)
     assert est.summit_offset == pytest.approx(offset, abs=half_unit)
     assert 2.5 <= est.alpha <= 4.9  # docs/physics.md: the seed's surfaces have α 2.5–4.9
@@ -132,6 +136,7 @@ def test_flat_capillary_work_at_contact_is_ceiling_less_laplace_times_cutoff(the
     r_k = float(kelvin_radius(0.8))
     expected = 2 * GAMMA * math.cos(theta) - GAMMA * D0 / r_k
     got = capillary_work(D0, FLAT, *water(0.8, theta))
+    # a roughness FLAT shifts the work by O(FLAT/D0) relative: twice that
     assert got == pytest.approx(expected, rel=2 * FLAT / D0)
 
 
@@ -156,15 +161,15 @@ CASES = [
 
 @pytest.mark.parametrize(("rq", "D", "rh", "theta"), CASES)
 def test_gaussian_vdw_matches_quadrature(rq, D, rh, theta):
-    assert vdw_pressure(D, rq, A, D0) == pytest.approx(quad_vdw_pressure(D, rq), rel=1e-9)
-    assert vdw_work(D, rq, A, D0) == pytest.approx(quad_vdw_work(D, rq), rel=1e-9)
+    assert vdw_pressure(D, rq, A, D0) == pytest.approx(quad_vdw_pressure(D, rq), rel=QUAD_RTOL)
+    assert vdw_work(D, rq, A, D0) == pytest.approx(quad_vdw_work(D, rq), rel=QUAD_RTOL)
 
 
 @pytest.mark.parametrize(("rq", "D", "rh", "theta"), CASES)
 def test_gaussian_capillary_matches_quadrature(rq, D, rh, theta):
     pressure, work = quad_capillary(D, rq, rh, theta)
-    assert capillary_pressure(D, rq, *water(rh, theta)) == pytest.approx(pressure, rel=1e-9)
-    assert capillary_work(D, rq, *water(rh, theta)) == pytest.approx(work, rel=1e-9)
+    assert capillary_pressure(D, rq, *water(rh, theta)) == pytest.approx(pressure, rel=QUAD_RTOL)
+    assert capillary_work(D, rq, *water(rh, theta)) == pytest.approx(work, rel=QUAD_RTOL)
 
 
 # -- −dW/dD = p ------------------------------------------------------------------------------
@@ -188,6 +193,7 @@ def central_difference(work, D):
 )
 def test_minus_derivative_of_vdw_work_is_vdw_pressure(heights):
     slope = central_difference(lambda D: vdw_work(D, heights, A, D0), GAPS)
+    # DERIVATIVE_RTOL: truncation and round-off of the central difference (above)
     np.testing.assert_allclose(slope, vdw_pressure(GAPS, heights, A, D0), rtol=DERIVATIVE_RTOL)
 
 
@@ -197,6 +203,7 @@ def test_minus_derivative_of_vdw_work_is_vdw_pressure(heights):
 def test_minus_derivative_of_capillary_work_is_capillary_pressure(heights):
     args = water(0.85, math.radians(30))
     slope = central_difference(lambda D: capillary_work(D, heights, *args), GAPS)
+    # DERIVATIVE_RTOL: the central difference's error (above)
     np.testing.assert_allclose(
         slope, capillary_pressure(GAPS, heights, *args), rtol=DERIVATIVE_RTOL
     )
@@ -226,10 +233,10 @@ def test_histogram_terms_are_exact_integrals_of_the_piecewise_constant_density()
         p_cap = GAMMA / r_k * expect(lambda z, D: float(D0 <= D - z < g_k), D)
         w_cap = GAMMA / r_k * expect(lambda z, D: max(g_k - max(D - z, D0), 0.0), D)
         args = water(0.9, theta)
-        assert vdw_pressure(D, heights, A, D0) == pytest.approx(p_vdw, rel=1e-10)
-        assert vdw_work(D, heights, A, D0) == pytest.approx(w_vdw, rel=1e-10)
-        assert capillary_pressure(D, heights, *args) == pytest.approx(p_cap, rel=1e-10)
-        assert capillary_work(D, heights, *args) == pytest.approx(w_cap, rel=1e-10)
+        assert vdw_pressure(D, heights, A, D0) == pytest.approx(p_vdw, rel=QUAD_RTOL)
+        assert vdw_work(D, heights, A, D0) == pytest.approx(w_vdw, rel=QUAD_RTOL)
+        assert capillary_pressure(D, heights, *args) == pytest.approx(p_cap, rel=QUAD_RTOL)
+        assert capillary_work(D, heights, *args) == pytest.approx(w_cap, rel=QUAD_RTOL)
 
 
 def test_fine_histogram_of_a_gaussian_converges_to_the_gaussian():
@@ -351,9 +358,9 @@ def test_out_of_range_field_is_refused_with_its_name_value_and_range(field, valu
 def test_from_user_reads_degrees_and_units():
     env = Environment.from_user(hamaker=1.6e-19, cutoff="0.2 nm", rh="0.6", contact_angle=20,
                                 surface_tension="72 mJ/m^2")  # fmt: skip
-    assert env.contact_angle == pytest.approx(math.radians(20))
-    assert env.cutoff == pytest.approx(0.2e-9)
-    assert env.surface_tension == pytest.approx(0.072)
+    assert env.contact_angle == pytest.approx(math.radians(20), rel=ROUNDING_FEW)
+    assert env.cutoff == pytest.approx(0.2e-9, rel=ROUNDING_FEW)
+    assert env.surface_tension == pytest.approx(0.072, rel=ROUNDING_FEW)
     assert env.rh == 0.6
 
 

@@ -44,6 +44,7 @@ def test_the_golden_script_writes_where_this_file_reads():
 
     assert make_seed_golden.OUT.resolve() == GOLDEN_PATH.resolve()
 
+
 # --- the goldens -------------------------------------------------------------------------
 
 

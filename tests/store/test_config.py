@@ -4,6 +4,7 @@ import re
 from pathlib import Path
 
 import pytest
+from tolerances import ROUNDING_FEW, ROUNDING_FORMULA
 
 from mcsim.model.errors import MCSimError, ParameterError, UnitError
 from mcsim.model.params import combine_surfaces
@@ -80,13 +81,14 @@ def test_unknown_material_name_lists_the_presets(name):
 
 def test_surface_file_with_units_gives_si_values(tmp_path):
     s = load_surface(write(tmp_path, SMOOTH_TOML))
-    assert fields(s, SURFACE_FIELDS) == pytest.approx([1.4e-9, 1.7e-6, 17e12], rel=1e-14)
+    # decimal text times unit factors (um^-2 a power): ROUNDING_FORMULA
+    assert fields(s, SURFACE_FIELDS) == pytest.approx([1.4e-9, 1.7e-6, 17e12], rel=ROUNDING_FORMULA)
     assert s.name == "my-smooth"
 
 
 def test_surface_file_accepts_a_str_path(tmp_path):
     s = load_surface(str(write(tmp_path, SMOOTH_TOML)))
-    assert s.sigma == pytest.approx(1.4e-9, rel=1e-14)
+    assert s.sigma == pytest.approx(1.4e-9, rel=ROUNDING_FORMULA)
 
 
 @pytest.mark.parametrize(
@@ -157,7 +159,7 @@ def test_a_mistyped_preset_name_suggests_the_closest(load, name, closest):
 def test_material_file_E_and_nu_set_both_solids(tmp_path):
     m = load_material(write(tmp_path, SILICON_TOML))
     assert fields(m, MATERIAL_FIELDS) == pytest.approx(
-        [160e9, 160e9, 0.22, 0.22, 0.5, 12.5e9], rel=1e-14
+        [160e9, 160e9, 0.22, 0.22, 0.5, 12.5e9], rel=ROUNDING_FORMULA
     )
     assert m.name == "my-silicon"
 
@@ -165,7 +167,9 @@ def test_material_file_E_and_nu_set_both_solids(tmp_path):
 def test_material_file_with_separate_solids(tmp_path):
     text = '[material]\nE1 = "160 GPa"\nE2 = "70 GPa"\nnu1 = 0.22\nnu2 = 0.35\ngamma = "0.1 N/m"\n'
     m = load_material(write(tmp_path, text))
-    assert fields(m, MATERIAL_FIELDS[:5]) == pytest.approx([160e9, 70e9, 0.22, 0.35, 0.1])
+    assert fields(m, MATERIAL_FIELDS[:5]) == pytest.approx(
+        [160e9, 70e9, 0.22, 0.35, 0.1], rel=ROUNDING_FEW
+    )
 
 
 def test_material_file_without_hardness_has_none(tmp_path):
@@ -175,7 +179,7 @@ def test_material_file_without_hardness_has_none(tmp_path):
 
 def test_material_table_in_a_surface_file_is_found(tmp_path):
     m = material_in_surface_file(write(tmp_path, SMOOTH_TOML + SILICON_TOML))
-    assert m.E1 == pytest.approx(160e9)
+    assert m.E1 == pytest.approx(160e9, rel=ROUNDING_FEW)
 
 
 def test_surface_file_without_material_table_has_no_material(tmp_path):
@@ -192,7 +196,9 @@ def test_combine_of_presets_equals_combine_surfaces(tmp_path):
     expected = combine_surfaces(
         SURFACES["deposited-polysilicon"], SURFACES["typical-substrate"], eta=14.7e12
     )
-    assert fields(s, SURFACE_FIELDS) == pytest.approx(fields(expected, SURFACE_FIELDS), rel=1e-14)
+    assert fields(s, SURFACE_FIELDS) == pytest.approx(
+        fields(expected, SURFACE_FIELDS), rel=ROUNDING_FORMULA
+    )
     assert s.name == "c"
 
 
@@ -202,7 +208,7 @@ def test_combine_reads_a_file_relative_to_the_combining_file(tmp_path, monkeypat
     text = '[surface]\ncombine = ["one.toml", "one.toml"]\neta = "17 um^-2"\n'
     path = write(tmp_path / "sub", text, "both.toml")
     monkeypatch.chdir(tmp_path)
-    assert load_surface(path).sigma == pytest.approx(2**0.5 * 1.4e-9, rel=1e-14)
+    assert load_surface(path).sigma == pytest.approx(2**0.5 * 1.4e-9, rel=ROUNDING_FORMULA)
 
 
 # --- files that do not load -------------------------------------------------------------------
@@ -407,13 +413,17 @@ def test_combine_of_a_missing_file_names_both_files(tmp_path):
 
 def test_example_smooth_file_equals_the_smooth_preset():
     s, preset = load_surface(RUNS / "smooth.toml"), SURFACES["smooth"]
-    assert fields(s, SURFACE_FIELDS) == pytest.approx(fields(preset, SURFACE_FIELDS), rel=1e-14)
+    assert fields(s, SURFACE_FIELDS) == pytest.approx(
+        fields(preset, SURFACE_FIELDS), rel=ROUNDING_FORMULA
+    )
     assert s.name == preset.name
 
 
 def test_example_silicon_file_equals_the_silicon_preset():
     m, preset = load_material(RUNS / "silicon.toml"), MATERIALS["silicon"]
-    assert fields(m, MATERIAL_FIELDS) == pytest.approx(fields(preset, MATERIAL_FIELDS), rel=1e-14)
+    assert fields(m, MATERIAL_FIELDS) == pytest.approx(
+        fields(preset, MATERIAL_FIELDS), rel=ROUNDING_FORMULA
+    )
     assert m.name == preset.name
 
 
@@ -437,7 +447,7 @@ def test_every_example_file_loads(path):
 
 def test_material_file_accepts_the_equilibrium_spacing_and_shear_strength(tmp_path):
     m = load_material(write(tmp_path, SILICON_TOML + 'z0 = "0.3 nm"\ntau = "100 MPa"\n'))
-    assert (m.z0, m.tau, m.H) == pytest.approx((0.3e-9, 100e6, 12.5e9), rel=1e-14)
+    assert (m.z0, m.tau, m.H) == pytest.approx((0.3e-9, 100e6, 12.5e9), rel=ROUNDING_FORMULA)
     assert load_material(write(tmp_path, SILICON_TOML, "b.toml")).z0 is None
 
 
@@ -452,16 +462,21 @@ def test_surface_file_gives_rq_summit_offset_and_map_heights(tmp_path):
     text = SMOOTH_TOML + 'rq = "1.6 nm"\nsummit_offset = "1.5 nm"\n'
     text += '[surface.map_heights]\nedges = [-2, 0, 1, 3]\ncounts = [1, 4, 2]\nunit = "nm"\n'
     surface = load_surface(write(tmp_path, text))
-    assert (surface.rq, surface.summit_offset) == (pytest.approx(1.6e-9), pytest.approx(1.5e-9))
+    assert (surface.rq, surface.summit_offset) == (
+        pytest.approx(1.6e-9, rel=ROUNDING_FEW),
+        pytest.approx(1.5e-9, rel=ROUNDING_FEW),
+    )
     # the histogram's shape, standardized: P(z > 0) = 2/7 of its mass lies above 1 nm (edge 1)
     z_edge = (1e-9 - surface.map_heights.mean) / surface.map_heights.sigma
-    assert float(surface.map_heights.sf(z_edge)) == pytest.approx(2 / 7)
+    assert float(surface.map_heights.sf(z_edge)) == pytest.approx(2 / 7, rel=ROUNDING_FORMULA)
 
 
 def test_rq_defaults_to_the_map_histograms_own_rms(tmp_path):
     text = SMOOTH_TOML + '[surface.map_heights]\nedges = [-1, 0, 1]\ncounts = [1, 1]\nunit = "nm"\n'
     surface = load_surface(write(tmp_path, text))
-    assert surface.rq == pytest.approx(2e-9 / 12**0.5)  # uniform on [-1, 1] nm
+    assert surface.rq == pytest.approx(
+        2e-9 / 12**0.5, rel=ROUNDING_FORMULA
+    )  # uniform on [-1, 1] nm
     assert surface.summit_offset is None
 
 

@@ -6,6 +6,7 @@ import math
 import numpy as np
 import pytest
 from conftest import run_cli
+from tolerances import ROUNDING_FEW, ROUNDING_FORMULA
 
 from mcsim.cli.main import main
 from mcsim.model.errors import ParameterError, UnitError
@@ -76,6 +77,8 @@ def test_clopper_pearson_is_symmetric_under_swapping_successes_and_failures():
     for k in range(0, 31, 3):
         lo, hi = clopper_pearson(k, 30)
         lo2, hi2 = clopper_pearson(30 - k, 30)
+        # probabilities in [0, 1] (near 0 or 1 at the ends): absolute; two beta quantiles by
+        # scipy, each within ~1e-15 (measured 5.6e-17 apart)
         assert lo == pytest.approx(1 - hi2, abs=1e-13) and hi == pytest.approx(1 - lo2, abs=1e-13)
 
 
@@ -101,7 +104,7 @@ def test_clopper_pearson_refuses_impossible_counts(k, n):
 
 def test_forces_are_read_with_their_units():
     assert parse_quantity("2uN", "force", "--restoring-force") == pytest.approx(2e-6, rel=1e-15)
-    assert parse_quantity("500 nN", "force", "f") == pytest.approx(5e-7, rel=1e-15)
+    assert parse_quantity("500 nN", "force", "f") == pytest.approx(5e-7, rel=ROUNDING_FEW)
     assert parse_quantity("3", "force", "f") == 3.0
     with pytest.raises(UnitError, match="--restoring-force: unknown unit 'um' for a force"):
         parse_quantity("2um", "force", "--restoring-force")
@@ -132,9 +135,10 @@ def test_pads_json_has_exactly_the_statistics_of_the_runs_per_pad_pull_off(cycle
     assert code == 0 and list(data) == [*KEYS, *extra]
     run = read_run(cycle_run)
     expected = pad_statistics(run.pull_off().force).to_dict()
-    assert {k: data[k] for k in KEYS} == pytest.approx(expected, rel=1e-15)
+    # JSON keeps repr: exact, within ROUNDING_FEW
+    assert {k: data[k] for k in KEYS} == pytest.approx(expected, rel=ROUNDING_FEW)
     assert data["pads"] == 40 and data["mean"] > 0
-    assert data["analytic_mean"] == pytest.approx(analytic_pad_pull_off(run.spec), rel=1e-15)
+    assert data["analytic_mean"] == pytest.approx(analytic_pad_pull_off(run.spec), rel=ROUNDING_FEW)
     assert data["interval"].startswith("Clopper-Pearson") and data["units"]["mean"] == "N"
 
 
@@ -149,11 +153,12 @@ def test_pads_with_a_restoring_force_adds_p_stick_and_its_interval(cycle_run, ca
     stick = ["restoring_force", "p_stick", "p_stick_ci_low", "p_stick_ci_high", "p_stick_model"]
     assert code == 0 and list(data)[: len(KEYS) + 5] == [*KEYS, *stick]
     assert 0 <= data["p_stick_model"] <= 1
-    assert data["restoring_force"] == pytest.approx(fr, rel=1e-12)
+    # repr(fr·1e6) uN back to N: two roundings
+    assert data["restoring_force"] == pytest.approx(fr, rel=ROUNDING_FEW)
     k = int(np.count_nonzero(force > fr * 1e6 * 1e-6))
     assert data["p_stick"] == k / 40
     ci = [data["p_stick_ci_low"], data["p_stick_ci_high"]]
-    assert ci == pytest.approx(list(clopper_pearson(k, 40)), rel=1e-15)
+    assert ci == pytest.approx(list(clopper_pearson(k, 40)), rel=ROUNDING_FEW)
 
 
 def test_pads_table_names_the_analytic_mean_and_how_the_pull_off_was_found(cycle_run, capsys):
@@ -170,8 +175,9 @@ def test_analytic_pad_pull_off_is_the_adhesion_summary_times_the_pad_area(cycle_
     spec = read_run(cycle_run).spec
     with pytest.warns(UserWarning):
         s = adhesion_summary(spec.surface, spec.material, "jkr", turn=-1.0)
+    # the same product in the same order: ROUNDING_FEW (measured equal)
     assert analytic_pad_pull_off(spec) == pytest.approx(
-        s.pull_off * spec.material.K * spec.area, rel=1e-12
+        s.pull_off * spec.material.K * spec.area, rel=ROUNDING_FEW
     )
 
 
@@ -275,11 +281,13 @@ def test_wilson_interval_reproduces_the_closed_form_and_a_textbook_value():
     from mcsim.studies.pads import wilson
 
     z = norm.ppf(0.975)
-    assert wilson(0, 10) == (0.0, pytest.approx(z * z / (10 + z * z), rel=1e-12))
+    # the closed form, a few roundings and norm.ppf's own: ROUNDING_FORMULA
+    assert wilson(0, 10) == (0.0, pytest.approx(z * z / (10 + z * z), rel=ROUNDING_FORMULA))
     lo, hi = wilson(5, 10)
     assert (round(lo, 4), round(hi, 4)) == (0.2366, 0.7634)
     lo, hi = wilson(3, 30)
     lo2, hi2 = wilson(27, 30)
+    # probabilities: absolute, as above
     assert lo == pytest.approx(1 - hi2, abs=1e-13) and hi == pytest.approx(1 - lo2, abs=1e-13)
     with pytest.raises(ParameterError):
         wilson(6, 5)
@@ -305,7 +313,7 @@ def test_pads_interval_wilson_replaces_the_interval_and_names_it(cycle_run, caps
     data = json.loads(out)
     k = int(np.count_nonzero(force > fr))
     ci = [data["p_stick_ci_low"], data["p_stick_ci_high"]]
-    assert code == 0 and ci == pytest.approx(list(wilson(k, 40)), rel=1e-15)
+    assert code == 0 and ci == pytest.approx(list(wilson(k, 40)), rel=ROUNDING_FEW)
     assert data["interval"].startswith("Wilson") and "Clopper" not in err
     code, out, _ = run_cli(capsys, "pads", cycle_run, "--restoring-force=1nN", "--interval",
                            "wilson")  # fmt: skip
@@ -343,8 +351,9 @@ def test_pads_partial_reads_the_completed_pads_of_a_checkpoint_and_says_how_many
                              "json")  # fmt: skip
     expected = pad_statistics(assemble(partial.completed()).pull_off().force).to_dict()
     data = json.loads(out)
+    # JSON keeps repr: the same numbers, within ROUNDING_FEW
     assert code == 0 and {k: data[k] for k in KEYS} == pytest.approx(
-        expected, rel=1e-15, nan_ok=True
+        expected, rel=ROUNDING_FEW, nan_ok=True
     )
     assert json.loads(out)["pads"] == 2 and "2 completed pad(s) of 4" in err
 

@@ -8,6 +8,7 @@ import math
 import numpy as np
 import pytest
 from conftest import run_cli
+from tolerances import ROUNDING_FEW
 
 from mcsim.model.errors import MCSimError, ParameterError
 from mcsim.model.presets import MATERIALS, SURFACES
@@ -55,7 +56,9 @@ def test_the_sweep_stores_every_pads_variable_with_its_unit(pads_sweep):
     for name, (unit, _) in PADS.items():
         assert on_disk.units[name] == unit and on_disk.data[name].shape == (2,)
         assert np.all(np.isfinite(on_disk.data[name])), name
-    assert on_disk.attrs["pads"] == 60 and on_disk.attrs["restoring_force"] == pytest.approx(20e-6)
+    assert on_disk.attrs["pads"] == 60 and on_disk.attrs["restoring_force"] == pytest.approx(
+        20e-6, rel=ROUNDING_FEW
+    )
     d = result.data
     assert np.all((d["p_stick_low"] <= d["p_stick"]) & (d["p_stick"] <= d["p_stick_high"]))
     assert np.all(

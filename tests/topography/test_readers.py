@@ -4,6 +4,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from tolerances import ROUNDING_FEW, ROUNDING_FORMULA
 
 from mcsim.topography.readers import ReaderError, read_height_map, read_histogram
 
@@ -19,7 +20,10 @@ def write(tmp_path: Path, name: str, text: str) -> Path:
 
 def test_two_column_csv_with_unit_header(tmp_path):
     hist = read_histogram(write(tmp_path, "h.csv", "height (nm), count\n-1, 2\n0, 5\n1, 3\n"))
-    np.testing.assert_allclose(hist.edges, [-1.5e-9, -0.5e-9, 0.5e-9, 1.5e-9], rtol=1e-14)
+    # bin centres ± half a width, times the unit factor: a few roundings
+    np.testing.assert_allclose(
+        hist.edges, [-1.5e-9, -0.5e-9, 0.5e-9, 1.5e-9], rtol=ROUNDING_FORMULA
+    )
     assert hist.weights.tolist() == [2, 5, 3] and not hist.density
 
 
@@ -32,12 +36,12 @@ def test_three_column_whitespace_with_comments(tmp_path):
 def test_gwyddion_height_distribution_export_is_density(tmp_path):
     text = "Height distribution\nz [µm]  ρ [1/µm]\n-0.1 1.5\n0.0 3.0\n0.1 1.5\n"
     hist = read_histogram(write(tmp_path, "h.txt", text))
-    assert hist.density and hist.edges[0] == pytest.approx(-0.15e-6)
+    assert hist.density and hist.edges[0] == pytest.approx(-0.15e-6, rel=ROUNDING_FORMULA)
 
 
 def test_unit_argument_overrides_header(tmp_path):
     hist = read_histogram(write(tmp_path, "h.tsv", "z [nm]\tn\n0\t1\n1\t1\n"), unit="um")
-    assert hist.edges[-1] == pytest.approx(1.5e-6)
+    assert hist.edges[-1] == pytest.approx(1.5e-6, rel=ROUNDING_FORMULA)
 
 
 def test_histogram_converts_to_empirical(tmp_path):
@@ -93,7 +97,7 @@ def test_ascii_matrix_reads_gwyddion_header(tmp_path):
     text = "# Channel: Height\n# Width: 4.000 µm\n# Height: 3.000 µm\n# Value units: m\n"
     text += "\n".join("\t".join(f"{v:g}" for v in row) for row in PATTERN)
     m = read_height_map(write(tmp_path, "m.txt", text))
-    assert (m.dx, m.dy) == pytest.approx((1e-6, 1e-6))
+    assert (m.dx, m.dy) == pytest.approx((1e-6, 1e-6), rel=ROUNDING_FEW)
     assert m.heights[0, 1] == 1.0
 
 
@@ -120,7 +124,7 @@ def test_xyz_rows_are_increasing_y(tmp_path):
     ]
     m = read_height_map(write(tmp_path, "m.xyz", "\n".join(lines[::-1])), unit="m")
     np.testing.assert_array_equal(m.heights, PATTERN)
-    assert (m.dx, m.dy) == pytest.approx((1e-8, 2e-8))
+    assert (m.dx, m.dy) == pytest.approx((1e-8, 2e-8), rel=ROUNDING_FEW)
 
 
 def test_xyz_off_grid_is_refused(tmp_path):
@@ -131,7 +135,8 @@ def test_xyz_off_grid_is_refused(tmp_path):
 def test_npy_round_trip(tmp_path):
     np.save(tmp_path / "m.npy", PATTERN)
     m = read_height_map(tmp_path / "m.npy", unit="nm", pixel_size=(1e-9, 2e-9))
-    np.testing.assert_allclose(m.heights, PATTERN * 1e-9, rtol=1e-14)
+    # heights times the unit factor: one rounding
+    np.testing.assert_allclose(m.heights, PATTERN * 1e-9, rtol=ROUNDING_FEW)
     assert (m.dx, m.dy) == (1e-9, 2e-9)
 
 
@@ -150,7 +155,7 @@ def test_gwy_round_trip_keeps_rows_and_size(tmp_path):
     container["/0/data/title"] = "Height"
     container.tofile(str(tmp_path / "m.gwy"))
     m = read_height_map(tmp_path / "m.gwy")
-    np.testing.assert_allclose(m.heights, PATTERN * 1e-9, rtol=1e-14)
+    np.testing.assert_allclose(m.heights, PATTERN * 1e-9, rtol=ROUNDING_FEW)
     assert (m.dx, m.dy, m.channel) == (1e-6, 1e-6, "Height")
 
 
@@ -218,7 +223,7 @@ def test_ibw_reads_asylum_height_in_metres_like_igor2_and_afmreader(afm_resource
 def test_ibw_caller_unit_overrides_the_asylum_default(afm_resources):
     in_nm = read_height_map(afm_resources / "sample_0.ibw", unit="nm")
     in_m = read_height_map(afm_resources / "sample_0.ibw")
-    np.testing.assert_allclose(in_nm.heights, in_m.heights * 1e-9, rtol=1e-15)
+    np.testing.assert_allclose(in_nm.heights, in_m.heights * 1e-9, rtol=ROUNDING_FEW)
     assert "caller" in in_nm.notes[0]
 
 

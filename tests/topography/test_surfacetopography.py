@@ -5,6 +5,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from tolerances import ROUNDING_FEW, ROUNDING_SUM
 
 from mcsim.topography.readers import ReaderError, gwy, ibw, read_height_map, surfacetopography
 
@@ -71,8 +72,11 @@ def test_jpk_matches_afmreader_values(other_formats):
     m = surfacetopography.read(other_formats / "sample_0.jpk", channel="Height")
     total, pixel_nm, shape = AFMREADER_JPK
     assert m.shape == shape
-    assert m.heights.sum() * 1e9 == pytest.approx(total, rel=1e-12)
-    assert m.dx * 1e9 == pytest.approx(pixel_nm, rel=1e-12) and m.dy == pytest.approx(m.dx)
+    # AFMReader's numbers, printed to repr; the sum over the map's pixels: ROUNDING_SUM
+    assert m.heights.sum() * 1e9 == pytest.approx(total, rel=ROUNDING_SUM)
+    assert m.dx * 1e9 == pytest.approx(pixel_nm, rel=ROUNDING_FEW) and m.dy == pytest.approx(
+        m.dx, rel=ROUNDING_FEW
+    )
 
 
 def test_masked_pixels_become_nan_and_axes_are_x_first(tmp_path):
