@@ -7,6 +7,7 @@ from pathlib import Path
 import mpmath as mp
 import numpy as np
 import pytest
+from tolerances import QUAD_RTOL, ROUNDING_FEW
 
 from mcsim import Material, Surface, gw_curves, surface_energy_parameter
 from mcsim.model.errors import ParameterError
@@ -141,7 +142,7 @@ def test_mu_at_light_load_matches_the_papers_fig6_statements(name, low, high):
     h = [4.0, 3.0, 2.0, 1.0, 0.0, -1.0]
     mu = gw_curves(surface, SILICON, h).mu
     ref = [reference_curves(surface, SILICON, x)["mu"] for x in h]
-    np.testing.assert_allclose(mu, ref, rtol=1e-9)
+    np.testing.assert_allclose(mu, ref, rtol=ANALYTIC_RTOL)  # the README's accuracy, as above
     assert low < mu[0] < high, f"mu(h=4) = {mu[0]:.4f} (light load, the left edge of Fig. 6)"
     assert np.all(np.diff(mu) < 0), "mu decreases as h decreases"
 
@@ -151,8 +152,9 @@ def test_dimensional_forces_scale_with_area_and_K():
     curves = gw_curves(surface, SILICON, [0.0])
     area = 1e-8
     forces = curves.forces(area)
-    assert forces["P"][0] == pytest.approx(curves.P[0] * area * SILICON.K)
-    assert forces["N_c"][0] == pytest.approx(surface.eta * area * 0.5)
+    # the same numbers scaled by two or three products: a few roundings
+    assert forces["P"][0] == pytest.approx(curves.P[0] * area * SILICON.K, rel=ROUNDING_FEW)
+    assert forces["N_c"][0] == pytest.approx(surface.eta * area * 0.5, rel=ROUNDING_FEW)
 
 
 def test_zero_work_of_adhesion_leaves_only_the_hertz_load():
@@ -195,7 +197,9 @@ def test_integrals_stay_accurate_out_to_the_largest_accepted_separation():
         delta = s.sigma * (x - h)
         for q, law, args in zip("PFT", SEED.laws, SEED.arguments(s, m)):
             reference = s.eta / m.K * np.sum(w * law(delta, *args))
-            np.testing.assert_allclose(getattr(curves, q)[0], reference, rtol=1e-10, err_msg=q)
+            # measured 1.5e-11 at h = -1e6 (the quadrature of mcsim loses digits as |h|
+            # grows, the reason |h| stops at 1e6): within QUAD_RTOL, 7 times over
+            np.testing.assert_allclose(getattr(curves, q)[0], reference, rtol=QUAD_RTOL, err_msg=q)
     far = gw_curves(s, m, [1e6])
     assert far.contact_fraction[0] == 0 and far.P[0] == 0 and np.isfinite(far.mu[0])
 

@@ -47,7 +47,9 @@ def test_rectangular_pixels_keep_the_hertz_circle(periodic):
     y = (np.arange(192) - 96 + 0.5) * dy
     z = -(x[None, :] ** 2 + y[:, None] ** 2) / (2 * R)
     a = L / 5
-    s = bem.solve_contact(z, (dx, dy), E_STAR, 4 * E_STAR * a**3 / (3 * R) / L**2, periodic=periodic)
+    s = bem.solve_contact(
+        z, (dx, dy), E_STAR, 4 * E_STAR * a**3 / (3 * R) / L**2, periodic=periodic
+    )
     on = s.pressure_field > 0
     width_x, width_y = on.any(axis=0).sum() * dx, on.any(axis=1).sum() * dy
     np.testing.assert_allclose([width_x, width_y], [2 * a, 2 * a], atol=1.5 * dx)

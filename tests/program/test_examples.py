@@ -154,4 +154,7 @@ def test_histogram_counts_every_pixel():
 def test_toml_files_load():
     assert load_material(str(EXAMPLES / "gold.toml")).E1 == 79e9
     surface = load_surface(str(EXAMPLES / "hist-surface.toml"))
-    assert surface.R == pytest.approx(1.7e-6) and surface.eta == pytest.approx(17e12)
+    # "1.7 um" and "17 um^-2" in SI: one rounding each
+    assert surface.R == pytest.approx(1.7e-6, rel=1e-15) and surface.eta == pytest.approx(
+        17e12, rel=1e-15
+    )
