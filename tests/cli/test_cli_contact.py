@@ -125,6 +125,8 @@ def test_gw_hertz_matches_the_gaussian_closed_forms():
         f32 = integrate.quad(lambda d, hi=hi: d**1.5 * stats.norm.pdf(hi + d), 0, np.inf, epsabs=0)[
             0
         ]
+        # GW's h is root-solved and the reference is scipy's quad (each to ~1e-10): 1e-8 of
+        # the value; the mean gap is an exact sum of the printed h and offset: 1e-12
         load = surface.eta * 4 / 3 * E_star * math.sqrt(surface.R) * surface.sigma**1.5 * f32
         np.testing.assert_allclose(load, pi, rtol=1e-8, err_msg="pressure at GW's h")
         np.testing.assert_allclose(

@@ -89,9 +89,10 @@ def test_load_run_figure_cuts_a_bar_that_reaches_zero_on_the_log_panel_and_marks
     bars = ax.containers[0]
     segments = np.concatenate([c.get_segments() for c in bars.lines[2]])
     assert np.all(segments > 0), "a bar on the log-log panel reaches p <= 0"
+    # the same product computed twice, once through matplotlib's float arrays: a few roundings
     np.testing.assert_allclose(segments[:, :, 0].min(), x[0] * 10**-ARROW_DECADES, rtol=1e-12)
     (arrow,) = [line for line in ax.get_lines() if line.get_marker() == "<"]
-    np.testing.assert_allclose(arrow.get_xdata(), [x[0] * 10**-ARROW_DECADES], rtol=1e-12)
+    np.testing.assert_allclose(arrow.get_xdata(), [x[0] * 10**-ARROW_DECADES], rtol=1e-12)  # idem
     assert "2 SE reaches 0: bar cut, arrow" in _legend_texts(ax)
 
 
