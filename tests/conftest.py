@@ -17,6 +17,15 @@ import tarfile
 from pathlib import Path
 
 import pytest
+from _pytest.approx import ApproxScalar
+
+# pytest.approx(x, rel=r) also accepts anything within an absolute 1e-12 unless abs= is
+# given: in SI units that floor is most of the value (1e-9 m, 1e-6 N, 1e-19 J), so
+# approx(1.6e-19, rel=1e-15) would accept 0. Every tolerance here states its own scale:
+# no floor (a comparison with 0 gives its abs= itself). Checked, since the default is
+# pytest's class attribute, not an API: a pytest that ignores it fails here, loudly.
+ApproxScalar.DEFAULT_ABSOLUTE_TOLERANCE = 0.0
+assert 0.0 != pytest.approx(1.6e-19, rel=1e-15), "pytest.approx keeps an absolute floor"
 
 AFMREADER = "afmreader-0.0.7"
 #: The files the tests use, and the licence that travels with them.
