@@ -14,10 +14,11 @@ $(BIN)/.installed: pyproject.toml
 run: $(BIN)/.installed
 	$(BIN)/mcsim paper --overwrite
 
-# -n 2: the tests spread over two worker processes (pytest-xdist): on 2 cores the suite
-# takes about 6 minutes instead of 11
+# -n 2: the tests spread over two worker processes (pytest-xdist); --dist worksteal lets an
+# idle worker take tests queued on the other, and tests/conftest.py starts the slow ones
+# first, so the README's minutes-long run overlaps the rest of the suite
 test: $(BIN)/.installed
-	$(BIN)/python -m pytest -q -n 2
+	$(BIN)/python -m pytest -q -n 2 --dist worksteal
 	$(MAKE) --no-print-directory test-portable
 
 # NumPy's SIMD targets dispatched at run time on this CPU (numpy 2.4 on an AVX2 machine:

@@ -201,3 +201,10 @@ def run_cli(capsys, *argv):
 def rows_of(out: str) -> list[dict]:
     """The rows of CSV text."""
     return list(csv.DictReader(io.StringIO(out)))
+
+
+def pytest_collection_modifyitems(items):
+    """The slow tests first (stable order otherwise): ``make test`` spreads the suite over two
+    workers, and the README's run as written (minutes) then starts at once on one of them
+    while the other works through the rest, instead of starting last and running alone."""
+    items.sort(key=lambda item: item.get_closest_marker("slow") is None)
