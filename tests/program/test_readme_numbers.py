@@ -127,6 +127,13 @@ def test_load_control_tolerance_and_z_threshold():
     check_exact(r"Where fewer than (\S+) contacting summits are expected", MIN_CONTACTS)
 
 
+def test_guarantees_state_the_bounds_the_tests_check():
+    from designmap_checks import AGREE  # (the ~1e-13 of the curves: tests/physics/test_analytic.py)
+
+    check_exact(r"the compiling one within (\S+) relative \(summaries\) and (\S+) in h",
+                AGREE["summary"], AGREE["h_pull_off"])  # fmt: skip
+
+
 def test_zero_sticking_pads_bound():
     # Clopper-Pearson's upper 95 % bound for 0 of n is 1 - 0.025^(1/n) ≈ -ln(0.025)/n
     check_rounded(r"0 sticking pads out of n only says p < (\S+)/n", -math.log(0.025))
