@@ -20,6 +20,7 @@ from pathlib import Path
 import numpy as np
 
 from mcsim.model.errors import RunFileError
+from mcsim.store.outputs import check_replaceable
 
 
 def file_path(value, field: str = "path") -> Path:
@@ -48,6 +49,8 @@ def check_output_path(path: str | Path, overwrite: bool = False, resume: bool = 
     :func:`first_difference`), in which case there is nothing to do.
     """
     path = file_path(path, "out")
+    if check_replaceable(path) and path.is_symlink():  # the rule of every output: follow it
+        path = Path(os.path.realpath(path))
     folder = path.parent
     if not folder.is_dir():
         raise RunFileError(f"{path}: output folder {folder} does not exist")

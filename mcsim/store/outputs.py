@@ -1,4 +1,5 @@
-"""The one rule for every file a command writes (``plot``, ``paper``, ``ingest``).
+"""The one rule for every file a command writes (run and sweep files too: ``simulate``,
+``sweep``, through :func:`mcsim.store.files.check_output_path`).
 
 * An existing file is replaced only with ``overwrite`` (``--overwrite``).
 * A command never writes onto one of its own inputs, even with ``overwrite``
@@ -33,6 +34,22 @@ def _kind(mode: int) -> str:
     if stat.S_ISSOCK(mode):
         return "a socket"
     return "not a regular file"
+
+
+def check_replaceable(path: Path) -> bool:
+    """Whether ``path`` exists; raise unless it is absent or a regular file (or a symbolic
+    link to one), whatever ``overwrite`` says (module docstring)."""
+    if not os.path.lexists(path):
+        return False
+    try:
+        mode = os.stat(path).st_mode  # follows a symbolic link to its target
+    except FileNotFoundError:
+        raise MCSimError(f"{path}: is a broken symbolic link: not replaced") from None
+    except OSError as err:
+        raise MCSimError(f"{path}: cannot check it ({err.strerror})") from None
+    if not stat.S_ISREG(mode):
+        raise MCSimError(f"{path}: is {_kind(mode)}: mcsim replaces only regular files")
+    return True
 
 
 def _same_file(a: Path, b: Path) -> bool:
@@ -70,17 +87,8 @@ def check_output(
     for source in inputs:
         if _same_file(path, Path(source)):
             raise MCSimError(f"{path}: is an input of this command ({source}): write elsewhere")
-    if os.path.lexists(path):
-        try:
-            mode = os.stat(path).st_mode  # follows a symbolic link to its target
-        except FileNotFoundError:
-            raise MCSimError(f"{path}: is a broken symbolic link: not replaced") from None
-        except OSError as err:
-            raise MCSimError(f"{path}: cannot check it ({err.strerror})") from None
-        if not stat.S_ISREG(mode):
-            raise MCSimError(f"{path}: is {_kind(mode)}: mcsim replaces only regular files")
-        if not overwrite:
-            raise MCSimError(f"{path}: file exists (pass --overwrite to replace it)")
+    if check_replaceable(path) and not overwrite:
+        raise MCSimError(f"{path}: file exists (pass --overwrite to replace it)")
     if not path.parent.is_dir():
         raise MCSimError(f"{path}: folder {path.parent} does not exist")
     return path

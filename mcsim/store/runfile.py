@@ -274,8 +274,10 @@ def _write_heights(f, heights: list[np.ndarray]) -> None:
 def _open(path: Path):
     import h5py
 
-    if not path.is_file():
-        raise RunFileError(f"{path}: no such file")
+    if not path.is_file():  # absent, or a folder or a pipe (which h5py would block on)
+        raise RunFileError(
+            f"{path}: " + ("not a regular file" if path.exists() else "no such file")
+        )
     try:
         f = h5py.File(path, "r")
     except OSError:

@@ -413,8 +413,10 @@ def read_file(path: Path) -> dict:
     import h5py
 
     path = Path(path)
-    if not path.is_file():
-        raise RunFileError(f"{path}: no such file")
+    if not path.is_file():  # absent, or a folder or a pipe (which h5py would block on)
+        raise RunFileError(
+            f"{path}: " + ("not a regular file" if path.exists() else "no such file")
+        )
     try:
         with h5py.File(path, "r") as f:
             return _read(path, f)
@@ -524,6 +526,8 @@ def is_sweep_file(path: str | Path) -> bool:
     """Whether ``path`` is an HDF5 file written by :func:`sweep` (complete or not)."""
     import h5py
 
+    if not Path(path).is_file():  # a pipe would block h5py: not a sweep file
+        return False
     try:
         with h5py.File(path, "r") as f:
             return "sweep_schema_version" in f.attrs
