@@ -174,7 +174,9 @@ def integer(low: int, high: int | None = None):
 
 #: A root seed (numpy's SeedSequence takes non-negative integers only) and a count.
 seed_type, count_type = integer(0), integer(1)
-#: Worker threads or processes: more than any machine's cores only slows a run down.
+#: Worker threads or processes: more than any machine's cores only slows a run down. 1024 is
+#: :data:`mcsim.studies.runoptions.MAX_WORKERS`, the API's bound (not imported: ``--help``
+#: loads no NumPy; a test checks that the two agree).
 workers_type = integer(1, 1024)
 
 

@@ -153,3 +153,16 @@ def test_a_run_whose_state_cannot_fit_is_refused_before_anything_is_planned():
         ParameterError, match=rf"^realizations = {most + 1} need .* at most {most} realizations"
     ):
         MonteCarloSpec(**inputs, realizations=most + 1)
+
+
+def test_the_command_line_and_the_api_cap_the_workers_alike():
+    import argparse
+
+    from mcsim.cli.options import workers_type
+    from mcsim.studies.runoptions import MAX_WORKERS, check_workers
+
+    assert workers_type(str(MAX_WORKERS)) == check_workers(MAX_WORKERS) == MAX_WORKERS
+    with pytest.raises(argparse.ArgumentTypeError):
+        workers_type(str(MAX_WORKERS + 1))
+    with pytest.raises(ParameterError):
+        check_workers(MAX_WORKERS + 1)
