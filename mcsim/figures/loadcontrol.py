@@ -7,6 +7,7 @@ import math
 import numpy as np
 
 from mcsim.model.errors import MCSimError
+from mcsim.physics.loadcontrol import hertz_area_fraction
 
 
 def light_load_ratio(surface, h) -> np.ndarray:
@@ -21,13 +22,6 @@ def light_load_ratio(surface, h) -> np.ndarray:
     h = np.atleast_1d(np.asarray(h, dtype=float))
     _, integral = surface.heights.gw_integrals(lambda d: np.stack([d, d**1.5]), h)
     return 0.75 * math.pi * math.sqrt(surface.R / surface.sigma) * integral[0] / integral[1]
-
-
-def hertz_area_fraction(surface, h) -> np.ndarray:
-    """GW real contact area of Hertz summits, A_r/A_n = π η R σ F_1(h) (GW 1966, Eq. 9)."""
-    h = np.atleast_1d(np.asarray(h, dtype=float))
-    scale, integral = surface.heights.gw_integrals(lambda d: d[None], h)
-    return math.pi * surface.eta * surface.R * surface.sigma * scale * integral[0]
 
 
 def load_control_figure(result):

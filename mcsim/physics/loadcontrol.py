@@ -26,6 +26,7 @@ zero-load rest of the super-smooth surface) one ulp of h moves it by ~1e-9 relat
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -57,6 +58,13 @@ def balanced_quantity(law: str | LawSet, environment: bool = False) -> str:
     if "load" not in laws.names:
         raise ParameterError(f"law set {laws.name!r} has no 'load' output to balance a pressure")
     return "load"
+
+
+def hertz_area_fraction(surface: Surface, h) -> np.ndarray:
+    """GW real contact area of Hertz summits, A_r/A_n = π η R σ F_1(h) (GW 1966, Eq. 9)."""
+    h = np.atleast_1d(np.asarray(h, dtype=float))
+    scale, integral = surface.heights.gw_integrals(lambda d: d[None], h)
+    return math.pi * surface.eta * surface.R * surface.sigma * scale * integral[0]
 
 
 @dataclass(frozen=True)

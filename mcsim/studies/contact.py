@@ -42,11 +42,11 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
-from scipy import optimize
 
 from mcsim.model.errors import ParameterError
 from mcsim.model.params import Material, Surface
 from mcsim.physics import bem
+from mcsim.physics.loadcontrol import hertz_area_fraction, load_control
 from mcsim.studies.ingest import _is_histogram_file, ingest_file
 from mcsim.studies.ingested import LEVELS
 from mcsim.topography.readers import read_height_map
@@ -81,15 +81,19 @@ def edge_steps(z: np.ndarray) -> tuple[float, float]:
     return ratios[0], ratios[1]
 
 
-def gw_hertz(surface: Surface, E_star: float, pressure: np.ndarray):
+def gw_hertz(surface: Surface, material: Material, pressure: np.ndarray):
     """GW's non-adhesive contact at nominal pressures: separation, area fraction, mean gap.
+
+    The separation balances the Hertz load of the summits, the seed law set's P̄ (Eq. 3),
+    by :func:`mcsim.physics.loadcontrol.load_control`; the area is
+    :func:`~mcsim.physics.loadcontrol.hertz_area_fraction`.
 
     Parameters
     ----------
     surface : Surface
         GW surface (σ, R, η, summit heights; ``summit_offset`` in m, 0 if None).
-    E_star : float
-        Contact modulus E*, Pa.
+    material : Material
+        Its E* (the Hertz load uses K = 4E*/3 alone).
     pressure : ndarray
         Nominal pressures, Pa, > 0.
 
@@ -98,34 +102,9 @@ def gw_hertz(surface: Surface, E_star: float, pressure: np.ndarray):
     h, area_fraction, mean_gap : ndarray
         h = d/σ; A_r/A_n (dimensionless); mean gap, m (module docstring).
     """
-    sigma, R, eta = surface.sigma, surface.R, surface.eta
-    K = 4.0 * E_star / 3.0
-
-    def moments(h):
-        scale, integral = surface.heights.gw_integrals(
-            lambda d: np.stack([d, d * np.sqrt(d)]), np.atleast_1d(h)
-        )
-        return scale * integral  # F_1(h), F_3/2(h)
-
-    def log_ratio(h, target):  # log p(h)/target, decreasing in h
-        f32 = moments(h)[1][0] * eta * K * math.sqrt(R) * sigma**1.5
-        return math.log(f32 / target) if f32 > 0 else -math.inf
-
-    h = np.empty(pressure.size)
-    for i, target in enumerate(pressure):
-        hi, lo = 1.0, -1.0
-        while log_ratio(hi, target) > 0:
-            hi *= 2
-        while log_ratio(lo, target) < 0:
-            lo = 2 * lo
-            if lo < -1e6:
-                raise ParameterError(
-                    f"pressure {target:g} Pa: GW reaches no separation that carries it"
-                )
-        h[i] = optimize.brentq(log_ratio, lo, hi, args=(target,), xtol=1e-12)
-    f1 = moments(h)[0]
+    h = load_control(surface, material, pressure, "seed").h
     offset = surface.summit_offset or 0.0
-    return h, math.pi * eta * R * sigma * f1, sigma * h + offset
+    return h, hertz_area_fraction(surface, h), surface.sigma * h + offset
 
 
 @dataclass(frozen=True)
@@ -329,7 +308,7 @@ def contact_map(
             pressures.append(s.pressure_field)
             gaps.append(s.gap_field)
     area, gap, patches, iterations, residual = (np.array(c) for c in zip(*rows, strict=True))
-    gw_h, gw_area, gw_gap = gw_hertz(ingested.surface, material.E_star, p)
+    gw_h, gw_area, gw_gap = gw_hertz(ingested.surface, material, p)
     return ContactResult(
         source=Path(path), channel=hmap.channel, level=level, dx=hmap.dx, dy=hmap.dy,
         shape=z.shape, periodic=periodic, periodic_reason=reason, E_star=material.E_star,

@@ -12,7 +12,7 @@ from conftest import rows_of, run_cli
 from scipy import integrate, stats
 
 from mcsim.cli.main import main
-from mcsim.model.params import Surface
+from mcsim.model.params import Material, Surface
 from mcsim.model.presets import MATERIALS
 from mcsim.studies.contact import contact_map, gw_hertz
 
@@ -118,8 +118,9 @@ def test_gw_hertz_matches_the_gaussian_closed_forms():
     # Gaussian heights: F_1(h) = φ(h) - h Q(h) in closed form, F_3/2(h) by adaptive quadrature;
     # p = η (4/3)E* R^½ σ^{3/2} F_3/2(h) and A_r/A_n = π η R σ F_1(h) (GW 1966). Both to 1e-8.
     surface = Surface(sigma=3e-9, R=1e-7, eta=1e14, summit_offset=2e-9)
-    E_star, p = 1e11, np.array([1e6, 1e8])
-    h, area, gap = gw_hertz(surface, E_star, p)
+    material = Material(E=2 * (1 - 0.25**2) * 1e11, nu=0.25, w=0.5)  # 1/E* = 2(1-ν²)/E
+    E_star, p = material.E_star, np.array([1e6, 1e8])
+    h, area, gap = gw_hertz(surface, material, p)
     for hi, pi, ai, gi in zip(h, p, area, gap, strict=True):
         f1 = stats.norm.pdf(hi) - hi * stats.norm.sf(hi)
         f32 = integrate.quad(lambda d, hi=hi: d**1.5 * stats.norm.pdf(hi + d), 0, np.inf, epsabs=0)[

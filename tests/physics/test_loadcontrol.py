@@ -354,7 +354,8 @@ def _material(tmp_path):
 
 @pytest.mark.parametrize("law", ["seed", "jkr"])
 def test_load_control_figure_marks_the_gw_light_load_line_for_every_law_set(tmp_path, law):
-    from mcsim.figures.loadcontrol import hertz_area_fraction, load_control_figure
+    from mcsim.figures.loadcontrol import load_control_figure
+    from mcsim.physics.loadcontrol import hertz_area_fraction
     from mcsim.store.config import load_material
 
     material = load_material(_material(tmp_path))
@@ -371,7 +372,7 @@ def test_load_control_figure_marks_the_gw_light_load_line_for_every_law_set(tmp_
 
 
 def test_hertz_area_fraction_is_pi_eta_r_sigma_f1():
-    from mcsim.figures.loadcontrol import hertz_area_fraction
+    from mcsim.physics.loadcontrol import hertz_area_fraction
 
     h = np.array([0.5, 2.0])
     f1 = [
