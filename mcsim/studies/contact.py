@@ -272,6 +272,9 @@ def contact_map(
         raise ParameterError(
             f"pressure = {pressure!r}: give one or more positive, finite values, Pa"
         )
+    if p[-1] >= material.E_star:  # linear elasticity (small strains) ends long before
+        raise ParameterError(f"pressure = {p[-1]:g} Pa is out of range (allowed: below E* = "
+                             f"{material.E_star:g} Pa, where small-strain elasticity holds)")  # fmt: skip
     if _is_histogram_file(Path(path)):
         raise ParameterError(f"{path}: a height histogram has no map to press: give a height map")
     ingested = ingest_file(path, unit=unit, pixel_size=pixel_size, level=level, channel=channel)

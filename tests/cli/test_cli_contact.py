@@ -158,3 +158,10 @@ def test_the_documented_run_and_its_ratios_are_current(capsys):
     ratios = ", ".join(f"{x:.2f}" for x in (r.gw_area_fraction / r.area_fraction)[1:3])
     assert f"{ratios} and {r.gw_area_fraction[3] / r.area_fraction[3]:.2f} of the exact" in text
     assert f"{r.mean_gap[3] / r.gw_mean_gap[3]:.1f} times smaller" in text
+
+
+def test_a_pressure_beyond_the_contact_modulus_is_refused_before_solving(capsys):
+    code, _, err = run_cli(capsys, "contact", "examples/scan.npy", "--unit", "m",
+                           "--pixel-size", "10nm", "--pressure", "1e30Pa")  # fmt: skip
+    assert code == 2 and err.count("\n") == 1
+    assert "pressure = 1e+30 Pa is out of range (allowed: below E* = 8.40689e+10 Pa" in err
