@@ -249,7 +249,10 @@ def _compiled(law: LawSet, counting: bool = False):
     race to write the same module.
     """
     with _COMPILE_LOCK:
-        return _generate(law, counting)
+        # The code depends on the outputs' functions only, not on the parameters' values
+        # (a law set with an environment is made anew for each environment).
+        code = LawSet(law.name, "", law.outputs, legacy_kernel=law.legacy_kernel)
+        return _generate(code, counting)
 
 
 #: Options of the law functions inside the kernel: a float division by zero gives

@@ -41,6 +41,7 @@ import numpy as np
 from mcsim.engine.kernels import block_sums, sum_columns
 from mcsim.model.errors import ParameterError
 from mcsim.model.params import Material, Surface, check_range, check_separations
+from mcsim.physics.environment import Environment, with_environment
 from mcsim.physics.laws import BRANCHES, Edges, LawSet, get_law_set
 
 #: Summits per random stream and per partial sum. Part of the reproducibility contract:
@@ -100,6 +101,13 @@ class MonteCarloSpec:
         closest approach min(h) (both branches stored); approach only by default.
     device : {"cpu", "cuda"}
         Where the heights are drawn and the blocks summed (:data:`DEVICES`).
+    environment : Environment or None
+        Van der Waals and capillary attraction (:mod:`mcsim.physics.environment`): each
+        summit's cap adds the outputs ``vdw`` and ``capillary`` to the law set
+        (:func:`~mcsim.physics.environment.with_environment`), so the summits sampled reach
+        down to the caps' band edge; the open gaps between the caps are not sampled (a
+        deterministic curve, :func:`~mcsim.physics.environment.open_gap_pressures`). None
+        (default): the contact alone.
     """
 
     surface: Surface
@@ -112,6 +120,7 @@ class MonteCarloSpec:
     count: str = "poisson"
     cycle: bool = False
     device: str = "cpu"
+    environment: Environment | None = None
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "h", check_separations(self.h))
@@ -130,6 +139,10 @@ class MonteCarloSpec:
                 "round(eta*area) must be >= 1 for count='fixed'"
             )
         law = get_law_set(self.law)
+        if self.environment is not None and not isinstance(self.environment, Environment):
+            raise ParameterError(f"environment = {self.environment!r} must be an Environment")
+        if self.environment is not None and not self.environment.active:
+            object.__setattr__(self, "environment", None)
         if not isinstance(self.cycle, bool | np.bool_):
             raise ParameterError(f"cycle = {self.cycle!r} must be True or False")
         object.__setattr__(self, "cycle", bool(self.cycle))
@@ -168,9 +181,10 @@ class MonteCarloSpec:
         """Separations in m."""
         return self.h * self.surface.sigma
 
-    @property
+    @functools.cached_property
     def law_set(self) -> LawSet:
-        return get_law_set(self.law)
+        """The law set, with the environment's per-summit outputs if there is one."""
+        return with_environment(get_law_set(self.law), self.surface, self.environment)
 
     @functools.cached_property
     def arguments(self) -> tuple[tuple, ...]:

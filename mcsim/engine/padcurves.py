@@ -33,6 +33,7 @@ import numpy as np
 from mcsim.engine.kernels import block_sums, sum_columns
 from mcsim.engine.montecarlo import MonteCarloSpec, plan_patch, sample_block
 from mcsim.model.errors import ParameterError
+from mcsim.physics.environment import active_terms, open_gap_pressures
 
 #: Interior points at which each smooth interval of a pad's curve is evaluated.
 SUB = 3
@@ -66,15 +67,31 @@ def patch_heights(spec: MonteCarloSpec, r: int) -> np.ndarray:
 
 
 def pad_load(spec: MonteCarloSpec, z: np.ndarray, d, d_turn=None) -> np.ndarray:
-    """Total ``load`` (N, compressive positive) of the summits ``z`` (m) at separations ``d`` (m).
+    """Net load (N, compressive positive) of the pad of summits ``z`` (m) at separations ``d`` (m).
 
-    On approach without ``d_turn``; on retraction after the closest approach ``d_turn`` (m).
+    The sum of the law set's ``load``; with an environment, less its summits' ``vdw`` and
+    ``capillary`` and the open gaps' attraction times the pad's area
+    (:func:`mcsim.physics.environment.open_gap_pressures`). On approach without ``d_turn``;
+    on retraction after the closest approach ``d_turn`` (m).
     """
     d = np.atleast_1d(np.asarray(d, dtype=float))
     turn = None if d_turn is None else np.full_like(d, d_turn)
-    column = sum_columns(spec.law_set).index("load")
     sums = block_sums(z, d, spec.law_set, spec.arguments, d_turn=turn, edges=spec.edges)
-    return sums[:, column]
+    return net_load(spec, sums, d)
+
+
+def net_load(spec: MonteCarloSpec, sums: np.ndarray, d) -> np.ndarray:
+    """Net load (N) of a pad of area ``spec.area`` from its sums (last axis the columns of
+    :func:`~mcsim.engine.kernels.sum_columns`) at separations ``d`` (m, the second-last axis):
+    ``load``, less the caps' ``vdw`` and ``capillary`` and the open gaps' attraction."""
+    columns = sum_columns(spec.law_set)
+    load = sums[..., columns.index("load")]
+    if spec.environment is None:
+        return load
+    for term in active_terms(spec.environment):
+        load = load - sums[..., columns.index(term)]
+    gaps = open_gap_pressures(np.asarray(d) / spec.surface.sigma, spec.surface, spec.environment)
+    return load - spec.area * (gaps["vdw"] + gaps["capillary"])
 
 
 def _intervals(spec: MonteCarloSpec, z: np.ndarray, low: float, high: float) -> np.ndarray:
@@ -138,7 +155,9 @@ def force_turn(spec: MonteCarloSpec, z: np.ndarray, force: float) -> tuple[float
     z : ndarray
         The pad's summit heights, m (:func:`patch_heights`).
     force : float
-        Applied compressive force P·A, N (> 0).
+        Applied compressive force P·A, N (>= 0). With 0 the pad rests under its own
+        attraction: the largest d below its first touch where the net load turns
+        compressive (far away the load is 0 too, which does not count).
 
     Returns
     -------
@@ -157,7 +176,11 @@ def force_turn(spec: MonteCarloSpec, z: np.ndarray, force: float) -> tuple[float
     cuts = _intervals(spec, z, bottom, top)
     points = np.unique(np.concatenate([[bottom, top], _points(cuts, sigma).ravel()]))[::-1]
     values = pad_load(spec, z, points)
-    reached = np.flatnonzero(values >= force)
+
+    def reaches(load):  # at 0 the force must be exceeded: far away the load is 0 too
+        return load > force if force == 0 else load >= force
+
+    reached = np.flatnonzero(reaches(values))
     if reached.size == 0:
         raise ParameterError(
             f"preload force {force:.4g} N: the pad's approach load is {values[-1]:.4g} N at the "
@@ -171,7 +194,7 @@ def force_turn(spec: MonteCarloSpec, z: np.ndarray, force: float) -> tuple[float
     while hi - lo > XTOL * sigma:
         mid = 0.5 * (lo + hi)
         at = float(pad_load(spec, z, [mid])[0])
-        if at >= force:
+        if reaches(at):
             lo, load = mid, at
         else:
             hi = mid

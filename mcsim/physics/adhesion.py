@@ -22,10 +22,12 @@ With an environment (:mod:`mcsim.physics.environment`) the net load on both bran
 the contact load minus the van der Waals and capillary attraction (:func:`mcsim.gw_curves`):
 the turn is where the net approach load is zero, the pull-off is the most tensile net
 retraction load (searched also above the summits, where the attraction alone acts), and the
-work of separation is the contact part (as above, from the turn) plus the works of the two
-attractions from the turn to infinity (:func:`mcsim.physics.environment.environment_works`
-at the mean-plane gap D_t = h_turn σ + summit_offset; each the integral of its whole
-pressure, −dW/dD = p). Hysteresis is unchanged in form: the equilibrium menisci and van der
+work of separation is the integral of the net retraction force from the turn to infinity,
+−∫ F_net dd per nominal area (signed: a compressive part, the elastic energy the pressed
+summits give back, counts against it): the contact part −∫ load dd plus the works of the two
+attractions (:func:`mcsim.physics.environment.environment_works`, each the integral of its
+own pressure). The dry work is that contact part alone; at the zero-load turn its retraction
+load is nowhere compressive. Hysteresis is unchanged in form: the equilibrium menisci and van der
 Waals act alike on both branches.
 
 Which law set fits is read off the Johnson–Greenwood (1997) adhesion map at the low
@@ -54,6 +56,7 @@ from mcsim.physics.analytic import gw_curves
 from mcsim.physics.environment import (
     Environment,
     as_environment,
+    band_edge,
     environment_curves,
     environment_works,
 )
@@ -421,7 +424,7 @@ def adhesion_summary(
     retract = load(nodes, "retract")
     approach = load(nodes, "approach")
     scale = material.K * surface.sigma  # load·K is force per nominal area; dd = σ dh
-    work = scale * float(np.sum(weights * np.maximum(-retract, 0.0)))
+    work = -scale * float(np.sum(weights * retract))  # −∫ F dd: signed (module docstring)
     hysteresis = scale * float(np.sum(weights * (approach - retract)))
     # Pull-off: bounded minimisation around the lowest of the nodes and panel edges (and,
     # with an environment, of a grid above the summits, where the attraction alone acts).
@@ -459,8 +462,7 @@ def adhesion_summary(
 
 def _attraction(surface: Surface, material: Material, environment: Environment, h) -> np.ndarray:
     """Van der Waals plus capillary attraction per nominal area over K at separations h."""
-    gap = gap_heights(surface)
-    p = environment_curves(h, surface.sigma, gap.heights, gap.summit_offset, environment)
+    p = environment_curves(np.asarray(h, dtype=float), surface, environment)
     return (p["vdw"] + p["capillary"]) / material.K
 
 
@@ -471,7 +473,7 @@ def _environment_top(surface: Surface, environment: Environment) -> float:
     heights = gap.heights
     highest = float(heights.sigma * heights.edges[-1]) if hasattr(heights, "edges") else (
         GAUSSIAN_TOP * gap.rq)  # fmt: skip
-    widest = max(environment.cutoff, environment.condensation_gap)
+    widest = max(environment.condensation_gap, band_edge(surface.R, surface.eta, environment))
     return (highest + widest - gap.summit_offset) / surface.sigma
 
 
@@ -481,7 +483,7 @@ def _environment_parts(surface, turn, environment, contact_work, zero=False) -> 
     if environment is None:
         return {}
     gap = gap_heights(surface)
-    works = environment_works(turn * surface.sigma + gap.summit_offset, gap.heights, environment)
+    works = environment_works(np.float64(turn), surface, environment)
     return {
         "work_of_separation_contact": float(contact_work),
         "work_of_separation_vdw": 0.0 if zero else float(works["vdw"]),

@@ -43,7 +43,6 @@ from mcsim.model.errors import ParameterError
 from mcsim.model.params import Material, Surface, check_range, check_separations
 from mcsim.model.presets import as_material, as_surface
 from mcsim.physics.environment import Environment, as_environment, environment_curves
-from mcsim.physics.gapheights import gap_heights
 from mcsim.physics.laws import Edges, LawSet, get_law_set
 
 #: Quantities of a GW curve, in output order, with their meaning.
@@ -302,9 +301,7 @@ def gw_curves(
 def _with_environment(curves: AnalyticCurves, environment: Environment) -> AnalyticCurves:
     """The curves with ``vdw``, ``capillary`` (Pa/K) and the net ``load`` (and μ on it)."""
     surface, material = curves.surface, curves.material
-    gap = gap_heights(surface)
-    pressures = environment_curves(curves.h, surface.sigma, gap.heights, gap.summit_offset,
-                                   environment)  # fmt: skip
+    pressures = environment_curves(curves.h, surface, environment)
     vdw, capillary = pressures["vdw"] / material.K, pressures["capillary"] / material.K
     values = dict(curves.values)
     contact = values["P"] if curves.law == "seed" else values["load"]

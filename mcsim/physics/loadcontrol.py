@@ -241,18 +241,27 @@ def preload_turn(
     """Closest approach h_turn = d/σ reached under a preload on the mean curve.
 
     The separation on the approach branch that balances the nominal pressure ``pressure``
-    (Pa, > 0), as :func:`load_control` finds it: an actuator pressing the surfaces with
+    (Pa, >= 0), as :func:`load_control` finds it: an actuator pressing the surfaces with
     P·A_n from far away stops there, and retraction starts from it. With an
-    ``environment`` the net load (contact minus its attraction) balances P.
+    ``environment`` the net load (contact minus its attraction) balances P. A preload of 0
+    is the surfaces resting under their own attraction
+    (:func:`mcsim.physics.adhesion.zero_load_separation`).
 
     Raises
     ------
     ParameterError
-        A pressure that is not finite and > 0, or that no separation carries.
+        A pressure that is not finite and >= 0, or that no separation carries.
     """
     p = float(pressure)
-    if not (np.isfinite(p) and p > 0):
-        raise ParameterError(f"preload = {pressure!r} Pa: allowed a finite pressure > 0")
+    if not (np.isfinite(p) and p >= 0):
+        raise ParameterError(f"preload = {pressure!r} Pa: allowed a finite pressure >= 0")
+    if p == 0:
+        from mcsim.physics.adhesion import zero_load_separation
+
+        try:
+            return zero_load_separation(surface, material, law, environment)
+        except ParameterError as err:  # NoAdhesiveRest: nothing pulls the surfaces together
+            raise ParameterError(f"preload = 0 Pa: {err}") from None
     try:
         return float(load_control(surface, material, [p], law, environment=environment).h[0])
     except ParameterError as err:  # a pressure no separation carries: name the field

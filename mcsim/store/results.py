@@ -15,8 +15,6 @@ from typing import NamedTuple
 
 import numpy as np
 
-from mcsim.engine.cells import CellEstimates, CellSums, estimates
-from mcsim.engine.kernels import sum_columns
 from mcsim.engine.montecarlo import EnsembleSums, MonteCarloSpec
 from mcsim.engine.statistics import (
     Summary,
@@ -28,7 +26,8 @@ from mcsim.engine.statistics import (
 )
 from mcsim.model.errors import ParameterError
 from mcsim.physics.analytic import gw_curves
-from mcsim.physics.environment import environment_curves
+from mcsim.physics.environment import Environment, active_terms, open_gap_pressures
+from mcsim.physics.gapheights import GapHeights, gap_heights
 
 #: Normalisation of each dimensionless quantity, spelled out (the ``unit`` of tables and files).
 NORMALISED = {
@@ -103,31 +102,36 @@ class PullOff:
 
 @dataclass(frozen=True)
 class EnvironmentRun:
-    """The environment's part of a run (:mod:`mcsim.engine.cells`).
+    """The environment's part of a run that is not summed over summits.
+
+    The summits' caps are outputs of the run's law set (``vdw``, ``capillary`` in
+    ``summary``, with standard errors and GW expected values like the loads); the open
+    gaps between the caps add a deterministic pressure (no sampling, no error).
 
     Attributes
     ----------
-    cells : CellSums
-        The inputs (environment, cell heights, summit offset) and the raw cell sums.
-    estimates : CellEstimates
-        Means, standard errors and per-patch curves, divided by K.
-    analytic : dict of ndarray
-        The proximity model's pressures for the same inputs
-        (:func:`mcsim.physics.environment.environment_curves`) divided by K, per row.
+    environment : Environment
+        The medium.
+    gap : GapHeights
+        Heights about the mean plane (rq, summit offset, their source) used by the open gaps.
+    open_gaps : dict of ndarray
+        ``"vdw"``, ``"capillary"``: the open gaps' pressures divided by K, per row
+        (:func:`mcsim.physics.environment.open_gap_pressures`).
     """
 
-    cells: CellSums
-    estimates: CellEstimates
-    analytic: dict
+    environment: Environment
+    gap: GapHeights
+    open_gaps: dict
 
 
-def environment_run(spec: MonteCarloSpec, cells: CellSums) -> EnvironmentRun:
-    """Estimates of ``cells`` beside the analytic curves, at every row of ``spec``."""
-    est = estimates(spec, cells)
-    gap = cells.gap
-    curves = environment_curves(spec.row_h, spec.surface.sigma, gap.heights, gap.summit_offset,
-                                cells.environment)  # fmt: skip
-    return EnvironmentRun(cells, est, {t: curves[t] / spec.material.K for t in est.mean})
+def environment_run(spec: MonteCarloSpec) -> EnvironmentRun | None:
+    """The open gaps' curves of a run with an environment, at every row (None: no environment)."""
+    env = spec.environment
+    if env is None:
+        return None
+    gaps = open_gap_pressures(spec.row_h, spec.surface, env)
+    open_gaps = {t: gaps[t] / spec.material.K for t in active_terms(env)}
+    return EnvironmentRun(env, gap_heights(spec.surface), open_gaps)
 
 
 class Estimate(NamedTuple):
@@ -161,8 +165,8 @@ class Run:
     complete : bool
         False for the completed part of an unfinished run.
     environment : EnvironmentRun or None
-        The van der Waals and capillary pressures sampled over each patch's cells, when
-        the run had an environment.
+        The environment's inputs and its open gaps' curves, when the run had one (its
+        summits' caps are outputs of the law set, in ``summary``).
     """
 
     ensemble: EnsembleSums
@@ -177,20 +181,23 @@ class Run:
 
     def _term(self, term: str) -> Estimate:
         env = self.environment
-        if env is None or term not in env.estimates.mean:
+        if env is None or term not in env.open_gaps:
             raise ParameterError(
                 f"this run has no {term} term (no environment, or it does not act)"
             )
-        return Estimate(env.estimates.mean[term], env.estimates.se[term])
+        caps = self.summary.mean[term]
+        return Estimate(caps + env.open_gaps[term], self.summary.se[term])
 
     @property
     def vdw(self) -> Estimate:
-        """Van der Waals pressure across the gaps, p_vdW/K per row (attractive positive)."""
+        """Van der Waals attraction per nominal area over K per row (attractive positive):
+        the summits' caps (sampled) plus the open gaps (deterministic, no error)."""
         return self._term("vdw")
 
     @property
     def capillary(self) -> Estimate:
-        """Capillary pressure of the condensate, p_cap/K per row (attractive positive)."""
+        """Capillary attraction per nominal area over K per row (attractive positive): the
+        summits' menisci (sampled) plus the condensate in the open gaps (deterministic)."""
         return self._term("capillary")
 
     @property
@@ -256,20 +263,12 @@ class Run:
     def compare(self):
         """DataFrame ``h, branch, quantity, mc_mean, mc_se, analytic, z, note``, one row
         per separation, branch and quantity (see :mod:`mcsim.engine.statistics`); with an
-        environment, also ``vdw`` and ``capillary`` (pressure/K, as the loads are
-        force/(A K)) against :func:`mcsim.physics.environment.environment_curves`."""
+        environment, the summits' caps ``vdw`` and ``capillary`` (force/(A K)) among them:
+        outputs of the law set like the loads (the open gaps are not sampled)."""
         import pandas as pd
 
         spec = self.spec
-        rows = compare_table(self.summary, self.analytic, spec.row_h, spec.row_branch)
-        if self.environment is not None:
-            est = self.environment.estimates
-            for term in est.mean:  # few-cell rows: no normal approximation, as for contacts
-                summary = Summary({term: est.mean[term]}, {term: est.se[term]}, {}, {},
-                                  est.expected_cells[term])  # fmt: skip
-                rows += compare_table(summary, self.environment.analytic, spec.row_h,
-                                      spec.row_branch)  # fmt: skip
-        return pd.DataFrame(rows)
+        return pd.DataFrame(compare_table(self.summary, self.analytic, spec.row_h, spec.row_branch))
 
     def pull_off(self, turn: float | None = None) -> PullOff:
         """Per-patch pull-off of a cycle run (the law set must have a signed ``load``).
@@ -292,7 +291,7 @@ class Run:
             raise ParameterError(f"turn = {turn!r}: allowed >= the run's lowest separation "
                                  f"h = {spec.turn:g} (no summit below it is drawn)")  # fmt: skip
         M, R, sigma = spec.h.size, self.sums.shape[0], spec.surface.sigma
-        load = self.sums[:, :, sum_columns(spec.law_set).index("load")]
+        load = padcurves.net_load(spec, self.sums, spec.rows()[0])
         j = np.argmin(load[:, M:], axis=1)
         grid_force = np.maximum(-load[np.arange(R), M + j], 0.0)
         grid = np.unique(spec.h)
@@ -363,12 +362,12 @@ def _check_regenerated(spec: MonteCarloSpec, r: int, z: np.ndarray, stored: np.n
                              "not reproduce the run's sums (another NumPy version's sampler?)")  # fmt: skip
 
 
-def assemble(ens: EnsembleSums, cells: CellSums | None = None, **kwargs) -> Run:
-    """Statistics and GW expectations of a complete ensemble, as a :class:`Run`; with
-    ``cells``, the environment's too."""
+def assemble(ens: EnsembleSums, **kwargs) -> Run:
+    """Statistics and GW expectations of a complete ensemble, as a :class:`Run` (with an
+    environment, its open gaps' curves too)."""
     spec = ens.spec
     return Run(
-        environment=None if cells is None else environment_run(spec, cells),
+        environment=environment_run(spec),
         ensemble=ens,
         realizations=per_realization(ens),
         summary=summarize(ens),
@@ -392,7 +391,7 @@ def analytic_curves(spec: MonteCarloSpec, h=None) -> list:
                 spec.surface,
                 spec.material,
                 h,
-                law=spec.law,
+                law=spec.law_set,
                 branch=b,
                 **({"turn": spec.turn} if b == "retract" else {}),
             )

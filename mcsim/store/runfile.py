@@ -34,17 +34,14 @@ the axes ``(h)`` of an approach, or ``(branch, h)`` of a cycle (``--cycle``: the
     /heights/z, /heights/count   optional (``--keep-heights``): the sampled heights above
                            s_min [m] of every patch, one after another (summit), and the
                            number per patch (realization): a CF contiguous ragged array
-    -- runs with an environment only (mcsim.engine.cells; absent otherwise) --
+    -- runs with an environment only (absent otherwise; the summits' caps vdw, capillary
+       are outputs of the law set, stored with the sums above) --
     /environment           attrs: hamaker [J], cutoff [m], rh, contact_angle [rad],
                            temperature [K], surface_tension [J/m^2], molar_volume
-                           [m^3/mol], kelvin_radius [m], units (JSON), rq [m],
-                           summit_offset [m], gap_source (given or the Nayak estimate),
-                           map_heights (JSON: "gaussian" or the histogram), cell_model
-    /environment/n_cells   (realization) cells per patch (one per summit)
-    /environment/sums/<c>  (realization, rows) Σp_vdW, Σp_vdW², Σp_cap, Σp_cap² over the
-                           cells (c: vdw, vdw2, capillary, capillary2)
-    /environment/realizations/<t>, /environment/summary/{mean,se}/<t>,
-    /environment/analytic/<t>   (realization, rows) or (rows) pressures / K, t in vdw, capillary
+                           [m^3/mol], kelvin_radius [m], band_edge [m], units (JSON),
+                           rq [m], summit_offset [m], gap_source (given or the Nayak
+                           estimate), map_heights (JSON: "gaussian" or the histogram), model
+    /environment/open_gaps/<t>  (rows) open gaps' pressure / K, t in vdw, capillary
 
 Named axes: every group whose datasets have an axis h, branch, realization or summit
 holds that axis's coordinate as an HDF5 dimension scale of the same name, attached to
@@ -385,10 +382,12 @@ def _read_state(path: Path, f) -> tuple[EnsembleSums, dict]:
     attrs = _attributes(path, f)
     surface, material = _inputs(path, f)
     h = schema.dataset(path, f, "h", "f", None, WHAT)
+    environment, surface = read_environment(path, f, surface)
     try:
         spec = MonteCarloSpec(surface, material, h, attrs["area"], attrs["realizations"],
                               int(attrs["seed_entropy"]), attrs["law"], attrs["count"],
-                              attrs.get("cycle", False), attrs.get("device", "cpu"))  # fmt: skip
+                              attrs.get("cycle", False), attrs.get("device", "cpu"),
+                              environment)  # fmt: skip
     except MCSimError as err:
         raise schema.refuse(path, WHAT, f"inputs: {err}") from None
     R, M, rows = spec.realizations, spec.h.size, spec.row_h.size
@@ -550,9 +549,8 @@ def read_run(path: str | Path, *, allow_incomplete: bool = False):
 
         stats = {stat: {q: rows(f"summary/{stat}/{q}") for q in names} for stat in STATS}
         heights = _heights(path, f, spec.realizations)
-        cells = read_environment(path, f, spec, version)
         return Run(
-            environment=None if cells is None else environment_run(spec, cells),
+            environment=environment_run(spec),
             ensemble=state,
             realizations={q: rows(f"realizations/{q}", 1) for q in names},
             summary=Summary(**stats, expected_contacts=rows("summary/expected_contacts")),

@@ -206,7 +206,8 @@ def analytic_pad_pull_off(spec, turn: float | None = None) -> float:
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RegimeWarning)
         s = adhesion_summary(spec.surface, spec.material, spec.law,
-                             turn=spec.turn if turn is None else turn)  # fmt: skip
+                             turn=spec.turn if turn is None else turn,
+                             environment=spec.environment)  # fmt: skip
     bias = spec.expected_summits / (spec.surface.eta * spec.area)
     return s.pull_off * spec.material.K * spec.area * bias
 
@@ -402,7 +403,9 @@ def _p_stick_model(spec, fr: float, preload: float | None, turn: float) -> float
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RegimeWarning)
-        h_off = adhesion_summary(spec.surface, spec.material, spec.law, turn=turn).h_pull_off
+        h_off = adhesion_summary(
+            spec.surface, spec.material, spec.law, turn=turn, environment=spec.environment
+        ).h_pull_off
     if not math.isfinite(h_off):
         return 0.0
     return p_stick_model(spec, fr, turn=turn, h_pull_off=h_off, preload=preload)

@@ -21,15 +21,13 @@ import numpy as np
 
 from mcsim._version import __version__
 from mcsim.engine import interrupt
-from mcsim.engine.cells import run_cell_sums
 from mcsim.engine.montecarlo import DEFAULT_CHUNK, MonteCarloSpec, default_workers, run_sums
 from mcsim.model.errors import ParameterError
 from mcsim.model.params import Material, Surface, check_range, check_seed, check_separations
 from mcsim.model.presets import as_material, as_surface
 from mcsim.model.units import parse_quantity
 from mcsim.physics.adhesion import regime_warnings
-from mcsim.physics.environment import Environment, as_environment
-from mcsim.physics.gapheights import gap_heights
+from mcsim.physics.environment import Environment, as_environment, interface_warnings
 from mcsim.physics.laws import LAW_SETS, get_law_set
 from mcsim.store import runfile
 from mcsim.store.claim import Claim, claim_output
@@ -81,15 +79,12 @@ def _preload_attrs(surface, material, h, law, cycle, environment, preload) -> di
     if not cycle:
         raise ParameterError("preload: force control presses each pad before retraction; "
                              "it needs cycle=True (--cycle)")  # fmt: skip
-    if environment is not None:
-        raise ParameterError("preload with an environment: each pad's force control counts "
-                             "its contact loads only (not yet the environment's attraction)")  # fmt: skip
     if "load" not in get_law_set(law).names:
         signed = [name for name in LAW_SETS if "load" in get_law_set(name).names]
         raise ParameterError(f"preload: law = {law!r} has no signed load to balance it "
                              f"(allowed: {', '.join(signed)})")  # fmt: skip
-    pressure = check_range("preload", preload, "Pa", low=0)
-    turn = preload_turn(surface, material, pressure, law)
+    pressure = check_range("preload", preload, "Pa", low=0, low_open=False)
+    turn = preload_turn(surface, material, pressure, law, environment)
     if min(h) > turn:
         raise ParameterError(f"preload = {pressure:g} Pa: the mean approach curve balances it at "
                              f"h = {turn:.4g}, below the lowest h = {min(h):g}; extend h (--h) down "
@@ -152,7 +147,7 @@ def simulate(
         reaches preload × area and retracts from there (:meth:`Run.pull_off`, which draws
         its summits again); the run records the preload and the turn that balances it on
         the mean curve (:func:`mcsim.physics.loadcontrol.preload_turn`), which must lie
-        within ``h``. Law sets with a signed load only, no environment.
+        within ``h``. Law sets with a signed load only; with an environment its net load.
     device : {"cpu", "cuda"}
         Sample and sum on the CPU or on the GPU (``mcsim[gpu]``; other random streams,
         so other numbers than the CPU's, equal in distribution); recorded in the run.
@@ -194,12 +189,14 @@ def simulate(
         nominal pressures that the separations balance (``mcsim simulate --pressure``).
     environment : Environment or mapping, optional
         An Environment, or its fields as a mapping (:func:`~mcsim.physics.environment.as_environment`).
-        Van der Waals and capillary condensation across the gaps: each patch's pressures
-        are sampled over its cells (:mod:`mcsim.engine.cells`: one cell per summit, heights
-        from ``surface.rq``/``map_heights`` or the Nayak estimate,
-        :func:`mcsim.physics.gapheights.gap_heights`) in a pass after the contact sums
-        (local threads, not checkpointed: a resumed run redoes it). The contact sums are
-        the same as without it. None: no such pass, and the file is as before.
+        Van der Waals and capillary condensation: each summit's cap adds the outputs
+        ``vdw`` and ``capillary`` to the law set (summed like the contact loads, and
+        drawn down to the caps' band edge, so the sums differ from a dry run's), and the
+        open gaps between the caps add a deterministic pressure
+        (:func:`mcsim.physics.environment.open_gap_pressures`, heights about the mean
+        plane from ``surface.rq``/``map_heights`` or the Nayak estimate). A preload is
+        then balanced by the net load, and ``preload=0`` is a device resting under its
+        own attraction. None: the contact alone, and the file is as before.
 
     Returns
     -------
@@ -231,9 +228,8 @@ def simulate(
         if seed is None and claim is not None:
             seed = _recorded_seed(claim)
         entropy = np.random.SeedSequence(seed).entropy
-        spec = MonteCarloSpec(
-            surface, material, h, area_m2, realizations, entropy, law, count, cycle, device
-        )
+        spec = MonteCarloSpec(surface, material, h, area_m2, realizations, entropy, law, count,
+                              cycle, device, environment)  # fmt: skip
         if claim is not None and claim.finished is not None:
             return _already_finished(claim, spec, keep_heights, extra_attrs, seed_given)
         if claim is not None and claim.checkpoint is not None:
@@ -248,7 +244,7 @@ def simulate(
             checkpoint = functools.partial(
                 runfile.write_checkpoint, claim.partial, command=command, extra=extra_attrs
             )
-        run = _run(stack, spec, environment, workers=workers, scheduler=scheduler,
+        run = _run(stack, spec, workers=workers, scheduler=scheduler,
                    chunk_size=chunk_size, keep_heights=keep_heights, progress=progress,
                    resume=None if claim is None else claim.checkpoint, checkpoint=checkpoint,
                    checkpoint_every=checkpoint_every)  # fmt: skip
@@ -278,10 +274,11 @@ def _api_command(spec: MonteCarloSpec, *, seed, preload, environment) -> str:
     return f"mcsim.simulate({', '.join(f'{k}={v!r}' for k, v in kwargs.items())})"
 
 
-def _run(stack, spec: MonteCarloSpec, environment, *, workers, scheduler, chunk_size,
+def _run(stack, spec: MonteCarloSpec, *, workers, scheduler, chunk_size,
          keep_heights, progress, resume, checkpoint, checkpoint_every) -> Run:  # fmt: skip
-    """The contact sums of ``spec`` (continuing ``resume``), then the environment's cells."""
-    for warning in regime_warnings(spec.surface, spec.material, spec.law):
+    """The sums of ``spec`` (continuing ``resume``): contacts, and the environment's caps."""
+    notes = regime_warnings(spec.surface, spec.material, spec.law)
+    for warning in notes + interface_warnings(spec.surface, spec.material, spec.environment):
         log.info("warning: %s", warning)  # once the inputs are accepted: no error follows
     n_workers = default_workers() if workers is None else workers
     summits, pairs, seconds = estimate(spec, n_workers)
@@ -308,11 +305,7 @@ def _run(stack, spec: MonteCarloSpec, environment, *, workers, scheduler, chunk_
                    progress=None if bar is None else bar.update, client=client, resume=resume,
                    checkpoint=checkpoint, checkpoint_every=checkpoint_every,
                    interrupt=interrupt.check)  # fmt: skip
-    cells = None
-    if environment is not None:
-        cells = run_cell_sums(spec, ens.n_summits, environment, gap_heights(spec.surface),
-                              workers=n_workers, interrupt=interrupt.check)  # fmt: skip
-    return assemble(ens, cells)
+    return assemble(ens)
 
 
 def _inputs(spec: MonteCarloSpec, extra: dict) -> dict:

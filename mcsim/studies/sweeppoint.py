@@ -243,7 +243,8 @@ def _pads(point: Point, config: Config, law: str, turn: float, h_pull_off: float
     if not math.isfinite(turn):
         raise ParameterError(f"pads need the adhesion summary's turn; law {law!r} has none")
     spec = MonteCarloSpec(point.surface, point.material, np.asarray(config.h), point.area,
-                          config.pads, pads_seed(config.entropy, point.index), law, cycle=True)  # fmt: skip
+                          config.pads, pads_seed(config.entropy, point.index), law, cycle=True,
+                          environment=point.environment)  # fmt: skip
     return finite_pads(spec, config.restoring_force, preload=config.preload, turn=turn,
                        h_pull_off=h_pull_off)  # fmt: skip
 

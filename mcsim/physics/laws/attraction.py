@@ -1,0 +1,93 @@
+"""The environment's attraction on one summit: its meniscus and its van der Waals pull.
+
+See docs/physics.md, section 'The environment: summits and open gaps'.
+
+The proximity (Derjaguin) model of :mod:`mcsim.physics.environment` applied to one
+spherical cap of radius R whose tip is at gap g = −δ from the flat (Israelachvili,
+*Intermolecular and Surface Forces*, 3rd ed., ch. 13 and 17). Around the tip the local gap
+is u = g + r²/2R, so the cap's area at local gaps in [u, u + du] is 2πR du, the same at
+every u. A pressed summit (g < 0) keeps this rigid profile outside its contact: no
+elastic deformation of the open gaps, as in the proximity model. The summit owns the
+local gaps u < u_c (its **cap**, u_c the band edge of
+:func:`mcsim.physics.environment.band_edge`); every gap u < D0 (the cutoff) is contact,
+which belongs to the contact law and is charged nothing here. Per summit, attractive
+positive (N):
+
+* van der Waals, the flat–flat pressure A/(6πu³) over the open part of the cap,
+  D0 ≤ u < u_c:  F_vdW = (A R/6)(m⁻² − u_c⁻²), m = min(max(g, D0), u_c);
+  u_c → ∞ with g ≥ D0 gives the sphere–flat A R/(6 g²) (Israelachvili Eq. 13.11 and
+  Table 13.1);
+* the meniscus: liquid condenses where D0 ≤ u < g_K = 2 r_K cos θ (Kelvin), and its
+  Laplace pressure γ_L/r_K acts on that annulus of area 2πR(g_K − max(g, D0))⁺:
+  F_cap = 2πR (γ_L/r_K)(g_K − m)⁺, m = min(max(g, D0), g_K); for D0 ≤ g < g_K this is
+  4πRγ_L cos θ (1 − g/g_K), the classic sphere–flat meniscus (Israelachvili Eq. 17.21)
+  rising to 4πRγ_L cos θ (1 − D0/g_K) at touch, and a pressed summit keeps that value:
+  its wetted annulus surrounds its contact.
+
+Both are continuous in δ, constant for a pressed summit, zero beyond their range
+(u_c, g_K), and −dW/dd = F with the works of :func:`vdw_summit_work` and
+:func:`capillary_summit_work`. The functions are written in the law vocabulary
+(:mod:`mcsim.physics.laws`), so the Monte Carlo kernel compiles them like any law.
+"""
+
+import numpy as np
+
+
+def vdw_summit(delta, hamaker, R, cutoff, band):
+    """Van der Waals attraction of one summit across its open cap, N (> 0 attractive).
+
+    Parameters
+    ----------
+    delta : array_like
+        Interference δ = z − d, m (the tip's gap is g = −δ).
+    hamaker : float
+        Hamaker constant A, J.
+    R : float
+        Summit radius, m.
+    cutoff : float
+        Cutoff gap D0, m: smaller gaps are contact.
+    band : float
+        Band edge u_c, m (> D0): the cap's deepest local gap.
+    """
+    m = np.minimum(np.maximum(-delta, cutoff), band)
+    return hamaker * R / 6 * (1 / (m * m) - 1 / (band * band))
+
+
+def capillary_summit(delta, laplace, R, cutoff, gap_k):
+    """Capillary attraction of one summit's meniscus, N (> 0 attractive).
+
+    Parameters
+    ----------
+    delta : array_like
+        Interference δ = z − d, m.
+    laplace : float
+        Laplace pressure γ_L/r_K, Pa (0 without condensation).
+    R : float
+        Summit radius, m.
+    cutoff : float
+        Cutoff gap D0, m.
+    gap_k : float
+        Condensation gap g_K = 2 r_K cos θ, m (>= D0; = D0 without condensation).
+    """
+    m = np.minimum(np.maximum(-delta, cutoff), gap_k)
+    return 2 * np.pi * R * laplace * (gap_k - m)
+
+
+def vdw_summit_work(delta_t, hamaker, R, cutoff, band):
+    """Work of :func:`vdw_summit` from interference ``delta_t`` to far away, J:
+    ∫ F dd from d_t = z − δ_t outward (NumPy only, not a kernel law)."""
+    g = np.asarray(-delta_t, dtype=float)
+    m = np.minimum(np.maximum(g, cutoff), band)
+    # Open part: ∫_m^{u_c} (u⁻² − u_c⁻²) du; pressed part: the constant force over D0 − g.
+    open_part = 1 / m - 1 / band - (band - m) / band**2
+    pressed = np.maximum(cutoff - g, 0) * (1 / cutoff**2 - 1 / band**2)
+    return hamaker * R / 6 * (open_part + pressed)
+
+
+def capillary_summit_work(delta_t, laplace, R, cutoff, gap_k):
+    """Work of :func:`capillary_summit` from interference ``delta_t`` to far away, J
+    (NumPy only): πR(γ_L/r_K)[(g_K − m)² + 2(g_K − D0)(D0 − g)⁺]."""
+    g = np.asarray(-delta_t, dtype=float)
+    m = np.minimum(np.maximum(g, cutoff), gap_k)
+    pressed = np.maximum(cutoff - g, 0) * 2 * (gap_k - cutoff)
+    return np.pi * R * laplace * ((gap_k - m) ** 2 + pressed)
