@@ -335,7 +335,7 @@ def _retraction(turn, sigma, factor, p, nodes, weights, gl_x, gl_w, extra):
             retract = _load(x, turn, True, sigma, factor, p, nodes, weights)
             grid[j * (m + 1) + 1 + k] = x
             values[j * (m + 1) + 1 + k] = retract
-            work += half * gl_w[k] * max(-retract, 0.0)
+            work -= half * gl_w[k] * retract  # −∫ F dd, signed (as adhesion_summary)
             hysteresis -= half * gl_w[k] * retract
     # The approach load is smooth on [turn, top] (no kink, no zero to split at): fewer panels.
     half = 0.5 * (top - turn) / APPROACH_PANELS
