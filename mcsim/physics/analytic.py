@@ -356,6 +356,10 @@ def _contact_curves(surface, material, h, laws, args, edges, branch, turn) -> An
         **values,
     }
     values |= _friction(laws, material, values)
+    if laws.name == "seed":  # the seed with an environment's caps: its μ (Eq. 8) as above
+        denominator = values["P"] + values["F"]
+        with np.errstate(invalid="ignore", divide="ignore"):
+            values["mu"] = np.where(denominator > 0, values["T"] / denominator, np.nan)
     return AnalyticCurves(h, values, surface, material, laws.name, branch, turn)
 
 

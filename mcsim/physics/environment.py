@@ -591,10 +591,11 @@ def with_environment(law: LawSet, surface, env: Environment | None) -> LawSet:
     terms = active_terms(env)
 
     def edges(params) -> Edges:
+        # Down to the band edge whichever terms act: the summits drawn, hence a pad's, are
+        # then the same at every humidity and Hamaker constant (common random numbers).
         base = law.edges(params)
-        reach = -extra["band"] if "vdw" in terms else -extra["gap_k"]
         cuts = {-extra["cutoff"], -extra["gap_k"], -extra["band"]}
-        return Edges(min(base.reach, reach), base.jump_in, base.break_off,
+        return Edges(min(base.reach, -extra["band"]), base.jump_in, base.break_off,
                      tuple(sorted({*base.breakpoints, *cuts})))  # fmt: skip
 
     def constants(s, m) -> dict:

@@ -30,7 +30,9 @@ every variable has ``units`` and ``long_name`` attributes; schema :data:`SCHEMA_
     pads (...)              with ``pads``: p_stick with its 95 % interval p_stick_low,
                             p_stick_high (1), the pads' pull_off_mean, pull_off_std,
                             pull_off_q05, pull_off_q50, pull_off_q95 and the GW
-                            pull_off_analytic (N), p_stick_model and contacting_summits (1)
+                            pull_off_analytic (N), their work_of_separation_mean, _std,
+                            _q05, _q50, _q95 (J/m^2), p_stick_model and
+                            contacting_summits (1)
                             (:data:`PADS`)
     root attributes         sweep_schema_version, mcsim_version, created, command,
                             law, varied (JSON list of the dimension names), surface,
@@ -137,6 +139,11 @@ PADS = {
     "pull_off_q05": ("N", "5 % quantile of the pads' pull-off force"),
     "pull_off_q50": ("N", "median of the pads' pull-off force"),
     "pull_off_q95": ("N", "95 % quantile of the pads' pull-off force"),
+    "work_of_separation_mean": ("J/m^2", "mean work of separation of the pads, -int F dd / A"),
+    "work_of_separation_std": ("J/m^2", "standard deviation of the pads' work of separation"),
+    "work_of_separation_q05": ("J/m^2", "5 % quantile of the pads' work of separation"),
+    "work_of_separation_q50": ("J/m^2", "median of the pads' work of separation"),
+    "work_of_separation_q95": ("J/m^2", "95 % quantile of the pads' work of separation"),
     "pull_off_analytic": (
         "N",
         "GW mean pull-off of one pad: pull_off x A K after the mean-field turn",

@@ -285,18 +285,23 @@ def finite_pads(spec, restoring_force: float, *, preload: float | None = None, t
         raise ParameterError(f"pads turn at h = {turn:.4g}, below the lowest separation h = "
                              f"{spec.turn:g}; extend the separations (--h) down")  # fmt: skip
     sigma = spec.surface.sigma
-    force = np.empty(spec.realizations)
+    force, work = np.empty(spec.realizations), np.empty(spec.realizations)
     for r in range(spec.realizations):
         z = padcurves.patch_heights(spec, r)
         d_turn = turn * sigma
         if preload is not None:
             d_turn, _ = padcurves.force_turn(spec, z, preload * spec.area)
         force[r] = padcurves.pull_off(spec, z, d_turn)[0]
+        work[r] = padcurves.pad_work(spec, z, d_turn)
     s = pad_statistics(force, restoring_force)
+    works = pad_statistics(work)
     lam = spec.surface.eta * spec.area
     return {"p_stick": s.p_stick, "p_stick_low": s.p_stick_ci[0], "p_stick_high": s.p_stick_ci[1],
             "pull_off_mean": s.mean, "pull_off_std": s.std, "pull_off_q05": s.q05,
             "pull_off_q50": s.q50, "pull_off_q95": s.q95,
+            "work_of_separation_mean": works.mean, "work_of_separation_std": works.std,
+            "work_of_separation_q05": works.q05, "work_of_separation_q50": works.q50,
+            "work_of_separation_q95": works.q95,
             "pull_off_analytic": analytic_pad_pull_off(spec, turn),
             "contacting_summits": lam * float(spec.surface.heights.sf(turn)),
             "p_stick_model": p_stick_model(spec, restoring_force, turn=turn, h_pull_off=h_pull_off,

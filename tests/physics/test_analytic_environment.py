@@ -1,5 +1,5 @@
-"""gw_curves and load control with an environment (issue 22): the vdw and capillary columns
-against an independent quadrature of the proximity model, the net load, and no environment
+"""gw_curves and load control with an environment (issues 22, 30): the vdw and capillary
+columns against an independent quadrature of the summits' caps and the open gaps, the net load, and no environment
 leaving every curve as it was."""
 
 import dataclasses
@@ -25,29 +25,61 @@ ENV = Environment(hamaker=1.3e-19, cutoff=0.21e-9, rh=0.73, contact_angle=math.r
 H = np.array([2.7, 1.1, 0.3, -0.6])
 
 
-def quad_pressures(D, rq, env):
-    """p_vdW and p_cap (Pa) at mean-plane gap D by scipy quad over Gaussian heights
-    (docs/physics.md: (A/6π) E[g⁻³; g >= D0] and (γ_L/r_K) P(D0 <= g < g_K), g = D − z)."""
-
-    def density(z):
-        return math.exp(-0.5 * (z / rq) ** 2) / (rq * math.sqrt(2 * math.pi))
-
-    top = D - env.cutoff  # z below it: open gap
-    vdw, _ = integrate.quad(lambda z: (D - z) ** -3 * density(z), -12 * rq, top,
-                            epsabs=0, epsrel=1e-12, limit=400, points=[min(top - 1e-3 * rq, 0)])  # fmt: skip
+def quad_pressures(h, surface, env):
+    """p_vdW and p_cap (Pa) at h = d/σ by scipy quad, written out from docs/physics.md
+    (section 'The environment: summits and open gaps'): the summits' caps over the Gaussian
+    summit heights s (tip gap g = σ(h − s); band edge u_c = D0 + 1/(2πRη); the cap's
+    condensation gap min(g_K, u_c)), plus the open gaps over the Gaussian heights z about the
+    mean plane (gap D − z >= u_c, D = hσ + y_s)."""
+    sigma, R, eta, D0 = surface.sigma, surface.R, surface.eta, env.cutoff
+    u_c = D0 + 1 / (2 * math.pi * R * eta)
     r_k = env.kelvin_radius
     g_k = 2 * r_k * math.cos(env.contact_angle)
-    filled, _ = integrate.quad(density, D - g_k, top, epsabs=0, epsrel=1e-12, limit=400)
-    return env.hamaker / (6 * math.pi) * vdw, env.surface_tension / r_k * max(filled, 0.0)
+    laplace, gk_cap = env.surface_tension / r_k, min(g_k, u_c)
+
+    def clip(g, hi):
+        return min(max(g, D0), hi)
+
+    def phi(x):
+        return math.exp(-0.5 * x * x) / math.sqrt(2 * math.pi)
+
+    def cap_vdw(s):
+        return env.hamaker * R / 6 * (clip(sigma * (h - s), u_c) ** -2 - u_c**-2) * phi(s)
+
+    def cap_meniscus(s):
+        return 2 * math.pi * R * laplace * (gk_cap - clip(sigma * (h - s), gk_cap)) * phi(s)
+
+    # the integrands have kinks where the tip gap is D0, g_K or u_c
+    kinks = sorted({h - u_c / sigma, h - gk_cap / sigma, h - D0 / sigma})
+    quad = dict(epsabs=0, epsrel=1e-12, limit=400)
+    vdw = eta * integrate.quad(cap_vdw, kinks[0], 40, points=kinks, **quad)[0]
+    cap = eta * integrate.quad(cap_meniscus, kinks[0], 40, points=kinks, **quad)[0]
+    gap = gap_heights(surface)
+    D, rq = h * sigma + gap.summit_offset, gap.rq
+
+    def density(z):
+        return phi(z / rq) / rq
+
+    top = D - u_c  # z below it: an open gap between the caps
+    vdw += env.hamaker / (6 * math.pi) * integrate.quad(
+        lambda z: (D - z) ** -3 * density(z), -12 * rq, top, **quad)[0]  # fmt: skip
+    if g_k > u_c:
+        cap += laplace * integrate.quad(density, D - g_k, top, **quad)[0]
+    return vdw, cap
 
 
+#: So humid that the condensation gap (33 nm) passes the caps' band edge: menisci in the
+#: open gaps too.
+FLOODED = dataclasses.replace(ENV, rh=0.97)
+
+
+@pytest.mark.parametrize("env", [ENV, FLOODED], ids=["humid", "flooded"])
 @pytest.mark.parametrize("surface", [GIVEN, ESTIMATED], ids=lambda s: s.name)
 @pytest.mark.parametrize("law", ["seed", "dmt"])
-def test_vdw_and_capillary_columns_agree_with_quad(surface, law):
-    curves = gw_curves(surface, MATERIAL, H, law, environment=ENV)
-    gap = gap_heights(surface)
+def test_vdw_and_capillary_columns_agree_with_quad(surface, law, env):
+    curves = gw_curves(surface, MATERIAL, H, law, environment=env)
     for i, h in enumerate(H):
-        vdw, cap = quad_pressures(h * surface.sigma + gap.summit_offset, gap.rq, ENV)
+        vdw, cap = quad_pressures(h, surface, env)
         assert curves.vdw[i] * MATERIAL.K == pytest.approx(vdw, rel=QUAD_RTOL), f"vdw at h = {h}"
         assert curves.capillary[i] * MATERIAL.K == pytest.approx(cap, rel=QUAD_RTOL), (
             f"cap at h = {h}"

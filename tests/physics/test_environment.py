@@ -5,6 +5,7 @@ independent adaptive quadrature (``scipy.integrate.quad``) of the model's defini
 −dW/dD = p by central differences, and a finely binned Gaussian histogram.
 """
 
+import dataclasses
 import math
 
 import numpy as np
@@ -17,6 +18,7 @@ from mcsim.model.presets import SURFACES
 from mcsim.physics.environment import (
     DEFAULT_CUTOFF,
     Environment,
+    band_edge,
     capillary_pressure,
     capillary_work,
     environment_curves,
@@ -304,14 +306,14 @@ def test_dry_vapour_condenses_nothing():
     env = Environment(hamaker=A)
     assert env.is_dry and not env.has_capillary and env.has_vdw
     assert "dry" in env.no_condensation_reason
-    assert environment_works(D0, 1e-9, env)["capillary"] == 0
+    assert environment_works(np.float64(0.0), SURFACES["smooth"], env)["capillary"] == 0
     assert capillary_work(D0, 1e-9, *water(0.0)) == 0
 
 
 def test_zero_hamaker_gives_no_vdw():
     env = Environment(hamaker=0.0, rh=0.5)
     assert not env.has_vdw and env.active
-    curves = environment_curves(np.linspace(-1, 3, 5), 1.4e-9, 1.55e-9, 1.59e-9, env)
+    curves = environment_curves(np.linspace(-1, 3, 5), SURFACES["smooth"], env)
     assert np.all(curves["vdw"] == 0) and np.all(curves["capillary"] > 0)
 
 
@@ -320,12 +322,18 @@ def test_default_environment_is_inactive():
     assert not env.active and env.cutoff == DEFAULT_CUTOFF
 
 
-def test_curves_measure_the_gap_from_the_summit_plane():
+def test_the_open_gaps_measure_the_gap_from_the_mean_plane():
+    """The GW separation d is from the mean summit plane, y_s above the mean plane: the open
+    gaps' attraction is the proximity model at D = hσ + y_s with the caps' band edge as its
+    cutoff."""
+    surface = dataclasses.replace(SURFACES["smooth"], rq=1.55e-9, summit_offset=1.59e-9)
     env = Environment(hamaker=A, cutoff=D0, rh=0.7)
     h = np.array([-0.5, 0.0, 2.0])
-    curves = environment_curves(h, 1.4e-9, 1.55e-9, 1.59e-9, env)
-    D = h * 1.4e-9 + 1.59e-9
-    np.testing.assert_array_equal(curves["vdw"], vdw_pressure(D, 1.55e-9, A, D0))
+    curves = environment_curves(h, surface, env)
+    D = h * surface.sigma + 1.59e-9
+    u_c = band_edge(surface.R, surface.eta, env)
+    np.testing.assert_array_equal(curves["vdw_gaps"], vdw_pressure(D, 1.55e-9, A, u_c))
+    np.testing.assert_array_equal(curves["vdw"], curves["vdw_caps"] + curves["vdw_gaps"])
 
 
 # -- validation messages ---------------------------------------------------------------------

@@ -11,11 +11,13 @@ area each part owns.
 from __future__ import annotations
 
 import dataclasses
+import itertools
 import math
 
 import numpy as np
 import pytest
 from scipy import integrate
+from tolerances import ROUNDING_FORMULA
 
 from mcsim.model.presets import MATERIALS, SURFACES
 from mcsim.physics.environment import (
@@ -37,7 +39,6 @@ from mcsim.physics.laws.attraction import (
     vdw_summit,
     vdw_summit_work,
 )
-from tests.tolerances import QUAD_RTOL, ROUNDING_FORMULA
 
 A, D0, R = 1.6e-19, 0.2e-9, 0.5e-6
 GAMMA = 0.072
@@ -147,7 +148,7 @@ def owned_area_integral(h, surface, env, kernel):
 
     steps = env.cutoff * (u_c / env.cutoff) ** np.linspace(0, 1, 17)
     cap_part = sum(integrate.quad(caps, a, b, epsabs=0, epsrel=1e-12, limit=200)[0]
-                   for a, b in zip(steps[:-1], steps[1:]))  # fmt: skip
+                   for a, b in itertools.pairwise(steps))  # fmt: skip
     top = max(D, u_c) + 40 * gap.rq
     gap_part = integrate.quad(gaps, u_c, top, points=[D] if u_c < D < top else None, epsabs=0,
                               epsrel=1e-12, limit=400)[0]  # fmt: skip

@@ -1,5 +1,6 @@
 """HDF5 run files: content, provenance, round trip, atomic and non-destructive writes."""
 
+import shutil
 from pathlib import Path
 
 import h5py
@@ -307,16 +308,35 @@ def test_the_seed_dataframe_columns_are_unchanged(tmp_path):
 SCHEMA2 = Path(__file__).parents[1] / "data" / "run_schema2_cycle.h5"
 
 
+def test_a_run_sampled_with_the_cell_model_of_the_environment_is_refused_with_its_reason():
+    """tests/data/run_schema2_cycle.h5 (mcsim at 952d384: jkr, cycle, an environment, kept
+    heights) sampled its environment over cells, mcsim 0.2's model, which counted the area
+    near contact twice: its sums mean another model, so it is refused, saying why."""
+    with pytest.raises(RunFileError, match=r"sampled over cells .* run it again"):
+        read_run(SCHEMA2)
+
+
+def without_environment(path: Path, tmp_path: Path) -> Path:
+    """A copy of the run file ``path`` without its /environment group, signed again."""
+    from mcsim.store.files import checksum
+
+    out = tmp_path / "dry.h5"
+    shutil.copy(path, out)
+    with h5py.File(out, "r+") as f:
+        del f["environment"]
+        f.attrs["checksum"] = checksum(f)
+    return out
+
+
 def test_a_schema_2_cycle_file_still_opens_with_the_same_results(tmp_path):
-    """tests/data/run_schema2_cycle.h5 was written by mcsim at commit 952d384, before
-    schema 3 (its ``command`` attribute holds the call: jkr, cycle, an environment, kept
-    heights). Read, it gives exactly the rows it stores (a cycle's approach rows, then its
-    retraction rows, on one axis); written again as schema 3, it reads back the same."""
+    """The same schema-2 file without its environment group (above): read, it gives exactly
+    the rows it stores (a cycle's approach rows, then its retraction rows, on one axis);
+    written again as schema 3, it reads back the same."""
     from mcsim.store.runfile import write_run
 
-    old = read_run(SCHEMA2)
+    old = read_run(without_environment(SCHEMA2, tmp_path))
     assert old.attrs["schema_version"] == 2
-    assert old.spec.cycle and old.spec.law == "jkr" and old.environment is not None
+    assert old.spec.cycle and old.spec.law == "jkr" and old.environment is None
     with h5py.File(SCHEMA2) as f:
         np.testing.assert_array_equal(old.sums, f["realizations/sums"][()])
         for q in old.quantities:
@@ -325,22 +345,17 @@ def test_a_schema_2_cycle_file_still_opens_with_the_same_results(tmp_path):
             for stat in ("mean", "se", "std", "se_between"):
                 np.testing.assert_array_equal(getattr(old.summary, stat)[q],
                                               f[f"summary/{stat}/{q}"][()])  # fmt: skip
-        np.testing.assert_array_equal(old.environment.cells.sums, f["environment/sums"][()])
         for r, z in enumerate(old.heights):
             np.testing.assert_array_equal(z, f[f"heights/{r}"][()])
     new = read_run(write_run(tmp_path / "v3.h5", old, command="test").path)
     assert new.attrs["schema_version"] == 3 and new.spec == old.spec
     np.testing.assert_array_equal(new.sums, old.sums)
-    np.testing.assert_array_equal(new.environment.cells.sums, old.environment.cells.sums)
     for q in old.quantities:
         np.testing.assert_array_equal(new.realizations[q], old.realizations[q])
         np.testing.assert_array_equal(new.analytic[q], old.analytic[q])
         for stat in ("mean", "se", "std", "se_between"):
             np.testing.assert_array_equal(getattr(new.summary, stat)[q],
                                           getattr(old.summary, stat)[q])  # fmt: skip
-    for t in old.environment.estimates.mean:
-        np.testing.assert_array_equal(new.environment.estimates.mean[t],
-                                      old.environment.estimates.mean[t])  # fmt: skip
     for a, b in zip(new.heights, old.heights, strict=True):
         np.testing.assert_array_equal(a, b)
     assert new.compare().equals(old.compare())

@@ -1,8 +1,11 @@
-"""simulate(environment=...): van der Waals and capillary pressure sampled over each patch's cells.
+"""simulate(environment=...): each summit's cap summed with the contacts, the open gaps added.
 
-Tolerances: |z| < 5 with z = (mc − analytic)/se and se the cells' standard error
-(iid cells given N, mcsim.engine.cells), so a correct run fails by chance with
-probability ~6e-7 per comparison; the seeds are fixed.
+The caps' van der Waals and meniscus forces are outputs of the law set (docs/physics.md,
+section 'The environment: summits and open gaps'): summed over the same summits as the
+loads, with the summit-level standard errors of docs/physics.md, section 'Monte Carlo
+statistics'. Tolerances: |z| < 5 with z = (mc − analytic)/se, so a correct run fails by chance
+with probability ~6e-7 per comparison; the seeds are fixed. The calibration of those standard
+errors over many patches is tests/engine/test_zscore_calibration.py.
 """
 
 import dataclasses
@@ -11,8 +14,9 @@ import h5py
 import numpy as np
 import pytest
 
+from mcsim.engine.kernels import block_sums_numpy, sum_columns
 from mcsim.model.presets import MATERIALS, SURFACES
-from mcsim.physics.environment import Environment
+from mcsim.physics.environment import Environment, open_gap_pressures
 from mcsim.store.runfile import read_run
 from mcsim.studies.simulation import simulate
 from mcsim.topography.empirical import Empirical
@@ -20,7 +24,7 @@ from mcsim.topography.empirical import Empirical
 SMOOTH, SILICON = SURFACES["smooth"], MATERIALS["silicon"]
 HUMID = Environment(hamaker=1.6e-19, cutoff=0.2e-9, rh=0.6, contact_angle=0.3)
 H = [2.5, 1.0, 0.0]
-#: Beyond these, the run file of an environment run must equal the plain run's.
+#: Beyond these, the run files of the same dry inputs must be equal.
 PROVENANCE = {"created", "command", "checksum"}
 
 
@@ -37,80 +41,109 @@ def _assert_agrees(run):
     assert np.all(np.abs(env.z) < 5), env
 
 
-def test_gaussian_heights_agree_with_the_analytic_curves():
+def test_gaussian_summits_agree_with_the_analytic_curves():
     _assert_agrees(_run())
 
 
-def test_measured_histogram_agrees_with_the_analytic_curves():
-    # A skewed (exponential) map, far from Gaussian: the cells sample the histogram itself.
+def test_a_measured_summit_histogram_agrees_with_the_analytic_curves():
+    # A skewed (exponential) summit population, far from Gaussian: the caps integrate over it.
     z = np.random.default_rng(5).exponential(1.0, 50_000)
     shape = Empirical.from_samples(z - z.mean(), bins=40, source="test map")
-    surface = dataclasses.replace(SMOOTH, rq=1.6e-9, summit_offset=1.5e-9, map_heights=shape)
-    _assert_agrees(_run(surface))
+    _assert_agrees(_run(dataclasses.replace(SMOOTH, heights=shape)))
 
 
-def test_contact_sums_are_the_same_with_and_without_the_environment():
-    with_env, without = _run(), _run(environment=None)
-    np.testing.assert_array_equal(with_env.sums, without.sums)
-    assert without.environment is None
+def test_the_caps_are_summed_over_the_same_summits_as_the_loads():
+    run = _run(keep_heights=True, law="jkr", realizations=2)
+    law, spec = run.spec.law_set, run.spec
+    assert law.names == ("load", "area", "vdw", "capillary")
+    for r, z in enumerate(run.heights):
+        again = block_sums_numpy(z, spec.d, law, spec.arguments, edges=spec.edges)
+        # the kernel and the NumPy reference add in other orders: rounding of a sum
+        np.testing.assert_allclose(run.sums[r], again, rtol=1e-12, atol=0)
+    # the summits drawn reach down to the caps' band edge, below the contacts' s_min
+    assert spec.s_min < min(H) - 1
 
 
 @pytest.mark.parametrize("workers, chunk_size", [(2, 1 << 16), (1, 1 << 17)])
-def test_cell_sums_do_not_depend_on_workers_or_chunk_size(workers, chunk_size):
-    # 160k summits per patch: three blocks of cells, so the chunking matters.
+def test_the_sums_do_not_depend_on_workers_or_chunk_size(workers, chunk_size):
+    # 160k summits per patch: three blocks, so the chunking matters.
     big = {"area": "9400 um^2", "realizations": 2}
     reference = _run(**big, workers=1, chunk_size=1 << 16)
     other = _run(**big, workers=workers, chunk_size=chunk_size)
-    assert reference.environment.cells.n_cells.min() > 2 * (1 << 16)
-    np.testing.assert_array_equal(reference.environment.cells.sums, other.environment.cells.sums)
+    assert reference.n_summits.min() > 2 * (1 << 16)
+    np.testing.assert_array_equal(reference.sums, other.sums)
+
+
+def test_the_run_adds_the_open_gaps_to_the_caps():
+    run = _run()
+    spec = run.spec
+    gaps = open_gap_pressures(spec.row_h, spec.surface, HUMID)
+    for term in ("vdw", "capillary"):
+        estimate = getattr(run, term)
+        np.testing.assert_array_equal(
+            estimate.mean, run.summary.mean[term] + gaps[term] / SILICON.K
+        )
+        np.testing.assert_array_equal(estimate.se, run.summary.se[term])
 
 
 def _contents(path):
     with h5py.File(path, "r") as f:
         attrs = {k: v for k, v in f.attrs.items() if k not in PROVENANCE}
         data = {}
-        f.visititems(
-            lambda name, obj: data.setdefault(
-                name, obj[()] if isinstance(obj, h5py.Dataset) else dict(obj.attrs)
-            )
-        )
+
+        def keep(name, obj):  # returns None: visititems stops at the first non-None return
+            data[name] = obj[()] if isinstance(obj, h5py.Dataset) else dict(obj.attrs)
+
+        f.visititems(keep)
         return attrs, data
 
 
-def test_run_file_without_environment_is_unchanged_and_with_it_only_gains_a_group(tmp_path):
+def test_run_file_without_environment_is_unchanged_and_with_it_gains_the_caps_and_a_group(
+    tmp_path,
+):
     plain = _run(environment=None, out=tmp_path / "plain.h5")
     _run(environment=None, out=tmp_path / "none.h5")
+    _run(environment=Environment(), out=tmp_path / "inactive.h5")  # nothing acts: dry
     simulate(SMOOTH, SILICON, H, area="300 um^2", realizations=4, seed=11, workers=1,
              out=tmp_path / "keyword.h5")  # fmt: skip
     _run(out=tmp_path / "env.h5")
     attrs, data = _contents(plain.path)
-    for other in ("none.h5", "keyword.h5"):
+    for other in ("none.h5", "inactive.h5", "keyword.h5"):
         other_attrs, other_data = _contents(tmp_path / other)
         assert other_attrs == attrs
         assert other_data.keys() == data.keys()
-    env_attrs, env_data = _contents(tmp_path / "env.h5")
-    assert env_attrs == attrs
+        for k, v in data.items():
+            if isinstance(v, np.ndarray):
+                np.testing.assert_array_equal(other_data[k], v, err_msg=k)
+    _, env_data = _contents(tmp_path / "env.h5")
     assert not any(k.startswith("environment") for k in data)
-    assert {k for k in env_data if not k.startswith("environment")} == set(data)
-    for k, v in data.items():
-        if isinstance(v, np.ndarray):
-            np.testing.assert_array_equal(env_data[k], v, err_msg=k)
+    assert {"environment", "environment/open_gaps/vdw", "realizations/sums/vdw",
+            "realizations/sums/capillary", "summary/mean/vdw"} <= set(env_data)  # fmt: skip
+    assert set(data) <= set(env_data)
 
 
 def test_run_file_records_the_environment_and_reads_back(tmp_path):
     run = _run(out=tmp_path / "env.h5")
     with h5py.File(run.path, "r") as f:
         a = f["environment"].attrs
-        assert (a["hamaker"], a["cutoff"], a["rh"], a["contact_angle"]) == (
-            1.6e-19,
-            0.2e-9,
-            0.6,
-            0.3,
-        )
+        stored = (a["hamaker"], a["cutoff"], a["rh"], a["contact_angle"])
+        assert stored == (1.6e-19, 0.2e-9, 0.6, 0.3)
         assert a["gap_source"].startswith("Nayak estimate")
-        assert a["rq"] == run.environment.cells.gap.rq
-        assert '"cutoff": "m"' in a["units"]
+        assert a["rq"] == run.environment.gap.rq
+        assert a["band_edge"] == pytest.approx(0.2e-9 + 1 / (2 * np.pi * SMOOTH.R * SMOOTH.eta))
+        assert '"cutoff": "m"' in a["units"] and "open gaps" in a["model"]
     back = read_run(run.path)
-    assert back.environment.cells.environment == HUMID
+    assert back.spec.environment == HUMID and back.spec == run.spec
     np.testing.assert_array_equal(back.vdw.mean, run.vdw.mean)
     np.testing.assert_array_equal(back.capillary.se, run.capillary.se)
+    assert sum_columns(back.spec.law_set) == sum_columns(run.spec.law_set)
+
+
+def test_a_measured_map_keeps_its_heights_about_the_mean_plane_in_the_file(tmp_path):
+    z = np.random.default_rng(5).exponential(1.0, 50_000)
+    shape = Empirical.from_samples(z - z.mean(), bins=40, source="test map")
+    surface = dataclasses.replace(SMOOTH, rq=1.6e-9, summit_offset=1.5e-9, map_heights=shape)
+    run = _run(surface, out=tmp_path / "map.h5")
+    back = read_run(run.path)
+    assert back.spec.surface.rq == 1.6e-9 and back.spec.surface.map_heights is not None
+    np.testing.assert_array_equal(back.vdw.mean, run.vdw.mean)
