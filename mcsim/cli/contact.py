@@ -89,8 +89,9 @@ def add_parser(sub) -> None:
     )
     p.add_argument("--unit", help="height unit if the file stores none (e.g. nm)")
     p.add_argument("--pixel-size", help="pixel size if the file stores none (e.g. 10nm)")
-    p.add_argument("--level", default="plane", choices=("none", "plane", "poly2", "poly3", "poly4", "poly5"),
-                   help="levelling before the solve (default: plane; none removes the mean only)")  # fmt: skip
+    p.add_argument("--level", choices=("none", "plane", "poly2", "poly3", "poly4", "poly5"),
+                   help="levelling before the solve (default: plane, or none on a periodic map; none "
+                   "removes the mean only)")  # fmt: skip
     p.add_argument("--material", default="silicon",
                    help="preset or FILE.toml: its contact modulus E* (default: silicon)")  # fmt: skip
     p.add_argument("--pressure", required=True, metavar="SPEC",

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import argparse
 from pathlib import Path
 
 from mcsim.cli.display import announce
@@ -40,7 +41,7 @@ def run(args) -> int:
         args.file, unit=args.unit, pixel_size=length(args.pixel_size, "--pixel-size"),
         route=args.route, level=args.level, heights=args.heights, R=length(args.R, "--R"),
         eta=None if args.eta is None else parse_quantity(args.eta, "density", "--eta"),
-        channel=args.channel,
+        channel=args.channel, periodic=args.periodic,
     )  # fmt: skip
     for line in result.summary_lines():
         print(line)
@@ -75,8 +76,13 @@ def add_parser(sub) -> None:
     p.add_argument("--overwrite", action="store_true", help="replace existing output files")
     p.add_argument("--route", choices=("direct", "spectral"), default="direct",
                    help="summit statistics written as sigma, R, eta (default: direct)")  # fmt: skip
-    p.add_argument("--level", default="plane", choices=("none", "plane", "poly2", "poly3", "poly4", "poly5"),
-                   help="levelling before analysis (default: plane; none removes the mean only)")  # fmt: skip
+    p.add_argument("--level", choices=("none", "plane", "poly2", "poly3", "poly4", "poly5"),
+                   help="levelling before analysis (default: plane, or none on a periodic map; none "
+                   "removes the mean only)")  # fmt: skip
+    p.add_argument("--periodic", action=argparse.BooleanOptionalAction, default=None,
+                   help="analyse the map as periodic, summit neighbours wrapping across its edges "
+                   "(--periodic) or not (--no-periodic); default: periodic when opposite edges join "
+                   "(rms step across them < 1.5 x the rms neighbour step), said in the output")  # fmt: skip
     p.add_argument("--heights", choices=("summits", "map"), default="summits",
                    help="histogram written: direct-route summit heights (default) or all map heights")  # fmt: skip
     p.add_argument("--R", help="summit radius for a histogram input (e.g. 1.7um)")

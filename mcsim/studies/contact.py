@@ -26,10 +26,10 @@ non-periodic (zero-padded) map the half-space also sinks as a whole under the lo
 Periodic or not
 ---------------
 Synthetic maps often repeat, measured ones do not. Unless told, the map is taken as periodic
-when its opposite edges join: the rms height step across each pair of opposite edges is
-less than :data:`EDGE_JOIN` times the rms step between neighbouring pixels along that axis
-(for a periodic map the two are the same statistic; for a cut-out map the edge step is of
-the order of the rms height). The decision and its numbers are reported.
+when its opposite edges join (:func:`mcsim.topography.summits.periodic_edges`, the rule
+``mcsim ingest`` uses too), and a periodic map is levelled by its mean only unless another
+levelling is asked for. The decision and its numbers are reported; GW's summits are then
+found with neighbours that wrap, as ``mcsim ingest`` finds them.
 
 Every exact number depends on the map's resolution (the real contact area converges slowly
 as the pixels shrink): the pixel size is reported beside them.
@@ -37,7 +37,6 @@ as the pixels shrink): the pixel size is reported beside them.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -47,38 +46,15 @@ from mcsim.model.errors import ParameterError
 from mcsim.model.params import Material, Surface
 from mcsim.physics import bem
 from mcsim.physics.loadcontrol import hertz_area_fraction, load_control
-from mcsim.studies.ingest import _is_histogram_file, ingest_file
+from mcsim.studies.ingest import _is_histogram_file, decide_periodic, default_level, ingest_file
 from mcsim.studies.ingested import LEVELS
 from mcsim.topography.readers import read_height_map
 from mcsim.topography.summits import level as level_heights
 
-#: A map is periodic when the rms step across opposite edges is below this many rms neighbour steps.
-EDGE_JOIN = 1.5
 #: Maps of more pixels than this show a progress bar over the loads.
 PROGRESS_PIXELS = 128 * 128
 #: HDF5 layout version of ``mcsim contact --out`` files (separate from the package version).
 SCHEMA = 1
-
-
-def edge_steps(z: np.ndarray) -> tuple[float, float]:
-    """Rms step across opposite edges over the rms step between neighbours, along y and along x.
-
-    Parameters
-    ----------
-    z : ndarray
-        Height map, any unit.
-
-    Returns
-    -------
-    (float, float)
-        The ratios for rows (top against bottom edge) and columns (left against right edge).
-    """
-    ratios = []
-    for axis in (0, 1):
-        inner = np.sqrt(np.mean(np.diff(z, axis=axis) ** 2))
-        across = np.sqrt(np.mean((np.take(z, 0, axis=axis) - np.take(z, -1, axis=axis)) ** 2))
-        ratios.append(float(across / inner) if inner > 0 else math.inf)
-    return ratios[0], ratios[1]
 
 
 def gw_hertz(surface: Surface, material: Material, pressure: np.ndarray):
@@ -231,7 +207,7 @@ def contact_map(
     unit: str | None = None,
     pixel_size: float | tuple[float, float] | None = None,
     channel: str | None = None,
-    level: str = "plane",
+    level: str | None = None,
     periodic: bool | None = None,
     tol: float = bem.TOL,
     keep_fields: bool = False,
@@ -249,9 +225,11 @@ def contact_map(
         Nominal pressures, Pa, > 0; or a string such as ``"1kPa:10MPa:5:log"``
         (:func:`mcsim.model.units.parse_values`). Solved in ascending order.
     unit, pixel_size, channel, level
-        As for :func:`mcsim.studies.ingest.ingest_file` (pixel size in m).
+        As for :func:`mcsim.studies.ingest.ingest_file` (pixel size in m; levelling by
+        default ``"plane"``, or ``"none"`` on a periodic map).
     periodic : bool, optional
-        Solve the map as periodic or zero-padded; None: decided by :func:`edge_steps`.
+        Solve the map as periodic or zero-padded; None: periodic when its opposite edges
+        join (:func:`mcsim.topography.summits.periodic_edges`).
     tol : float
         Solver tolerance (:func:`mcsim.physics.bem.solve_contact`).
     keep_fields : bool
@@ -277,21 +255,16 @@ def contact_map(
                              f"{material.E_star:g} Pa, where small-strain elasticity holds)")  # fmt: skip
     if _is_histogram_file(Path(path)):
         raise ParameterError(f"{path}: a height histogram has no map to press: give a height map")
-    ingested = ingest_file(path, unit=unit, pixel_size=pixel_size, level=level, channel=channel)
     hmap = read_height_map(path, unit=unit, pixel_size=pixel_size, channel=channel)
+    periodic, reason = decide_periodic(hmap.heights, periodic)
+    level = default_level(periodic) if level is None else level
+    ingested = ingest_file(path, unit=unit, pixel_size=pixel_size, level=level, channel=channel,
+                           periodic=periodic)  # fmt: skip
     z = level_heights(hmap.heights, LEVELS[level])
     if not np.all(np.isfinite(z)):
         raise ParameterError(
             f"{path}: the map has missing pixels: fill or crop them for a contact solve"
         )
-    if periodic is None:
-        steps = edge_steps(z)
-        periodic = max(steps) < EDGE_JOIN
-        reason = (f"edge steps {steps[0]:.2f}, {steps[1]:.2f} x the neighbour step "
-                  f"({'<' if periodic else '>='} {EDGE_JOIN:g}: "
-                  f"{'edges join' if periodic else 'edges do not join'})")  # fmt: skip
-    else:
-        reason = "as asked"
     solutions = bem.solve_loads(
         z, (hmap.dx, hmap.dy), material.E_star, p, periodic=periodic, tol=tol
     )

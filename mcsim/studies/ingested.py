@@ -124,6 +124,10 @@ class IngestResult:
     map_edges, map_counts : ndarray or None
         Histogram of all heights of the levelled map (edges in m, counts), for the
         environment (``surface.map_heights``); None for a histogram input.
+    periodic : bool
+        The map was analysed as periodic (summit neighbours wrap across its edges).
+    periodic_reason : str
+        Why: "as asked", or the edge check's numbers (:func:`~mcsim.topography.summits.periodic_edges`).
     """
 
     source: Path
@@ -147,6 +151,8 @@ class IngestResult:
     warnings: tuple[str, ...] = ()
     map_edges: np.ndarray | None = None
     map_counts: np.ndarray | None = None
+    periodic: bool = False
+    periodic_reason: str = ""
 
     @property
     def distribution(self) -> Empirical:
@@ -170,6 +176,7 @@ class IngestResult:
                 f"map        {cols} x {rows} pixels (x by y), {cols * self.dx * 1e6:.4g} um x "
                 f"{rows * self.dy * 1e6:.4g} um, pixel size {self.dx * 1e9:.4g} nm x {self.dy * 1e9:.4g} nm",
                 f"pixels     {self.n_nan} NaN of {rows * cols} dropped",
+                f"periodic   {'yes (neighbours wrap)' if self.periodic else 'no'}: {self.periodic_reason}",
                 f"levelling  {self.level}: least-squares polynomial of degree {LEVELS[self.level]} "
                 "subtracted; heights from the mean plane",
                 f"heights    levelled map: {self.map_heights.line()}",
@@ -276,6 +283,7 @@ class IngestResult:
             lines += [
                 f"map: {cols} x {rows} pixels, pixel size {self.dx * 1e9:.6g} nm x {self.dy * 1e9:.6g} nm, "
                 f"{self.n_nan} NaN pixels dropped, levelling {self.level} (degree {LEVELS[self.level]})",
+                f"periodic: {'yes' if self.periodic else 'no'} ({self.periodic_reason})",
             ]
         return lines
 
