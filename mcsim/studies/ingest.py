@@ -56,7 +56,7 @@ from pathlib import Path
 import numpy as np
 
 from mcsim.model.errors import MCSimError, ParameterError
-from mcsim.model.params import Surface
+from mcsim.model.params import Material, Surface
 from mcsim.studies.ingested import LEVELS, ROUTES, HeightSummary, IngestResult
 from mcsim.topography.empirical import Empirical
 from mcsim.topography.readers import ReaderError, read_height_map, read_histogram
@@ -150,6 +150,7 @@ def ingest_file(
     name: str | None = None,
     channel: str | None = None,
     periodic: bool | None = None,
+    calibrate: Material | None = None,
 ) -> IngestResult:
     """Read a height map or a height histogram and derive a GW surface from it.
 
@@ -179,6 +180,10 @@ def ingest_file(
     periodic : bool, optional
         Analyse the map as periodic (summit neighbours wrap) or not; None: periodic when its
         opposite edges join (:func:`mcsim.topography.summits.periodic_edges`). Maps only.
+    calibrate : Material, optional
+        Fit GW's summit-radius scale to exact elastic solves of the map with this material's
+        E* (:func:`mcsim.studies.calibration.calibrate`); recorded in the surface file and
+        used by every command that reads it. Maps only.
 
     Returns
     -------
@@ -211,6 +216,10 @@ def ingest_file(
         if periodic is not None:
             raise ParameterError(
                 f"{path}: a text histogram has no edges: --periodic does not apply"
+            )
+        if calibrate is not None:
+            raise ParameterError(
+                f"{path}: a text histogram has no map to solve: --calibrate needs a height map"
             )
         return _ingest_histogram(path, unit, R, eta, name)
     if R is not None or eta is not None:
@@ -261,6 +270,12 @@ def ingest_file(
         raise
     except MCSimError as err:
         raise type(err)(f"{path}: {err}") from None
+    calibration = None
+    if calibrate is not None:
+        from mcsim.studies.calibration import calibrate as fit
+
+        calibration = fit(path, calibrate, unit=unit, pixel_size=pixel_size, channel=channel,
+                          level=level, periodic=periodic)  # fmt: skip
     return IngestResult(
         source=path,
         format=_FORMAT_NAMES.get(path.suffix.lower(), "text matrix"),
@@ -289,6 +304,7 @@ def ingest_file(
         warnings=tuple(str(w.message) for w in caught),
         periodic=periodic,
         periodic_reason=periodic_reason,
+        calibration=calibration,
     )
 
 
