@@ -75,7 +75,7 @@ def run(args) -> int:
             )
         check_output(args.plot, overwrite=args.overwrite)  # before the work, not after it
     with warnings.catch_warnings():
-        warnings.simplefilter("ignore", RegimeWarning)  # printed once below
+        warnings.simplefilter("ignore", RegimeWarning)  # printed once below (with validity)
         turn, preload = turn_of(args, surface, material, law, environment)
         summary = adhesion_summary(surface, material, law, turn=turn,
                                    environment=environment)  # fmt: skip
@@ -91,6 +91,7 @@ def run(args) -> int:
     if args.plot:
         announce(args.plot, "approach and retraction loads", quiet=args.quiet)
     values = summary.to_dict()
+    notes += [f"warning: {line}" for line in summary.validity]
     notes += cutoff_notes(surface, material, summary.law, summary.h_pull_off)
     flag = cutoff_flag(surface, material, summary)
     if flag:

@@ -51,6 +51,7 @@ def _load_control(args, surface, material, law: str, notes: list[str], environme
     result = load_control(surface, material, pressure, law, environment)
     if result.equilibrium.any():
         notes += cutoff_notes(surface, material, law, result.h[result.equilibrium])
+    notes += [f"warning: {line}" for line in result.curves.validity_warnings()]
     table = result.columns()
     if area is not None:
         table["force_N"] = pressure * area
@@ -108,6 +109,7 @@ def run(args) -> int:
     curves = gw_curves(surface, material, parse_h(args.h), law, branch=args.branch, turn=turn,
                        environment=environment)  # fmt: skip
     notes += cutoff_notes(surface, material, curves.law, curves.h)
+    notes += [f"warning: {line}" for line in curves.validity_warnings()]
     table = curves.columns()
     area = area_option(args)
     if area is not None:

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import argparse
 from pathlib import Path
 
 from mcsim.cli.display import announce
@@ -30,17 +31,18 @@ def run(args) -> int:
     ]:  # all refused before any work or writing
         check_output(path, inputs=[args.file], overwrite=args.overwrite)
     material = None
-    if args.plot:
+    if args.plot or args.calibrate:
         from mcsim.store.config import load_material
 
         material = load_material(args.material)
     elif args.material != "silicon":
-        raise ParameterError("--material: used only by the --plot figure; add --plot")
+        raise ParameterError("--material: used only by --plot and --calibrate; add one")
     result = ingest_file(
         args.file, unit=args.unit, pixel_size=length(args.pixel_size, "--pixel-size"),
         route=args.route, level=args.level, heights=args.heights, R=length(args.R, "--R"),
         eta=None if args.eta is None else parse_quantity(args.eta, "density", "--eta"),
-        channel=args.channel,
+        channel=args.channel, periodic=args.periodic,
+        calibrate=material if args.calibrate else None,
     )  # fmt: skip
     for line in result.summary_lines():
         print(line)
@@ -75,15 +77,26 @@ def add_parser(sub) -> None:
     p.add_argument("--overwrite", action="store_true", help="replace existing output files")
     p.add_argument("--route", choices=("direct", "spectral"), default="direct",
                    help="summit statistics written as sigma, R, eta (default: direct)")  # fmt: skip
-    p.add_argument("--level", default="plane", choices=("none", "plane", "poly2", "poly3", "poly4", "poly5"),
-                   help="levelling before analysis (default: plane; none removes the mean only)")  # fmt: skip
+    p.add_argument("--level", choices=("none", "plane", "poly2", "poly3", "poly4", "poly5"),
+                   help="levelling before analysis (default: plane, or none on a periodic map; none "
+                   "removes the mean only)")  # fmt: skip
+    p.add_argument("--periodic", action=argparse.BooleanOptionalAction, default=None,
+                   help="analyse the map as periodic, summit neighbours wrapping across its edges "
+                   "(--periodic) or not (--no-periodic); default: periodic when opposite edges join "
+                   "(rms step across them < 1.5 x the rms neighbour step), said in the output")  # fmt: skip
     p.add_argument("--heights", choices=("summits", "map"), default="summits",
                    help="histogram written: direct-route summit heights (default) or all map heights")  # fmt: skip
     p.add_argument("--R", help="summit radius for a histogram input (e.g. 1.7um)")
     p.add_argument("--eta", help="summit density for a histogram input (e.g. 17um^-2)")
     p.add_argument("--plot", action="store_true",
                    help="also plot the analytic curves against the Gaussian GW curves")  # fmt: skip
+    p.add_argument("--calibrate", action="store_true",
+                   help="fit GW's summit-radius scale to exact elastic solves of the map (mcsim contact) "
+                   "at p/E* = 1e-4 .. 1e-2, so that GW's real contact area follows the exact one; "
+                   "recorded in the surface file and used by every command that reads it (the mean "
+                   "gap is not calibrated)")  # fmt: skip
     p.add_argument("--material", default="silicon",
-                   help="material of the --plot curves: preset or FILE.toml (default: silicon)")  # fmt: skip
+                   help="material of the --plot curves and of the --calibrate solves (its E*): preset "
+                   "or FILE.toml (default: silicon)")  # fmt: skip
     p.add_argument("--quiet", action="store_true", help="no 'wrote FILE' line")
     p.set_defaults(func=run)

@@ -62,6 +62,7 @@ from mcsim.physics.environment import (
 )
 from mcsim.physics.gapheights import gap_heights
 from mcsim.physics.laws import LawSet, get_law_set
+from mcsim.physics.validity import work_warnings
 
 #: Johnson–Greenwood (1997) map at low load: DMT below this Maugis λ.
 DMT_BELOW = 0.1
@@ -88,6 +89,10 @@ class NoAdhesiveRest(ParameterError):
 
 class RegimeWarning(UserWarning):
     """A law set used outside its regime (adhesion map, plasticity index)."""
+
+
+class ValidityWarning(RegimeWarning):
+    """GW's independent summits used where they do not hold (:mod:`mcsim.physics.validity`)."""
 
 
 def tabor_parameter(surface: Surface, material: Material) -> float | None:
@@ -216,6 +221,10 @@ class AdhesionSummary:
         ψ = (E*/H)√(σ/R) (None without H).
     warnings : tuple of str
         Regime warnings (:func:`regime_warnings`).
+    validity : tuple of str
+        Where GW itself does not hold (:mod:`mcsim.physics.validity`): a real contact area at
+        the turn beyond the nominal area or where summits interact, a work of separation of
+        the contact above w.
     work_of_separation_contact, work_of_separation_vdw, work_of_separation_capillary : float or None
         With an environment: the parts of ``work_of_separation`` (J/m²): the contact
         integral, and the van der Waals and capillary works from the turn to infinity;
@@ -242,6 +251,7 @@ class AdhesionSummary:
     adhesion_parameter: float
     plasticity_index: float | None
     warnings: tuple[str, ...] = ()
+    validity: tuple[str, ...] = ()
     work_of_separation_contact: float | None = None
     work_of_separation_vdw: float | None = None
     work_of_separation_capillary: float | None = None
@@ -367,7 +377,8 @@ def adhesion_summary(
     Returns
     -------
     AdhesionSummary
-        Regime warnings are also issued as :class:`RegimeWarning`.
+        Regime warnings are also issued as :class:`RegimeWarning`, and GW's validity
+        warnings (its ``validity``) as :class:`~mcsim.physics.validity.ValidityWarning`.
 
     Raises
     ------
@@ -500,6 +511,11 @@ def _summary(surface, material, laws, turn, turn_from, pull_off, h_pull_off, wor
     notes = tuple(regime_warnings(surface, material, laws))
     for note in notes:
         warnings.warn(note, RegimeWarning, stacklevel=3)
+    contact_work = (parts or {}).get("work_of_separation_contact", work)
+    validity = tuple(gw_curves(surface, material, [turn], laws).validity_warnings()
+                     + work_warnings(contact_work, material.w))  # fmt: skip
+    for note in validity:
+        warnings.warn(note, ValidityWarning, stacklevel=3)
     return AdhesionSummary(
         law=laws.name,
         turn=float(turn),
@@ -514,5 +530,6 @@ def _summary(surface, material, laws, turn, turn_from, pull_off, h_pull_off, wor
         adhesion_parameter=adhesion_parameter(surface, material),
         plasticity_index=plasticity_index(surface, material),
         warnings=notes,
+        validity=validity,
         **(parts or {}),
     )

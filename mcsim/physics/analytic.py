@@ -44,6 +44,7 @@ from mcsim.model.params import Material, Surface, check_range, check_separations
 from mcsim.model.presets import as_material, as_surface
 from mcsim.physics.environment import Environment, as_environment, environment_curves
 from mcsim.physics.laws import Edges, LawSet, get_law_set
+from mcsim.physics.validity import area_warnings
 
 #: Quantities of a GW curve, in output order, with their meaning.
 QUANTITIES = {
@@ -184,6 +185,27 @@ class AnalyticCurves:
 
         labels = self.LABELS if self.law == "seed" else {**self.LABELS, "mu": "μ = friction/load"}
         return pd.DataFrame({labels.get(c, c): v for c, v in self.columns().items()})
+
+    def validity_warnings(self) -> list[str]:
+        """Where these curves leave GW's independent summits (:mod:`mcsim.physics.validity`).
+
+        The real contact area is the ``area`` curve; for a law set without one (the seed)
+        that of its Hertz summits, π η R σ F_1(h) (Greenwood & Williamson 1966).
+
+        Returns
+        -------
+        list of str
+            One line if the area fraction passes the nominal area or
+            :data:`~mcsim.physics.validity.INTERACTING_AREA` at some ``h``; else empty.
+        """
+        from mcsim.physics.loadcontrol import hertz_area_fraction
+
+        h = self.h[np.isfinite(self.h)]  # NaN rows: no equilibrium under load control
+        if "area" in self.values:
+            area = self.values["area"][np.isfinite(self.h)]
+        else:
+            area = hertz_area_fraction(self.surface, h)
+        return area_warnings(area, h)
 
     def _summary(self) -> tuple[str, list[tuple[str, str]]]:
         from mcsim.model import display as _display

@@ -81,6 +81,11 @@ _GAP_KEYS = {
     "summit_offset": ("length", "mean summit plane above the mean plane, e.g. '1.5 nm'"),
 }
 _HEIGHTS_KEYS = {"file", "edges", "counts", "densities", "unit"}
+#: Keys of ``[surface.calibration]`` (:mod:`mcsim.studies.calibration`): ``radius_scale`` is
+#: applied, the rest record how it was fitted.
+_CALIBRATION_KEYS = {"radius_scale", "material", "E_star", "pixel_size", "periodic", "load",
+                     "exact_area_fraction", "gw_area_fraction", "uncalibrated_area_fraction",
+                     "exact_mean_gap_nm", "gw_mean_gap_nm", "worst_error", "rms_error"}  # fmt: skip
 _MATERIAL_KEYS = {
     "E1": ("pressure", "Young's modulus of solid 1, e.g. '160 GPa'"),
     "E2": ("pressure", "Young's modulus of solid 2, e.g. '160 GPa'"),
@@ -272,8 +277,10 @@ def surface_from_table(
         map_heights = _heights_from_value(
             table.pop("map_heights", "gaussian"), f"{where}: map_heights", base_dir, units_required
         )
+        scale = _radius_scale(table.pop("calibration", None), where)
         optional = ("rq", "summit_offset") if heights is None else ("sigma", "rq", "summit_offset")
         values = _quantities(table, _SURFACE_KEYS | _GAP_KEYS, where, optional=optional, **strict)
+        values["R"] *= scale
         if heights is not None:
             values.setdefault("sigma", heights.sigma)
             values["heights"] = heights
@@ -284,6 +291,23 @@ def surface_from_table(
         if str(err).startswith(where):
             raise
         raise ParameterError(f"{where}: {err}") from None
+
+
+def _radius_scale(table: Any, where: str) -> float:
+    """The ``radius_scale`` of a ``[surface.calibration]`` table (1 without one)."""
+    if table is None:
+        return 1.0
+    if not isinstance(table, dict):
+        raise ParameterError(f"{where}: calibration must be a table, got {table!r}")
+    unknown = set(table) - _CALIBRATION_KEYS
+    if unknown:
+        raise ParameterError(f"{where}: calibration: unknown key(s) {', '.join(sorted(unknown))} "
+                             f"(allowed: {', '.join(sorted(_CALIBRATION_KEYS))})")  # fmt: skip
+    scale = table.get("radius_scale")
+    if not (_is_number(scale) and 0 < scale < float("inf")):
+        raise ParameterError(f"{where}: calibration: radius_scale = {scale!r} is out of range "
+                             "(allowed: a number > 0)")  # fmt: skip
+    return float(scale)
 
 
 def material_from_table(

@@ -26,10 +26,31 @@ non-periodic (zero-padded) map the half-space also sinks as a whole under the lo
 Periodic or not
 ---------------
 Synthetic maps often repeat, measured ones do not. Unless told, the map is taken as periodic
-when its opposite edges join: the rms height step across each pair of opposite edges is
-less than :data:`EDGE_JOIN` times the rms step between neighbouring pixels along that axis
-(for a periodic map the two are the same statistic; for a cut-out map the edge step is of
-the order of the rms height). The decision and its numbers are reported.
+when its opposite edges join (:func:`mcsim.topography.summits.periodic_edges`, the rule
+``mcsim ingest`` uses too), and a periodic map is levelled by its mean only unless another
+levelling is asked for. The decision and its numbers are reported; GW's summits are then
+found with neighbours that wrap, as ``mcsim ingest`` finds them.
+
+The environment on the exact gaps
+---------------------------------
+With an :class:`~mcsim.physics.environment.Environment`, the van der Waals and capillary
+attraction are summed over the elastic gap field g of each load, pixel by pixel (the sum
+DelRio et al., Nature Materials 4, 629 (2005) and Appl. Phys. Lett. 90, 163104 (2007) made on
+a measured topography, here on the deformed one instead of the rigid overlap), per nominal
+area (:func:`gap_attraction`):
+
+* van der Waals: p_vdW = (1/N) Σ A/(6π g³) over the pixels with g ≥ D0 (the flat-flat pressure,
+  Israelachvili Eq. 13.11, in the Derjaguin approximation);
+* capillary: p_cap = (γ_L/r_K) × the fraction of pixels with D0 ≤ g < g_K = 2 r_K cos θ (Laplace
+  pressure on the area Kelvin condensation fills);
+* pixels with g < D0, the contacts among them, belong to the contact and are left out.
+
+The attraction pulls the surfaces together without deforming them (DMT on the exact solve):
+the contacts carry p, of which p_vdW + p_cap comes from the attraction, so the pressure applied
+from outside is p − p_vdW − p_cap (``external_pressure``). This holds for stiff, weakly
+adhesive contacts (small Tabor parameter); where the attraction would deform the surface
+around the contacts, a full adhesive solve is needed. The van der Waals sum is dominated by
+the smallest open gaps, so it too depends on the pixel size.
 
 Every exact number depends on the map's resolution (the real contact area converges slowly
 as the pixels shrink): the pixel size is reported beside them.
@@ -37,7 +58,6 @@ as the pixels shrink): the pixel size is reported beside them.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -46,39 +66,17 @@ import numpy as np
 from mcsim.model.errors import ParameterError
 from mcsim.model.params import Material, Surface
 from mcsim.physics import bem
+from mcsim.physics.environment import Environment, as_environment
 from mcsim.physics.loadcontrol import hertz_area_fraction, load_control
-from mcsim.studies.ingest import _is_histogram_file, ingest_file
+from mcsim.studies.ingest import _is_histogram_file, decide_periodic, default_level, ingest_file
 from mcsim.studies.ingested import LEVELS
 from mcsim.topography.readers import read_height_map
 from mcsim.topography.summits import level as level_heights
 
-#: A map is periodic when the rms step across opposite edges is below this many rms neighbour steps.
-EDGE_JOIN = 1.5
 #: Maps of more pixels than this show a progress bar over the loads.
 PROGRESS_PIXELS = 128 * 128
 #: HDF5 layout version of ``mcsim contact --out`` files (separate from the package version).
 SCHEMA = 1
-
-
-def edge_steps(z: np.ndarray) -> tuple[float, float]:
-    """Rms step across opposite edges over the rms step between neighbours, along y and along x.
-
-    Parameters
-    ----------
-    z : ndarray
-        Height map, any unit.
-
-    Returns
-    -------
-    (float, float)
-        The ratios for rows (top against bottom edge) and columns (left against right edge).
-    """
-    ratios = []
-    for axis in (0, 1):
-        inner = np.sqrt(np.mean(np.diff(z, axis=axis) ** 2))
-        across = np.sqrt(np.mean((np.take(z, 0, axis=axis) - np.take(z, -1, axis=axis)) ** 2))
-        ratios.append(float(across / inner) if inner > 0 else math.inf)
-    return ratios[0], ratios[1]
 
 
 def gw_hertz(surface: Surface, material: Material, pressure: np.ndarray):
@@ -105,6 +103,31 @@ def gw_hertz(surface: Surface, material: Material, pressure: np.ndarray):
     h = load_control(surface, material, pressure, "seed").h
     offset = surface.summit_offset or 0.0
     return h, hertz_area_fraction(surface, h), surface.sigma * h + offset
+
+
+def gap_attraction(gap: np.ndarray, environment: Environment) -> tuple[float, float]:
+    """Van der Waals and capillary attraction over a gap field, per nominal area (module docstring).
+
+    Parameters
+    ----------
+    gap : ndarray
+        Gap between the deformed surface and the flat on each pixel, m.
+    environment : Environment
+        Its Hamaker constant (J), cutoff D0 (m), Laplace pressure γ_L/r_K (Pa) and
+        condensation gap g_K (m) are used.
+
+    Returns
+    -------
+    (float, float)
+        p_vdW = (1/N) Σ_{g ≥ D0} A/(6π g³) and p_cap = (γ_L/r_K) #{D0 ≤ g < g_K}/N, Pa,
+        positive when attractive; 0 for a term the environment does not have.
+    """
+    open_ = gap >= environment.cutoff
+    vdw = 0.0
+    if environment.has_vdw:
+        vdw = environment.hamaker / (6 * np.pi) * float(np.sum(gap[open_] ** -3.0)) / gap.size
+    filled = np.count_nonzero(open_ & (gap < environment.condensation_gap))
+    return vdw, environment.laplace_pressure * filled / gap.size
 
 
 @dataclass(frozen=True)
@@ -139,6 +162,11 @@ class ContactResult:
         The GW surface.
     pressure_fields, gap_fields : ndarray or None
         Per pressure (first axis), Pa and m; kept only when asked for.
+    environment : Environment or None
+        The environment summed over the gaps (None: none).
+    vdw_pressure, capillary_pressure : ndarray or None
+        Its van der Waals and capillary attraction per nominal area at each load, Pa
+        (> 0 attractive; :func:`gap_attraction`); None without an environment.
     """
 
     source: Path
@@ -163,14 +191,21 @@ class ContactResult:
     surface: Surface
     pressure_fields: np.ndarray | None = field(default=None, repr=False)
     gap_fields: np.ndarray | None = field(default=None, repr=False)
+    environment: Environment | None = None
+    vdw_pressure: np.ndarray | None = None
+    capillary_pressure: np.ndarray | None = None
 
     def columns(self) -> dict[str, np.ndarray]:
         """The per-pressure numbers, SI (pressure Pa, gaps m), pixel size beside them."""
         n = self.pressure.size
-        return {"pressure": self.pressure, "area_fraction": self.area_fraction,
-                "mean_gap": self.mean_gap, "patches": self.patches,
-                "gw_area_fraction": self.gw_area_fraction, "gw_mean_gap": self.gw_mean_gap,
-                "iterations": self.iterations, "pixel_size": np.full(n, self.dx)}  # fmt: skip
+        out = {"pressure": self.pressure, "area_fraction": self.area_fraction,
+               "mean_gap": self.mean_gap, "patches": self.patches,
+               "gw_area_fraction": self.gw_area_fraction, "gw_mean_gap": self.gw_mean_gap}  # fmt: skip
+        if self.environment is not None:
+            out |= {"vdw_pressure": self.vdw_pressure,
+                    "capillary_pressure": self.capillary_pressure,
+                    "external_pressure": self.pressure - self.vdw_pressure - self.capillary_pressure}  # fmt: skip
+        return out | {"iterations": self.iterations, "pixel_size": np.full(n, self.dx)}
 
     def write(self, path: str | Path, *, command: str = "", overwrite: bool = False) -> Path:
         """Write the fields and the numbers to an HDF5 file, atomically (:mod:`mcsim.store.outputs` rules).
@@ -179,7 +214,9 @@ class ContactResult:
         (:func:`mcsim.store.files.storage`). Root attributes: schema version, mcsim version,
         creation time, command line, source, pixel size, periodicity, E*, tolerance.
         """
+        import dataclasses
         import datetime as dt
+        import math
 
         from mcsim._version import __version__
         from mcsim.store.files import atomic_write, storage
@@ -193,7 +230,10 @@ class ContactResult:
                  "mean_gap": ("m", "mean gap (exact)"), "patches": ("1", "contact patches"),
                  "iterations": ("1", "conjugate-gradient iterations"),
                  "gw_area_fraction": ("1", "real over nominal contact area (GW)"),
-                 "gw_mean_gap": ("m", "mean gap (GW)")}  # fmt: skip
+                 "gw_mean_gap": ("m", "mean gap (GW)"),
+                 "vdw_pressure": ("Pa", "van der Waals attraction over the gaps per nominal area"),
+                 "capillary_pressure": ("Pa", "capillary attraction over the gaps per nominal area"),
+                 "external_pressure": ("Pa", "applied pressure: pressure - vdw - capillary")}  # fmt: skip
 
         def fill(f):
             f.attrs.update({"schema": SCHEMA, "mcsim_version": __version__,
@@ -203,7 +243,12 @@ class ContactResult:
                             "periodic": self.periodic, "periodic_reason": self.periodic_reason,
                             "E_star": self.E_star, "tol": self.tol})  # fmt: skip
             columns = self.columns()
+            if self.environment is not None:
+                f.attrs.update({f"environment_{k}": (math.nan if v is None else v)
+                                for k, v in dataclasses.asdict(self.environment).items()})  # fmt: skip
             for name, (unit, long_name) in units.items():
+                if name not in columns:
+                    continue
                 ds = f.create_dataset(name, data=columns[name])
                 ds.attrs.update({"units": unit, "long_name": long_name})
             for name, data, unit, long_name in (
@@ -231,11 +276,12 @@ def contact_map(
     unit: str | None = None,
     pixel_size: float | tuple[float, float] | None = None,
     channel: str | None = None,
-    level: str = "plane",
+    level: str | None = None,
     periodic: bool | None = None,
     tol: float = bem.TOL,
     keep_fields: bool = False,
     progress: bool = False,
+    environment: Environment | None = None,
 ) -> ContactResult:
     """Exact elastic contact of a measured map against a flat, with GW's on the same map.
 
@@ -249,15 +295,21 @@ def contact_map(
         Nominal pressures, Pa, > 0; or a string such as ``"1kPa:10MPa:5:log"``
         (:func:`mcsim.model.units.parse_values`). Solved in ascending order.
     unit, pixel_size, channel, level
-        As for :func:`mcsim.studies.ingest.ingest_file` (pixel size in m).
+        As for :func:`mcsim.studies.ingest.ingest_file` (pixel size in m; levelling by
+        default ``"plane"``, or ``"none"`` on a periodic map).
     periodic : bool, optional
-        Solve the map as periodic or zero-padded; None: decided by :func:`edge_steps`.
+        Solve the map as periodic or zero-padded; None: periodic when its opposite edges
+        join (:func:`mcsim.topography.summits.periodic_edges`).
     tol : float
         Solver tolerance (:func:`mcsim.physics.bem.solve_contact`).
     keep_fields : bool
         Keep the pressure and gap fields of every load (memory grows with the loads).
     progress : bool
         A progress bar over the loads for maps above :data:`PROGRESS_PIXELS` pixels.
+    environment : Environment or mapping, optional
+        Van der Waals and capillary attraction summed over each load's gap field
+        (:func:`gap_attraction`; a mapping as :func:`~mcsim.physics.environment.as_environment`
+        reads it); None: none.
 
     Returns
     -------
@@ -265,6 +317,7 @@ def contact_map(
     """
     from mcsim.model.units import parse_values
 
+    environment = as_environment(environment)
     if isinstance(pressure, str):
         pressure = parse_values(pressure, "pressure", "pressure", limit=1000)
     p = np.sort(np.atleast_1d(np.asarray(pressure, dtype=float)))
@@ -277,21 +330,16 @@ def contact_map(
                              f"{material.E_star:g} Pa, where small-strain elasticity holds)")  # fmt: skip
     if _is_histogram_file(Path(path)):
         raise ParameterError(f"{path}: a height histogram has no map to press: give a height map")
-    ingested = ingest_file(path, unit=unit, pixel_size=pixel_size, level=level, channel=channel)
     hmap = read_height_map(path, unit=unit, pixel_size=pixel_size, channel=channel)
+    periodic, reason = decide_periodic(hmap.heights, periodic)
+    level = default_level(periodic) if level is None else level
+    ingested = ingest_file(path, unit=unit, pixel_size=pixel_size, level=level, channel=channel,
+                           periodic=periodic)  # fmt: skip
     z = level_heights(hmap.heights, LEVELS[level])
     if not np.all(np.isfinite(z)):
         raise ParameterError(
             f"{path}: the map has missing pixels: fill or crop them for a contact solve"
         )
-    if periodic is None:
-        steps = edge_steps(z)
-        periodic = max(steps) < EDGE_JOIN
-        reason = (f"edge steps {steps[0]:.2f}, {steps[1]:.2f} x the neighbour step "
-                  f"({'<' if periodic else '>='} {EDGE_JOIN:g}: "
-                  f"{'edges join' if periodic else 'edges do not join'})")  # fmt: skip
-    else:
-        reason = "as asked"
     solutions = bem.solve_loads(
         z, (hmap.dx, hmap.dy), material.E_star, p, periodic=periodic, tol=tol
     )
@@ -301,12 +349,14 @@ def contact_map(
         from tqdm import tqdm
 
         solutions = tqdm(solutions, total=p.size, unit=" loads", file=sys.stderr, leave=False)
-    rows, pressures, gaps = [], [], []
+    rows, pressures, gaps, attraction = [], [], [], []
     for s in solutions:
         if not s.converged:
             raise ParameterError(f"pressure {s.pressure:g} Pa: the solver did not converge in "
                                  f"{s.iterations} iterations (residual {s.residual:.2g} > tol {tol:g})")  # fmt: skip
         rows.append((s.area_fraction, s.mean_gap, s.patches, s.iterations, s.residual))
+        if environment is not None:
+            attraction.append(gap_attraction(s.gap_field, environment))
         if keep_fields:
             pressures.append(s.pressure_field)
             gaps.append(s.gap_field)
@@ -319,5 +369,7 @@ def contact_map(
         iterations=iterations.astype(int), residual=residual, gw_h=gw_h,
         gw_area_fraction=gw_area, gw_mean_gap=gw_gap, surface=ingested.surface,
         pressure_fields=np.stack(pressures) if keep_fields else None,
-        gap_fields=np.stack(gaps) if keep_fields else None,
+        gap_fields=np.stack(gaps) if keep_fields else None, environment=environment,
+        vdw_pressure=None if environment is None else np.array([a[0] for a in attraction]),
+        capillary_pressure=None if environment is None else np.array([a[1] for a in attraction]),
     )  # fmt: skip

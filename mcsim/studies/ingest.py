@@ -31,6 +31,15 @@ carries no summit radius or density: the caller gives ``R`` and ``eta``, and
 ``sigma`` is the histogram's own. A text file with more than three numeric columns
 (or a ``.asc``/``.xyz`` file) is a height map.
 
+Periodic maps
+-------------
+A periodic map (a synthetic one, usually) is analysed as such: summit neighbours wrap across
+its edges, and its default levelling removes only the mean, so its rms is left as it is (a
+fitted plane would remove a random tilt the map does not have). Unless told
+(``periodic=True/False``), a map is periodic when its opposite edges join
+(:func:`mcsim.topography.summits.periodic_edges`, checked on the map as read); the decision
+and its numbers are printed and recorded.
+
 Summit statistics depend strongly on the pixel size and the instrument bandwidth
 (docs/physics.md, section 'Summit statistics from a height map'): they describe the surface *as
 sampled*; the pixel size is written next to them everywhere.
@@ -47,12 +56,17 @@ from pathlib import Path
 import numpy as np
 
 from mcsim.model.errors import MCSimError, ParameterError
-from mcsim.model.params import Surface
+from mcsim.model.params import Material, Surface
 from mcsim.studies.ingested import LEVELS, ROUTES, HeightSummary, IngestResult
 from mcsim.topography.empirical import Empirical
 from mcsim.topography.readers import ReaderError, read_height_map, read_histogram
 from mcsim.topography.readers import histogram as _histogram_format
-from mcsim.topography.summits import TopographyResult, summit_heights, summit_statistics
+from mcsim.topography.summits import (
+    TopographyResult,
+    periodic_edges,
+    summit_heights,
+    summit_statistics,
+)
 from mcsim.topography.summits import level as level_heights
 
 HEIGHTS = ("summits", "map")
@@ -129,12 +143,14 @@ def ingest_file(
     unit: str | None = None,
     pixel_size: float | tuple[float, float] | None = None,
     route: str = "direct",
-    level: str = "plane",
+    level: str | None = None,
     heights: str = "summits",
     R: float | None = None,
     eta: float | None = None,
     name: str | None = None,
     channel: str | None = None,
+    periodic: bool | None = None,
+    calibrate: Material | None = None,
 ) -> IngestResult:
     """Read a height map or a height histogram and derive a GW surface from it.
 
@@ -148,9 +164,9 @@ def ingest_file(
         Pixel size, m, for maps that store none.
     route : {"direct", "spectral"}
         Summit statistics written as ``sigma``, ``R``, ``eta`` (maps only).
-    level : str
-        A key of :data:`LEVELS`: ``"plane"`` (default), ``"none"`` (mean only),
-        ``"poly2"`` ... ``"poly5"``.
+    level : str, optional
+        A key of :data:`LEVELS`: ``"plane"``, ``"none"`` (mean only), ``"poly2"`` ...
+        ``"poly5"``; default :func:`default_level` (``"plane"``, ``"none"`` on a periodic map).
     heights : {"summits", "map"}
         Histogram of the direct-route summit heights (default) or of all pixels.
     R : float, optional
@@ -161,6 +177,13 @@ def ingest_file(
         Surface name; the file's stem by default.
     channel : str, optional
         Channel of a multi-channel map (see :func:`mcsim.topography.readers.read_height_map`).
+    periodic : bool, optional
+        Analyse the map as periodic (summit neighbours wrap) or not; None: periodic when its
+        opposite edges join (:func:`mcsim.topography.summits.periodic_edges`). Maps only.
+    calibrate : Material, optional
+        Fit GW's summit-radius scale to exact elastic solves of the map with this material's
+        E* (:func:`mcsim.studies.calibration.calibrate`); recorded in the surface file and
+        used by every command that reads it. Maps only.
 
     Returns
     -------
@@ -176,7 +199,8 @@ def ingest_file(
         size that fits.
     """
     _check_choice("route", route, ROUTES)
-    _check_choice("level", level, tuple(LEVELS))
+    if level is not None:
+        _check_choice("level", level, tuple(LEVELS))
     _check_choice("heights", heights, HEIGHTS)
     path = Path(path)
     if not path.exists():
@@ -189,6 +213,14 @@ def ingest_file(
             raise ParameterError(
                 f"{path}: a text histogram has no channels: --channel does not apply"
             )
+        if periodic is not None:
+            raise ParameterError(
+                f"{path}: a text histogram has no edges: --periodic does not apply"
+            )
+        if calibrate is not None:
+            raise ParameterError(
+                f"{path}: a text histogram has no map to solve: --calibrate needs a height map"
+            )
         return _ingest_histogram(path, unit, R, eta, name)
     if R is not None or eta is not None:
         raise ParameterError(
@@ -196,6 +228,8 @@ def ingest_file(
         )
     hmap = read_height_map(path, unit=unit, pixel_size=pixel_size, channel=channel)
     _check_memory(path, hmap.heights.shape)
+    periodic, periodic_reason = decide_periodic(hmap.heights, periodic)
+    level = default_level(periodic) if level is None else level
     try:
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always")
@@ -206,10 +240,12 @@ def ingest_file(
                     "pixels for summit statistics you can compare",
                     stacklevel=2,
                 )
-            topo = summit_statistics(hmap.heights, hmap.dx, hmap.dy, order=LEVELS[level])
+            topo = summit_statistics(
+                hmap.heights, hmap.dx, hmap.dy, order=LEVELS[level], periodic=periodic
+            )
             _warn_route_disagreement(topo)
             levelled = level_heights(hmap.heights, LEVELS[level])
-            peaks = summit_heights(levelled)
+            peaks = summit_heights(levelled, periodic)
             if peaks.size < 2:
                 raise ParameterError(f"found {peaks.size} summit(s): too few for a distribution")
             pixels = levelled[np.isfinite(levelled)]
@@ -234,6 +270,12 @@ def ingest_file(
         raise
     except MCSimError as err:
         raise type(err)(f"{path}: {err}") from None
+    calibration = None
+    if calibrate is not None:
+        from mcsim.studies.calibration import calibrate as fit
+
+        calibration = fit(path, calibrate, unit=unit, pixel_size=pixel_size, channel=channel,
+                          level=level, periodic=periodic)  # fmt: skip
     return IngestResult(
         source=path,
         format=_FORMAT_NAMES.get(path.suffix.lower(), "text matrix"),
@@ -260,7 +302,38 @@ def ingest_file(
         summit_heights=HeightSummary.of(peaks),
         topography=topo,
         warnings=tuple(str(w.message) for w in caught),
+        periodic=periodic,
+        periodic_reason=periodic_reason,
+        calibration=calibration,
     )
+
+
+def decide_periodic(z, periodic: bool | None) -> tuple[bool, str]:
+    """A map's periodicity: as asked, or from its edges (:func:`~mcsim.topography.summits.periodic_edges`).
+
+    Parameters
+    ----------
+    z : ndarray
+        Height map as read, any unit.
+    periodic : bool or None
+        The user's choice; None decides by the edges.
+
+    Returns
+    -------
+    (bool, str)
+        The decision and why, for the output.
+    """
+    if periodic is None:
+        return periodic_edges(z)
+    return bool(periodic), "as asked"
+
+
+def default_level(periodic: bool) -> str:
+    """The levelling used unless asked: ``"plane"``, or ``"none"`` (the mean only) on a periodic map.
+
+    A periodic map has no tilt: fitting a plane would remove its random one and lower its rms.
+    """
+    return "none" if periodic else "plane"
 
 
 def _warn_route_disagreement(topo: TopographyResult) -> None:

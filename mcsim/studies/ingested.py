@@ -11,6 +11,7 @@ import datetime as dt
 import json
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -20,6 +21,9 @@ from mcsim.model.params import Surface
 from mcsim.store.outputs import check_output, write_atomic
 from mcsim.topography.empirical import Empirical
 from mcsim.topography.summits import TopographyResult
+
+if TYPE_CHECKING:
+    from mcsim.studies.calibration import Calibration
 
 #: Levelling choices: name → degree of the subtracted polynomial (``none``: the mean only).
 LEVELS = {"none": 0, "plane": 1, **{f"poly{n}": n for n in range(2, 6)}}
@@ -124,6 +128,14 @@ class IngestResult:
     map_edges, map_counts : ndarray or None
         Histogram of all heights of the levelled map (edges in m, counts), for the
         environment (``surface.map_heights``); None for a histogram input.
+    periodic : bool
+        The map was analysed as periodic (summit neighbours wrap across its edges).
+    periodic_reason : str
+        Why: "as asked", or the edge check's numbers (:func:`~mcsim.topography.summits.periodic_edges`).
+    calibration : Calibration or None
+        GW's summit-radius scale fitted to exact solves (:mod:`mcsim.studies.calibration`),
+        written to the surface file's ``[surface.calibration]`` table; ``surface`` keeps the
+        measured radius.
     """
 
     source: Path
@@ -147,6 +159,9 @@ class IngestResult:
     warnings: tuple[str, ...] = ()
     map_edges: np.ndarray | None = None
     map_counts: np.ndarray | None = None
+    periodic: bool = False
+    periodic_reason: str = ""
+    calibration: Calibration | None = None
 
     @property
     def distribution(self) -> Empirical:
@@ -170,6 +185,7 @@ class IngestResult:
                 f"map        {cols} x {rows} pixels (x by y), {cols * self.dx * 1e6:.4g} um x "
                 f"{rows * self.dy * 1e6:.4g} um, pixel size {self.dx * 1e9:.4g} nm x {self.dy * 1e9:.4g} nm",
                 f"pixels     {self.n_nan} NaN of {rows * cols} dropped",
+                f"periodic   {'yes (neighbours wrap)' if self.periodic else 'no'}: {self.periodic_reason}",
                 f"levelling  {self.level}: least-squares polynomial of degree {LEVELS[self.level]} "
                 "subtracted; heights from the mean plane",
                 f"heights    levelled map: {self.map_heights.line()}",
@@ -189,6 +205,9 @@ class IngestResult:
             )
         else:
             lines.append(f"histogram  {self.edges.size - 1} bins: {self.summit_heights.line()}")
+        if self.calibration is not None:
+            lines += self.calibration.lines()
+            lines += [f"warning    {w}" for w in self.calibration.warnings()]
         lines += [f"warning    {w}" for w in self.warnings]
         if s.rq is not None:
             lines.append(
@@ -276,6 +295,7 @@ class IngestResult:
             lines += [
                 f"map: {cols} x {rows} pixels, pixel size {self.dx * 1e9:.6g} nm x {self.dy * 1e9:.6g} nm, "
                 f"{self.n_nan} NaN pixels dropped, levelling {self.level} (degree {LEVELS[self.level]})",
+                f"periodic: {'yes' if self.periodic else 'no'} ({self.periodic_reason})",
             ]
         return lines
 
@@ -333,6 +353,7 @@ class IngestResult:
                 if s.rq is not None
                 else []
             ),
+            *self._calibration_toml(),
             "",
             "[surface.heights]",
             f"file = {json.dumps(csv_name)}",
@@ -344,6 +365,37 @@ class IngestResult:
             ),
         ]
         return "\n".join(out) + "\n"
+
+    def _calibration_toml(self) -> list[str]:
+        """The ``[surface.calibration]`` table (:mod:`mcsim.studies.calibration`), or nothing."""
+        c = self.calibration
+        if c is None:
+            return []
+
+        def numbers(values) -> str:
+            return "[" + ", ".join(f"{float(v):.6g}" for v in values) + "]"
+
+        return [
+            "",
+            "# GW calibrated on exact elastic solves of the map (mcsim ingest --calibrate): every",
+            "# command that reads this file uses the summit radius R x radius_scale. It fits the",
+            "# real contact area of non-adhesive contact over these loads, at this pixel size; it",
+            "# does NOT fix the mean gap (both are below), nor adhesion.",
+            "[surface.calibration]",
+            f"radius_scale = {c.radius_scale:.12g}",
+            f"material = {json.dumps(c.material)}",
+            f'E_star = "{c.E_star / 1e9:.12g} GPa"',
+            f'pixel_size = "{c.dx * 1e9:.12g} nm"',
+            f"periodic = {'true' if c.periodic else 'false'}",
+            f"load = {numbers(c.load)}  # p/E*",
+            f"exact_area_fraction = {numbers(c.exact_area)}",
+            f"gw_area_fraction = {numbers(c.gw_area)}  # calibrated",
+            f"uncalibrated_area_fraction = {numbers(c.uncalibrated_area)}",
+            f"exact_mean_gap_nm = {numbers(c.exact_gap * 1e9)}",
+            f"gw_mean_gap_nm = {numbers(c.gw_gap * 1e9)}  # not calibrated",
+            f"worst_error = {c.worst:.6g}  # largest |A_GW/A_exact - 1| after calibration",
+            f"rms_error = {c.rms:.6g}",
+        ]
 
 
 def _number(w: float) -> str:

@@ -14,7 +14,9 @@ The map ``z[i, j]`` has rows along y (pitch ``dy``) and columns along x (pitch
    map's minimum or maximum (detector or scanner range clipped), a
    :class:`SaturationWarning` is issued: clipped peaks bias every summit statistic.
 4. **Direct route** (Greenwood & Williamson 1966): a summit is a pixel higher
-   than its 8 neighbours. Border pixels are never summits. Plateaus (equal neighbours)
+   than its 8 neighbours. Border pixels are never summits, unless the map is periodic
+   (``periodic=True``): then neighbours wrap across the edges and every pixel is a
+   candidate. Plateaus (equal neighbours)
    are counted once: the pixel must be strictly higher than the 4 neighbours that come
    before it in raster order (up-left, up, up-right, left) and at least as high as the
    4 that come after (right, down-left, down, down-right), so of a connected flat top
@@ -26,6 +28,16 @@ The map ``z[i, j]`` has rows along y (pitch ``dy``) and columns along x (pitch
    x and y profiles (McCool's equivalent isotropic surface); α = m0 m4/m2²,
    η = m4/(6π√3 m2), R = 0.375 √(π/m4), σ_s = √(1 − 0.8968/α) √m0, mean summit
    height 4 √(m0/(πα)) above the mean plane.
+
+Periodic maps
+-------------
+Synthetic maps often repeat, measured ones do not. :func:`periodic_edges` takes a map as
+periodic when its opposite edges join: the rms height step across each pair of opposite
+edges is less than :data:`EDGE_JOIN` times the rms step between neighbouring pixels along
+that axis (for a periodic map the two are the same statistic; for a cut-out map the edge
+step is of the order of the rms height). On a periodic map the spectral route's differences
+wrap too; its natural levelling is the mean only (a fitted plane would remove the random
+tilt of a map that has none and lower its rms).
 
 Both routes depend strongly on the pixel size and the instrument bandwidth: always
 report ``dx``, ``dy`` and ``order`` with the numbers (they are in the result).
@@ -115,6 +127,8 @@ class TopographyResult:
         Degree of the levelling polynomial.
     n_nan : int
         Number of non-finite pixels dropped.
+    periodic : bool
+        Neighbours and differences wrapped across the map's edges.
     """
 
     direct: SummitStatistics
@@ -126,7 +140,11 @@ class TopographyResult:
     shape: tuple[int, int]
     order: int
     n_nan: int
+    periodic: bool = False
 
+
+#: A map is periodic when the rms step across opposite edges is below this many rms neighbour steps.
+EDGE_JOIN = 1.5
 
 #: Levelled heights this small relative to the raw ones are rounding noise of the fit.
 _ROUNDING = 1e-12
@@ -191,12 +209,23 @@ def _warn_saturation(z: np.ndarray, fraction: float) -> None:
             )
 
 
-def _peaks(z: np.ndarray):
-    """Interior pixels ``c``, a neighbour accessor, the candidate mask and the summit mask."""
-    c = z[1:-1, 1:-1]
+def _peaks(z: np.ndarray, periodic: bool = False):
+    """Candidate pixels ``c``, a neighbour accessor, the candidate mask and the summit mask.
 
-    def nb(di: int, dj: int) -> np.ndarray:
-        return z[1 + di : z.shape[0] - 1 + di, 1 + dj : z.shape[1] - 1 + dj]
+    Non-periodic: the interior pixels, neighbours by slicing. Periodic: every pixel,
+    neighbours by wrapping (``nb(di, dj)[i, j] = z[(i + di) mod ny, (j + dj) mod nx]``).
+    """
+    if periodic:
+        c = z
+
+        def nb(di: int, dj: int) -> np.ndarray:
+            return np.roll(z, (-di, -dj), axis=(0, 1))
+
+    else:
+        c = z[1:-1, 1:-1]
+
+        def nb(di: int, dj: int) -> np.ndarray:
+            return z[1 + di : z.shape[0] - 1 + di, 1 + dj : z.shape[1] - 1 + dj]
 
     before = [(-1, -1), (-1, 0), (-1, 1), (0, -1)]
     after = [(0, 1), (1, -1), (1, 0), (1, 1)]
@@ -212,24 +241,26 @@ def _peaks(z: np.ndarray):
     return c, nb, finite, peak
 
 
-def summit_heights(z) -> np.ndarray:
+def summit_heights(z, periodic: bool = False) -> np.ndarray:
     """Heights of the direct-route summits (8-neighbour maxima, module docstring).
 
     Parameters
     ----------
     z : array_like
         Levelled height map (see :func:`level`), any unit; NaN allowed.
+    periodic : bool
+        Neighbours wrap across the map's edges.
 
     Returns
     -------
     ndarray
         One height per summit, same unit, in raster order.
     """
-    c, _, _, peak = _peaks(np.asarray(z, dtype=float))
+    c, _, _, peak = _peaks(np.asarray(z, dtype=float), periodic)
     return c[peak]
 
 
-def direct_summits(z: np.ndarray, dx: float, dy: float) -> SummitStatistics:
+def direct_summits(z: np.ndarray, dx: float, dy: float, periodic: bool = False) -> SummitStatistics:
     """Summits as 8-neighbour local maxima of a levelled map (rule in the module docstring).
 
     Parameters
@@ -238,13 +269,15 @@ def direct_summits(z: np.ndarray, dx: float, dy: float) -> SummitStatistics:
         Levelled height map, m (NaN allowed).
     dx, dy : float
         Pixel size along columns and rows, m.
+    periodic : bool
+        Neighbours wrap across the map's edges (every pixel a candidate).
 
     Returns
     -------
     SummitStatistics
         NaN fields where no summit is found.
     """
-    c, nb, finite, peak = _peaks(z)
+    c, nb, finite, peak = _peaks(z, periodic)
     with np.errstate(invalid="ignore"):
         # κ = −(z_xx + z_yy)/2, central second differences
         z_xx = (nb(0, 1) - 2 * c + nb(0, -1)) / dx**2
@@ -263,11 +296,22 @@ def direct_summits(z: np.ndarray, dx: float, dy: float) -> SummitStatistics:
     )
 
 
-def spectral_moments(z: np.ndarray, dx: float, dy: float) -> SpectralMoments:
+def _differences(u: np.ndarray, n: int, axis: int, periodic: bool) -> np.ndarray:
+    """``n``-th forward differences along ``axis`` (n = 1 or 2); wrapping when periodic."""
+    if not periodic:
+        return np.diff(u, n=n, axis=axis)
+    ahead = np.roll(u, -1, axis=axis)
+    return ahead - u if n == 1 else ahead - 2 * u + np.roll(u, 1, axis=axis)
+
+
+def spectral_moments(
+    z: np.ndarray, dx: float, dy: float, periodic: bool = False
+) -> SpectralMoments:
     """m0, m2, m4 of a levelled map by finite differences, averaged over x and y (McCool 1986).
 
     Computed on the map divided by its largest |height| (the moments scale as its square),
-    so that tiny or huge heights do not underflow or overflow on the way.
+    so that tiny or huge heights do not underflow or overflow on the way. On a periodic
+    map (``periodic=True``) the differences wrap across the edges.
 
     Raises
     ------
@@ -282,8 +326,8 @@ def spectral_moments(z: np.ndarray, dx: float, dy: float) -> SpectralMoments:
     m0 = float(np.nanmean(u**2))
     slopes, curvatures = [], []
     for axis, step in ((1, dx), (0, dy)):
-        slopes.append(np.nanmean((np.diff(u, axis=axis) / step) ** 2))
-        curvatures.append(np.nanmean((np.diff(u, n=2, axis=axis) / step**2) ** 2))
+        slopes.append(np.nanmean((_differences(u, 1, axis, periodic) / step) ** 2))
+        curvatures.append(np.nanmean((_differences(u, 2, axis, periodic) / step**2) ** 2))
     m2, m4 = float(np.mean(slopes)), float(np.mean(curvatures))
     if not (m2 > 0 and m4 > 0):
         raise ParameterError(
@@ -331,6 +375,7 @@ def summit_statistics(
     *,
     order: int = 1,
     saturation_fraction: float = 0.01,
+    periodic: bool = False,
 ) -> TopographyResult:
     """Level a height map and compute its summit statistics by both routes.
 
@@ -347,6 +392,9 @@ def summit_statistics(
     saturation_fraction : float
         Share of pixels at the minimum or maximum above which a
         :class:`SaturationWarning` is issued.
+    periodic : bool
+        The map repeats (see :func:`periodic_edges`): summit neighbours and the spectral
+        differences wrap across its edges.
 
     Returns
     -------
@@ -361,10 +409,10 @@ def summit_statistics(
         raise ParameterError(
             "the height map is flat: after levelling only rounding noise is left (no roughness)"
         )
-    moments = spectral_moments(levelled, dx, dy)
+    moments = spectral_moments(levelled, dx, dy, periodic)
     area = (np.size(z) - n_nan) * dx * dy
     return TopographyResult(
-        direct=direct_summits(levelled, dx, dy),
+        direct=direct_summits(levelled, dx, dy, periodic),
         spectral=spectral_summits(moments, area),
         moments=moments,
         rms=math.sqrt(moments.m0),
@@ -373,4 +421,51 @@ def summit_statistics(
         shape=(int(z.shape[0]), int(z.shape[1])),
         order=int(order),
         n_nan=n_nan,
+        periodic=bool(periodic),
+    )
+
+
+def edge_steps(z) -> tuple[float, float]:
+    """Rms step across opposite edges over the rms step between neighbours, along y and along x.
+
+    Parameters
+    ----------
+    z : array_like
+        Height map, any unit; a NaN pixel makes the ratio of its axis NaN.
+
+    Returns
+    -------
+    (float, float)
+        The ratios for rows (top against bottom edge) and columns (left against right edge).
+    """
+    z = np.asarray(z, dtype=float)
+    ratios = []
+    for axis in (0, 1):
+        inner = np.sqrt(np.mean(np.diff(z, axis=axis) ** 2))
+        across = np.sqrt(np.mean((np.take(z, 0, axis=axis) - np.take(z, -1, axis=axis)) ** 2))
+        ratios.append(float(across / inner) if inner > 0 else math.inf)
+    return ratios[0], ratios[1]
+
+
+def periodic_edges(z) -> tuple[bool, str]:
+    """Whether a map repeats: both :func:`edge_steps` ratios below :data:`EDGE_JOIN`.
+
+    Parameters
+    ----------
+    z : array_like
+        Height map as read (before levelling: a tilt does not repeat), any unit.
+
+    Returns
+    -------
+    periodic : bool
+        Opposite edges join along both axes (False where a ratio is NaN).
+    reason : str
+        The two ratios and the decision, for the output.
+    """
+    steps = edge_steps(z)
+    periodic = all(step < EDGE_JOIN for step in steps)
+    return periodic, (
+        f"edge steps {steps[0]:.2f}, {steps[1]:.2f} x the neighbour step "
+        f"({'<' if periodic else 'not <'} {EDGE_JOIN:g}: "
+        f"{'edges join' if periodic else 'edges do not join'})"
     )

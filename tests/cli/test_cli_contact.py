@@ -165,3 +165,25 @@ def test_a_pressure_beyond_the_contact_modulus_is_refused_before_solving(capsys)
                            "--pixel-size", "10nm", "--pressure", "1e30Pa")  # fmt: skip
     assert code == 2 and err.count("\n") == 1
     assert "pressure = 1e+30 Pa is out of range (allowed: below E* = 8.40689e+10 Pa" in err
+
+
+def test_environment_options_add_the_attraction_columns_and_say_their_limits(capsys, tmp_path):
+    out = tmp_path / "c.h5"
+    code, table, _ = run_cli(capsys, "contact", SCAN, *MAP, "--pressure", LOADS, "--hamaker",
+                             "1.6e-19", "--rh", "0.5", "--out", out, "--quiet")  # fmt: skip
+    assert code == 0 and "the attraction does not deform the surface" in table
+    _, text, _ = run_cli(capsys, "contact", SCAN, *MAP, "--pressure", LOADS, "--hamaker",
+                         "1.6e-19", "--rh", "0.5", "--format", "json")  # fmt: skip
+    reply = json.loads(text)
+    assert reply["units"]["vdw_pressure"].startswith("Pa")
+    assert reply["environment"]["hamaker"] == 1.6e-19 and reply["environment"]["rh"] == 0.5
+    with h5py.File(out) as f:
+        np.testing.assert_array_equal(
+            f["vdw_pressure"][()], [r["vdw_pressure"] for r in reply["rows"]]
+        )
+        assert f["capillary_pressure"].attrs["units"] == "Pa" and f.attrs["environment_rh"] == 0.5
+
+
+def test_a_bad_environment_option_is_one_line_naming_it(capsys):
+    code, _, err = run_cli(capsys, "contact", SCAN, *MAP, "--pressure", "1MPa", "--rh", "2")
+    assert code == 2 and err.count("\n") == 1 and "rh" in err

@@ -419,7 +419,8 @@ def gaussian_map(tmp_path_factory) -> Path:
 def test_ingest_measures_rq_and_summit_offset_on_the_levelled_map(gaussian_map):
     from scipy import ndimage
 
-    surface = ingest_file(gaussian_map, unit="nm", pixel_size=1e-9).surface
+    # the map is periodic: --no-periodic asks for the plane and the border rule checked here
+    surface = ingest_file(gaussian_map, unit="nm", pixel_size=1e-9, periodic=False).surface
     z = np.load(gaussian_map) * 1e-9
     y, x = np.mgrid[0 : z.shape[0], 0 : z.shape[1]]
     basis = np.stack([np.ones(z.size), x.ravel(), y.ravel()], axis=1)
@@ -474,3 +475,64 @@ def test_ingest_prints_the_measured_rq_and_summit_offset(gaussian_map, tmp_path)
     assert code == 0
     assert "rq = " in out and "summit_offset = " in out
     assert "s-map-heights.csv" in err  # announced as written
+
+
+def test_a_periodic_map_keeps_its_rms_and_its_summits_across_the_edges(gaussian_map):
+    from scipy import ndimage
+
+    result = ingest_file(gaussian_map, unit="nm", pixel_size=1e-9)
+    z = np.load(gaussian_map) * 1e-9
+    assert result.periodic and "edges join" in result.periodic_reason
+    assert result.level == "none"
+    # levelled by the mean only: the same rms in two orders of summation, ROUNDING_SUM
+    assert result.surface.rq == pytest.approx(
+        np.sqrt(np.mean((z - z.mean()) ** 2)), rel=ROUNDING_SUM
+    )
+    footprint = np.ones((3, 3), bool)
+    footprint[1, 1] = False
+    neighbours = ndimage.maximum_filter(z, footprint=footprint, mode="wrap")
+    strict = int(np.count_nonzero(z > neighbours))
+    loose = int(np.count_nonzero(z >= neighbours))
+    assert strict <= result.topography.direct.count <= loose
+    assert (
+        result.topography.direct.count
+        > ingest_file(
+            gaussian_map, unit="nm", pixel_size=1e-9, periodic=False
+        ).topography.direct.count
+    )  # the border pixels are candidates too
+
+
+def test_the_shipped_periodic_scan_gives_113_summits_and_its_3_nm_rms():
+    # examples/scan.npy is periodic, 3 nm rms (examples/make_examples.py); with the plane and the
+    # border rule (--no-periodic) it gave 105 summits and 2.988 nm
+    path = Path(__file__).resolve().parents[2] / "examples" / "scan.npy"
+    result = ingest_file(path, unit="m", pixel_size=1e-8)
+    assert result.periodic and result.topography.direct.count == 113
+    # the generator scales to 3 nm exactly, up to rounding of a sum of 1e4 squares: ROUNDING_SUM
+    assert result.surface.rq == pytest.approx(3e-9, rel=ROUNDING_SUM)
+    old = ingest_file(path, unit="m", pixel_size=1e-8, periodic=False)
+    assert (old.periodic, old.level, old.topography.direct.count) == (False, "plane", 105)
+    assert f"{old.surface.rq * 1e9:.3f}" == "2.988"
+
+
+def test_a_cut_out_map_is_not_periodic_and_keeps_the_plane(gaussian_map, tmp_path):
+    path = tmp_path / "cut.npy"
+    np.save(path, np.load(gaussian_map)[:300, :200])
+    result = ingest_file(path, unit="nm", pixel_size=1e-9)
+    assert not result.periodic and "do not join" in result.periodic_reason
+    assert result.level == "plane"
+
+
+def test_the_periodic_choice_is_printed_and_recorded(gaussian_map, tmp_path):
+    code, out, _ = run_cli("ingest", gaussian_map, "--unit", "nm", "--pixel-size", "1nm",
+                           "--out", tmp_path / "s.toml", "--no-periodic")  # fmt: skip
+    assert code == 0 and "periodic   no: as asked" in out
+    assert "# map: 512 x 512 pixels" in (tmp_path / "s.toml").read_text()
+    assert "periodic: no (as asked)" in (tmp_path / "s.toml").read_text()
+
+
+def test_periodic_on_a_histogram_is_refused_in_one_line(tmp_path):
+    path = tmp_path / "h.csv"
+    path.write_text("0, 1\n1, 3\n2, 1\n")
+    code, _, err = run_cli("ingest", path, "--R", "1um", "--eta", "1um^-2", "--periodic")
+    assert code == 2 and err.count("\n") == 1 and "--periodic does not apply" in err

@@ -8,7 +8,12 @@ import pytest
 from tolerances import ROUNDING_FEW, ROUNDING_FORMULA
 
 from mcsim.model.errors import ParameterError
-from mcsim.topography.summits import SaturationWarning, level, summit_statistics
+from mcsim.topography.summits import (
+    SaturationWarning,
+    level,
+    periodic_edges,
+    summit_statistics,
+)
 
 # Synthetic maps with exact plateaus and repeated extremes trip the saturation check.
 pytestmark = pytest.mark.filterwarnings("ignore::mcsim.topography.summits.SaturationWarning")
@@ -170,3 +175,34 @@ def test_spectral_moments_do_not_depend_on_the_height_scale_used_to_compute_them
     # the same heights 1e-131 smaller: a rounding or two per scaled value, relative
     assert small.moments.alpha == pytest.approx(one.moments.alpha, rel=ROUNDING_FORMULA)
     assert small.moments.m0 == pytest.approx(one.moments.m0 * 1e-262, rel=ROUNDING_FORMULA)
+
+
+def test_periodic_egg_crate_counts_every_maximum_across_the_edges():
+    """32 x 32 pixels, period 8: 4 x 4 maxima with i, j ≡ 0 and 4 x 4 with i, j ≡ 4 (mod 8)."""
+    z = np.outer(*2 * [np.cos(2 * np.pi * np.arange(32) / 8)])
+    assert summit_statistics(z, 1e-8, order=0, periodic=True).direct.count == 32
+    # without wrapping, row and column 0 are border pixels: 3 x 3 + 4 x 4 remain
+    assert summit_statistics(z, 1e-8, order=0).direct.count == 25
+
+
+def test_periodic_statistics_do_not_depend_on_where_the_map_is_cut():
+    z = gaussian_surface(64, 3.0, seed=11)
+    a = summit_statistics(z, 1e-8, order=0, periodic=True)
+    b = summit_statistics(np.roll(z, (17, 40), axis=(0, 1)), 1e-8, order=0, periodic=True)
+    # the same numbers summed in another order: ROUNDING_FEW
+    for key in ("count", "sigma_s", "R", "mean_height"):
+        assert getattr(b.direct, key) == pytest.approx(getattr(a.direct, key), rel=ROUNDING_FEW)
+    for key in ("m2", "m4"):
+        assert getattr(b.moments, key) == pytest.approx(getattr(a.moments, key), rel=ROUNDING_FEW)
+    c = summit_statistics(np.roll(z, (17, 40), axis=(0, 1)), 1e-8, order=0)
+    assert c.direct.count != a.direct.count  # the non-periodic count depends on the cut
+
+
+def test_opposite_edges_that_join_make_a_map_periodic():
+    z = gaussian_surface(64, 3.0, seed=12)
+    assert periodic_edges(z)[0]
+    assert not periodic_edges(z[:40, :50])[0]  # cut out: the edges do not join
+    tilted = z + np.arange(64)[None, :] * 0.2  # a tilt does not repeat
+    assert not periodic_edges(tilted)[0]
+    z[0, 5] = np.nan
+    assert not periodic_edges(z)[0]

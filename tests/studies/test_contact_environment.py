@@ -1,0 +1,75 @@
+"""The environment on the exact gap field (issue 32, point 2): the pixel sums of van der Waals and
+capillary attraction over each load's elastic gaps, beside the exact contact."""
+
+import math
+
+import numpy as np
+import pytest
+from tolerances import ROUNDING_SUM
+
+from mcsim.model.presets import MATERIALS
+from mcsim.physics.environment import Environment, capillary_pressure, vdw_pressure
+from mcsim.studies.contact import contact_map, gap_attraction
+
+SCAN = "examples/scan.npy"  # periodic, 100 x 100 pixels of 10 nm, heights in m
+HUMID = Environment(hamaker=1.6e-19, rh=0.5)  # g_K = 1.51 nm, gamma_L/r_K = 95 MPa
+
+
+@pytest.mark.parametrize("g", [0.2e-9, 1.0e-9, 3.0e-9])
+def test_a_uniform_gap_is_the_flat_flat_pressure_and_the_full_laplace_pressure_below_g_k(g):
+    vdw, cap = gap_attraction(np.full((8, 8), g), HUMID)
+    # Israelachvili Eq. 13.11 on every pixel; the mean of 64 equal terms: ROUNDING_SUM
+    assert vdw == pytest.approx(1.6e-19 / (6 * math.pi * g**3), rel=ROUNDING_SUM)
+    assert cap == (HUMID.laplace_pressure if g < HUMID.condensation_gap else 0.0)
+
+
+def test_contacts_and_gaps_below_the_cutoff_are_left_out():
+    gap = np.array([[0.0, 0.1e-9], [0.5e-9, 2.0e-9]])  # a contact, a gap below D0 = 0.165 nm
+    vdw, cap = gap_attraction(gap, HUMID)
+    expected = 1.6e-19 / (6 * math.pi) * (0.5e-9**-3 + 2.0e-9**-3) / 4
+    assert vdw == pytest.approx(expected, rel=ROUNDING_SUM)  # a sum of two terms
+    assert cap == HUMID.laplace_pressure / 4  # only the 0.5 nm gap is filled (g_K = 1.51 nm)
+
+
+def test_no_hamaker_and_a_dry_vapour_attract_nothing():
+    assert gap_attraction(np.full((4, 4), 1e-9), Environment()) == (0.0, 0.0)
+
+
+def test_pixel_sums_of_gaussian_gaps_are_the_proximity_model_s_integrals():
+    # gaps g = D - z with z Gaussian (rq 1 nm): the pixel sums are sample means of the
+    # integrands whose expectations physics.environment integrates (DelRio's proximity model)
+    rng = np.random.default_rng(3)
+    rq, D, n = 1e-9, 2e-9, 400_000
+    gap = D - rq * rng.standard_normal((n // 400, 400))
+    vdw, cap = gap_attraction(gap, HUMID)
+    open_ = gap >= HUMID.cutoff
+    per_pixel_vdw = np.where(open_, 1.6e-19 / (6 * math.pi) * np.where(open_, gap, 1.0) ** -3, 0)
+    filled = open_ & (gap < HUMID.condensation_gap)
+    se_vdw = per_pixel_vdw.std() / math.sqrt(n)
+    se_cap = HUMID.laplace_pressure * filled.std() / math.sqrt(n)
+    expected_vdw = vdw_pressure(D, rq, 1.6e-19, HUMID.cutoff)
+    expected_cap = capillary_pressure(D, rq, HUMID.cutoff, HUMID.surface_tension,
+                                      HUMID.kelvin_radius, HUMID.contact_angle)  # fmt: skip
+    # sample means of independent pixels: |z| < 5 on their standard errors
+    assert abs(vdw - expected_vdw) < 5 * se_vdw
+    assert abs(cap - expected_cap) < 5 * se_cap
+
+
+def test_each_load_s_attraction_is_the_sum_over_its_own_gap_field():
+    r = contact_map(SCAN, MATERIALS["silicon"], [1e7, 1e9], unit="m", pixel_size=1e-8,
+                    keep_fields=True, environment={"hamaker": "1.6e-19 J", "rh": 0.5})  # fmt: skip
+    for i, gap in enumerate(r.gap_fields):
+        assert (r.vdw_pressure[i], r.capillary_pressure[i]) == gap_attraction(gap, r.environment)
+    columns = r.columns()
+    np.testing.assert_array_equal(
+        columns["external_pressure"], r.pressure - r.vdw_pressure - r.capillary_pressure
+    )
+    # the gaps close under load: more attraction at 1 GPa than at 10 MPa
+    assert (
+        r.vdw_pressure[1] > r.vdw_pressure[0] and r.capillary_pressure[1] > r.capillary_pressure[0]
+    )
+
+
+def test_without_an_environment_there_are_no_attraction_columns():
+    r = contact_map(SCAN, MATERIALS["silicon"], [1e8], unit="m", pixel_size=1e-8)
+    assert r.vdw_pressure is None and "vdw_pressure" not in r.columns()
