@@ -1,6 +1,14 @@
 """The environment: van der Waals attraction across the gaps and capillary condensation.
 
-See docs/physics.md, section 'The environment' (with its known limitations).
+See docs/physics.md, sections 'The environment' and 'The environment: summits and open gaps'.
+
+The local laws below (the proximity model over a height distribution) are the building
+blocks. mcsim applies them in two parts that never count one area twice: each GW summit's
+**cap** owns the local gaps D0 ≤ u < u_c near it (per-summit laws,
+:mod:`mcsim.physics.laws.attraction`, appended to the law set by :func:`with_environment`),
+and the **open gaps** between the caps own u ≥ u_c (:func:`open_gap_pressures`: the functions
+below with the cutoff u_c, :func:`band_edge`). :func:`environment_curves` and
+:func:`environment_works` give both, expected over the surface.
 
 Proximity (pixel-by-pixel Derjaguin) model over the height distribution of the combined
 rough surface (DelRio et al., Nature Materials 4, 629, 2005; DelRio et al., Appl. Phys.

@@ -124,7 +124,13 @@ def _in_degrees(spec: str) -> str:
 
 @dataclass(frozen=True)
 class Point:
-    """One grid point: its flat index (C order) and its inputs."""
+    """One grid point: its flat index (C order), its inputs, and the index its pads draw from.
+
+    ``pads_index`` is the flat index of the point in the grid without its environment inputs
+    (rh, hamaker, ...): points that differ in the environment alone draw the same pads (common
+    random numbers, so that a curve against RH is the physics, not the draw); without
+    environment inputs it is ``index``.
+    """
 
     index: int
     surface: Surface
@@ -132,6 +138,7 @@ class Point:
     law: str
     area: float | None
     environment: Environment | None = None
+    pads_index: int | None = None
 
 
 @dataclass(frozen=True)
@@ -150,7 +157,7 @@ class Config:
 
 
 def make_point(base_surface, base_material, base_environment, law, area, names, values,
-           index) -> Point:  # fmt: skip
+               index, pads_index=None) -> Point:  # fmt: skip
     """The inputs at one point; a bad combination raises ParameterError (a failed point)."""
     surface_changes, material_changes, environment_changes = {}, {}, {}
     for name, value in zip(names, values):
@@ -168,7 +175,7 @@ def make_point(base_surface, base_material, base_environment, law, area, names, 
         environment = dataclasses.replace(environment, **environment_changes)
     return Point(index, dataclasses.replace(base_surface, **surface_changes),
                   dataclasses.replace(base_material, **material_changes), law, area,
-                  environment)  # fmt: skip
+                  environment, index if pads_index is None else pads_index)  # fmt: skip
 
 
 def has_summary(law: str) -> bool:
@@ -243,7 +250,7 @@ def _pads(point: Point, config: Config, law: str, turn: float, h_pull_off: float
     if not math.isfinite(turn):
         raise ParameterError(f"pads need the adhesion summary's turn; law {law!r} has none")
     spec = MonteCarloSpec(point.surface, point.material, np.asarray(config.h), point.area,
-                          config.pads, pads_seed(config.entropy, point.index), law, cycle=True,
+                          config.pads, pads_seed(config.entropy, point.pads_index), law, cycle=True,
                           environment=point.environment)  # fmt: skip
     return finite_pads(spec, config.restoring_force, preload=config.preload, turn=turn,
                        h_pull_off=h_pull_off)  # fmt: skip

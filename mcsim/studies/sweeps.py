@@ -257,7 +257,17 @@ def sweep(
         if claim is not None and claim.checkpoint is not None:
             done = _restore(claim, result, attrs, shape)
         points = (
-            make_point(surface, material, environment, law, area_m2, names, values, index)
+            make_point(
+                surface,
+                material,
+                environment,
+                law,
+                area_m2,
+                names,
+                values,
+                index,
+                _pads_index(index, names, shape),
+            )
             for index, values in enumerate(_product(grid))
             if not done.flat[index]
         )
@@ -488,14 +498,23 @@ def _attrs(surface, material, environment, law, dims, grid, config: Config, area
     return attrs
 
 
+def _pads_index(index: int, names, shape) -> int:
+    """Flat index of grid point ``index`` without its environment dimensions (:class:`Point`)."""
+    multi = np.unravel_index(index, shape)
+    kept = [(i, n) for i, n, name in zip(multi, shape, names) if name not in ENVIRONMENT_INPUTS]
+    if not kept:
+        return 0
+    return int(np.ravel_multi_index([i for i, _ in kept], [n for _, n in kept]))
+
+
 def _check_pads(pads, restoring_force, preload, turn) -> tuple[float | None, float | None]:
     """Check the pads' options; the restoring force (N) and the preload (Pa), SI."""
     if preload is not None:
         if turn is not None:
             raise ParameterError("turn and preload: give one of them (the preload sets the turn)")
         preload = parse_quantity(plain(preload), "pressure", "preload")
-        if not (math.isfinite(preload) and preload > 0):
-            raise ParameterError(f"preload = {preload!r} Pa: allowed a finite pressure > 0")
+        if not (math.isfinite(preload) and preload >= 0):  # 0: resting under its attraction
+            raise ParameterError(f"preload = {preload!r} Pa: allowed a finite pressure >= 0")
     if pads is None:
         if restoring_force is not None:
             raise ParameterError("restoring_force applies to the pads only (add pads=N, --pads N)")
