@@ -1,5 +1,9 @@
-"""The environment (issue 22): limits, −dW/dD = p, Gaussian terms against quadrature, and the
-seed's four Table-1 surfaces beside the published dry and humid adhesion of polysilicon.
+"""The environment's local laws (issue 22): limits, −dW/dD = p, Gaussian terms against
+quadrature, and the proximity model over the whole height distribution of the seed's four
+Table-1 surfaces, as DelRio et al. wrote it, beside the published dry and humid adhesion of
+polysilicon. These are the building blocks; mcsim applies them to the summits' caps and the
+open gaps between them (docs/physics.md), and its answer for a device resting on its summits
+is checked against DelRio et al.'s measurements by ``validation/humid_pads.py``.
 
 Inputs: A = 1.6e-19 J (silicon across air), D0 = 0.2 nm, water at 25 °C (γ_L 0.072 J/m²,
 V_m 1.80e-5 m³/mol, T 298.15 K), θ = 0. Rq and the summit offset y_s of each surface are
@@ -198,13 +202,12 @@ def surfaces_table(rh: np.ndarray, h_t: float) -> tuple[list[str], dict]:
 
 def timings(number: int) -> list[str]:
     smooth, silicon = SURFACES["smooth"], MATERIALS["silicon"]
-    est = nayak_heights(smooth.sigma, smooth.R, smooth.eta)
     env = Environment(hamaker=A, cutoff=D0, rh=0.6)
     h = np.linspace(4, -1, 51)
     t_env = (
         min(
             timeit.repeat(
-                lambda: environment_curves(h, smooth.sigma, est.rq, est.summit_offset, env),
+                lambda: environment_curves(h, smooth, env),
                 number=number,
                 repeat=5,
             )
@@ -230,7 +233,8 @@ def timings(number: int) -> list[str]:
     return [
         f"## Speed (best of 5 repeats of {number}; not judged)",
         "",
-        f"- environment_curves, 51 h, smooth surface, vdW + capillary: {t_env * 1e3:.2f} ms",
+        f"- environment_curves (caps and open gaps), 51 h, smooth surface, vdW + capillary: "
+        f"{t_env * 1e3:.2f} ms",
         f"- gw_curves (seed laws), same 51 h: {t_gw * 1e3:.2f} ms",
         f"- work terms on a 40 σ × 50 RH grid (2000 points, vdW + capillary): "
         f"{t_grid * 1e3:.1f} ms",

@@ -22,6 +22,7 @@ SCRIPTS = (
     "finite_patch",
     "fuller_tabor",
     "gw_moments",
+    "humid_pads",
     "memory",
     "pad_variation",
     "stiction_model",

@@ -1,0 +1,125 @@
+"""Pads in humid air: every pad answer takes the environment (issue 30).
+
+A pad's net load is its summits' contact load less their caps' van der Waals and meniscus
+forces and the open gaps' attraction times its area (docs/physics.md, section 'The
+environment: summits and open gaps'); force control balances it, ``preload = 0`` is a pad
+resting under its own attraction, and its pull-off and work of separation follow from it.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+import pytest
+
+from mcsim.engine import padcurves
+from mcsim.engine.montecarlo import MonteCarloSpec
+from mcsim.model.presets import MATERIALS, SURFACES
+from mcsim.physics.environment import Environment, open_gap_pressures, summit_parameters
+from mcsim.physics.laws import get_law_set
+from mcsim.physics.laws.attraction import capillary_summit, vdw_summit
+from mcsim.studies.simulation import simulate
+from mcsim.studies.sweeps import sweep
+
+SMOOTH, SILICON = SURFACES["smooth"], MATERIALS["silicon"]
+HUMID = Environment(hamaker=1.6e-19, cutoff=0.2e-9, rh=0.7)
+H = np.linspace(-2.0, 5.0, 8)
+
+
+def spec(environment=HUMID, area=30e-12, pads=6, seed=4):
+    return MonteCarloSpec(SMOOTH, SILICON, H, area, pads, seed, "jkr", cycle=True,
+                          environment=environment)  # fmt: skip
+
+
+def test_the_net_load_of_a_one_summit_pad_is_its_laws_less_the_open_gaps():
+    s = spec()
+    z = np.array([2e-9])
+    d = np.linspace(-1e-9, 12e-9, 27)
+    p = summit_parameters(SMOOTH, HUMID)
+    contact = get_law_set("jkr").evaluate(z - d, SMOOTH, SILICON)["load"]
+    caps = vdw_summit(z - d, HUMID.hamaker, SMOOTH.R, p["cutoff"], p["band"])
+    caps += capillary_summit(z - d, p["laplace"], SMOOTH.R, p["cutoff"], p["gap_k"])
+    gaps = open_gap_pressures(d / SMOOTH.sigma, SMOOTH, HUMID)
+    expected = contact - caps - s.area * (gaps["vdw"] + gaps["capillary"])
+    # the open gaps come from a cubic spline within 1e-9 of their largest value
+    scale = s.area * np.max(gaps["vdw"] + gaps["capillary"])
+    np.testing.assert_allclose(padcurves.pad_load(s, z, d), expected, rtol=1e-12,
+                               atol=1e-9 * scale)  # fmt: skip
+
+
+def test_the_open_gaps_table_is_within_1e_9_of_the_function():
+    s = spec()
+    h = np.random.default_rng(2).uniform(H.min(), 14.0, 500)
+    exact = open_gap_pressures(h, SMOOTH, HUMID)
+    exact = exact["vdw"] + exact["capillary"]
+    np.testing.assert_allclose(padcurves.open_gaps(s)(h), exact, rtol=0,
+                               atol=1e-9 * np.max(np.abs(exact)))  # fmt: skip
+
+
+def test_a_pad_at_zero_preload_rests_where_its_net_load_turns_compressive_below_its_first_touch():
+    s = spec()
+    sigma = SMOOTH.sigma
+    for r in range(s.realizations):
+        z = padcurves.patch_heights(s, r)
+        d_t, load = padcurves.force_turn(s, z, 0.0)
+        assert load > 0 and d_t < z.max()
+        # just above the turn (beyond the bisection's tolerance) the net load is not compressive
+        above = padcurves.pad_load(s, z, [d_t + 2 * padcurves.XTOL * sigma])[0]
+        assert above <= 0
+        # and from far away down to there it never was (the first compressive point)
+        d = np.linspace(d_t + 2 * padcurves.XTOL * sigma, z.max() + 10e-9, 4001)
+        assert np.all(padcurves.pad_load(s, z, d) <= 0)
+
+
+def test_pads_at_every_humidity_are_drawn_from_the_same_summits():
+    heights = [padcurves.patch_heights(spec(dataclasses.replace(HUMID, rh=rh)), 1)
+               for rh in (0.0, 0.5, 0.9)]  # fmt: skip
+    heights.append(padcurves.patch_heights(spec(dataclasses.replace(HUMID, hamaker=3e-19)), 1))
+    for z in heights[1:]:
+        np.testing.assert_array_equal(z, heights[0])
+
+
+def test_a_pads_work_of_separation_is_the_integral_of_its_net_force():
+    s = spec(pads=2)
+    z = padcurves.patch_heights(s, 0)
+    d_t, _ = padcurves.force_turn(s, z, 1e6 * s.area)
+    top = z.max() + summit_parameters(SMOOTH, HUMID)["band"]
+    d = np.linspace(d_t, top, 400_001)
+    net = padcurves.pad_load(s, z, d, d_t)
+    far = open_gap_pressures(top / SMOOTH.sigma, SMOOTH, HUMID)  # beyond: the open gaps alone
+    from mcsim.physics.environment import open_gap_works
+
+    tail = open_gap_works(np.float64(top / SMOOTH.sigma), SMOOTH, HUMID)
+    expected = -np.trapezoid(net, d) / s.area + float(tail["vdw"] + tail["capillary"])
+    assert far["vdw"] > 0
+    # trapezoid on 4e5 steps of 4e-14 m across the pad's kinks (square-root edges of jkr):
+    # ~1e-6 of the work, measured; pad_work's own Gauss–Legendre error is ~1e-5
+    assert padcurves.pad_work(s, z, d_t) == pytest.approx(expected, rel=5e-5)
+
+
+def test_humidity_raises_the_work_and_a_humid_run_file_gives_humid_pads(tmp_path):
+    dry = simulate(SMOOTH, SILICON, H, area="30 um^2", realizations=5, seed=2, law="jkr",
+                   cycle=True, preload=0, environment=dataclasses.replace(HUMID, rh=0.0),
+                   out=tmp_path / "dry.h5")  # fmt: skip
+    wet = simulate(SMOOTH, SILICON, H, area="30 um^2", realizations=5, seed=2, law="jkr",
+                   cycle=True, preload=0, environment=HUMID, out=tmp_path / "wet.h5")  # fmt: skip
+    from mcsim.store.runfile import read_run
+
+    back = read_run(wet.path).pull_off()
+    np.testing.assert_array_equal(back.force, wet.pull_off().force)
+    assert np.all(back.force > dry.pull_off().force)  # the same summits, now with menisci
+    assert back.preload == 0
+
+
+def test_a_pads_sweep_over_rh_stores_the_pads_work_and_no_model_estimate():
+    result = sweep(SMOOTH, SILICON, {"rh": [0.0, 0.5, 0.9]}, law="jkr", h=H, pads=4,
+                   restoring_force="1 mN", preload=0, area="30 um^2", seed=5,
+                   environment=HUMID)  # fmt: skip
+    data = result.data
+    work = np.asarray(data["work_of_separation_mean"])
+    assert np.all(np.diff(work) > 0)  # the same pads at every RH, more liquid
+    assert result.units["work_of_separation_mean"] == "J/m^2"
+    for q in ("std", "q05", "q50", "q95"):
+        assert np.all(np.isfinite(np.asarray(data[f"work_of_separation_{q}"])))
+    assert np.all(np.isnan(np.asarray(data["p_stick_model"])))
