@@ -20,6 +20,7 @@ from mcsim.engine.montecarlo import EnsembleSums, MonteCarloSpec, run_sums
 from mcsim.engine.statistics import expected_values, summarize
 from mcsim.model.presets import MATERIALS, SURFACES
 from mcsim.physics.analytic import gw_curves
+from mcsim.physics.environment import Environment
 
 #: Independent patches: with 2000, five SEs of mean(z²) are ≈ 0.16 at SEs that hold, 0.22 at
 #: SEs 15 % small (mean z² 1.38: 0.38 away) and 0.11 at SEs 20 % large (0.69: 0.31 away).
@@ -76,3 +77,47 @@ def test_z_has_mean_zero_and_mean_square_one_over_independent_patches(z, case):
 def test_the_check_fails_for_standard_errors_15_percent_small_or_20_percent_large(z, case, factor):
     # the same patches with every SE scaled by factor: z / factor
     assert not mean_square_is_one(z[case] / factor)
+
+
+# -- with an environment: the summits' caps, from far to pressed (issue 30) -------------------
+
+#: RH 0.9 (a condensation gap of 9.9 nm, 1.5σ) and silicon's Hamaker constant.
+HUMID = Environment(hamaker=1.6e-19, cutoff=0.2e-9, rh=0.9)
+#: (quantity, h): the caps' van der Waals and menisci far from contact (h = 3: nearly every
+#: summit within the caps' band edge of 4.7σ, ~650 within the condensation gap), at contact
+#: onset and pressed (h = −1: the caps of pressed summits hold their touch values).
+ENV_CASES = [(q, h) for q in ("vdw", "capillary") for h in (3.0, 1.5, 0.0, -1.0)]
+ENV_H = sorted({h for _, h in ENV_CASES})
+
+
+@pytest.fixture(scope="module")
+def z_humid() -> dict[tuple[str, float], np.ndarray]:
+    """z of the caps' sums in each of N_PATCHES patches of 1.1e4 summits (intermediate)."""
+    spec = MonteCarloSpec(SURFACES["intermediate"], MATERIALS["silicon"], ENV_H, area=1e-9,
+                          realizations=N_PATCHES, entropy=31, environment=HUMID)  # fmt: skip
+    ens = run_sums(spec, workers=1)
+    curves = gw_curves(spec.surface, spec.material, spec.h, spec.law_set)
+    expected = expected_values(spec, curves)
+    out = {case: np.empty(N_PATCHES) for case in ENV_CASES}
+    for r in range(N_PATCHES):
+        summary = summarize(one_patch(ens, r))
+        for q, h in ENV_CASES:
+            j = ENV_H.index(h)
+            out[q, h][r] = (summary.mean[q][j] - expected[q][j]) / summary.se[q][j]
+    return out
+
+
+@pytest.mark.parametrize("case", ENV_CASES, ids=[f"{q}-h{h:g}" for q, h in ENV_CASES])
+def test_the_caps_standard_errors_hold_from_far_to_pressed(z_humid, case):
+    values = z_humid[case]
+    assert np.all(np.isfinite(values))
+    assert abs(values.mean()) < 5 * values.std(ddof=1) / np.sqrt(values.size)
+    assert mean_square_is_one(values), f"mean z² = {np.mean(values**2):.3f}"
+    # The same check refuses standard errors 15 % too small or 20 % too large on these z,
+    # except for van der Waals far from contact: there a patch's sum is decided by its few
+    # summits nearest the flat (F ∝ 1/g², a heavy tail; skewness of z −1.0 measured, against
+    # |skew| < 0.15 elsewhere), so the spread of z² is twice as wide and the check, though it
+    # holds, cannot tell SEs 20 % too large (docs/physics.md: rows decided by a few summits).
+    assert not mean_square_is_one(values / 0.85)
+    if case != ("vdw", 3.0):
+        assert not mean_square_is_one(values / 1.2)
