@@ -115,7 +115,7 @@ def run(args) -> int:
     columns = list(table)
     rows = [{c: float(table[c][i]) for c in columns} for i in range(curves.h.size)]
     if curves.law == "seed":
-        meaning = "dimensionless: P, F, T = force/(A_n K) (Eqs. 3, 5, 7); mu = T/(P+F) (Eq. 8)"
+        meaning = "dimensionless: P, F, T = force/(A_n K) (Eqs. 3, 5, 7); mu = T/(P+F) (Eq. 8), undefined where w = 0"
     else:
         meaning = ("dimensionless: load = net force/(A_n K), > 0 compressive; area = A_r/A_n; "
                    "friction = tau A_r/(A_n K); mu = friction/load, undefined where load <= 0")  # fmt: skip
