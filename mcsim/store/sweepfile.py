@@ -5,7 +5,8 @@ every variable has ``units`` and ``long_name`` attributes; schema :data:`SCHEMA_
 
     dimensions/coordinates  one per varied input, in the order given, named as in
                             ``vary`` (sigma, R, eta, E, E1, E2, nu, nu1, nu2, gamma,
-                            z0, tau, H: float64 SI values; law: strings), except the
+                            z0, tau, H, the pads' restoring_force: float64 SI values;
+                            law: strings), except the
                             pad area ``area`` whose dimension is ``pad_area`` (m^2;
                             ``area`` is the real-contact-area curve); then ``h``
                             (d/sigma, the separations of the curves)
@@ -38,7 +39,8 @@ every variable has ``units`` and ``long_name`` attributes; schema :data:`SCHEMA_
                             turn (NaN: zero approach load), mc, and with mc area,
                             realizations, seed_entropy; with an environment, environment
                             (JSON of its inputs before variation, SI); with a preload
-                            preload (Pa); with pads pads, restoring_force (N), area,
+                            preload (Pa); with pads pads, restoring_force (N; absent
+                            where it is varied), area,
                             seed_entropy, pads_streams; complete; checksum
 
 Strings are fixed-length UTF-8 bytes with ``_Encoding = "utf-8"`` (netCDF readers give
@@ -90,6 +92,7 @@ INPUTS: dict[str, tuple[str, tuple[str, ...], str]] = {
     "contact_angle": ("angle", ("contact_angle",), "contact angle of the condensing liquid"),
     "cutoff": ("length", ("cutoff",), "cutoff gap D0 of the environment (contact below it)"),
     "temperature": ("temperature", ("temperature",), "temperature of the environment"),
+    "restoring_force": ("force", ("restoring_force",), "restoring force pulling each pad off"),
 }
 
 #: Inputs of :data:`INPUTS` that set the environment (:class:`mcsim.physics.environment.Environment`).
@@ -463,6 +466,8 @@ def _read(path: Path, f) -> dict:
     )
     if "pads" in f.attrs or any(k in f for k in PADS):
         wanted |= PADS_ATTRIBUTES
+        if "restoring_force" in f:  # varied: a coordinate, not an attribute
+            del wanted["restoring_force"]
     if "preload" in f.attrs:
         wanted |= {"preload": "number"}
     attrs = {

@@ -132,6 +132,7 @@ class Point:
     law: str
     area: float | None
     environment: Environment | None = None
+    restoring_force: float | None = None  # N, where varied; else the Config's
 
 
 @dataclass(frozen=True)
@@ -153,9 +154,12 @@ def make_point(base_surface, base_material, base_environment, law, area, names, 
            index) -> Point:  # fmt: skip
     """The inputs at one point; a bad combination raises ParameterError (a failed point)."""
     surface_changes, material_changes, environment_changes = {}, {}, {}
+    restoring_force = None
     for name, value in zip(names, values):
         if name == "law":
             law = str(value)
+        elif name == "restoring_force":
+            restoring_force = float(value)
         elif name == "area":
             area = float(value)
         elif name in ENVIRONMENT_INPUTS:
@@ -168,7 +172,7 @@ def make_point(base_surface, base_material, base_environment, law, area, names, 
         environment = dataclasses.replace(environment, **environment_changes)
     return Point(index, dataclasses.replace(base_surface, **surface_changes),
                   dataclasses.replace(base_material, **material_changes), law, area,
-                  environment)  # fmt: skip
+                  environment, restoring_force)  # fmt: skip
 
 
 def has_summary(law: str) -> bool:
@@ -244,7 +248,8 @@ def _pads(point: Point, config: Config, law: str, turn: float, h_pull_off: float
         raise ParameterError(f"pads need the adhesion summary's turn; law {law!r} has none")
     spec = MonteCarloSpec(point.surface, point.material, np.asarray(config.h), point.area,
                           config.pads, pads_seed(config.entropy, point.index), law, cycle=True)  # fmt: skip
-    return finite_pads(spec, config.restoring_force, preload=config.preload, turn=turn,
+    force = config.restoring_force if point.restoring_force is None else point.restoring_force
+    return finite_pads(spec, force, preload=config.preload, turn=turn,
                        h_pull_off=h_pull_off)  # fmt: skip
 
 
