@@ -442,11 +442,15 @@ def _check_vary(
 def _check_values(surface: Surface, material: Material, environment, names, grid) -> None:
     """Each value on its own (with the other inputs at their base values) must be valid."""
     for name, values in zip(names, grid):
-        if name in ("law", "area", "restoring_force"):
-            for v in values if name != "law" else ():
-                if name == "area":
-                    check_range("vary area", v, "m^2", low=0)
-                elif not (math.isfinite(v) and v >= 0):
+        if name == "law":
+            continue
+        if name == "area":
+            for v in values:
+                check_range("vary area", v, "m^2", low=0)
+            continue
+        if name == "restoring_force":
+            for v in values:
+                if not (math.isfinite(v) and v >= 0):
                     raise ParameterError(f"vary restoring_force: {float(v)!r} N is out of range "
                                          "(allowed: a finite force >= 0 N)")  # fmt: skip
             continue

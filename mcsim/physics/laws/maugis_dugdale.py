@@ -373,9 +373,9 @@ def load(
     md_jump_in, md_break_off : float
         Edges of the contact branch, m.
     md_per_delta_unit : float
-        1/(π²w²R/K²)^{1/3}, 1/m.
+        1/(π²w²R/K²)^{1/3}, 1/m (1/R without adhesion, :func:`hertz_table`).
     md_force_unit : float
-        πwR, N.
+        πwR, N (K R² without adhesion).
     md_lambda, md_h0, md_b, md_delta_lo, md_delta_touch : float
         λ and the dimensionless constants of :class:`Table`.
     md_table : ndarray
@@ -425,9 +425,9 @@ def area(
     md_jump_in, md_break_off : float
         Edges of the contact branch, m.
     md_per_delta_unit : float
-        1/(π²w²R/K²)^{1/3}, 1/m.
+        1/(π²w²R/K²)^{1/3}, 1/m (1/R without adhesion, :func:`hertz_table`).
     md_area_unit : float
-        π (πwR²/K)^{2/3}, m².
+        π (πwR²/K)^{2/3}, m² (πR² without adhesion).
     md_delta_lo, md_delta_touch : float
         Dimensionless constants of :class:`Table`.
     md_table : ndarray
