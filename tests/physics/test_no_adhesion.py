@@ -79,7 +79,9 @@ def test_analytic_command_takes_w_0_without_z0_and_prints_no_cutoff_note(capsys,
         toml.write_text(f'[material]\nE = "160 GPa"\nnu = 0.22\ngamma = "0 J/m^2"\n{z0}')
         code, out, err = run_cli(capsys, "analytic", "--surface", "smooth", "--material", toml,
                                  "--law", law, "--h=1,0")  # fmt: skip
-        assert code == 0 and "load" in out, err  # used to need z0 (both) or gamma > 0 (maugis-dugdale)
+        assert code == 0 and "load" in out, (
+            err
+        )  # used to need z0 (both) or gamma > 0 (maugis-dugdale)
         assert "tail" not in err and "cut" not in err, err  # no tail to cut without attraction
 
 
@@ -88,3 +90,15 @@ def test_dmt_and_maugis_dugdale_with_adhesion_still_need_z0():
     for law in ("dmt", "maugis-dugdale"):
         with pytest.raises(mcsim.ParameterError, match="needs material field 'z0'"):
             mcsim.gw_curves(SMOOTH, material, H, law)
+
+
+def test_without_adhesion_no_law_set_is_outside_a_zone_of_the_adhesion_map():
+    """lambda = 0 at w = 0 used to flag jkr as outside the JKR zone: with no adhesion every
+    adhesive law set is Hertz, on no side of the map."""
+    from mcsim.physics.adhesion import regime_warnings
+
+    material = no_adhesion(0.3e-9)
+    for law in ("jkr", "dmt", "maugis-dugdale"):
+        assert regime_warnings(SMOOTH, material, law) == [], law
+    adhesive = Material(E1=160e9, E2=160e9, nu1=0.22, nu2=0.22, gamma=0.5, z0=0.3e-9)
+    assert regime_warnings(SMOOTH, adhesive, "jkr")  # with adhesion: lambda < 5, flagged
