@@ -117,7 +117,7 @@ def run(args) -> int:
     columns = list(table)
     rows = [{c: float(table[c][i]) for c in columns} for i in range(curves.h.size)]
     if curves.law == "seed":
-        meaning = "dimensionless: P, F, T = force/(A_n K) (Eqs. 3, 5, 7); mu = T/(P+F) (Eq. 8)"
+        meaning = "dimensionless: P, F, T = force/(A_n K) (Eqs. 3, 5, 7); mu = T/(P+F) (Eq. 8), undefined where w = 0"
     else:
         meaning = ("dimensionless: load = net force/(A_n K), > 0 compressive; area = A_r/A_n; "
                    "friction = tau A_r/(A_n K); mu = friction/load, undefined where load <= 0")  # fmt: skip
@@ -150,7 +150,9 @@ def add_parser(sub) -> None:
         "P/(A_n K) = p/K; for the other law sets it is load = force/(A_n K). Where adhesion makes the "
         "load non-monotone the stable separation (reached by raising the load from zero) is reported "
         "and a jump on the way is flagged; a tensile load beyond the pull-off has no equilibrium. "
-        "Units: pressure Pa; h, contact_fraction, load, area, friction, mu dimensionless as with --h; "
+        "Units: pressure Pa; h, contact_fraction, load, area, friction, mu dimensionless as with --h "
+        "(under load control the seed has an area column too: A_r/A_n of its Hertz summits, "
+        "pi eta R sigma F_1(h), Greenwood & Williamson 1966); "
         "with --area also N_c, force_N (applied), load_N, friction_N, P_N, F_N, T_N (N) and area_m2 (m^2). "
         "With an environment (--hamaker, --rh, ... or an [environment] table) also vdw and capillary, "
         "the attraction per nominal area/K (> 0 attractive), and load is the net load: for the seed a "

@@ -66,8 +66,9 @@ def print_rows(
 
 
 def cutoff_notes(surface, material, law: str, h) -> list[str]:
-    """For ``dmt``: how much of the attraction its tail cutoff drops at separations ``h``."""
-    if law != "dmt":
+    """For ``dmt``: how much of the attraction its tail cutoff drops at separations ``h``
+    (nothing to say without adhesion: no attraction, no tail)."""
+    if law != "dmt" or material.gamma == 0:
         return []
     import numpy as np
 

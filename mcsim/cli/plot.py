@@ -23,7 +23,10 @@ def run(args) -> int:
 
     if len(args.run) > 1 and not args.out:
         raise ParameterError("--out: name the PNG file when plotting several runs")
-    out = Path(args.out) if args.out else Path(args.run[0]).with_suffix(".png")
+    # --kind lines or map beside the default figure of the same file: its own name
+    suffix = "" if args.kind == "auto" else f"-{args.kind}"
+    out = Path(args.out) if args.out else Path(args.run[0]).with_suffix("")
+    out = out if args.out else out.with_name(f"{out.name}{suffix}.png")
     if out.suffix.lower() != ".png":
         raise ParameterError(f"--out: {out}: the figure is a PNG file, its name must end in .png")
     sweeps = [path for path in args.run if is_sweep_file(path)]
@@ -105,7 +108,8 @@ def add_parser(sub) -> None:
     p.add_argument("--kind", choices=("auto", "lines", "map"), default="auto",
                    help="sweep files: 'lines' (against the first input, a line per value of the second), "
                    "'map' (two numeric inputs), 'auto' (default: a map for two numeric inputs)")  # fmt: skip
-    p.add_argument("--out", help="PNG file (default: next to the run file; required for several)")
+    p.add_argument("--out", help="PNG file (default: next to the file, FILE.png, or with --kind "
+                   "lines or map FILE-lines.png, FILE-map.png; required for several)")  # fmt: skip
     p.add_argument("--overwrite", action="store_true", help="replace an existing PNG file")
     p.add_argument(
         "--partial",

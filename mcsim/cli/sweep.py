@@ -116,7 +116,7 @@ def add_parser(sub) -> None:
     p.add_argument("--vary", action="append", required=True, metavar="NAME=SPEC",
                    help="input to vary (repeatable; the grid is their outer product, in this order): sigma, R, "
                    "eta, E (both solids), E1, E2, nu (both), nu1, nu2, w (work of adhesion; or gamma), z0, tau, H, law (a list, e.g. "
-                   "law=jkr,dmt,maugis-dugdale), area (pad area, with --mc), and the environment's rh, hamaker (J), "
+                   "law=jkr,dmt,maugis-dugdale), area (pad area, with --mc or --pads), restoring_force (with --pads, instead of --restoring-force), and the environment's rh, hamaker (J), "
                    "contact_angle (degrees when bare), cutoff (m), temperature (K). SPEC: start:stop:num[:log] or a "
                    "list a,b,c; each value with an optional unit, a bare number is SI "
                    "(sigma=0.3nm:20nm:40:log, w=0.05:1:5 in J/m^2)")  # fmt: skip
@@ -136,7 +136,7 @@ def add_parser(sub) -> None:
                    "statistics (N) beside the GW mean (as mcsim simulate --cycle + mcsim pads)")  # fmt: skip
     p.add_argument("--restoring-force", metavar="F",
                    help="with --pads: force pulling a pad off (N or with a unit, '20uN'); a pad sticks "
-                   "when its pull-off exceeds it")  # fmt: skip
+                   "when its pull-off exceeds it (or --vary restoring_force=...)")  # fmt: skip
     p.add_argument("--mc", action="store_true", help="also one Monte Carlo run per point (in memory): "
                    "mean and standard error of each curve")  # fmt: skip
     p.add_argument(

@@ -18,6 +18,23 @@ CONNECT_TIMEOUT = 5.0
 
 
 @contextlib.contextmanager
+def _quiet_shutdown() -> Iterator[None]:
+    """Closing a local cluster, no warnings from distributed: its nannies give each worker
+    process 4 s to exit and then kill it, warning "Worker process still alive after 4.0
+    seconds, killing" once per worker, which happens with many processes on few cores
+    (each tears down NumPy and numba). Every result is in by then; nothing is lost."""
+    import logging
+
+    logger = logging.getLogger("distributed")
+    level = logger.level
+    logger.setLevel(logging.ERROR)
+    try:
+        yield
+    finally:
+        logger.setLevel(level)
+
+
+@contextlib.contextmanager
 def dask_client(scheduler: str, workers: int | None = None) -> Iterator[object]:
     """A ``dask.distributed.Client`` for ``scheduler``, closed on exit.
 
@@ -35,13 +52,15 @@ def dask_client(scheduler: str, workers: int | None = None) -> Iterator[object]:
     except ImportError:
         raise MCSimError("Dask is not installed: pip install 'mcsim[dask]'") from None
     if scheduler == "local":
-        with (
-            LocalCluster(
-                n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None
-            ) as cluster,
-            Client(cluster) as client,
-        ):
-            yield client
+        cluster = LocalCluster(
+            n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None
+        )
+        try:
+            with Client(cluster) as client:
+                yield client
+        finally:
+            with _quiet_shutdown():
+                cluster.close()
         return
     try:
         client = Client(scheduler, timeout=CONNECT_TIMEOUT)

@@ -5,7 +5,8 @@ See docs/physics.md, section 'Monte Carlo statistics'.
 Per realization r (a patch of area A with N_r summits) the dimensionless totals are
 X̄_r = ΣX/(A K) for every force output X of the law set (the seed: P, F, T, as Eqs.
 3, 5, 7; the new sets: the signed ``load``), ΣX/A for an area output (A_r/A_n), and
-the ratios N_c/N (Eq. 1) and μ. The seed's μ is ΣT/(ΣP + ΣF) (Eq. 8); a law set
+the ratios N_c/N (Eq. 1) and μ. The seed's μ is ΣT/(ΣP + ΣF) (Eq. 8), undefined (NaN)
+without adhesion (w = 0: its friction T is adhesional, Eq. 6, and 0); a law set
 with Bowden–Tabor friction (``law.friction``, material τ given) reports
 ``friction`` = τ·Σarea/(A K) and μ = friction/load, defined only where the load is
 compressive (> 0). The ensemble estimates are
@@ -68,6 +69,8 @@ class Quantity:
         Divided by A only (area outputs), else by A K.
     denominator : tuple of float or None
         For a ratio: the weights of its denominator (defined where it is > 0).
+    defined : bool
+        False: undefined at every separation, NaN (the seed's μ without adhesion).
     total : bool
         Whether it is a total (scales with the summit count), not a ratio.
     """
@@ -77,6 +80,7 @@ class Quantity:
     weights: tuple[float, ...] = ()
     per_area_only: bool = False
     denominator: tuple[float, ...] | None = None
+    defined: bool = True
 
     @property
     def total(self) -> bool:
@@ -104,8 +108,11 @@ def quantities(law: LawSet, material) -> dict[str, Quantity]:
         out[o.name] = Quantity(o.name, f"{o.name}/{_PER_UNIT[o.unit]}", unit(i), o.unit == "m^2")
     if {"P", "F", "T"} <= set(names):  # the seed: Savkoor-Briggs friction, Eq. 8
         p, f = unit(names.index("P")), unit(names.index("F"))
+        # Its friction is adhesional (Eq. 6): without adhesion (w = 0) T is 0 and the
+        # model says nothing of friction, so μ is undefined, not 0.
         out["mu"] = Quantity("mu", "T/(P + F)", unit(names.index("T")),
-                             denominator=tuple(a + b for a, b in zip(p, f)))  # fmt: skip
+                             denominator=tuple(a + b for a, b in zip(p, f)),
+                             defined=material.gamma > 0)  # fmt: skip
     elif law.friction and material.tau is not None and {"load", "area"} <= set(names):
         tau = float(material.tau)
         friction = tuple(tau * w for w in unit(names.index("area")))
@@ -162,8 +169,10 @@ def _quadratic(second, b):
 
 
 def _ratio(first, second, q: Quantity):
-    """Pooled ratio Σt/Σs and its delta-method standard error (NaN where Σs ≤ 0)."""
+    """Pooled ratio Σt/Σs and its delta-method standard error (NaN where Σs ≤ 0, and
+    everywhere if ``q`` is not defined)."""
     num, den = _linear(first, q.weights), _linear(first, q.denominator)
+    den = den if q.defined else np.zeros_like(den)
     with np.errstate(invalid="ignore", divide="ignore"):
         mu = np.where(den > 0, num / den, np.nan)
         var = np.maximum(
@@ -181,8 +190,8 @@ def _scale(spec, q: Quantity) -> float:
 def per_realization(ens: EnsembleSums) -> dict[str, np.ndarray]:
     """Dimensionless curves of each realization, arrays of shape (R, rows).
 
-    μ is NaN where a patch has no compressive load (for the seed, no contact):
-    undefined, not zero.
+    μ is NaN where a patch has no compressive load (for the seed, no contact, and
+    everywhere without adhesion, w = 0): undefined, not zero.
     """
     spec = ens.spec
     n_contact, first, _ = _columns(spec.law_set, ens.sums)
@@ -192,7 +201,7 @@ def per_realization(ens: EnsembleSums) -> dict[str, np.ndarray]:
             if name == "contact_fraction":
                 out[name] = n_contact / ens.n_summits[:, None]
             elif q.denominator is not None:
-                den = _linear(first, q.denominator)
+                den = _linear(first, q.denominator) if q.defined else np.zeros_like(n_contact)
                 out[name] = np.where(den > 0, _linear(first, q.weights) / den, np.nan)
             else:
                 out[name] = _linear(first, q.weights) / _scale(spec, q)
@@ -306,7 +315,7 @@ def compare_table(
     undefined = (
         "undefined: no compressive load (mu = friction/load needs load > 0)"
         if "load" in summary.mean
-        else "undefined: no contact in the ensemble"
+        else "undefined: no contact in the ensemble, or w = 0 (the seed's friction is adhesional)"
     )
     rows = []
     for j, hj in enumerate(h):

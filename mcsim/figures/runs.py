@@ -38,7 +38,8 @@ def panel_figure(lines, runs, info: list[str]):
     pad = 0.03 * (hi - lo) if hi > lo else 0.5
     few_any = False
     for ax, q in zip(axes, PANELS):
-        log = q in LOG_QUANTITIES
+        # a log axis needs a positive value (F and T are 0 everywhere without adhesion)
+        log = q in LOG_QUANTITIES and any(np.any(np.asarray(v[q]) > 0) for _, v, *_ in lines)
         for h, values, style, label in lines:
             y = np.asarray(values[q], dtype=float)
             y = np.where(y > 0, y, np.nan) if log else y
@@ -53,6 +54,8 @@ def panel_figure(lines, runs, info: list[str]):
             _errorbars(
                 ax, run.h, run.summary.mean[q], run.summary.se[q], log, colour, label=label, few=few
             )
+        if not any(np.any(np.isfinite(np.asarray(v[q], dtype=float))) for _, v, *_ in lines):
+            ax.text(0.5, 0.5, "undefined", ha="center", transform=ax.transAxes)  # μ at w = 0
         ax.set_xlim(hi + pad, lo - pad)
         ax.set_yscale("log" if log else "linear")
         if not log:  # from zero, with headroom above the highest point or bar

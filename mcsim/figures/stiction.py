@@ -42,8 +42,9 @@ def stiction_figure(sweep):
 
 def _title(sweep) -> str:
     a = sweep.attrs
-    text = (f"{a['pads']} pads of {a['area'] * 1e12:.4g} µm², restoring force "
-            f"{a['restoring_force'] * 1e6:.4g} µN")  # fmt: skip
+    force = a.get("restoring_force")  # absent where varied
+    text = f"{a['pads']} pads of {a['area'] * 1e12:.4g} µm²" + (
+        "" if force is None else f", restoring force {force * 1e6:.4g} µN")  # fmt: skip
     if "preload" in a:
         text += f", preload {a['preload'] / 1e6:.4g} MPa (force control)"
     return text

@@ -61,6 +61,7 @@ DISPLAY = {
     "tau": (1e-6, "MPa", r"$\tau$"),
     "H": (1e-9, "GPa", "$H$"),
     "pad_area": (1e12, "µm$^2$", "$A_n$"),
+    "restoring_force": (1e6, "µN", "$F_r$"),
     "law": (1.0, "", "law set"),
 }
 

@@ -167,15 +167,16 @@ def choose_law(surface: Surface, material: Material) -> tuple[str, str]:
 def regime_warnings(surface: Surface, material: Material, law: str | LawSet) -> list[str]:
     """One line per reason the law set is outside its regime (empty if none).
 
-    ``jkr`` at λ < 5, ``dmt`` at λ > 0.1 (Johnson & Greenwood 1997); any elastic law
-    set (one that does not take the hardness H) at ψ > 1. The seed law set, the
+    ``jkr`` at λ < 5, ``dmt`` at λ > 0.1 (Johnson & Greenwood 1997), except without
+    adhesion (w = 0: every adhesive law set is Hertz, in no zone of the map); any elastic
+    law set (one that does not take the hardness H) at ψ > 1. The seed law set, the
     paper's model as written, is never flagged here.
     """
     laws = get_law_set(law)
     if laws.name == "seed":
         return []
     out = []
-    lam = maugis_parameter(surface, material)
+    lam = maugis_parameter(surface, material) if material.gamma > 0 else None
     if lam is not None and laws.name == "jkr" and lam < JKR_ABOVE:
         out.append(f"law jkr used at Maugis lambda = {lam:.3g} < {JKR_ABOVE:g}, outside the JKR "
                    "zone of the Johnson-Greenwood adhesion map (use maugis-dugdale or --law auto)")  # fmt: skip

@@ -52,7 +52,7 @@ QUANTITIES = {
     "P": "Hertz load P/(A_n K) (Eq. 3)",
     "F": "JKR adhesion term F/(A_n K) (Eq. 5); not a pull-off force",
     "T": "adhesional friction T/(A_n K) (Eq. 7)",
-    "mu": "friction coefficient T/(P + F) (Eq. 8)",
+    "mu": "friction coefficient T/(P + F) (Eq. 8); undefined where w = 0",
 }
 
 
@@ -105,7 +105,8 @@ class AnalyticCurves:
         Each curve by name, in column order (:func:`quantities`); also readable as
         attributes (``curves.load``). The seed: ``contact_fraction`` N_c/N (Eq. 1),
         ``P``, ``F``, ``T`` each divided by A_n·K (Eqs. 3, 5, 7) and ``mu`` T/(P + F)
-        (Eq. 8), NaN where P + F = 0. Other law sets: ``contact_fraction``, ``load``
+        (Eq. 8), NaN where P + F = 0 and everywhere without adhesion (w = 0: the
+        friction of Eq. 6 is adhesional, T = 0, and the model gives no μ). Other law sets: ``contact_fraction``, ``load``
         (force/(A_n K), signed, > 0 compressive), ``area`` (A_r/A_n), and with τ
         ``friction`` τA_r/(A_n K) and ``mu`` = friction/load, NaN (undefined) where
         load ≤ 0.
@@ -310,8 +311,8 @@ def gw_curves(
     scale, integral = surface.heights.gw_integrals(integrand, h)
     values = {"contact_fraction": np.asarray(surface.heights.sf(h), dtype=float)}
     values |= _normalised(laws, surface, material, scale, integral)
-    if laws.name == "seed":
-        denominator = integral[0] + integral[1]
+    if laws.name == "seed":  # Eq. 8; undefined without adhesion (Eq. 6: T = 0 at w = 0)
+        denominator = (integral[0] + integral[1]) * (material.gamma > 0)
         with np.errstate(invalid="ignore", divide="ignore"):
             values["mu"] = np.where(denominator > 0, integral[2] / denominator, np.nan)
     else:

@@ -83,7 +83,9 @@ class LoadControl:
     equilibrium : ndarray of bool
         False for a tensile load beyond the pull-off (no separation carries it).
     curves : AnalyticCurves
-        The analytic curves at ``h`` (NaN rows where there is no equilibrium).
+        The analytic curves at ``h`` (NaN rows where there is no equilibrium); for the
+        seed also ``area``, the real contact area A_r/A_n of its Hertz summits
+        (:func:`hertz_area_fraction`).
     quantity : str
         The balanced curve: ``P`` (seed) or ``load``; p = quantity · K.
     """
@@ -230,7 +232,10 @@ def load_control(
         )
     h, jump, found = solve_targets(load, grid, targets)
     curves = gw_curves(surface, material, np.where(found, h, 0.0), laws, environment=environment)
-    values = {k: np.where(found, v, np.nan) for k, v in curves.values.items()}
+    values = dict(curves.values)
+    if laws.name == "seed":  # the area a load buys: Hertz summits, as the seed's load P (Eq. 2)
+        values["area"] = hertz_area_fraction(surface, np.where(found, h, 0.0))
+    values = {k: np.where(found, v, np.nan) for k, v in values.items()}
     curves = AnalyticCurves(h, values, surface, material, laws.name, environment=environment)
     return LoadControl(p, h, jump, found, curves, quantity)
 

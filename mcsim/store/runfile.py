@@ -318,7 +318,8 @@ ATTRIBUTES = {
 #: Root attributes of schema 2 (optional ones: absent in files written before them).
 ATTRIBUTES_2 = {"law_outputs": "JSON object", "quantities": "JSON object", "cycle": "boolean",
                 "branches": "JSON list"}  # fmt: skip
-OPTIONAL = {"device": "text", "turn": "number", "load_control": "JSON object"}
+OPTIONAL = {"device": "text", "turn": "number", "load_control": "JSON object", "preload": "number",
+            "preload_turn_mean_field": "number"}  # fmt: skip
 
 #: Attributes of /input/surface and /input/material (NaN: not given), and their kinds.
 SURFACE = {
@@ -348,6 +349,12 @@ def _attributes(path: Path, f) -> dict:
                 WHAT,
                 "attribute load_control has no 'pressure': a list of finite numbers (Pa)",
             )
+    if "preload" in attrs:  # Pa, written only >= 0 (studies.simulation checks it)
+        schema.within(path, "attribute preload", attrs["preload"], WHAT, low=0)
+    if "preload_turn_mean_field" in attrs:
+        schema.within(
+            path, "attribute preload_turn_mean_field", attrs["preload_turn_mean_field"], WHAT
+        )
     return attrs
 
 
@@ -437,6 +444,7 @@ def _read_state(path: Path, f) -> tuple[EnsembleSums, dict]:
         sums = f["realizations/sums"][()]
     state = EnsembleSums(spec, f["realizations/N"][()], sums, f["progress/n_blocks"][()],
                          f["progress/done_blocks"][()])  # fmt: skip
+    _check_counts(path, state, version)
     # A checkpoint may have every block done (saved after the last task, before the run
     # file was written); a complete run must.
     if bool(attrs["complete"]) and not state.complete:
@@ -445,6 +453,27 @@ def _read_state(path: Path, f) -> tuple[EnsembleSums, dict]:
         k: (v.item() if np.ndim(v) == 0 and hasattr(v, "item") else v) for k, v in f.attrs.items()
     }
     return state, plain | {k: v for k, v in attrs.items() if not isinstance(v, (dict, list))}
+
+
+def _check_counts(path: Path, state: EnsembleSums, version: int) -> None:
+    """Refuse counts and sums that no run can hold: negative summits or blocks, more blocks
+    done than planned, sums that are not finite, a negative count of contacts or sum of
+    squares."""
+    schema.within(path, "dataset realizations/N", state.n_summits, WHAT, low=0)
+    schema.within(path, "dataset progress/n_blocks", state.n_blocks, WHAT, low=0)
+    schema.within(path, "dataset progress/done_blocks", state.done_blocks, WHAT, low=0)
+    if np.any(state.done_blocks > state.n_blocks):
+        raise schema.refuse(path, WHAT, "dataset progress/done_blocks counts more blocks than "
+                                        "progress/n_blocks plans")  # fmt: skip
+    squares = {n + n for n in state.spec.law_set.names}
+    for k, c in enumerate(sum_columns(state.spec.law_set)):
+        field = (
+            f"dataset realizations/sums/{c}"
+            if version >= 3
+            else f"column {c} of dataset realizations/sums"
+        )
+        low = 0 if c == "n_contact" or c in squares else -np.inf  # a count, a sum of squares
+        schema.within(path, field, state.sums[..., k], WHAT, low=low)
 
 
 def _text(value) -> str | None:

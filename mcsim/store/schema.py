@@ -177,3 +177,52 @@ def check_sizes(path: Path, f, what: str) -> None:
                 f"dataset {name} declares {size} bytes ({total} with those before it), "
                 f"more than this {path.stat().st_size}-byte file can hold",
             )
+
+
+def within(
+    path: Path, field: str, values, what: str, *, low=-np.inf, high=np.inf, nan: bool = False
+):
+    """``values`` (a number or an array read from ``field``), checked to lie in [low, high].
+
+    Parameters
+    ----------
+    path : Path
+        The file, for messages.
+    field : str
+        What holds the values, for messages ("attribute preload", "dataset p_stick").
+    values : float or ndarray
+        The values, in the units of the file.
+    what : str
+        The file kind, for messages.
+    low, high : float
+        The allowed range, ends included (infinite: unbounded, and then infinite values
+        are refused too).
+    nan : bool
+        Whether NaN is allowed (a value not defined there, a failed point).
+
+    Returns
+    -------
+    float or ndarray
+        ``values``, unchanged.
+
+    Raises
+    ------
+    RunFileError
+        A value lies outside the range, is infinite or (without ``nan``) NaN: one line
+        naming the field, the first such value and its index.
+    """
+    v = np.asarray(values)
+    bad = ~((v >= max(low, -np.finfo(float).max)) & (v <= min(high, np.finfo(float).max)))
+    if nan:
+        bad &= ~np.isnan(v)
+    if bad.any():
+        at = np.unravel_index(np.argmax(bad), v.shape)
+        where = f" at index {list(map(int, at))}" if v.ndim else ""
+        if np.isfinite(low) and np.isfinite(high):
+            allowed = f"{low:g} to {high:g}"
+        else:
+            allowed = "finite numbers" + f" >= {low:g}" * bool(np.isfinite(low))
+            allowed += f" <= {high:g}" * bool(np.isfinite(high))
+        allowed += ", or NaN" * nan
+        raise refuse(path, what, f"{field} holds {shown(v[at])}{where} (allowed: {allowed})")
+    return values

@@ -5,7 +5,8 @@ every variable has ``units`` and ``long_name`` attributes; schema :data:`SCHEMA_
 
     dimensions/coordinates  one per varied input, in the order given, named as in
                             ``vary`` (sigma, R, eta, E, E1, E2, nu, nu1, nu2, gamma,
-                            z0, tau, H: float64 SI values; law: strings), except the
+                            z0, tau, H, the pads' restoring_force: float64 SI values;
+                            law: strings), except the
                             pad area ``area`` whose dimension is ``pad_area`` (m^2;
                             ``area`` is the real-contact-area curve); then ``h``
                             (d/sigma, the separations of the curves)
@@ -40,7 +41,8 @@ every variable has ``units`` and ``long_name`` attributes; schema :data:`SCHEMA_
                             turn (NaN: zero approach load), mc, and with mc area,
                             realizations, seed_entropy; with an environment, environment
                             (JSON of its inputs before variation, SI); with a preload
-                            preload (Pa); with pads pads, restoring_force (N), area,
+                            preload (Pa); with pads pads, restoring_force (N; absent
+                            where it is varied), area,
                             seed_entropy, pads_streams; complete; checksum
 
 Strings are fixed-length UTF-8 bytes with ``_Encoding = "utf-8"`` (netCDF readers give
@@ -92,6 +94,7 @@ INPUTS: dict[str, tuple[str, tuple[str, ...], str]] = {
     "contact_angle": ("angle", ("contact_angle",), "contact angle of the condensing liquid"),
     "cutoff": ("length", ("cutoff",), "cutoff gap D0 of the environment (contact below it)"),
     "temperature": ("temperature", ("temperature",), "temperature of the environment"),
+    "restoring_force": ("force", ("restoring_force",), "restoring force pulling each pad off"),
 }
 
 #: Inputs of :data:`INPUTS` that set the environment (:class:`mcsim.physics.environment.Environment`).
@@ -413,6 +416,26 @@ ATTRIBUTES = {
 MC_ATTRIBUTES = {"area": "number", "realizations": "integer", "seed_entropy": "digits",
                  "device": "text"}  # fmt: skip
 
+#: Root attributes of a pads sweep (a file with :data:`PADS` variables or ``pads``).
+PADS_ATTRIBUTES = {"pads": "integer", "restoring_force": "number", "area": "number",
+                   "seed_entropy": "digits"}  # fmt: skip
+
+#: Ranges of root attributes, ends included (low, high, NaN allowed; NaN area: none).
+ATTRIBUTE_RANGES = {
+    "pads": (1, np.inf, False),
+    "restoring_force": (0, np.inf, False),
+    "preload": (0, np.inf, False),
+    "area": (0, np.inf, True),
+}
+
+#: Ranges of per-point variables, ends included (low, high, NaN allowed: a failed point,
+#: the standard deviation of one pad).
+VARIABLE_RANGES = {
+    **{k: (0, 1, True) for k in ("p_stick", "p_stick_low", "p_stick_high", "p_stick_model")},
+    "pull_off_std": (0, np.inf, True),
+    "contacting_summits": (0, np.inf, True),
+}
+
 
 def read_file(path: Path) -> dict:
     """Attributes, datasets (strings decoded), units and long names of a sweep file or
@@ -448,6 +471,12 @@ def _read(path: Path, f) -> dict:
     wanted = ATTRIBUTES | (
         MC_ATTRIBUTES if schema.attribute(path, f, "mc", "boolean", WHAT) else {}
     )
+    if "pads" in f.attrs or any(k in f for k in PADS):
+        wanted |= PADS_ATTRIBUTES
+        if "restoring_force" in f:  # varied: a coordinate, not an attribute
+            del wanted["restoring_force"]
+    if "preload" in f.attrs:
+        wanted |= {"preload": "number"}
     attrs = {
         k: (v.item() if np.ndim(v) == 0 and hasattr(v, "item") else v) for k, v in f.attrs.items()
     }
@@ -483,7 +512,25 @@ def _read(path: Path, f) -> dict:
     for k in STRINGS:
         if k not in data:
             raise schema.refuse(path, WHAT, f"dataset {k} is missing")
+    _check_ranges(path, checked, data)
     return {"attrs": attrs, "data": data, "units": units, "long_names": long_names}
+
+
+def _check_ranges(path: Path, attrs: dict, data: dict) -> None:
+    """Refuse attributes and variables outside :data:`ATTRIBUTE_RANGES` and
+    :data:`VARIABLE_RANGES`, and a p_stick outside its interval."""
+    for kind, held, ranges in (
+        ("attribute", attrs, ATTRIBUTE_RANGES),
+        ("dataset", data, VARIABLE_RANGES),
+    ):
+        for k, (low, high, nan) in ranges.items():
+            if k in held:
+                schema.within(path, f"{kind} {k}", held[k], WHAT, low=low, high=high, nan=nan)
+    if "p_stick" in data and {"p_stick_low", "p_stick_high"} <= data.keys():
+        p, low, high = data["p_stick"], data["p_stick_low"], data["p_stick_high"]
+        if np.any((low > p) | (p > high)):  # False where NaN: a failed point
+            raise schema.refuse(path, WHAT, "dataset p_stick lies outside its interval "
+                                            "p_stick_low .. p_stick_high")  # fmt: skip
 
 
 def _grid(path: Path, varied: list) -> tuple[str, ...]:

@@ -127,9 +127,9 @@ class Point:
     """One grid point: its flat index (C order), its inputs, and the index its pads draw from.
 
     ``pads_index`` is the flat index of the point in the grid without its environment inputs
-    (rh, hamaker, ...): points that differ in the environment alone draw the same pads (common
-    random numbers, so that a curve against RH is the physics, not the draw); without
-    environment inputs it is ``index``.
+    (rh, hamaker, ...) and the restoring force: points that differ in these alone draw the
+    same pads (common random numbers, so that a curve against RH is the physics, not the
+    draw); without such inputs it is ``index``.
     """
 
     index: int
@@ -139,6 +139,7 @@ class Point:
     area: float | None
     environment: Environment | None = None
     pads_index: int | None = None
+    restoring_force: float | None = None  # N, where varied; else the Config's
 
 
 @dataclass(frozen=True)
@@ -160,9 +161,12 @@ def make_point(base_surface, base_material, base_environment, law, area, names, 
                index, pads_index=None) -> Point:  # fmt: skip
     """The inputs at one point; a bad combination raises ParameterError (a failed point)."""
     surface_changes, material_changes, environment_changes = {}, {}, {}
+    restoring_force = None
     for name, value in zip(names, values):
         if name == "law":
             law = str(value)
+        elif name == "restoring_force":
+            restoring_force = float(value)
         elif name == "area":
             area = float(value)
         elif name in ENVIRONMENT_INPUTS:
@@ -175,7 +179,8 @@ def make_point(base_surface, base_material, base_environment, law, area, names, 
         environment = dataclasses.replace(environment, **environment_changes)
     return Point(index, dataclasses.replace(base_surface, **surface_changes),
                   dataclasses.replace(base_material, **material_changes), law, area,
-                  environment, index if pads_index is None else pads_index)  # fmt: skip
+                  environment, index if pads_index is None else pads_index,
+                  restoring_force)  # fmt: skip
 
 
 def has_summary(law: str) -> bool:
@@ -252,7 +257,8 @@ def _pads(point: Point, config: Config, law: str, turn: float, h_pull_off: float
     spec = MonteCarloSpec(point.surface, point.material, np.asarray(config.h), point.area,
                           config.pads, pads_seed(config.entropy, point.pads_index), law, cycle=True,
                           environment=point.environment)  # fmt: skip
-    return finite_pads(spec, config.restoring_force, preload=config.preload, turn=turn,
+    force = config.restoring_force if point.restoring_force is None else point.restoring_force
+    return finite_pads(spec, force, preload=config.preload, turn=turn,
                        h_pull_off=h_pull_off)  # fmt: skip
 
 

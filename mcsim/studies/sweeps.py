@@ -212,8 +212,9 @@ def sweep(
     """
     surface, material = as_surface(surface), as_material(material)
     environment = as_environment(environment)
-    names, grid = _check_vary(vary, law, mc or bool(pads))
-    restoring_force, preload = _check_pads(pads, restoring_force, preload, turn)
+    names, grid = _check_vary(vary, law, mc or bool(pads), bool(pads))
+    restoring_force, preload = _check_pads(pads, restoring_force, preload, turn,
+                                           "restoring_force" in names)  # fmt: skip
     checkpoint_every = check_checkpoint_every(checkpoint_every)
     workers = check_workers(workers)
     law = "seed" if law is None else law
@@ -425,7 +426,9 @@ def _product(grid: list[np.ndarray]):
         yield [v[i] for v, i in zip(grid, idx)]
 
 
-def _check_vary(vary: Mapping, law: str | None, mc: bool) -> tuple[list[str], list[np.ndarray]]:
+def _check_vary(
+    vary: Mapping, law: str | None, mc: bool, pads: bool
+) -> tuple[list[str], list[np.ndarray]]:
     if not isinstance(vary, Mapping) or not vary:
         raise ParameterError("vary: give at least one input to vary (e.g. --vary sigma=0.3nm:20nm:40:log)")  # fmt: skip
     names = list(vary)
@@ -441,16 +444,25 @@ def _check_vary(vary: Mapping, law: str | None, mc: bool) -> tuple[list[str], li
         raise ParameterError("law: given both as --law and as a varied input (--vary law=...)")
     if "area" in names and not mc:
         raise ParameterError("vary area: the pad area applies to the Monte Carlo runs only (add --mc)")  # fmt: skip
+    if "restoring_force" in names and not pads:
+        raise ParameterError("vary restoring_force: it applies to the pads only (add pads=N, --pads N)")  # fmt: skip
     return names, [parse_values(n, vary[n]) for n in names]
 
 
 def _check_values(surface: Surface, material: Material, environment, names, grid) -> None:
     """Each value on its own (with the other inputs at their base values) must be valid."""
     for name, values in zip(names, grid):
-        if name in ("law", "area"):
-            if name == "area":
-                for v in values:
-                    check_range("vary area", v, "m^2", low=0)
+        if name == "law":
+            continue
+        if name == "area":
+            for v in values:
+                check_range("vary area", v, "m^2", low=0)
+            continue
+        if name == "restoring_force":
+            for v in values:
+                if not (math.isfinite(v) and v >= 0):
+                    raise ParameterError(f"vary restoring_force: {float(v)!r} N is out of range "
+                                         "(allowed: a finite force >= 0 N)")  # fmt: skip
             continue
         for v in values:
             changes = dict.fromkeys(INPUTS[name][1], float(v))
@@ -499,16 +511,21 @@ def _attrs(surface, material, environment, law, dims, grid, config: Config, area
 
 
 def _pads_index(index: int, names, shape) -> int:
-    """Flat index of grid point ``index`` without its environment dimensions (:class:`Point`)."""
+    """Flat index of grid point ``index`` without its environment and restoring-force
+    dimensions (:class:`~mcsim.studies.sweeppoint.Point`)."""
     multi = np.unravel_index(index, shape)
-    kept = [(i, n) for i, n, name in zip(multi, shape, names) if name not in ENVIRONMENT_INPUTS]
+    shared = {*ENVIRONMENT_INPUTS, "restoring_force"}
+    kept = [(i, n) for i, n, name in zip(multi, shape, names) if name not in shared]
     if not kept:
         return 0
     return int(np.ravel_multi_index([i for i, _ in kept], [n for _, n in kept]))
 
 
-def _check_pads(pads, restoring_force, preload, turn) -> tuple[float | None, float | None]:
-    """Check the pads' options; the restoring force (N) and the preload (Pa), SI."""
+def _check_pads(
+    pads, restoring_force, preload, turn, varied: bool
+) -> tuple[float | None, float | None]:
+    """Check the pads' options; the restoring force (N; None where ``varied``) and the
+    preload (Pa), SI."""
     if preload is not None:
         if turn is not None:
             raise ParameterError("turn and preload: give one of them (the preload sets the turn)")
@@ -521,9 +538,13 @@ def _check_pads(pads, restoring_force, preload, turn) -> tuple[float | None, flo
         return None, preload
     if isinstance(pads, bool) or not isinstance(pads, int) or pads < 1:
         raise ParameterError(f"pads = {pads!r} is out of range (allowed: integer >= 1)")
+    if varied:
+        if restoring_force is not None:
+            raise ParameterError("restoring_force: given both as a value and as a varied input")
+        return None, preload
     if restoring_force is None:
         raise ParameterError(
-            "pads need the restoring force (restoring_force=..., --restoring-force)"
+            "pads need the restoring force (restoring_force=..., --restoring-force, or vary it)"
         )
     fr = parse_quantity(plain(restoring_force), "force", "restoring_force")
     if not (math.isfinite(fr) and fr >= 0):
@@ -539,8 +560,9 @@ def _pads_attrs(config: Config, area) -> dict:
     if config.preload is not None:
         attrs |= {"preload": config.preload, "preload_unit": "Pa"}
     if config.pads:
-        attrs |= {"pads": config.pads, "restoring_force": config.restoring_force,
-                  "restoring_force_unit": "N", "area": math.nan if area is None else area,
+        if config.restoring_force is not None:  # else varied: a coordinate
+            attrs |= {"restoring_force": config.restoring_force, "restoring_force_unit": "N"}
+        attrs |= {"pads": config.pads, "area": math.nan if area is None else area,
                   "area_unit": "m^2", "seed_entropy": str(config.entropy),
                   "pads_streams": "point i: SeedSequence(seed_entropy, spawn_key=(i, 1))"}  # fmt: skip
     return attrs

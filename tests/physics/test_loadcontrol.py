@@ -405,3 +405,29 @@ def test_the_api_takes_pressures_written_as_on_the_command_line():
     np.testing.assert_array_equal(spec.h, values.h)
     with pytest.raises(ParameterError, match=r"pressure = \['lots'\]: give numbers"):
         load_control(SMOOTH, SILICON, ["lots"], "jkr")
+
+
+# --- the seed's real contact area under load control (issue 33) ------------------------------
+
+
+def test_the_seed_under_load_control_has_the_hertz_area_of_greenwood_williamson():
+    result = load_control(SMOOTH, SILICON, [1e3, 1e6, 1e7], "seed")
+    h = result.h
+    # GW 1966, Eq. 9 with a Hertz summit's area pi R delta: A_r/A_n = pi eta R sigma F_1(h),
+    # F_1(h) = int_h^inf (s - h) phi(s) ds = phi(h) - h Q(h) for Gaussian heights (closed form)
+    f1 = stats.norm.pdf(h) - h * stats.norm.sf(h)
+    expected = math.pi * SMOOTH.eta * SMOOTH.R * SMOOTH.sigma * f1
+    # 8x24-point Gauss-Legendre against a closed form: QUAD_RTOL (its own accuracy ~1e-13)
+    np.testing.assert_allclose(result.curves.values["area"], expected, rtol=QUAD_RTOL, atol=0)
+
+
+def test_analytic_seed_versus_pressure_prints_area_and_with_area_area_m2(capsys):
+    code, out, _ = run_cli(capsys, "analytic", "--surface", "smooth", "--pressure", "1kPa,1MPa",
+                           "--area", "1mm^2", "--format", "csv")  # fmt: skip
+    assert code == 0
+    rows = rows_of(out)
+    assert {"area", "area_m2"} <= set(rows[0]), list(rows[0])  # neither was there
+    for row in rows:
+        # area_m2 = (A_r/A_n) x 1e-6 m^2: one rounding of a product
+        assert float(row["area_m2"]) == pytest.approx(float(row["area"]) * 1e-6, rel=ROUNDING_FEW)
+        assert float(row["area"]) > 0

@@ -285,12 +285,6 @@ def test_without_z0_it_says_so_in_one_line():
     assert "\n" not in str(info.value)
 
 
-def test_without_adhesion_it_says_so():
-    no_adhesion = dataclasses.replace(SILICON, gamma=0.0)
-    with pytest.raises(ParameterError, match="gamma"):
-        get_law_set("maugis-dugdale").evaluate([0.0], SURFACES["rough"], no_adhesion)
-
-
 def test_lambda_outside_the_tabulated_range_is_refused():
     stiff = Material(E1=1e13, E2=1e13, nu1=0.2, nu2=0.2, gamma=0.01, z0=1e-6)  # λ ≈ 2e-7
     with pytest.raises(ParameterError, match="lambda"):

@@ -1,6 +1,7 @@
 """The README runs as written: every command of its ```bash blocks and every ```python block.
 
-They run in the README's order in a temporary copy of the repository's tracked files (a
+Each python block runs on its own, in a fresh namespace (as pasted into a new notebook):
+it imports and defines what it uses. They run in the README's order in a temporary copy of the repository's tracked files (a
 fresh clone, as a new user has it), with the ``mcsim`` of this interpreter's environment
 on PATH (``source .venv/bin/activate`` in the README). A command fails the test with its
 README line, the command and its stderr.
@@ -90,6 +91,35 @@ def test_every_substitution_matches_the_readme_once():
     assert all(n == 1 for n in counts.values()), f"each SMALLER entry once in README.md: {counts}"
 
 
+def unbound_names(code: str) -> set[str]:
+    """Names a python block reads that it neither imports nor assigns, nor are builtins."""
+    import ast
+    import builtins
+
+    bound, read = set(dir(builtins)), set()
+    for node in ast.walk(ast.parse(code)):
+        if isinstance(node, ast.Name):
+            (read if isinstance(node.ctx, ast.Load) else bound).add(node.id)
+        elif isinstance(node, ast.alias):
+            bound.add((node.asname or node.name).split(".")[0])
+        elif isinstance(node, (ast.FunctionDef, ast.ClassDef)):
+            bound.add(node.name)
+        elif isinstance(node, ast.arg):
+            bound.add(node.arg)
+    return read - bound
+
+
+def test_every_python_block_imports_and_defines_what_it_uses():
+    """A block copied alone into a notebook runs: no name from an earlier block (the
+    README's blocks used to share smooth, silicon, np, mcsim and h)."""
+    blocks = [
+        (line, code) for lang, line, code in readme_steps(README.read_text()) if lang == "python"
+    ]
+    assert len(blocks) >= 5
+    missing = {f"README.md:{line}": sorted(unbound_names(code)) for line, code in blocks}
+    assert not any(missing.values()), missing
+
+
 def test_setup_lines_are_only_the_listed_ones():
     skipped = [
         c for lang, _, c in readme_steps(README.read_text()) if lang == "bash" and _is_setup(c)
@@ -110,7 +140,6 @@ def test_readme_runs_as_written(tmp_path, monkeypatch):
     env["PATH"] = f"{Path(sys.executable).parent}{os.pathsep}{env.get('PATH', '')}"
     monkeypatch.chdir(tmp_path)
     monkeypatch.setenv("MPLBACKEND", "Agg")
-    namespace: dict = {"__name__": "__readme__"}
     for language, line, code in readme_steps(text):
         if language == "bash":
             if _is_setup(code):
@@ -125,8 +154,8 @@ def test_readme_runs_as_written(tmp_path, monkeypatch):
                     pytrace=False,
                 )
         else:
-            try:
-                exec(compile(code, f"README.md:{line}", "exec"), namespace)
+            try:  # a fresh namespace: the block runs on its own
+                exec(compile(code, f"README.md:{line}", "exec"), {"__name__": "__readme__"})
             except Exception:
                 pytest.fail(f"README.md:{line}: python block failed\n{traceback.format_exc()}",
                             pytrace=False)  # fmt: skip

@@ -221,3 +221,46 @@ def test_union_of_identical_offsets_is_their_common_probability_and_never_below_
         # max p <= P(union) exactly (the model never returns less), <= Σp (Boole) up to
         # Genz's absolute error 1e-6
         assert p.max() <= _union_of(p, g) <= min(p.sum(), 1) + 1e-6
+
+
+# --- the restoring force as a varied input (issue 33) ------------------------------------------
+
+
+def test_a_varied_restoring_force_gives_each_point_the_pads_of_a_fixed_one(pads_sweep, tmp_path):
+    """Point 0 (20 uN, σ = 2.5 nm) draws the pads of the fixed-force sweep's point 0 (same
+    seed, same index, same inputs): the same numbers; no pad holds 1 N."""
+    fixed, _ = pads_sweep
+    options = {k: v for k, v in PADS_OPTIONS.items() if k != "restoring_force"}
+    out = tmp_path / "force.h5"
+    varied = sweep(SMOOTH, SILICON, {"restoring_force": "20uN,1N"}, pads=60, seed=7, out=out,
+                   workers=1, **options)  # fmt: skip
+    # 20 x 1e-6 from the unit table: one rounding
+    assert varied.coords["restoring_force"] == pytest.approx([20e-6, 1.0], rel=ROUNDING_FEW)
+    for name in PADS:
+        assert varied.data[name][0] == fixed.data[name][0], name
+    assert varied.data["p_stick"][1] == 0 and varied.data["p_stick_high"][1] < 0.1
+    on_disk = read_sweep(out)
+    assert on_disk.units["restoring_force"] == "N" and "restoring_force" not in on_disk.attrs
+
+
+def test_cli_sweep_varies_the_restoring_force_and_plots_it(tmp_path, capsys):
+    out = tmp_path / "f.h5"
+    code, _, err = run_cli(capsys, "sweep", "--surface", "smooth", "--law", "jkr", "--vary",
+                           "restoring_force=1uN:10uN:2", "--pads", 3, "--area", "1um^2", "--seed", 1,
+                           "--h=2,0", "--out", out, "--quiet")  # fmt: skip
+    assert code == 0, err
+    code, _, err = run_cli(capsys, "plot", out, "--out", tmp_path / "f.png")
+    assert code == 0 and (tmp_path / "f.png").exists(), err
+
+
+@pytest.mark.parametrize(
+    "options, match",
+    [({}, "vary restoring_force: it applies to the pads only"),
+     ({"pads": 3, "area": "1um^2", "restoring_force": "1uN"},
+      "restoring_force: given both as a value and as a varied input"),
+     ({"pads": 3, "area": "1um^2", "vary": "-1uN,1uN"}, "vary restoring_force: -1e-06 N is out of range")],
+)  # fmt: skip
+def test_a_varied_restoring_force_is_checked_in_one_line(options, match):
+    vary = {"restoring_force": options.pop("vary", "1uN,2uN")}
+    with pytest.raises(MCSimError, match=match):
+        sweep(SMOOTH, SILICON, vary, law="jkr", **options)

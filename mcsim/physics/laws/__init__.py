@@ -198,7 +198,8 @@ class LawSet:
         float arrays, e.g. a tabulated dimensionless curve), merged into the
         parameters the output functions take by name.
     requires : tuple of str
-        Material fields that must be given (``"z0"``, ``"H"``, ...).
+        Material fields that must be given (``"z0"``, ``"H"``, ...); ``z0`` only with
+        adhesion (w > 0).
     retract : bool
         Whether the retraction branch is implemented (elastic-plastic: no).
     friction : bool
@@ -236,7 +237,8 @@ class LawSet:
     def parameters(self, surface: Surface, material: Material) -> dict:
         """All named parameters (SI), after checking the required material fields."""
         for req in self.requires:
-            if getattr(material, req) is None:
+            # z0 is the range of the attraction: without adhesion (w = 0) nothing to range
+            if getattr(material, req) is None and not (req == "z0" and material.gamma == 0):
                 raise ParameterError(
                     f"law set {self.name!r} needs material field {req!r}, which is not given"
                 )

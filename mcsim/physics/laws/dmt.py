@@ -110,7 +110,8 @@ def dmt_law_set(cutoff: float = DEFAULT_CUTOFF) -> LawSet:
     Returns
     -------
     LawSet
-        Outputs ``load`` (N) and ``area`` (m²); needs the material's ``z0``. Named
+        Outputs ``load`` (N) and ``area`` (m²); needs the material's ``z0`` unless
+        w = 0 (then Hertz: P = K R^½ δ^{3/2}, area πRδ, nothing out of contact). Named
         ``dmt`` whatever the cutoff: the cutoff is in its description and enters the
         law functions as the parameter ``gap_cut`` (m), so the compiled kernel is
         the same for every cutoff.
@@ -125,6 +126,9 @@ def dmt_law_set(cutoff: float = DEFAULT_CUTOFF) -> LawSet:
         )
 
     def constants(surface, material) -> dict:
+        if material.gamma == 0:  # no attraction, no tail to cut: Hertz, whatever z0 is
+            z0 = surface.R if material.z0 is None else material.z0  # any length > 0
+            return {"z0": z0, "gap_cut": z0}
         return {"gap_cut": cutoff * material.z0}
 
     def edges(params) -> Edges:

@@ -373,9 +373,9 @@ def load(
     md_jump_in, md_break_off : float
         Edges of the contact branch, m.
     md_per_delta_unit : float
-        1/(π²w²R/K²)^{1/3}, 1/m.
+        1/(π²w²R/K²)^{1/3}, 1/m (1/R without adhesion, :func:`hertz_table`).
     md_force_unit : float
-        πwR, N.
+        πwR, N (K R² without adhesion).
     md_lambda, md_h0, md_b, md_delta_lo, md_delta_touch : float
         λ and the dimensionless constants of :class:`Table`.
     md_table : ndarray
@@ -425,9 +425,9 @@ def area(
     md_jump_in, md_break_off : float
         Edges of the contact branch, m.
     md_per_delta_unit : float
-        1/(π²w²R/K²)^{1/3}, 1/m.
+        1/(π²w²R/K²)^{1/3}, 1/m (1/R without adhesion, :func:`hertz_table`).
     md_area_unit : float
-        π (πwR²/K)^{2/3}, m².
+        π (πwR²/K)^{2/3}, m² (πR² without adhesion).
     md_delta_lo, md_delta_touch : float
         Dimensionless constants of :class:`Table`.
     md_table : ndarray
@@ -449,19 +449,40 @@ def area(
     return on * (D >= md_delta_touch) * touching * md_area_unit + 0.0
 
 
+@functools.lru_cache(maxsize=1)
+def hertz_table() -> Table:
+    """The table of Hertz's sphere, the Maugis–Dugdale curve without adhesion (w = 0):
+    P̄ = Δ^{3/2}, A² = Δ in units of any length L (δ = LΔ, P = K R^½ L^{3/2} P̄,
+    πa² = πRL A²; Hertz 1882, Johnson 1985 §4.2), touching from Δ = 0 with no jump."""
+    y = nodes()
+    return Table(lam=0.0, h0=0.0, b=0.0, psi_lo=0.5 * np.pi, delta_lo=0.0, delta_touch=0.0,
+                 delta_break=0.0, coefficients=_coefficients(y, y**1.5, y))  # fmt: skip
+
+
+def _hertz_constants(R: float, K: float) -> dict:
+    """:func:`constants` without adhesion: :func:`hertz_table` in units of L = R (λ = 0,
+    so the out-of-contact term of :func:`load` is 0)."""
+    tab = hertz_table()
+    return {"md_lambda": 0.0, "md_jump_in": 0.0, "md_break_off": 0.0, "md_touch_down": 0.0,
+            "md_per_delta_unit": 1.0 / R, "md_force_unit": K * R * R, "md_area_unit": np.pi * R * R,
+            "md_h0": 0.0, "md_b": 0.0, "md_delta_lo": 0.0, "md_delta_touch": 0.0,
+            "md_table": tab.coefficients}  # fmt: skip
+
+
 def constants(surface: Surface, material: Material) -> dict:
     """The run's λ, units and table (named parameters of :func:`load` and :func:`area`).
+
+    Without adhesion (w = 0) the curve is Hertz's (:func:`hertz_table`), with or
+    without z0.
 
     Raises
     ------
     ParameterError
-        With γ = 0, or with λ outside :data:`LAMBDA_RANGE` (a missing ``z0`` is caught
-        by :meth:`LawSet.parameters`, from ``requires``).
+        With λ outside :data:`LAMBDA_RANGE` (a missing ``z0`` with w > 0 is caught by
+        :meth:`LawSet.parameters`, from ``requires``).
     """
-    if material.gamma <= 0:
-        raise ParameterError(
-            f"gamma = {material.gamma} J/m^2: law set 'maugis-dugdale' needs gamma > 0"
-        )
+    if material.gamma == 0:
+        return _hertz_constants(surface.R, material.K)
     R, K, w = surface.R, material.K, material.gamma
     lam = float(maugis_lambda(R, K, w, material.z0))
     lo, hi = LAMBDA_RANGE
