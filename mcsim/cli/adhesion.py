@@ -62,7 +62,7 @@ def run(args) -> int:
     surface, material = inputs_of(args)
     law, notes = resolve_law(args, surface, material)
     environment = environment_of(args)
-    notes += environment_notes(surface, environment)
+    notes += environment_notes(surface, environment, material=material)
     if environment is not None and args.plot:
         raise ParameterError("--plot: the figure shows the contact load only; drop the "
                              "environment options or --plot")  # fmt: skip

@@ -89,7 +89,7 @@ def run(args) -> int:
     surface, material = inputs_of(args)
     law, notes = resolve_law(args, surface, material)
     environment = environment_of(args)
-    notes += environment_notes(surface, environment)
+    notes += environment_notes(surface, environment, material=material)
     if args.h is None:
         if args.branch != "approach" or args.turn is not None or args.preload is not None:
             raise ParameterError(

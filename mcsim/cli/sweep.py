@@ -48,7 +48,7 @@ def run(args) -> int:
         surface, material = inputs_of(args)
         environment = environment_of(args)
         if not args.quiet:
-            print_lines(environment_notes(surface, environment, varied=vary))
+            print_lines(environment_notes(surface, environment, varied=vary, material=material))
         out = Path(args.out)
         before = file_state(out)
         try:
