@@ -19,12 +19,23 @@ from lawset_toy import TOY
 from mcsim.engine import cuda as mc
 from mcsim.engine.kernels import block_sums_numpy
 from mcsim.model.presets import MATERIALS, SURFACES
+from mcsim.physics.environment import Environment, with_environment
 from mcsim.physics.laws import LAW_SETS
 from mcsim.topography.empirical import Empirical
 
 SURFACE = SURFACES["smooth"]
 #: Silicon with the optional fields some law sets require.
 MATERIAL = dataclasses.replace(MATERIALS["silicon"], z0=3e-10, tau=1e8)
+
+
+#: Humid air: the jkr law set with the environment's caps (per-summit van der Waals, menisci).
+HUMID = Environment(hamaker=1.6e-19, cutoff=0.2e-9, rh=0.7)
+
+
+def law_sets() -> dict:
+    """Every registered law set, the toy, and jkr with the environment's caps, by name."""
+    humid = with_environment(LAW_SETS["jkr"], SURFACE, HUMID)
+    return {**LAW_SETS, TOY.name: TOY, "jkr+environment": humid}
 
 
 def relative_error(got: np.ndarray, ref: np.ndarray) -> float:
@@ -41,7 +52,7 @@ def block_sums_against_numpy(n: int) -> dict:
     z = rng.standard_normal(n) * SURFACE.sigma
     d = np.array([2.0, -0.5, 1.0, 0.25, 3.0]) * SURFACE.sigma  # any order
     out = {}
-    for name, law in {**LAW_SETS, TOY.name: TOY}.items():
+    for name, law in law_sets().items():
         args = law.arguments(SURFACE, MATERIAL)
         edges = law.edges_for(SURFACE, MATERIAL)
         for branch in ("approach", "retract") if law.retract else ("approach",):
@@ -113,8 +124,13 @@ def simulated_runs(folder: str) -> dict:
         names = []
         a.visit(lambda n: names.append(n) if isinstance(a[n], h5py.Dataset) else None)
         same = all(_equal(a[n][()], b[n][()]) for n in names)
-        return {"device": str(a.attrs["device"]), "identical": same, "datasets": len(names),
-                "z": [float(v) for v in z if np.isfinite(v)]}  # fmt: skip
+        a_device, n_datasets = a.attrs["device"], len(names)
+    humid = simulate(SURFACE, MATERIAL, [0.0, 1.0, 2.0], area, law="jkr", environment=HUMID,
+                     out=f"{folder}/humid.h5", **kw).compare()  # fmt: skip
+    caps = humid[humid.quantity.isin(["vdw", "capillary"])]["z"].to_numpy()
+    return {"device": str(a_device), "identical": same, "datasets": n_datasets,
+            "z": [float(v) for v in z if np.isfinite(v)],
+            "z_caps": [float(v) for v in caps if np.isfinite(v)]}  # fmt: skip
 
 
 def one_core() -> None:

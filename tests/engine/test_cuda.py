@@ -24,8 +24,8 @@ from unittest import mock
 import numpy as np
 import pytest
 from conftest import CudaChecks
-from cuda_checks import MATERIAL, SURFACE
-from lawset_toy import TOY, toy_grip
+from cuda_checks import MATERIAL, SURFACE, law_sets
+from lawset_toy import toy_grip
 
 from mcsim.engine import cuda as mc
 from mcsim.model.errors import ParameterError
@@ -172,9 +172,9 @@ def kernel_ptx(law, args, cc=(9, 0)) -> str:
 
 
 @needs_nvvm
-@pytest.mark.parametrize("name", sorted(LAW_SETS))
+@pytest.mark.parametrize("name", sorted(law_sets()))
 def test_every_law_set_kernel_compiles_with_the_real_cuda_compiler(name):
-    law = LAW_SETS[name]
+    law = law_sets()[name]
     ptx = kernel_ptx(law, law.arguments(SURFACE, MATERIAL))
     assert ".entry" in ptx and "sm_90" in ptx
 
@@ -261,8 +261,9 @@ def checks(request, tmp_path_factory, cuda_simulator_checks):
 
 def test_gpu_block_sums_equal_numpy_for_every_law_set_and_branch(checks):
     """Every registered law set and the toy, whose outputs call helpers (device
-    functions on the GPU), as do jkr's and elastic-plastic's."""
-    laws = {**LAW_SETS, TOY.name: TOY}
+    functions on the GPU), as do jkr's and elastic-plastic's, and jkr with the
+    environment's caps (tests/cuda_checks.py)."""
+    laws = law_sets()
     expected = {f"{n}/approach" for n in laws}
     expected |= {f"{n}/retract" for n, law in laws.items() if law.retract}
     assert set(checks["block_sums"]) == expected
@@ -295,6 +296,9 @@ def test_a_gpu_run_agrees_with_the_analytic_curves(checks):
     z = checks["simulate"]["z"]
     assert len(z) >= 6
     assert max(abs(v) for v in z) < 5
+    caps = checks["simulate"]["z_caps"]  # a humid jkr run: the caps' van der Waals and menisci
+    assert len(caps) >= 4
+    assert max(abs(v) for v in caps) < 5
 
 
 def test_an_unknown_device_is_a_parameter_error():
