@@ -17,7 +17,11 @@ import tarfile
 from pathlib import Path
 
 import pytest
-from _pytest.approx import ApproxScalar
+
+try:
+    from _pytest.approx import ApproxScalar
+except ImportError:  # pytest < 8.4 kept it in python_api
+    from _pytest.python_api import ApproxScalar
 
 # pytest.approx(x, rel=r) also accepts anything within an absolute 1e-12 unless abs= is
 # given: in SI units that floor is most of the value (1e-9 m, 1e-6 N, 1e-19 J), so
