@@ -45,6 +45,7 @@ import threading
 import numpy as np
 
 from mcsim.engine.kernels import cache_dir
+from mcsim.model.params import Surface
 from mcsim.physics.adhesion import NODES
 from mcsim.physics.environment import Environment
 from mcsim.physics.gapheights import nayak_heights
@@ -145,7 +146,9 @@ def jkr_summaries(sigma, R, eta, E_star, K, gamma, h, turn=None, environment=Non
             rq, summit_offset, _ = zip(*map(nayak_heights, sigma, R, eta))
         rq, summit_offset = (np.broadcast_to(np.asarray(x, dtype=float), sigma.shape)
                              for x in (rq, summit_offset))  # fmt: skip
-        params = np.hstack([params, environment_params(environment, rq, summit_offset, sigma, K)])
+        surfaces = [Surface(*x, rq=q, summit_offset=y)
+                    for *x, q, y in zip(sigma, R, eta, rq, summit_offset)]  # fmt: skip
+        params = np.hstack([params, environment_params(environment, surfaces, K)])
     h = np.ascontiguousarray(h, dtype=float)
     turns = np.full(sigma.size, math.nan if turn is None else float(turn))
     curves = np.empty((sigma.size, 2 if environment is None else 4, h.size))
@@ -167,5 +170,5 @@ def jkr_summaries(sigma, R, eta, E_star, K, gamma, h, turn=None, environment=Non
         "status": status,
     }
     if environment is not None:
-        out |= _environment_outputs(environment, params, out, curves, sigma)
+        out |= _environment_outputs(environment, surfaces, out, curves)
     return out
