@@ -127,7 +127,7 @@ def jkr_summaries(sigma, R, eta, E_star, K, gamma, h, turn=None, environment=Non
         ``work_of_separation_capillary`` (J/m²; with the surfaces in contact at rest their
         sum is ``work_of_separation``), ``kelvin_radius``, ``rq`` and ``summit_offset`` (m).
     """
-    from mcsim.engine.mapenvironment import _environment_outputs, environment_params
+    from mcsim.engine.mapenvironment import S_NODES_NET, _environment_outputs, environment_params
     from mcsim.engine.mapkernel import S_NODES, _rule
     from mcsim.physics.laws.jkr import reduced_constants
 
@@ -155,9 +155,9 @@ def jkr_summaries(sigma, R, eta, E_star, K, gamma, h, turn=None, environment=Non
     summary = np.empty((sigma.size, 5))
     status = np.empty(sigma.size, dtype=np.int64)
     dry, net = _kernels()
-    kernel = dry if environment is None else net
+    kernel, s_nodes = (dry, S_NODES) if environment is None else (net, S_NODES_NET)
     kernel(np.ascontiguousarray(sigma), np.ascontiguousarray(eta / K), params, turns, h,
-           *_rule(S_NODES), *np.polynomial.legendre.leggauss(NODES), curves, summary, status)  # fmt: skip
+           *_rule(s_nodes), *np.polynomial.legendre.leggauss(NODES), curves, summary, status)  # fmt: skip
     scale = K * sigma  # load·K is force per nominal area; dd = σ dh
     out = {
         "load": curves[:, 0],

@@ -62,6 +62,10 @@ from mcsim.physics.adhesion import GAUSSIAN_TOP, GRID, PANELS, _environment_top
 from mcsim.physics.environment import _TAIL as _GAP_TAIL
 from mcsim.physics.environment import environment_works, summit_parameters
 
+#: Gauss–Legendre nodes of the contact's one-panel rule in u (as
+#: :data:`mcsim.engine.mapkernel.S_NODES`, which has 32): the attraction pulls the turn deep
+#: (h < −4), where 32 nodes lose accuracy (module docstring).
+S_NODES_NET = 64
 #: Panels of :data:`VDW_NODES` Gauss–Legendre nodes of the van der Waals moment's rule
 #: (:func:`_gap_moments`; module docstring).
 VDW_PANELS = 8
