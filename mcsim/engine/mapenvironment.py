@@ -7,34 +7,53 @@ load, as ``adhesion_summary(..., environment=...)`` does (:func:`_batch_net`, a 
 its own: the dry one is untouched and gives the same bits as without this part). Like the
 dry kernel, these are plain numba functions that the interpreter also runs:
 
-* **the attraction** at a separation h (mean-plane gap D = hσ + y_s): the capillary part
-  (γ_L/r_K) P(D0 <= g < g_K) in closed form (:func:`_capillary`, Φ by ``math.erfc``); the
-  van der Waals moment E[g⁻³; g >= D0] by :data:`VDW_PANELS` panels of :data:`VDW_NODES`
-  Gauss–Legendre nodes in u, τ = t + D0/Rq = ln(1 + eᵘ) (:func:`_gap_moments`): the
+* **the attraction** at a separation h, as
+  :func:`mcsim.physics.environment.environment_curves` (docs/physics.md, section 'The
+  environment: summits and open gaps'), each term the summits' caps plus the open gaps
+  between them (:func:`_attractions`). The caps, over the summit heights s ~ N(0, 1) with
+  tip gap g = σ(h − s): the capillary part η 2πR (γ_L/r_K) E[(g_k − max(g, D0))⁺],
+  g_k = min(g_K, u_c), in closed form (:func:`_depth`, the partial means F_1 of
+  :func:`mcsim.physics.environment._gaussian_condensate` by ``math.erfc``); the van der
+  Waals part η (AR/6) {(D0⁻² − u_c⁻²) P(g < D0) + E[g⁻² − u_c⁻²; D0 <= g < u_c]}, the
+  expectation of the per-summit law (:func:`mcsim.physics.laws.attraction.vdw_summit`)
+  with a positive integrand (no cancellation). The open gaps, over the heights about the
+  mean plane (D = hσ + y_s, g = D − z, z ~ N(0, Rq²)): (γ_L/r_K) P(u_c <= g < g_K) in
+  closed form, and (A/6π) E[g⁻³; g >= u_c]. Both moments by one rule
+  (:func:`_gap_moments`): :data:`VDW_PANELS` panels of :data:`VDW_NODES` Gauss–Legendre
+  nodes in u, τ = t + c/ρ = ln(1 + eᵘ) (c the lower end, ρ the Gaussian's width): the
   reference's map ξ = τ + ln τ has the same two regimes (geometric at the pole, uniform
   beyond) and strip of analyticity, but its inverse is Wright's ω; softplus costs one exp
   and one log1p a node. Consecutive separations within :data:`VDW_SPREAD` in
-  a = (D − D0)/Rq of each other (the points of one panel of the pull-off grid, of the
+  a = (D − c)/ρ of each other (the points of one panel of the pull-off grid, of the
   turn's scan, of the curves) share one rule over the union of their windows
-  (:func:`_attractions`): one exponential per node and point. The 96 nodes agree with the
-  reference's 144 to 7e-14 relative at worst, alone or shared, for Rq/D0 = 1–1000 and a
-  from −30 to 30 (both ~1e-14 from the integral);
+  (:func:`_moments`): one exponential per node and point. The 96 nodes agree with the
+  reference's 144 to 7e-14 relative at worst for the open gaps, alone or shared, for
+  Rq/D0 = 1–1000 and a from −30 to 30 (both ~1e-14 from the integral); the caps' bounded
+  moment agrees with 30-digit mpmath to 5e-15 relative for σ/D0 = 1–1000,
+  (u_c − D0)/σ = 0.05–100 and a from −30 to 30 (where the Gaussian window misses
+  [D0, u_c], below e^-60 of its peak, it is 0: 7e-38 D0⁻² at most);
+* **the contact load**: the dry kernel's GW integrals (:func:`mcsim.engine.mapkernel.gw_load`)
+  with :data:`S_NODES_NET` nodes instead of 32: the attraction pulls the turn deep, and
+  below h ≈ −4 the 32-node rule, whose one panel in u then holds the Gaussian's whole
+  width far from its lower end, loses accuracy (measured against mpmath: 5e-12 relative at
+  h = −4, 1e-9 at −6, 2e-7 at −9); 64 nodes keep 1e-14 down to h = −30;
 * **the turn**: the zero of the net approach load, the same scan and Brent root
   (:func:`_zero_load_turn_net`); the surfaces rest apart only where the net approach
   load is never tensile (no attraction acts and too little adhesion);
 * **the pull-off**: the lowest net retraction load on the retraction's grid and on
   :data:`mcsim.physics.adhesion.PANELS` points from the top of the summits to where every
-  gap is open and wider than g_K (:func:`mcsim.physics.adhesion._environment_top`), where
-  the attraction alone acts, then the bounded minimiser on the net load (:func:`_point_net`);
-* **work of separation and hysteresis**: the contact's, as dry, plus the works of the
-  attraction from the turn to infinity: the reference's own vectorised functions
-  (:func:`mcsim.physics.environment.vdw_work`, :func:`~mcsim.physics.environment.capillary_work`)
-  at D_t = h_turn σ + y_s, after the kernel, over all points of the batch at once.
+  gap is open and wider than max(g_K, u_c) (:func:`mcsim.physics.adhesion._environment_top`),
+  where the attraction alone acts, then the bounded minimiser on the net load (:func:`_point_net`);
+* **work of separation and hysteresis**: the contact's, as dry (signed, −∫ load dd from the
+  turn), plus the works of the attractions from the turn to infinity by the reference's own
+  function (:func:`mcsim.physics.environment.environment_works`, caps and open gaps) at
+  each point's turn, after the kernel.
 
-Against ``adhesion_summary`` with the environment (tests/engine/test_designmap_environment.py):
-curves to 1e-13 of their scale, the turn to 1e-10 in h, pull-off, work of separation and its
-parts and hysteresis to 1e-9 relative (the contact work after a deep turn moves with it: 5e-11
-measured), Kelvin radius, Rq and y_s equal. The dry kernel's root finder and minimiser
+Against ``adhesion_summary`` and ``gw_curves`` with the environment
+(tests/engine/test_designmap_environment.py), measured on 113 points (the test's random
+draws of nine seeds and its corners; turns down to h = −6): curves to 6e-15 of their scale, the turn to 6e-13 in h, pull-off,
+work of separation and its parts and hysteresis to 2e-11 relative, Kelvin radius, Rq and
+y_s equal. The dry kernel's root finder and minimiser
 (:func:`~mcsim.engine.mapkernel._root`, :func:`~mcsim.engine.mapkernel._minimum`) run on the
 net load (:func:`_net_load`) given as their first argument.
 """
@@ -295,8 +314,8 @@ def _point_net(turn, sigma, factor, p, nodes, weights, gl_x, gl_w, out):
 
     Work and hysteresis are the contact's. The pull-off grid is the retraction's points with
     the attraction taken off, and :data:`PANELS` more from the top of the summits to where
-    every gap is open and wider than g_K (``p[P_TOP]``; :func:`mcsim.physics.adhesion._environment_top`),
-    where the attraction alone acts.
+    every gap is open and wider than max(g_K, u_c) (``p[P_TOP]``;
+    :func:`mcsim.physics.adhesion._environment_top`), where the attraction alone acts.
     """
     grid, values, top, work, hysteresis = _retraction(turn, sigma, factor, p, nodes, weights, gl_x,
                                                       gl_w, PANELS)  # fmt: skip
