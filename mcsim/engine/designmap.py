@@ -12,8 +12,8 @@ docstring:
 * :mod:`mcsim.engine.mapkernel`: the contact alone (``_batch``): the GW integrals, the
   zero-load turn, the work of separation and hysteresis, the pull-off;
 * :mod:`mcsim.engine.mapenvironment`: with an environment (``_batch_net``; van der Waals
-  attraction and capillary condensation across the gaps of Gaussian heights,
-  :mod:`mcsim.physics.environment`), the same steps on the net load, and the parameters
+  attraction and capillary condensation on the summits' caps and across the open gaps
+  between them, over Gaussian heights, :mod:`mcsim.physics.environment`), the same steps on the net load, and the parameters
   and outputs of the environment (:func:`~mcsim.engine.mapenvironment.environment_params`).
 
 This module runs them. They are imported, and their on-disk cache enabled, at the first
@@ -105,9 +105,10 @@ def jkr_summaries(sigma, R, eta, E_star, K, gamma, h, turn=None, environment=Non
     turn : float, optional
         Closest approach h_turn before retraction; default the zero of the approach load.
     environment : Environment or sequence of Environment, optional
-        For every point, or one per point: van der Waals and capillary attraction across the
-        gaps of Gaussian heights, as ``adhesion_summary(..., environment=...)`` (module
-        docstring). None (default): the contact alone.
+        For every point, or one per point: van der Waals and capillary attraction on the
+        summits' caps and across the open gaps of Gaussian heights, as
+        ``adhesion_summary(..., environment=...)`` (module docstring). None (default): the
+        contact alone.
     rq, summit_offset : array_like, optional
         Per point, with ``environment``: Rq and the summit plane's offset y_s of the heights
         about the mean plane, m (:func:`mcsim.physics.gapheights.gap_heights`); default both
