@@ -12,8 +12,8 @@ docstring:
 * :mod:`mcsim.engine.mapkernel`: the contact alone (``_batch``): the GW integrals, the
   zero-load turn, the work of separation and hysteresis, the pull-off;
 * :mod:`mcsim.engine.mapenvironment`: with an environment (``_batch_net``; van der Waals
-  attraction and capillary condensation across the gaps of Gaussian heights,
-  :mod:`mcsim.physics.environment`), the same steps on the net load, and the parameters
+  attraction and capillary condensation on the summits' caps and across the open gaps
+  between them, over Gaussian heights, :mod:`mcsim.physics.environment`), the same steps on the net load, and the parameters
   and outputs of the environment (:func:`~mcsim.engine.mapenvironment.environment_params`).
 
 This module runs them. They are imported, and their on-disk cache enabled, at the first
@@ -45,6 +45,7 @@ import threading
 import numpy as np
 
 from mcsim.engine.kernels import cache_dir
+from mcsim.model.params import Surface
 from mcsim.physics.adhesion import NODES
 from mcsim.physics.environment import Environment
 from mcsim.physics.gapheights import nayak_heights
@@ -104,9 +105,10 @@ def jkr_summaries(sigma, R, eta, E_star, K, gamma, h, turn=None, environment=Non
     turn : float, optional
         Closest approach h_turn before retraction; default the zero of the approach load.
     environment : Environment or sequence of Environment, optional
-        For every point, or one per point: van der Waals and capillary attraction across the
-        gaps of Gaussian heights, as ``adhesion_summary(..., environment=...)`` (module
-        docstring). None (default): the contact alone.
+        For every point, or one per point: van der Waals and capillary attraction on the
+        summits' caps and across the open gaps of Gaussian heights, as
+        ``adhesion_summary(..., environment=...)`` (module docstring). None (default): the
+        contact alone.
     rq, summit_offset : array_like, optional
         Per point, with ``environment``: Rq and the summit plane's offset y_s of the heights
         about the mean plane, m (:func:`mcsim.physics.gapheights.gap_heights`); default both
@@ -126,7 +128,7 @@ def jkr_summaries(sigma, R, eta, E_star, K, gamma, h, turn=None, environment=Non
         ``work_of_separation_capillary`` (J/m²; with the surfaces in contact at rest their
         sum is ``work_of_separation``), ``kelvin_radius``, ``rq`` and ``summit_offset`` (m).
     """
-    from mcsim.engine.mapenvironment import _environment_outputs, environment_params
+    from mcsim.engine.mapenvironment import S_NODES_NET, _environment_outputs, environment_params
     from mcsim.engine.mapkernel import S_NODES, _rule
     from mcsim.physics.laws.jkr import reduced_constants
 
@@ -145,16 +147,18 @@ def jkr_summaries(sigma, R, eta, E_star, K, gamma, h, turn=None, environment=Non
             rq, summit_offset, _ = zip(*map(nayak_heights, sigma, R, eta))
         rq, summit_offset = (np.broadcast_to(np.asarray(x, dtype=float), sigma.shape)
                              for x in (rq, summit_offset))  # fmt: skip
-        params = np.hstack([params, environment_params(environment, rq, summit_offset, sigma, K)])
+        surfaces = [Surface(*x, rq=q, summit_offset=y)
+                    for *x, q, y in zip(sigma, R, eta, rq, summit_offset)]  # fmt: skip
+        params = np.hstack([params, environment_params(environment, surfaces, K)])
     h = np.ascontiguousarray(h, dtype=float)
     turns = np.full(sigma.size, math.nan if turn is None else float(turn))
     curves = np.empty((sigma.size, 2 if environment is None else 4, h.size))
     summary = np.empty((sigma.size, 5))
     status = np.empty(sigma.size, dtype=np.int64)
     dry, net = _kernels()
-    kernel = dry if environment is None else net
+    kernel, s_nodes = (dry, S_NODES) if environment is None else (net, S_NODES_NET)
     kernel(np.ascontiguousarray(sigma), np.ascontiguousarray(eta / K), params, turns, h,
-           *_rule(S_NODES), *np.polynomial.legendre.leggauss(NODES), curves, summary, status)  # fmt: skip
+           *_rule(s_nodes), *np.polynomial.legendre.leggauss(NODES), curves, summary, status)  # fmt: skip
     scale = K * sigma  # load·K is force per nominal area; dd = σ dh
     out = {
         "load": curves[:, 0],
@@ -167,5 +171,5 @@ def jkr_summaries(sigma, R, eta, E_star, K, gamma, h, turn=None, environment=Non
         "status": status,
     }
     if environment is not None:
-        out |= _environment_outputs(environment, params, out, curves, sigma)
+        out |= _environment_outputs(environment, surfaces, out, curves)
     return out

@@ -7,34 +7,56 @@ load, as ``adhesion_summary(..., environment=...)`` does (:func:`_batch_net`, a 
 its own: the dry one is untouched and gives the same bits as without this part). Like the
 dry kernel, these are plain numba functions that the interpreter also runs:
 
-* **the attraction** at a separation h (mean-plane gap D = hσ + y_s): the capillary part
-  (γ_L/r_K) P(D0 <= g < g_K) in closed form (:func:`_capillary`, Φ by ``math.erfc``); the
-  van der Waals moment E[g⁻³; g >= D0] by :data:`VDW_PANELS` panels of :data:`VDW_NODES`
-  Gauss–Legendre nodes in u, τ = t + D0/Rq = ln(1 + eᵘ) (:func:`_gap_moments`): the
+* **the attraction** at a separation h, as
+  :func:`mcsim.physics.environment.environment_curves` (docs/physics.md, section 'The
+  environment: summits and open gaps'), each term the summits' caps plus the open gaps
+  between them (:func:`_attractions`). The caps, over the summit heights s ~ N(0, 1) with
+  tip gap g = σ(h − s): the capillary part η 2πR (γ_L/r_K) E[(g_k − max(g, D0))⁺],
+  g_k = min(g_K, u_c), in closed form (:func:`_depth`, the partial means F_1 of
+  :func:`mcsim.physics.environment._gaussian_condensate`, here φ(x) − x Q(x) with Q by
+  ``math.erfc`` where the reference uses erfcx: the difference loses ~x²ε relative, 1e-13
+  at x = 20, only where F_1(x) < e^-200 of its value at 0, nothing at the curves' scale:
+  measured 3e-15 of it, 3e-14 pointwise on the test's curves); the van der
+  Waals part η (AR/6) {(D0⁻² − u_c⁻²) P(g < D0) + E[g⁻² − u_c⁻²; D0 <= g < u_c]}, the
+  expectation of the per-summit law (:func:`mcsim.physics.laws.attraction.vdw_summit`)
+  with a positive integrand (no cancellation). The open gaps, over the heights about the
+  mean plane (D = hσ + y_s, g = D − z, z ~ N(0, Rq²)): (γ_L/r_K) P(u_c <= g < g_K) in
+  closed form, and (A/6π) E[g⁻³; g >= u_c]. Both moments by one rule
+  (:func:`_gap_moments`): :data:`VDW_PANELS` panels of :data:`VDW_NODES` Gauss–Legendre
+  nodes in u, τ = t + c/ρ = ln(1 + eᵘ) (c the lower end, ρ the Gaussian's width): the
   reference's map ξ = τ + ln τ has the same two regimes (geometric at the pole, uniform
   beyond) and strip of analyticity, but its inverse is Wright's ω; softplus costs one exp
   and one log1p a node. Consecutive separations within :data:`VDW_SPREAD` in
-  a = (D − D0)/Rq of each other (the points of one panel of the pull-off grid, of the
+  a = (D − c)/ρ of each other (the points of one panel of the pull-off grid, of the
   turn's scan, of the curves) share one rule over the union of their windows
-  (:func:`_attractions`): one exponential per node and point. The 96 nodes agree with the
-  reference's 144 to 7e-14 relative at worst, alone or shared, for Rq/D0 = 1–1000 and a
-  from −30 to 30 (both ~1e-14 from the integral);
+  (:func:`_moments`): one exponential per node and point. The 96 nodes agree with the
+  reference's 144 to 7e-14 relative at worst for the open gaps, alone or shared, for
+  Rq/D0 = 1–1000 and a from −30 to 30 (both ~1e-14 from the integral); the caps' bounded
+  moment agrees with 30-digit mpmath to 5e-15 relative for σ/D0 = 1–1000,
+  (u_c − D0)/σ = 0.05–100 and a from −30 to 30 (where the Gaussian window misses
+  [D0, u_c], below e^-60 of its peak, it is 0: 7e-38 D0⁻² at most);
+* **the contact load**: the dry kernel's GW integrals (:func:`mcsim.engine.mapkernel.gw_load`)
+  with :data:`S_NODES_NET` nodes instead of 32: the attraction pulls the turn deep, and
+  below h ≈ −4 the 32-node rule, whose one panel in u then holds the Gaussian's whole
+  width far from its lower end, loses accuracy (measured against mpmath: 5e-12 relative at
+  h = −4, 1e-9 at −6, 2e-7 at −9); 64 nodes keep 1e-14 down to h = −30;
 * **the turn**: the zero of the net approach load, the same scan and Brent root
   (:func:`_zero_load_turn_net`); the surfaces rest apart only where the net approach
   load is never tensile (no attraction acts and too little adhesion);
 * **the pull-off**: the lowest net retraction load on the retraction's grid and on
   :data:`mcsim.physics.adhesion.PANELS` points from the top of the summits to where every
-  gap is open and wider than g_K (:func:`mcsim.physics.adhesion._environment_top`), where
-  the attraction alone acts, then the bounded minimiser on the net load (:func:`_point_net`);
-* **work of separation and hysteresis**: the contact's, as dry, plus the works of the
-  attraction from the turn to infinity: the reference's own vectorised functions
-  (:func:`mcsim.physics.environment.vdw_work`, :func:`~mcsim.physics.environment.capillary_work`)
-  at D_t = h_turn σ + y_s, after the kernel, over all points of the batch at once.
+  gap is open and wider than max(g_K, u_c) (:func:`mcsim.physics.adhesion._environment_top`),
+  where the attraction alone acts, then the bounded minimiser on the net load (:func:`_point_net`);
+* **work of separation and hysteresis**: the contact's, as dry (signed, −∫ load dd from the
+  turn), plus the works of the attractions from the turn to infinity by the reference's own
+  function (:func:`mcsim.physics.environment.environment_works`, caps and open gaps) at
+  each point's turn, after the kernel.
 
-Against ``adhesion_summary`` with the environment (tests/engine/test_designmap_environment.py):
-curves to 1e-13 of their scale, the turn to 1e-10 in h, pull-off, work of separation and its
-parts and hysteresis to 1e-9 relative (the contact work after a deep turn moves with it: 5e-11
-measured), Kelvin radius, Rq and y_s equal. The dry kernel's root finder and minimiser
+Against ``adhesion_summary`` and ``gw_curves`` with the environment
+(tests/engine/test_designmap_environment.py), measured on 113 points (the test's random
+draws of nine seeds and its corners; turns down to h = −6.3): curves to 6e-15 of their
+scale, the turn to 6e-13 in h, pull-off, work of separation and its parts and hysteresis to
+2e-11 relative, Kelvin radius, Rq and y_s equal. The dry kernel's root finder and minimiser
 (:func:`~mcsim.engine.mapkernel._root`, :func:`~mcsim.engine.mapkernel._minimum`) run on the
 net load (:func:`_net_load`) given as their first argument.
 """
@@ -58,9 +80,14 @@ from mcsim.engine.mapkernel import (
     _rule,
     gw_load,
 )
-from mcsim.physics.adhesion import GAUSSIAN_TOP, GRID, PANELS
+from mcsim.physics.adhesion import GAUSSIAN_TOP, GRID, PANELS, _environment_top
 from mcsim.physics.environment import _TAIL as _GAP_TAIL
+from mcsim.physics.environment import environment_works, summit_parameters
 
+#: Gauss–Legendre nodes of the contact's one-panel rule in u (as
+#: :data:`mcsim.engine.mapkernel.S_NODES`, which has 32): the attraction pulls the turn deep
+#: (h < −4), where 32 nodes lose accuracy (module docstring).
+S_NODES_NET = 64
 #: Panels of :data:`VDW_NODES` Gauss–Legendre nodes of the van der Waals moment's rule
 #: (:func:`_gap_moments`; module docstring).
 VDW_PANELS = 8
@@ -74,10 +101,12 @@ VDW_TAIL = _GAP_TAIL
 VDW_SPREAD = 1.0
 BLOCK = 16
 #: Columns of a point's parameters after the law's seven, with an environment
-#: (:func:`environment_params`): A/6π (J; 0: no van der Waals); Rq, D0, y_s (m); the Laplace
-#: pressure γ_L/r_K (Pa; 0: no condensation); the condensation gap g_K (m); the top of the
-#: pull-off grid above the summits (h); K (Pa).
-P_VDW, P_RQ, P_CUTOFF, P_OFFSET, P_LAPLACE, P_GAP, P_TOP, P_K = range(7, 15)
+#: (:func:`environment_params`): A/6π (J; 0: no van der Waals); Rq, D0, the band edge u_c,
+#: y_s (m); the Laplace pressure γ_L/r_K (Pa; 0: no condensation); the condensation gap g_K
+#: and the caps' min(g_K, u_c) (m; g_K 0 and the caps' D0 without condensation); the summit
+#: radius R (m); the top of the pull-off grid above the summits (h); K (Pa).
+(P_VDW, P_RQ, P_CUTOFF, P_BAND, P_OFFSET, P_LAPLACE, P_GAP, P_CAP_GAP, P_RADIUS, P_TOP,
+ P_K) = range(7, 18)  # fmt: skip
 
 
 def _vdw_rule() -> tuple[np.ndarray, np.ndarray]:
@@ -92,15 +121,16 @@ VDW_U, VDW_W = _vdw_rule()
 
 
 @numba.njit(**OPTIONS)
-def _gap_moments(a, n, shift, rq, out):
-    """E[g⁻³; g >= D0], m⁻³, for g = D − z, z ~ N(0, Rq²), at the first ``n`` of
-    a = (D − D0)/Rq, into ``out``, all on one rule (module docstring).
+def _gap_moments(a, n, shift, scale, power, t_cap, out):
+    """E[g⁻ⁿ − u⁻ⁿ; c <= g < u] (m⁻ⁿ, n = ``power``, 2 or 3) for g = D − z,
+    z ~ N(0, ρ²) (ρ = ``scale``), at the first ``n`` of a = (D − c)/ρ, into ``out``, all on
+    one rule (module docstring); u = c + ρ·``t_cap`` (``t_cap`` = inf: no upper end).
 
-    With t = (g − D0)/Rq each is ∫₀^∞ (D0 + Rq t)⁻³ φ(a − t) dt, over the t range where
-    φ exceeds e^-VDW_TAIL of its peak for one of the ``a`` (as
+    With t = (g − c)/ρ each is ∫₀^t_cap ((c + ρt)⁻ⁿ − u⁻ⁿ) φ(a − t) dt, over the t range
+    where φ exceeds e^-VDW_TAIL of its peak for one of the ``a`` (as
     :func:`mcsim.physics.environment._gaussian_gap_moment` for one), on
-    :data:`VDW_PANELS` equal Gauss–Legendre panels in u, τ = t + D0/Rq = ln(1 + eᵘ)
-    (``shift`` = D0/Rq): geometric near the pole τ = 0, uniform far from it,
+    :data:`VDW_PANELS` equal Gauss–Legendre panels in u, τ = t + c/ρ = ln(1 + eᵘ)
+    (``shift`` = c/ρ): geometric near the pole τ = 0, uniform far from it,
     dτ/du = 1/(1 + e⁻ᵘ), analytic in a strip of half-width π (as the reference's
     ξ = τ + ln τ, without its Wright ω). The nodes are shared: close ``a`` (the points of
     one panel of the pull-off grid) cost one exponential a node each.
@@ -113,9 +143,14 @@ def _gap_moments(a, n, shift, rq, out):
         else:  # the weight falls by e^-VDW_TAIL at t² − 2at = 2 VDW_TAIL
             t_hi = max(t_hi, 2.0 * VDW_TAIL / (math.sqrt(a[k] * a[k] + 2.0 * VDW_TAIL) - a[k]))
         out[k] = 0.0
+    t_hi = min(t_hi, t_cap)
+    if t_hi <= t_lo:
+        return
     tau_lo, tau_hi = t_lo + shift, t_hi + shift
     u_lo = tau_lo + math.log(-math.expm1(-tau_lo))  # ln(e^τ − 1), no overflow
     span = tau_hi + math.log(-math.expm1(-tau_hi)) - u_lo
+    edge = 1.0 / (scale * (t_cap + shift))  # 1/u (0 without an upper end)
+    edge = edge * edge if power == 2 else edge * edge * edge
     for j in range(VDW_U.size):
         u = u_lo + span * VDW_U[j]
         if u > 0.0:
@@ -126,8 +161,9 @@ def _gap_moments(a, n, shift, rq, out):
             e = math.exp(u)
             tau = math.log1p(e)
             slope = e / (1.0 + e)
-        inverse = 1.0 / (rq * tau)
-        weight = VDW_W[j] * inverse * inverse * inverse * slope
+        inverse = 1.0 / (scale * tau)
+        value = inverse * inverse if power == 2 else inverse * inverse * inverse
+        weight = VDW_W[j] * (value - edge) * slope
         t = tau - shift
         for k in range(n):
             x = a[k] - t
@@ -137,51 +173,86 @@ def _gap_moments(a, n, shift, rq, out):
 
 
 @numba.njit(**OPTIONS)
-def _ndtr(x):
-    """Standard normal CDF Φ(x) = erfc(−x/√2)/2."""
-    return 0.5 * math.erfc(-x * 0.7071067811865476)
-
-
-@numba.njit(**OPTIONS)
-def _capillary(D, p):
-    """Capillary pressure (Pa) at mean-plane gap D, as
-    :func:`mcsim.physics.environment.capillary_pressure`: (γ_L/r_K) P(D0 <= g < g_K)."""
-    if p[P_LAPLACE] == 0.0:
-        return 0.0
-    a = (D - p[P_CUTOFF]) / p[P_RQ]
-    b = (D - p[P_GAP]) / p[P_RQ]
-    # P(b < x <= a) from the nearer tail (no cancellation)
-    filled = _ndtr(-b) - _ndtr(-a) if b > 0.0 else _ndtr(a) - _ndtr(b)
-    return p[P_LAPLACE] * filled
-
-
-@numba.njit(**OPTIONS)
-def _attractions(h, n, sigma, p, vdw, capillary):
-    """Van der Waals and capillary pressures (Pa) at the first ``n`` separations ``h``
-    (D = hσ + y_s), into ``vdw`` and ``capillary``, as
-    :func:`mcsim.physics.environment.environment_curves`, each term 0 where its coefficient
-    in ``p`` is 0; the van der Waals moments of consecutive separations within
-    :data:`VDW_SPREAD` of each other in a = (D − D0)/Rq on one rule (:func:`_gap_moments`)."""
-    rq, cutoff = p[P_RQ], p[P_CUTOFF]
-    a = np.empty(n)
-    for k in range(n):
-        D = h[k] * sigma + p[P_OFFSET]
-        a[k] = (D - cutoff) / rq
-        capillary[k] = _capillary(D, p)
-    if p[P_VDW] == 0.0:
-        vdw[:n] = 0.0
-        return
+def _moments(a, n, shift, scale, power, t_cap, out):
+    """:func:`_gap_moments` at the first ``n`` of ``a``, consecutive ones within
+    :data:`VDW_SPREAD` of each other on one rule."""
     start = 0
-    while start < n:  # runs of points within VDW_SPREAD of each other in a share a rule
+    while start < n:
         lo = hi = a[start]
         end = start + 1
         while end < n and max(hi, a[end]) - min(lo, a[end]) <= VDW_SPREAD:
             lo, hi = min(lo, a[end]), max(hi, a[end])
             end += 1
-        _gap_moments(a[start:end], end - start, cutoff / rq, rq, vdw[start:end])
+        _gap_moments(a[start:end], end - start, shift, scale, power, t_cap, out[start:end])
         start = end
+
+
+@numba.njit(**OPTIONS)
+def _upper(x):
+    """Upper tail Q(x) = P(X > x) = erfc(x/√2)/2 of a standard normal X."""
+    return 0.5 * math.erfc(x * 0.7071067811865476)
+
+
+@numba.njit(**OPTIONS)
+def _between(lo, hi):
+    """P(lo < X <= hi) for a standard normal X, from the nearer tail (no cancellation)."""
+    return _upper(lo) - _upper(hi) if lo > 0.0 else _upper(-hi) - _upper(-lo)
+
+
+@numba.njit(**OPTIONS)
+def _partial_mean(x):
+    """F_1(x) = E[(X − x)⁺] = φ(x) − x Q(x) for a standard normal X and x >= 0 (as
+    :func:`mcsim.physics.environment._partial_mean`, there with erfcx; module docstring)."""
+    return math.exp(-0.5 * x * x) / _SQRT_2PI - x * _upper(x)
+
+
+@numba.njit(**OPTIONS)
+def _depth(a, b):
+    """F_1(b) − F_1(a) = E[(x − b)⁺ − (x − a)⁺] for a standard normal x and b <= a, with
+    F_1 at non-negative arguments only (F_1(y) = max(−y, 0) + F_1(|y|)), as
+    :func:`mcsim.physics.environment._gaussian_condensate`."""
+    if a <= 0.0:
+        return a - b + _partial_mean(-b) - _partial_mean(-a)
+    return max(-b, 0.0) + _partial_mean(abs(b)) - _partial_mean(a)
+
+
+@numba.njit(**OPTIONS)
+def _attractions(h, n, sigma, p, vdw, capillary):
+    """Van der Waals and capillary pressures (Pa) at the first ``n`` separations ``h``, into
+    ``vdw`` and ``capillary``, as :func:`mcsim.physics.environment.environment_curves`, each
+    term 0 where its coefficient in ``p`` is 0 (module docstring):
+
+    * the summits' caps (g = σ(h − s), s standard normal; m = clip(g, D0, u_c)):
+      η(AR/6) E[m⁻² − u_c⁻²] = η(AR/6) {(D0⁻² − u_c⁻²) P(g < D0) + E[g⁻² − u_c⁻²; D0 <= g < u_c]}
+      and η 2πR (γ_L/r_K) E[(g_k − max(g, D0))⁺], g_k = min(g_K, u_c);
+    * the open gaps (D = hσ + y_s, g = D − z, z ~ N(0, Rq²)): (A/6π) E[g⁻³; g >= u_c] and
+      (γ_L/r_K) P(u_c <= g < g_K).
+    """
+    rq, cutoff, band = p[P_RQ], p[P_CUTOFF], p[P_BAND]
+    eta, R = p[6], p[P_RADIUS]
+    a = np.empty(n)
+    caps = np.empty(n)
     for k in range(n):
-        vdw[k] = p[P_VDW] * vdw[k]
+        capillary[k] = 0.0
+        if p[P_LAPLACE] != 0.0:
+            if p[P_GAP] > band:  # the open gaps: (γ_L/r_K) P(u_c <= g < g_K)
+                D = h[k] * sigma + p[P_OFFSET]
+                capillary[k] = _between((D - p[P_GAP]) / rq, (D - band) / rq)
+            # the caps: E[(g_k − max(g, D0))⁺] = σ E[(s − b)⁺ − (s − a)⁺], s = h − g/σ
+            depth = sigma * _depth(h[k] - cutoff / sigma, h[k] - p[P_CAP_GAP] / sigma)
+            capillary[k] = p[P_LAPLACE] * (capillary[k] + 2.0 * math.pi * R * eta * depth)
+    if p[P_VDW] == 0.0:
+        vdw[:n] = 0.0
+        return
+    for k in range(n):  # the open gaps: E[g⁻³; g >= u_c], a = (D − u_c)/Rq
+        a[k] = (h[k] * sigma + p[P_OFFSET] - band) / rq
+    _moments(a, n, band / rq, rq, 3, math.inf, vdw)
+    for k in range(n):  # the caps: E[g⁻² − u_c⁻²; D0 <= g < u_c], a = (σh − D0)/σ
+        a[k] = h[k] - cutoff / sigma
+    _moments(a, n, cutoff / sigma, sigma, 2, (band - cutoff) / sigma, caps)
+    pressed = 1.0 / (cutoff * cutoff) - 1.0 / (band * band)
+    for k in range(n):  # η A R/6 = (A/6π) πRη
+        vdw[k] = p[P_VDW] * (vdw[k] + math.pi * R * eta * (pressed * _upper(a[k]) + caps[k]))
 
 
 @numba.njit(**OPTIONS)
@@ -246,8 +317,8 @@ def _point_net(turn, sigma, factor, p, nodes, weights, gl_x, gl_w, out):
 
     Work and hysteresis are the contact's. The pull-off grid is the retraction's points with
     the attraction taken off, and :data:`PANELS` more from the top of the summits to where
-    every gap is open and wider than g_K (``p[P_TOP]``; :func:`mcsim.physics.adhesion._environment_top`),
-    where the attraction alone acts.
+    every gap is open and wider than max(g_K, u_c) (``p[P_TOP]``;
+    :func:`mcsim.physics.adhesion._environment_top`), where the attraction alone acts.
     """
     grid, values, top, work, hysteresis = _retraction(turn, sigma, factor, p, nodes, weights, gl_x,
                                                       gl_w, PANELS)  # fmt: skip
@@ -309,7 +380,7 @@ def _batch_net(sigma, factor, params, turns, h, nodes, weights, gl_x, gl_w, curv
             summary[i, 1 + k] = out[k]
 
 
-def environment_params(environment, rq, summit_offset, sigma, K) -> np.ndarray:
+def environment_params(environment, surfaces, K) -> np.ndarray:
     """The environment's columns of the kernel's parameters (from :data:`P_VDW` on), one row
     per point.
 
@@ -317,47 +388,41 @@ def environment_params(environment, rq, summit_offset, sigma, K) -> np.ndarray:
     ----------
     environment : sequence of Environment
         One per point.
-    rq, summit_offset, sigma, K : array_like
-        Per point: Rq and y_s of the Gaussian heights about the mean plane (m), σ (m), K (Pa).
+    surfaces : sequence of Surface
+        One per point, with Gaussian heights and their ``rq`` and ``summit_offset`` given.
+    K : array_like
+        Per point: K = 4E*/3, Pa.
     """
     rows = np.empty((len(environment), P_K - P_VDW + 1))
-    for i, env in enumerate(environment):
-        # as mcsim.physics.environment._capillary: no condensation where g_K <= D0
-        r_k = env.kelvin_radius
-        gap_k = 2 * r_k * np.cos(env.contact_angle)
-        laplace = env.surface_tension / r_k if env.has_capillary and gap_k > env.cutoff else 0.0
-        # as mcsim.physics.adhesion._environment_top
-        widest = max(env.cutoff, env.condensation_gap)
-        top = (GAUSSIAN_TOP * rq[i] + widest - summit_offset[i]) / sigma[i]
+    for i, (env, surface) in enumerate(zip(environment, surfaces)):
+        caps = summit_parameters(surface, env)
         vdw = env.hamaker / (6 * math.pi) if env.has_vdw else 0.0
-        rows[i] = (vdw, rq[i], env.cutoff, summit_offset[i], laplace, gap_k, top, K[i])
+        rows[i] = (vdw, surface.rq, env.cutoff, caps["band"], surface.summit_offset,
+                   env.laplace_pressure, env.condensation_gap, caps["gap_k"], surface.R,
+                   _environment_top(surface, env), K[i])  # fmt: skip
     return rows
 
 
-def _environment_outputs(environment, params, out, curves, sigma) -> dict[str, np.ndarray]:
-    """The net load, the attraction curves and the summary's works, over all points at once
-    (as :func:`mcsim.physics.adhesion._environment_parts` point by point)."""
-    from mcsim.physics.environment import capillary_work, vdw_work
-
-    hamaker = np.array([e.hamaker if e.has_vdw else 0.0 for e in environment])
-    field = {k: np.array([getattr(e, k) for e in environment])
-             for k in ("surface_tension", "kelvin_radius", "contact_angle")}  # fmt: skip
-    rq, cutoff, offset = params[:, P_RQ], params[:, P_CUTOFF], params[:, P_OFFSET]
-    rest = out["status"] != OK  # apart (or left to the reference): no work
-    D_t = np.where(out["status"] == REFERENCE, offset, out["turn"] * sigma + offset)
-    vdw = np.where(rest | (hamaker == 0), 0.0, vdw_work(D_t, rq, hamaker, cutoff))
-    capillary = np.where(rest, 0.0, capillary_work(D_t, rq, cutoff, field["surface_tension"],
-                                                   field["kelvin_radius"], field["contact_angle"]))  # fmt: skip
+def _environment_outputs(environment, surfaces, out, curves) -> dict[str, np.ndarray]:
+    """The net load, the attraction curves and the summary's works: the works of the
+    attractions from each point's turn outward by the reference's own function
+    (:func:`mcsim.physics.environment.environment_works`, as
+    :func:`mcsim.physics.adhesion._environment_parts`), point by point."""
+    works = np.zeros((2, len(environment)))
+    for i, (env, surface) in enumerate(zip(environment, surfaces)):
+        if out["status"][i] == OK:  # else apart (or left to the reference): no work
+            w = environment_works(np.float64(out["turn"][i]), surface, env)
+            works[:, i] = w["vdw"], w["capillary"]
     contact = out["work_of_separation"]
     return {
         "load": curves[:, 0] - curves[:, 2] - curves[:, 3],
         "vdw": curves[:, 2],
         "capillary": curves[:, 3],
-        "work_of_separation": np.where(rest, contact, contact + vdw + capillary),
+        "work_of_separation": contact + works[0] + works[1],
         "work_of_separation_contact": contact,
-        "work_of_separation_vdw": vdw,
-        "work_of_separation_capillary": capillary,
-        "kelvin_radius": field["kelvin_radius"],
-        "rq": rq,
-        "summit_offset": offset,
+        "work_of_separation_vdw": works[0],
+        "work_of_separation_capillary": works[1],
+        "kelvin_radius": np.array([e.kelvin_radius for e in environment]),
+        "rq": np.array([s.rq for s in surfaces]),
+        "summit_offset": np.array([s.summit_offset for s in surfaces]),
     }
