@@ -52,6 +52,10 @@ def run(args) -> int:
         print(f"mcsim: warning: a pad touches with {report.contacts:.3g} summits on average (fewer "
               f"than {FEW_CONTACTS}): its tallest summits decide it; trust the Monte Carlo p_stick, "
               "not p_stick_model", file=sys.stderr)  # fmt: skip
+    if fr is not None and run.spec.environment is not None:
+        print("mcsim: note: p_stick_model is not given with an environment (the model has not "
+              "been checked against humid pads); the pads' own p_stick is the answer",
+              file=sys.stderr)  # fmt: skip
     fields = report.quantities()
     method = _method(pull_off)
     if args.format == "json":  # the same fields as the table, with their units
