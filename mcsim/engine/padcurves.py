@@ -28,14 +28,20 @@ from __future__ import annotations
 
 import functools
 import math
+from typing import NamedTuple
 
 import numpy as np
 
 from mcsim.engine.kernels import block_sums, sum_columns
 from mcsim.engine.montecarlo import MonteCarloSpec, plan_patch, sample_block
 from mcsim.model.errors import ParameterError
-from mcsim.physics.environment import active_terms, open_gap_pressures, open_gap_works
-from mcsim.physics.laws import Edges, get_law_set
+from mcsim.physics.environment import (
+    active_terms,
+    open_gap_pressures,
+    open_gap_works,
+    with_environment,
+)
+from mcsim.physics.laws import Edges, LawSet, get_law_set
 
 #: Interior points at which each smooth interval of a pad's curve is evaluated.
 SUB = 3
@@ -78,8 +84,36 @@ def pad_load(spec: MonteCarloSpec, z: np.ndarray, d, d_turn=None) -> np.ndarray:
     """
     d = np.atleast_1d(np.asarray(d, dtype=float))
     turn = None if d_turn is None else np.full_like(d, d_turn)
-    sums = block_sums(z, d, spec.law_set, spec.arguments, d_turn=turn, edges=spec.edges)
-    return net_load(spec, sums, d)
+    if spec.environment is None:
+        sums = block_sums(z, d, spec.law_set, spec.arguments, d_turn=turn, edges=spec.edges)
+        return sums[:, sum_columns(spec.law_set).index("load")]
+    # Two sums over the pad's summits: the contact law's over those that can touch, and the
+    # caps' over every summit within their reach (each evaluated only where it acts).
+    contact, caps = _split_laws(spec)
+    load = block_sums(z, d, contact.law, contact.args, d_turn=turn, edges=contact.edges)
+    attraction = block_sums(z, d, caps.law, caps.args, edges=caps.edges)
+    columns = sum_columns(caps.law)
+    load = load[:, sum_columns(contact.law).index("load")]
+    for term in caps.law.names:
+        load = load - attraction[:, columns.index(term)]
+    return load - spec.area * open_gaps(spec)(d / spec.surface.sigma)
+
+
+class _Part(NamedTuple):
+    law: LawSet
+    args: tuple
+    edges: Edges
+
+
+@functools.lru_cache(maxsize=16)
+def _split_laws(spec: MonteCarloSpec) -> tuple[_Part, _Part]:
+    """The contact law set and the environment's caps alone (a law set of the outputs ``vdw``
+    and ``capillary``), with their arguments and edges, for a humid pad's net load."""
+    contact = get_law_set(spec.law)
+    caps = with_environment(LawSet("caps", "the environment's caps", ()), spec.surface,
+                            spec.environment)  # fmt: skip
+    return tuple(_Part(law, law.arguments(spec.surface, spec.material),
+                       law.edges_for(spec.surface, spec.material)) for law in (contact, caps))  # fmt: skip
 
 
 def net_load(spec: MonteCarloSpec, sums: np.ndarray, d) -> np.ndarray:
