@@ -17,7 +17,9 @@ the ceiling (linear interpolation between the sweep's points):
 
 The regimes are shaded and named (above the ceiling, where no curve runs) only where the
 sweep crosses from one to another; a sweep inside one regime says so in its title, as it
-names a part that is 0 at every RH (not drawn on the log axis). The legend sits below.
+names a part that is 0 at every RH, or nowhere positive (the contacts' part of the work,
+−∫ load dd, is negative where the attraction presses the summits harder than they pull),
+neither drawn on the log axis. The legend sits below.
 """
 
 from __future__ import annotations
@@ -99,11 +101,11 @@ def humidity_figure(sweep):
     left, right = 100 * rh[0], 100 * rh[-1]
     margin = 0.03 * (right - left) or 1.0  # end markers drawn whole
     lo, hi = left - margin, right + margin
-    absent = []
+    absent, given_back = [], []
     for key, (label, style) in PARTS.items():
         y = data[key]
         if not np.any(y > 0):  # nothing to draw on a log axis: said in the title instead
-            absent.append(label)
+            (given_back if np.any(y < 0) else absent).append(label)
             continue
         ax.plot(100 * rh, np.where(y > 0, y, np.nan), marker="o", ms=3, label=label, **style)
     ax.axhline(
@@ -144,6 +146,8 @@ def humidity_figure(sweep):
         lines.append(f"regime: {spans[0][2]} over the whole sweep")
     if absent:
         lines.append(f"{', '.join(absent)}: 0 at every RH (not drawn on a log axis)")
+    if given_back:  # the work is −∫ F dd: pressed contacts give back their elastic energy
+        lines.append(f"{', '.join(given_back)}: <= 0 at every RH (energy given back; not drawn)")
     ax.set_title("\n".join(lines), fontsize=9)
     fig.legend(loc="outside lower center", ncols=2, fontsize=8, frameon=False)
     return fig

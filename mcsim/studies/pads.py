@@ -294,14 +294,15 @@ def finite_pads(spec, restoring_force: float, *, preload: float | None = None, t
         force[r] = padcurves.pull_off(spec, z, d_turn)[0]
         work[r] = padcurves.pad_work(spec, z, d_turn)
     s = pad_statistics(force, restoring_force)
-    works = pad_statistics(work)
+    q05, q50, q95 = np.quantile(work, QUANTILES)  # signed (J/m²): not pad_statistics' forces
     lam = spec.surface.eta * spec.area
     return {"p_stick": s.p_stick, "p_stick_low": s.p_stick_ci[0], "p_stick_high": s.p_stick_ci[1],
             "pull_off_mean": s.mean, "pull_off_std": s.std, "pull_off_q05": s.q05,
             "pull_off_q50": s.q50, "pull_off_q95": s.q95,
-            "work_of_separation_mean": works.mean, "work_of_separation_std": works.std,
-            "work_of_separation_q05": works.q05, "work_of_separation_q50": works.q50,
-            "work_of_separation_q95": works.q95,
+            "work_of_separation_mean": float(work.mean()),
+            "work_of_separation_std": float(work.std(ddof=1)) if work.size > 1 else math.nan,
+            "work_of_separation_q05": float(q05), "work_of_separation_q50": float(q50),
+            "work_of_separation_q95": float(q95),
             "pull_off_analytic": analytic_pad_pull_off(spec, turn),
             "contacting_summits": lam * float(spec.surface.heights.sf(turn)),
             "p_stick_model": p_stick_model(spec, restoring_force, turn=turn, h_pull_off=h_pull_off,
