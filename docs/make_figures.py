@@ -128,6 +128,18 @@ FIGURES = {
         made="stiction_sweep.png",
         slow=True,
     ),
+    "stiction_humid.png": Figure(
+        data=(
+            ("sweep", "--surface", "smooth", "--law", "jkr", "--hamaker", "1.6e-19J", "--vary",
+             "rh=0,0.3,0.4,0.5,0.6,0.7,0.8,0.9", "--preload", "0", "--pads", "40", "--area",
+             "30um^2", "--restoring-force", "800uN", "--seed", "1", "--out", "{work}/humid.h5",
+             "--quiet"),
+        ),
+        plot=(("plot", "{work}/humid.h5", "--out", "{work}/stiction_humid.png", "--quiet"),),
+        inputs=("humid.h5",),
+        made="stiction_humid.png",
+        slow=True,
+    ),
     "design_sigma.png": Figure(
         data=(
             ("sweep", "--surface", "smooth", "--law", "auto", "--vary",

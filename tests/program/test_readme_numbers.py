@@ -330,6 +330,32 @@ def test_p_stick_table(tmp_path):
 
 
 @pytest.mark.slow
+def test_humid_p_stick_table(tmp_path):
+    # the README's sweep of "Will my device stick in humid air?" (about 15 s of CPU)
+    import xarray as xr
+
+    args = quoted(
+        r"mcsim (sweep --surface smooth --law jkr --hamaker 1\.6e-19J --vary "
+        r"rh=0,0\.3,0\.4,0\.5,0\.6,0\.7,0\.8,0\.9 \\ --preload 0 --pads 40 --area 30um\^2 "
+        r"--restoring-force 800uN --seed 1) --out humid"
+    )
+    mcsim(*args[0].replace("\\ ", "").split(), "--out", str(tmp_path / "humid.h5"), "--quiet")
+    with xr.open_dataset(tmp_path / "humid.h5", engine="h5netcdf") as ds:
+        shown = 0
+        for i, rh in enumerate(ds.rh.values):
+            pattern = rf"\| ({rh:g}) \| (\S+) \[(\S+), (\S+)\] \| (\S+) \| (\S+) \|"
+            if not re.search(pattern, TEXT):
+                continue  # the table leaves some humidities out
+            row = ds.isel(rh=i)
+            check_rounded(
+                pattern, rh, *(float(row[v]) for v in ("p_stick", "p_stick_low", "p_stick_high")),
+                float(row["pull_off_mean"]) * 1e6, float(row["work_of_separation_mean"]) * 1e3,
+            )  # fmt: skip
+            shown += 1
+        assert shown == 6
+
+
+@pytest.mark.slow
 def test_force_control_against_a_common_turn():
     # "Force control matters": 400 jkr pads of 30 µm² at σ = 2.5 nm (seed 1, the sweep's
     # default grid h = 4 … −1), each pressed to 1 MPa, then all turned at the mean-field turn
