@@ -231,6 +231,16 @@ class Run:
         rows = _display.inputs(spec.surface, spec.material, spec.law, spec.h)
         if spec.cycle:
             rows.append(("branches", f"approach, then retraction from h = {np.min(spec.h):g}"))
+        env = spec.environment
+        if env is not None:
+            terms = " and ".join({"vdw": f"van der Waals (A = {env.hamaker or 0:.3g} J)",
+                                  "capillary": f"menisci (RH = {env.rh:g})"}[t]
+                                 for t in active_terms(env))  # fmt: skip
+            rows.append(("environment", f"{terms}: on the summits' caps (sampled), and across "
+                                        "the open gaps (deterministic)"))  # fmt: skip
+        preload = self.attrs.get("preload")
+        if preload is not None and np.isfinite(preload):
+            rows.append(("preload", f"{float(preload) / 1e6:.4g} MPa (force control)"))
         rows.append(
             ("patch", f"A = {spec.area * 1e12:.4g} µm², N ~ {spec.count} with E[N] = "
                       f"{spec.expected_summits:.4g}{drawn}")

@@ -180,11 +180,10 @@ def pad_statistics(
     q = np.quantile(f, QUANTILES)
     stick = {}
     if restoring_force is not None:
-        fr = float(restoring_force)
-        if not (math.isfinite(fr) and fr >= 0):
-            raise ParameterError(
-                f"restoring force = {restoring_force!r} N: allowed finite and >= 0"
-            )
+        from mcsim.model.params import check_range
+
+        # a number (N) or a string with its unit ("300 uN"), as the command line takes it
+        fr = check_range("restoring_force", restoring_force, "N", low=0, low_open=False)
         k = int(np.count_nonzero(f > fr))
         ci = (wilson if interval == "wilson" else clopper_pearson)(k, n)
         stick = {"restoring_force": fr, "p_stick": k / n, "p_stick_ci": ci}
