@@ -9,7 +9,7 @@ from conftest import run_cli
 from tolerances import ROUNDING_FEW, ROUNDING_FORMULA
 
 from mcsim.cli.main import main
-from mcsim.model.errors import ParameterError, UnitError
+from mcsim.model.errors import MCSimError, ParameterError, UnitError
 from mcsim.model.units import parse_quantity
 from mcsim.studies.pads import CONFIDENCE, analytic_pad_pull_off, clopper_pearson, pad_statistics
 
@@ -52,10 +52,11 @@ def test_one_pad_has_an_undefined_spread():
 @pytest.mark.parametrize(
     "force, fr, match",
     [([], None, "no pads"), ([1.0, -1.0], None, ">= 0"), ([1.0, np.nan], None, "finite"),
-     ([1.0], -1.0, "restoring force"), ([1.0], math.inf, "restoring force")],
+     ([1.0], -1.0, "restoring_force"), ([1.0], math.inf, "restoring_force"),
+     ([1.0], True, "restoring_force must be a number"), ([1.0], "2 m", "unknown unit 'm'")],
 )  # fmt: skip
 def test_bad_pull_off_forces_or_restoring_force_are_parameter_errors(force, fr, match):
-    with pytest.raises(ParameterError, match=match):
+    with pytest.raises(MCSimError, match=match):
         pad_statistics(force, fr)
 
 
