@@ -241,8 +241,18 @@ def moment_std(run) -> float:
 FEW_CONTACTS = 10
 
 
+#: Fewer pads than this on the rarer side (sticking or not) switch p_stick to importance sampling.
+SWITCH = 10
+#: Fewest pads with which importance sampling runs: a cross-entropy stage of them keeps
+#: RHO · MIN_TAIL_PADS = 10 elite pads (:mod:`mcsim.studies.tail`).
+MIN_TAIL_PADS = 100
+
+#: How p_stick was estimated: the fraction of plain pads, or importance sampling.
+METHODS = ("pads", "importance")
+
+
 def finite_pads(spec, restoring_force: float, *, preload: float | None = None, turn: float,
-                h_pull_off: float) -> dict:  # fmt: skip
+                h_pull_off: float, tail: bool | None = None) -> dict:  # fmt: skip
     """Pull-off statistics of the ``spec.realizations`` pads of a cycle spec, as sweep variables.
 
     Each pad's summits are drawn from ``spec``'s seed as a ``--cycle`` run of the same spec
@@ -265,11 +275,15 @@ def finite_pads(spec, restoring_force: float, *, preload: float | None = None, t
     h_pull_off : float
         Separation d/σ of the mean curve's pull-off after ``turn`` (NaN: none), for the
         model estimate ``p_stick_model`` (:func:`mcsim.studies.stiction.p_stick_model`).
+    tail : bool, optional
+        p_stick by importance sampling (:func:`tail_p_stick`): None where the plain pads
+        see fewer than :data:`SWITCH` on the rarer side, True always, False never.
 
     Returns
     -------
     dict
-        The keys of :data:`mcsim.store.sweepfile.PADS` (floats, SI).
+        The keys of :data:`mcsim.store.sweepfile.PADS` (floats, SI) and ``p_stick_method``
+        (one of :data:`METHODS`).
 
     Raises
     ------
@@ -278,6 +292,7 @@ def finite_pads(spec, restoring_force: float, *, preload: float | None = None, t
         whose approach load stays below P·A down to it.
     """
     from mcsim.engine import padcurves
+    from mcsim.studies import tail as sampling
     from mcsim.studies.stiction import p_stick_model
 
     if turn < spec.turn:
@@ -285,21 +300,88 @@ def finite_pads(spec, restoring_force: float, *, preload: float | None = None, t
                              f"{spec.turn:g}; extend the separations (--h) down")  # fmt: skip
     sigma = spec.surface.sigma
     force = np.empty(spec.realizations)
+    cut, highs = sampling.cut(spec, turn), []  # the summits a tail's stage 0 needs
     for r in range(spec.realizations):
         z = padcurves.patch_heights(spec, r)
         d_turn = turn * sigma
         if preload is not None:
             d_turn, _ = padcurves.force_turn(spec, z, preload * spec.area)
         force[r] = padcurves.pull_off(spec, z, d_turn)[0]
+        highs.append(z[z > cut * sigma] / sigma)
     s = pad_statistics(force, restoring_force)
+    stick = tail_p_stick(spec, s, restoring_force, turn=turn, preload=preload, tail=tail,
+                         start=(highs, force))  # fmt: skip
     lam = spec.surface.eta * spec.area
-    return {"p_stick": s.p_stick, "p_stick_low": s.p_stick_ci[0], "p_stick_high": s.p_stick_ci[1],
+    model = (p_stick_model(spec, restoring_force, turn=turn, h_pull_off=h_pull_off,
+                           preload=preload) if math.isfinite(h_pull_off) else 0.0)  # fmt: skip
+    return stick | {
             "pull_off_mean": s.mean, "pull_off_std": s.std, "pull_off_q05": s.q05,
             "pull_off_q50": s.q50, "pull_off_q95": s.q95,
             "pull_off_analytic": analytic_pad_pull_off(spec, turn),
             "contacting_summits": lam * float(spec.surface.heights.sf(turn)),
-            "p_stick_model": p_stick_model(spec, restoring_force, turn=turn, h_pull_off=h_pull_off,
-                                           preload=preload) if math.isfinite(h_pull_off) else 0.0}  # fmt: skip
+            "p_stick_model": min(max(model, 0.0), 1.0)}  # fmt: skip
+
+
+def tail_p_stick(spec, statistics: PadStatistics, restoring_force: float, *, turn: float,
+                 preload: float | None, tail: bool | None, start=None) -> dict:  # fmt: skip
+    """p_stick of the pads of ``spec``: the plain pads' fraction, or importance sampling.
+
+    Importance sampling (:func:`mcsim.studies.tail.importance_p_stick`, ``statistics.pads``
+    final pads, cross-entropy stages of max(:data:`MIN_TAIL_PADS`, n/10) pads) replaces the
+    fraction where the plain pads see fewer than :data:`SWITCH` pads on the rarer side
+    (``tail`` None) or always (``tail`` True), not with fewer than :data:`MIN_TAIL_PADS`
+    pads (``tail`` None: the fraction stays; True: an error), nor where its final pads see
+    none in the event (the fraction stays).
+
+    Parameters
+    ----------
+    spec : MonteCarloSpec
+        The pads (:func:`finite_pads`).
+    statistics : PadStatistics
+        The plain pads' statistics, with F_r.
+    restoring_force : float
+        F_r, N.
+    turn, preload : float
+        Mean-field turn (d/σ) and the nominal pressure (Pa, or None), as :func:`finite_pads`.
+    tail : bool or None
+        None: automatic; True: importance sampling; False: the plain fraction.
+    start : tuple, optional
+        The plain pads as stage 0: their heights above :func:`mcsim.studies.tail.cut` (σ)
+        and pull-off (N); else the tail draws its own.
+
+    Returns
+    -------
+    dict
+        ``p_stick``, ``p_stick_low``, ``p_stick_high`` (95 %), ``p_stick_ess`` (the effective
+        number of pads on the rarer side; for plain pads their count) and
+        ``p_stick_method`` (one of :data:`METHODS`).
+
+    Raises
+    ------
+    ParameterError
+        ``tail`` True with fewer than :data:`MIN_TAIL_PADS` pads.
+    """
+    from mcsim.studies.tail import importance_p_stick
+
+    n, p = statistics.pads, statistics.p_stick
+    k = round(p * n)
+    rare = min(k, n - k)
+    plain = {"p_stick": p, "p_stick_low": statistics.p_stick_ci[0],
+             "p_stick_high": statistics.p_stick_ci[1], "p_stick_ess": float(rare),
+             "p_stick_method": "pads"}  # fmt: skip
+    if tail is True and n < MIN_TAIL_PADS:
+        raise ParameterError(f"pads = {n}: importance sampling (tail) needs at least "
+                             f"{MIN_TAIL_PADS} pads for its pilot stages")  # fmt: skip
+    if tail is False or (tail is None and (rare >= SWITCH or n < MIN_TAIL_PADS)):
+        return plain
+    estimate = importance_p_stick(spec, restoring_force, turn=turn, preload=preload, pads=n,
+                                  pilot=max(MIN_TAIL_PADS, n // 10), start=start,
+                                  event="stick" if k <= n - k else "release")  # fmt: skip
+    if estimate.hits == 0:
+        return plain
+    return {"p_stick": estimate.p_stick, "p_stick_low": estimate.low,
+            "p_stick_high": estimate.high, "p_stick_ess": estimate.ess,
+            "p_stick_method": "importance"}  # fmt: skip
 
 
 @dataclass(frozen=True)

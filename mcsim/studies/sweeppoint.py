@@ -147,6 +147,7 @@ class Config:
     pads: int | None = None
     restoring_force: float | None = None
     preload: float | None = None
+    tail: bool | None = None
 
 
 def make_point(base_surface, base_material, base_environment, law, area, names, values,
@@ -245,7 +246,7 @@ def _pads(point: Point, config: Config, law: str, turn: float, h_pull_off: float
     spec = MonteCarloSpec(point.surface, point.material, np.asarray(config.h), point.area,
                           config.pads, pads_seed(config.entropy, point.index), law, cycle=True)  # fmt: skip
     return finite_pads(spec, config.restoring_force, preload=config.preload, turn=turn,
-                       h_pull_off=h_pull_off)  # fmt: skip
+                       h_pull_off=h_pull_off, tail=config.tail)  # fmt: skip
 
 
 def pads_seed(entropy: int, index: int) -> int:
