@@ -240,7 +240,7 @@ def _stage(law: _Law, tilt: Tilt | None, n: int, key: int, evaluate, workers: in
 
 def importance_p_stick(spec, restoring_force: float, *, turn: float, preload: float | None = None,
                        pads: int, pilot: int, event: str = "stick", start=None,
-                       workers: int = 1) -> TailEstimate:  # fmt: skip
+                       workers: int = 1, score=None) -> TailEstimate:  # fmt: skip
     """P(pull-off > F_r) of the pads of ``spec`` by importance sampling (module docstring).
 
     Parameters
@@ -265,6 +265,10 @@ def importance_p_stick(spec, restoring_force: float, *, turn: float, preload: fl
         heights above :func:`cut` (σ) and its pull-off (N); else stage 0 draws ``pilot`` pads.
     workers : int
         Threads evaluating the pads of a stage (the result does not depend on it).
+    score : callable, optional
+        What is compared with ``restoring_force``, as a function of a pad's summit heights
+        above s_min (σ); default its pull-off (:func:`pad_pull_off`). Another score gives
+        the probability of another event of the same pads (the tests' exact cases).
 
     Returns
     -------
@@ -290,6 +294,8 @@ def importance_p_stick(spec, restoring_force: float, *, turn: float, preload: fl
 
     def evaluate(s):
         return pad_pull_off(spec, s, turn=turn, preload=preload)
+
+    evaluate = evaluate if score is None else score
 
     def hit(force):  # the event: sticking, or its complement
         return (force > fr) if event == "stick" else ~(force > fr)
