@@ -11,26 +11,30 @@ the event; q only sets the variance.
   ones that can touch) are a Poisson process of intensity λ φ(s) (λ = ηA, φ the height
   density, s = z/σ). It is split at the cut s_c = max(s_min, h̄ − :data:`CUT`) below the
   mean-field turn h̄: the summits below the cut keep the nominal law (drawn as a run draws
-  them, thinned to s ≤ s_c), the summits above it, those that decide the pad, are drawn
-  from the tilted process: count N ~ Poisson(λ'), heights from a normal N(μ, τ²) truncated
-  to s > s_c (:class:`Tilt`). With g that truncated density, the likelihood ratio of the
-  two Poisson processes is (Owen, Eq. 9.15 for each summit; Kingman, *Poisson processes*,
-  1993, Sect. 3.2 for the count)
+  them, thinned to s ≤ s_c); the summits above it, those that decide the pad, are drawn
+  from a tilted Poisson process of intensity r_k λ φ(s) in height bin k (:data:`BINS` bins
+  of :data:`BIN` σ from the cut, the last one open; :class:`Tilt`): in each bin a
+  Poisson(r_k m_k) count, m_k = λ P(bin k) the nominal one, of heights from φ restricted to
+  the bin. The likelihood ratio of the two Poisson processes (Kingman, *Poisson processes*,
+  1993, Sect. 3.2; Owen, Sect. 9.1 for the ratio of densities) is
 
-      L = exp(λ' − λ S(s_c)) · Π_i λ φ(s_i) / (λ' g(s_i)),
+      L = exp(Σ_k m_k (r_k − 1)) · Π_k r_k^(−n_k),
 
-  the product over the summits above the cut, S the survival function. It equals
-  e^{λ'−λ_c}(λ_c/λ')^N Π φ_c(s_i)/g(s_i) with λ_c = λ S(s_c) and φ_c = φ/S(s_c) the nominal
-  count and density above the cut.
+  n_k the pad's summits in bin k: the general e^{λ'−λ}(λ/λ')^N Π φ(s_i)/φ_q(s_i) for this
+  q. Piecewise constant, the tilt takes any shape the event asks for: more summits just
+  above the turn and none far above it (a sticking pad under force control), or one tall
+  summit that carries the preload (a pad that does not stick); a shifted normal for every
+  summit could not do both (measured at p ≈ 6e-6, σ = 3 nm, 2000 pads: relative standard
+  error 12 % against 19 %).
 * **The tilt, by the cross-entropy method** (Rubinstein & Kroese, *The cross-entropy
   method*, 2004, Algorithm 3.4.1). Under force control the pull-off is not monotone in the
   heights (a taller summit turns the pad higher and weakens it), so the tilt is found, not
   assumed: stage 0 draws pads from the nominal law (or takes the plain pads already
   evaluated), each stage keeps its elite, the :data:`RHO` fraction of pads nearest the
-  event (all pads in the event once they are that many), and fits λ', μ, τ to the elite's
-  summits above the cut by weighted maximum likelihood (weights L: the count's mean, and the
-  truncated normal's μ, τ numerically), smoothed by :data:`SMOOTHING` (Rubinstein & Kroese,
-  Remark 3.4.2). At most :data:`STAGES` stages.
+  event (all pads in the event once they are that many), and sets r_k to the elite's
+  weighted mean count in bin k over m_k (the maximum-likelihood intensity of a Poisson
+  process, weights L), smoothed by :data:`SMOOTHING` (Rubinstein & Kroese, Remark 3.4.2)
+  and kept above :data:`RATIO_FLOOR`. At most :data:`STAGES` stages.
 * **The estimate.** ``pads`` pads drawn from the last tilt: p̂ = mean(L·1{event}) with the
   standard error of that mean (sample standard deviation, ddof = 1, over √n) and the normal
   95 % interval p̂ ± 1.96 se clipped to [0, 1]; the effective sample size of the weights in
@@ -65,8 +69,11 @@ STAGES = 8
 SMOOTHING = 0.7
 #: Depth of the cut below the mean-field turn, in σ: the summits above it are tilted.
 CUT = 1.0
-#: Smallest width τ of the tilted heights, in σ (keeps the tilted law covering the event).
-SCALE_FLOOR = 0.1
+#: Width of the height bins of the tilt, in σ, and their number (the last one open above).
+BIN = 0.25
+BINS = 16
+#: Smallest ratio of tilted to nominal intensity (keeps the tilted law covering the event).
+RATIO_FLOOR = 0.01
 #: First element of the tail's stream keys (module docstring): above any realization index.
 STREAM = 2**63
 #: Two-sided 95 % normal quantile of the interval.
@@ -79,15 +86,12 @@ class Tilt:
 
     Attributes
     ----------
-    rate : float
-        λ', expected number of summits above the cut (dimensionless).
-    mean, scale : float
-        μ and τ of their heights' normal before truncation to s > s_c, in σ.
+    ratio : tuple of float
+        r_k, the tilted intensity over the nominal one in each height bin above the cut
+        (:data:`BINS` bins of :data:`BIN` σ from the cut, the last one open); 1: nominal.
     """
 
-    rate: float
-    mean: float
-    scale: float
+    ratio: tuple[float, ...]
 
 
 @dataclass(frozen=True)
@@ -148,64 +152,60 @@ class _Law:
     def __init__(self, spec, cut: float):
         self.spec, self.cut = spec, cut
         self.heights = spec.surface.heights
-        self.lam = spec.surface.eta * spec.area
-        self.below = self.lam * float(self.heights.sf(spec.s_min))  # Poisson mean above s_min
-        self.above = self.lam * float(self.heights.sf(cut))  # λ_c
+        lam = spec.surface.eta * spec.area
+        self.below = lam * float(self.heights.sf(spec.s_min))  # Poisson mean above s_min
+        self.edges = cut + BIN * np.arange(BINS + 1)
+        self.edges[-1] = np.inf
+        self.mass = lam * -np.diff(self.heights.sf(self.edges))  # nominal count per bin
 
-    def draw(self, tilt: Tilt | None, rng) -> tuple[np.ndarray, np.ndarray]:
-        """One pad: its heights above s_min (σ), and those above the cut (from ``tilt``)."""
-        from mcsim.model.distributions import Gaussian
+    def bins(self, highs: list) -> np.ndarray:
+        """Summits above the cut per pad and bin, shape (pads, :data:`BINS`)."""
+        pad = np.repeat(np.arange(len(highs)), [h.size for h in highs])
+        k = np.searchsorted(self.edges, np.concatenate([*highs, np.empty(0)]), side="right") - 1
+        return np.bincount(pad * BINS + k, minlength=len(highs) * BINS).reshape(-1, BINS)
 
-        low = self.heights.sample_above(int(rng.poisson(self.below)), self.spec.s_min, rng)
-        low = low[low <= self.cut]
+    def _in_bin(self, k: int, n: int, rng) -> np.ndarray:
+        """``n`` nominal heights in bin ``k``: drawn above its lower edge, those above its
+        upper edge drawn again (the nominal law restricted to the bin)."""
+        out = np.empty(0)
+        while out.size < n:
+            s = self.heights.sample_above(n - out.size, self.edges[k], rng)
+            out = np.concatenate([out, s[s <= self.edges[k + 1]]])
+        return out
+
+    def draw(self, tilt: Tilt | None, n: int, rng) -> tuple[list, list]:
+        """``n`` pads: each one's heights above s_min (σ), and those above the cut (from ``tilt``)."""
+        low = _split(self.heights.sample_above(int((c := rng.poisson(self.below, n)).sum()),
+                                               self.spec.s_min, rng), c)  # fmt: skip
+        ratio = np.ones(BINS) if tilt is None else np.asarray(tilt.ratio)
+        counts = rng.poisson(self.mass * ratio, size=(n, BINS))
+        s = np.concatenate([self._in_bin(k, int(counts[:, k].sum()), rng) for k in range(BINS)])
+        pad = np.concatenate([np.repeat(np.arange(n), counts[:, k]) for k in range(BINS)])
+        high = _split(s[np.argsort(pad, kind="stable")], counts.sum(axis=1))
+        return [np.concatenate([a[a <= self.cut], b]) for a, b in zip(low, high)], high
+
+    def log_ratio(self, tilt: Tilt | None, highs: list) -> np.ndarray:
+        """log L of each pad whose summits above the cut are ``highs`` (module docstring)."""
         if tilt is None:
-            high = self.heights.sample_above(int(rng.poisson(self.above)), self.cut, rng)
-        else:
-            n = int(rng.poisson(tilt.rate))
-            a = (self.cut - tilt.mean) / tilt.scale
-            high = tilt.mean + tilt.scale * Gaussian().sample_above(n, a, rng)
-        return np.concatenate([low, high]), high
+            return np.zeros(len(highs))
+        r = np.asarray(tilt.ratio)
+        return np.sum(self.mass * (r - 1)) - self.bins(highs) @ np.log(r)
 
-    def log_ratio(self, tilt: Tilt | None, high: np.ndarray) -> float:
-        """log L of a pad whose summits above the cut are ``high`` (module docstring)."""
-        if tilt is None:
-            return 0.0
-        from scipy.special import log_ndtr
 
-        u = (high - tilt.mean) / tilt.scale
-        log_g = (-0.5 * u * u - math.log(tilt.scale * math.sqrt(2 * math.pi))
-                 - log_ndtr((tilt.mean - self.cut) / tilt.scale))  # fmt: skip
-        with np.errstate(divide="ignore"):
-            log_f = np.log(self.lam * self.heights.pdf(high))
-        return float(tilt.rate - self.above + np.sum(log_f - math.log(tilt.rate) - log_g))
+def _split(values: np.ndarray, counts: np.ndarray) -> list:
+    """``values`` cut into consecutive pieces of ``counts``."""
+    return np.split(values, np.cumsum(counts)[:-1])
 
 
 def _fit(law: _Law, previous: Tilt, highs: list, weights: np.ndarray) -> Tilt:
-    """The smoothed cross-entropy tilt from elite pads' summits above the cut and their weights."""
-    from scipy.optimize import minimize
-    from scipy.special import log_ndtr
-
-    total = float(np.sum(weights))
-    counts = np.array([h.size for h in highs], dtype=float)
-    rate = float(np.sum(weights * counts)) / total
-    s = np.concatenate(highs) if highs else np.empty(0)
-    mean, scale = previous.mean, previous.scale
-    if s.size:
-        w = np.repeat(weights, counts.astype(int)) / total
-        m0 = float(np.sum(w * s) / np.sum(w))
-        v0 = float(np.sum(w * (s - m0) ** 2) / np.sum(w))
-
-        def nll(x):  # weighted negative log-likelihood of the truncated normal
-            mu, tau = x[0], math.exp(x[1])
-            u = (s - mu) / tau
-            return float(np.sum(w * (0.5 * u * u + x[1] + log_ndtr((mu - law.cut) / tau))))
-
-        x0 = [m0, 0.5 * math.log(max(v0, SCALE_FLOOR**2))]
-        x = minimize(nll, x0, method="Nelder-Mead", options={"xatol": 1e-6, "fatol": 1e-12}).x
-        mean, scale = float(x[0]), max(float(math.exp(x[1])), SCALE_FLOOR)
-    a = SMOOTHING
-    rate = max(a * rate + (1 - a) * previous.rate, 1e-6 * law.above)
-    return Tilt(rate, a * mean + (1 - a) * previous.mean, a * scale + (1 - a) * previous.scale)
+    """The smoothed cross-entropy tilt from elite pads' summits above the cut and their weights:
+    each bin's weighted mean count over its nominal count (module docstring)."""
+    counts = law.bins(highs)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        fit = (weights @ counts) / (np.sum(weights) * law.mass)
+    fit = np.where(law.mass > 0, fit, 1.0)
+    r = SMOOTHING * fit + (1 - SMOOTHING) * np.asarray(previous.ratio)
+    return Tilt(tuple(np.maximum(r, RATIO_FLOOR).tolist()))
 
 
 def pad_pull_off(spec, s: np.ndarray, *, turn: float, preload: float | None) -> float:
@@ -228,14 +228,14 @@ def _stage(law: _Law, tilt: Tilt | None, n: int, key: int, evaluate, workers: in
     """``n`` pads drawn from ``tilt`` (nominal: None) on stream ``key``: their summits above
     the cut, log L and pull-off (N)."""
     rng = np.random.default_rng(np.random.SeedSequence(law.spec.entropy, spawn_key=(STREAM, key)))
-    pads = [law.draw(tilt, rng) for _ in range(n)]  # all drawn before any is evaluated
-    log_l = np.array([law.log_ratio(tilt, high) for _, high in pads])
+    pads, highs = law.draw(tilt, n, rng)  # all drawn before any is evaluated
+    log_l = law.log_ratio(tilt, highs)
     if workers > 1:
         with ThreadPoolExecutor(workers) as pool:
-            force = np.array(list(pool.map(evaluate, [s for s, _ in pads])))
+            force = np.array(list(pool.map(evaluate, pads)))
     else:
-        force = np.array([evaluate(s) for s, _ in pads])
-    return [high for _, high in pads], log_l, force
+        force = np.array([evaluate(s) for s in pads])
+    return highs, log_l, force
 
 
 def importance_p_stick(spec, restoring_force: float, *, turn: float, preload: float | None = None,
@@ -307,7 +307,7 @@ def importance_p_stick(spec, restoring_force: float, *, turn: float, preload: fl
     else:
         highs, force = start
         log_l = np.zeros(len(highs))
-    fitted = Tilt(law.above, 0.0, 1.0)  # the nominal count above the cut, standard heights
+    fitted = Tilt((1.0,) * BINS)  # the nominal law
     reached, stage = False, 0
     while True:
         margin = sign * (force - fr)
