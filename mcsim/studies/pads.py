@@ -330,8 +330,8 @@ def tail_p_stick(spec, statistics: PadStatistics, restoring_force: float, *, tur
     final pads, cross-entropy stages of max(:data:`MIN_TAIL_PADS`, n/10) pads) replaces the
     fraction where the plain pads see fewer than :data:`SWITCH` pads on the rarer side
     (``tail`` None) or always (``tail`` True), not with fewer than :data:`MIN_TAIL_PADS`
-    pads (``tail`` None: the fraction stays; True: an error), nor where its final pads see
-    none in the event (the fraction stays).
+    pads or a fixed summit count (``tail`` None: the fraction stays; True: an error), nor
+    where its final pads see none in the event (the fraction stays).
 
     Parameters
     ----------
@@ -359,7 +359,7 @@ def tail_p_stick(spec, statistics: PadStatistics, restoring_force: float, *, tur
     Raises
     ------
     ParameterError
-        ``tail`` True with fewer than :data:`MIN_TAIL_PADS` pads.
+        ``tail`` True with fewer than :data:`MIN_TAIL_PADS` pads or a fixed summit count.
     """
     from mcsim.studies.tail import importance_p_stick
 
@@ -372,7 +372,9 @@ def tail_p_stick(spec, statistics: PadStatistics, restoring_force: float, *, tur
     if tail is True and n < MIN_TAIL_PADS:
         raise ParameterError(f"pads = {n}: importance sampling (tail) needs at least "
                              f"{MIN_TAIL_PADS} pads for its pilot stages")  # fmt: skip
-    if tail is False or (tail is None and (rare >= SWITCH or n < MIN_TAIL_PADS)):
+    if tail is False or (
+        tail is None and (rare >= SWITCH or n < MIN_TAIL_PADS or spec.count != "poisson")
+    ):
         return plain
     estimate = importance_p_stick(spec, restoring_force, turn=turn, preload=preload, pads=n,
                                   pilot=max(MIN_TAIL_PADS, n // 10), start=start,
@@ -403,6 +405,9 @@ class PadReport:
     p_stick_model : float or None
         With a restoring force: the rare-event model's probability of sticking
         (:func:`mcsim.studies.stiction.p_stick_model`; 0 where the mean curve never pulls off).
+    stick : dict or None
+        With a restoring force: p_stick, its interval, ``p_stick_ess`` and ``p_stick_method``
+        (:func:`tail_p_stick`: the fraction of ``statistics``, or importance sampling).
     turns : dict
         Under a preload: ``preload`` (Pa), the mean-field turn ``h_turn_mean_field`` and the
         pads' own turns ``h_turn_min``, ``h_turn_q50``, ``h_turn_max`` (d/σ); else empty.
@@ -414,27 +419,30 @@ class PadReport:
     contacts: float
     p_stick_model: float | None
     turns: dict
+    stick: dict | None = None
 
     def quantities(self) -> dict[str, tuple[float, str]]:
         """Every reported quantity with its unit (``"N"``, ``"Pa"``, ``"1"``), in report order."""
         out = self.statistics.to_dict()
-        ci = out.pop("p_stick_ci", None)
         fields = {
             k: (out[k], "1" if k == "pads" else "N")
             for k in ("pads", "mean", "se", "std", "q05", "q50", "q95")
         }
         if self.statistics.restoring_force is not None:
+            s = self.stick
             fields |= {"restoring_force": (self.statistics.restoring_force, "N"),
-                       "p_stick": (out["p_stick"], "1"), "p_stick_ci_low": (ci[0], "1"),
-                       "p_stick_ci_high": (ci[1], "1"), "p_stick_model": (self.p_stick_model, "1")}  # fmt: skip
+                       "p_stick": (s["p_stick"], "1"), "p_stick_ci_low": (s["p_stick_low"], "1"),
+                       "p_stick_ci_high": (s["p_stick_high"], "1"), "p_stick_model": (self.p_stick_model, "1"),
+                       "p_stick_ess": (s["p_stick_ess"], "1")}  # fmt: skip
         fields["analytic_mean"] = (self.analytic_mean, "N")
         fields |= {k: (v, "Pa" if k == "preload" else "1") for k, v in self.turns.items()}
         return fields
 
 
 def pad_report(
-    run, restoring_force: float | None = None, interval: str = "clopper-pearson"
-) -> PadReport:
+    run, restoring_force: float | None = None, interval: str = "clopper-pearson",
+    tail: bool | None = None
+) -> PadReport:  # fmt: skip
     """Pull-off statistics of the pads of a cycle run (one pad per realization), as ``mcsim pads``.
 
     Parameters
@@ -447,6 +455,10 @@ def pad_report(
         sticking, its interval and the model's estimate.
     interval : {"clopper-pearson", "wilson"}
         Interval of the probability of sticking (:func:`pad_statistics`).
+    tail : bool, optional
+        With F_r: p_stick by importance sampling (:func:`tail_p_stick`, with pads of its own
+        streams of the run's seed): None where the run's pads see fewer than :data:`SWITCH`
+        on the rarer side, True always, False never.
 
     Returns
     -------
@@ -455,7 +467,8 @@ def pad_report(
     Raises
     ------
     ParameterError
-        Not a cycle run of a law set with a signed load, or a bad F_r or interval.
+        Not a cycle run of a law set with a signed load, a bad F_r or interval, or ``tail``
+        True with too few pads.
     """
     pull_off = run.pull_off()
     statistics = pad_statistics(pull_off.force, restoring_force, interval)
@@ -467,12 +480,13 @@ def pad_report(
                  "h_turn_max": float(np.max(t))}  # fmt: skip
     turn = spec.turn if turn is None else float(turn)
     contacts = spec.surface.eta * spec.area * float(spec.surface.heights.sf(turn))
-    model = None
+    model = stick = None
     if restoring_force is not None:
-        model = _p_stick_model(spec, statistics.restoring_force, pull_off.preload, turn)
-    return PadReport(
-        pull_off, statistics, analytic_pad_pull_off(spec, turn), contacts, model, turns
-    )
+        fr = statistics.restoring_force
+        model = min(max(_p_stick_model(spec, fr, pull_off.preload, turn), 0.0), 1.0)
+        stick = tail_p_stick(spec, statistics, fr, turn=turn, preload=pull_off.preload, tail=tail)
+    return PadReport(pull_off, statistics, analytic_pad_pull_off(spec, turn), contacts, model,
+                     turns, stick)  # fmt: skip
 
 
 def _p_stick_model(spec, fr: float, preload: float | None, turn: float) -> float:

@@ -94,7 +94,7 @@ def test_intervals_cover_an_exact_event_near_1e_2_in_at_least_90_percent_of_runs
     # 100 independent runs (seeds from SeedSequence.spawn): a 95 % interval covers 95 of them
     # on average, binomial SE √(0.95·0.05/100) = 2.2 runs; 90 lies 2.3 SE below, so a correct
     # interval fails this check with probability ~1 %, one that covers 85 % fails it with
-    # probability ~93 %. (A standard error 20 % too small, coverage ~88 %, passed it once: the
+    # probability ~90 %. (A standard error 20 % too small, coverage ~88 %, passed it once: the
     # unbiasedness and the likelihood-ratio tests are the finer checks.)
     m = 19
     p = _exact(m)
