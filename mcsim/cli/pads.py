@@ -18,7 +18,7 @@ _INTERVAL_NAMES = {"clopper-pearson": "Clopper-Pearson", "wilson": "Wilson"}
 def run(args) -> int:
     from mcsim.model.units import parse_quantity
     from mcsim.store.runfile import read_run
-    from mcsim.studies.pads import FEW_CONTACTS, MIN_TAIL_PADS, SWITCH, pad_report
+    from mcsim.studies.pads import FEW_CONTACTS, pad_report
 
     fr = None
     if args.restoring_force is not None:
@@ -55,7 +55,7 @@ def run(args) -> int:
               f"than {FEW_CONTACTS}): its tallest summits decide it; trust the Monte Carlo p_stick, "
               "not p_stick_model", file=sys.stderr)  # fmt: skip
     if fr is not None:
-        _p_stick_notes(report, stats.pads, MIN_TAIL_PADS, SWITCH)
+        _p_stick_notes(report, stats.pads, args.tail)
         if report.stick["p_stick_method"] == "importance":
             interval = "normal 95 % (importance sampling)"
     fields = report.quantities()
@@ -97,19 +97,23 @@ def run(args) -> int:
     return 0
 
 
-def _p_stick_notes(report, n: int, min_tail: int, switch: int) -> None:
+def _p_stick_notes(report, n: int, asked: bool) -> None:
     """How p_stick was found; a warning where p_stick_model lies outside its interval."""
+    from mcsim.studies.pads import MIN_ESS, MIN_TAIL_PADS, SWITCH
+
     s = report.stick
     rare = round(min(s["p_stick"], 1 - s["p_stick"]) * n)
     if s["p_stick_method"] == "importance":
         print(f"mcsim: note: p_stick by importance sampling ({n} pads of a tilted law after "
               f"cross-entropy stages; effective pads on the rarer side {s['p_stick_ess']:.3g}): "
               "the run's pads give the pull-off statistics", file=sys.stderr)  # fmt: skip
-    elif rare < switch:
-        why = (f"importance sampling needs at least {min_tail} pads" if n < min_tail
-               else "importance sampling did not run (fixed summit count) or saw none")  # fmt: skip
-        print(f"mcsim: note: fewer than {switch} of the {n} pads lie on the rarer side (sticking "
-              f"or not): p_stick is their fraction; {why}", file=sys.stderr)  # fmt: skip
+    elif rare < SWITCH or asked:
+        why = (f"importance sampling needs at least {MIN_TAIL_PADS} pads" if n < MIN_TAIL_PADS
+               else f"importance sampling's effective sample size stayed below {MIN_ESS} "
+               "(more pads raise it), or the summit count is fixed")  # fmt: skip
+        print(f"mcsim: note: fewer than {SWITCH} of the {n} pads lie on the rarer side (sticking or "
+              f"not), or --tail, but p_stick is their fraction, not importance sampling: {why}",
+              file=sys.stderr)  # fmt: skip
     model = report.p_stick_model
     if not s["p_stick_low"] <= model <= s["p_stick_high"]:
         print(f"mcsim: warning: p_stick_model {model:.3g} lies outside the 95 % interval of "

@@ -110,7 +110,7 @@ def _p_stick_notes(result) -> None:
     pads were too few on the rarer side, and where p_stick_model lies outside p_stick's interval."""
     import numpy as np
 
-    from mcsim.studies.pads import MIN_TAIL_PADS, SWITCH
+    from mcsim.studies.pads import MIN_ESS, MIN_TAIL_PADS, SWITCH
 
     d = result.data
     if "p_stick_method" not in d:
@@ -122,13 +122,15 @@ def _p_stick_notes(result) -> None:
               f"points (variable p_stick_method; effective pads on the rarer side p_stick_ess, "
               f"lowest {np.min(d['p_stick_ess'][tail]):.3g})", file=sys.stderr)  # fmt: skip
     rare = np.minimum(d["p_stick"], 1 - d["p_stick"]) * n
-    plain = done & ~tail & (np.round(rare) < SWITCH)
-    if plain.any() and result.attrs.get("p_stick_tail") == "auto":
+    asked = result.attrs.get("p_stick_tail")
+    plain = done & ~tail & ((np.round(rare) < SWITCH) | (asked == "importance"))
+    if plain.any() and asked != "pads":
         why = (f"importance sampling needs at least {MIN_TAIL_PADS} pads (--pads)" if n < MIN_TAIL_PADS
-               else "importance sampling saw none in the event")  # fmt: skip
+               else f"importance sampling's effective sample size stayed below {MIN_ESS} "
+               "(more --pads raise it)")  # fmt: skip
         print(f"mcsim: note: at {int(plain.sum())} of {plain.size} points fewer than {SWITCH} of "
-              f"the {n} pads lie on the rarer side (sticking or not): p_stick there is their "
-              f"fraction with its Clopper-Pearson interval; {why}", file=sys.stderr)  # fmt: skip
+              f"the {n} pads lie on the rarer side (sticking or not), or --tail, but p_stick is "
+              f"their fraction (Clopper-Pearson), not importance sampling: {why}", file=sys.stderr)  # fmt: skip
     model = d["p_stick_model"]
     outside = done & ((model < d["p_stick_low"]) | (model > d["p_stick_high"]))
     if outside.any():

@@ -25,6 +25,7 @@ SCRIPTS = (
     "memory",
     "pad_variation",
     "stiction_model",
+    "tail_benchmark",
 )
 
 
