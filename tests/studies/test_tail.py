@@ -171,3 +171,68 @@ def test_few_sticking_pads_switch_to_importance_sampling_or_stay_with_a_note_bel
     )
     with pytest.raises(ParameterError, match=f"at least {MIN_TAIL_PADS} pads"):
         tail_p_stick(spec, small, 2.0, turn=TURN, preload=None, tail=True)
+
+
+def test_sweep_never_stores_a_model_probability_outside_0_1():
+    # Issue 31: a pad of 1e-40 m² with F_r = 0 stored p_stick_model = 1.07e13.
+    from mcsim.studies.sweeps import sweep
+
+    result = sweep(SURFACE, SILICON, {"sigma": [3e-9]}, law="jkr", pads=3, seed=1,
+                   area="1e-40 m^2", restoring_force=0.0)  # fmt: skip
+    assert 0.0 <= result.data["p_stick_model"][0] <= 1.0
+    assert result.data["p_stick_method"][0] == "pads"
+
+
+def test_cli_sweep_tail_stores_the_method_and_its_effective_sample_size(tmp_path, capsys):
+    from conftest import run_cli
+
+    from mcsim.store.sweepfile import read_sweep
+
+    out = tmp_path / "tail.h5"
+    code, _, err = run_cli(capsys, "sweep", "--surface", "smooth", "--law", "jkr", "--vary", "sigma=3nm",
+                           "--preload", "1MPa", "--pads", 100, "--area", "3um^2", "--restoring-force",
+                           "6uN", "--seed", 1, "--tail", "--out", out, "--quiet")  # fmt: skip
+    assert code == 0, err
+    d = read_sweep(out).data
+    assert d["p_stick_method"][0] == "importance" and d["p_stick_ess"][0] >= 30
+    assert 0 <= d["p_stick_low"][0] <= d["p_stick"][0] <= d["p_stick_high"][0] <= 1
+    assert "p_stick by importance sampling at 1 of 1 points" in err
+    # p_stick_model (0.063) lies outside the interval here: one warning line says so
+    assert sum("p_stick_model lies outside" in line for line in err.splitlines()) == 1
+
+
+def test_cli_tail_with_too_few_pads_is_a_one_line_error(tmp_path, capsys):
+    from conftest import run_cli
+
+    code, _, err = run_cli(capsys, "sweep", "--surface", "smooth", "--law", "jkr", "--vary", "sigma=3nm",
+                           "--pads", 50, "--area", "3um^2", "--restoring-force", "6uN", "--tail",
+                           "--out", tmp_path / "few.h5")  # fmt: skip
+    assert (
+        code != 0 and f"needs at least {MIN_TAIL_PADS} pads" in err and len(err.splitlines()) == 1
+    )
+
+
+def test_cli_pads_tail_reports_the_method_beside_the_run_pads_statistics(tmp_path, capsys):
+    import json
+
+    from conftest import run_cli
+
+    run, surface = tmp_path / "run.h5", tmp_path / "smooth.toml"
+    surface.write_text(
+        f'[surface]\nsigma = "3 nm"\nR = "{SURFACE.R!r} m"\neta = "{SURFACE.eta!r} m^-2"\n'
+    )
+    code, _, err = run_cli(capsys, "simulate", "--surface", surface, "--law", "jkr",
+                           "--h", "4:-1:51", "--area", "3um^2", "--realizations", 100, "--seed", 1,
+                           "--cycle", "--preload", "1MPa", "--out", run, "--quiet")  # fmt: skip
+    assert code == 0, err
+    code, out, err = run_cli(
+        capsys, "pads", run, "--restoring-force", "6uN", "--tail", "--format", "json"
+    )
+    assert code == 0, err
+    data = json.loads(out)
+    plain = json.loads(
+        run_cli(capsys, "pads", run, "--restoring-force", "6uN", "--format", "json")[1]
+    )
+    assert data["p_stick_method"] == "importance" and plain["p_stick_method"] == "pads"
+    assert data["mean"] == plain["mean"] and data["p_stick"] != plain["p_stick"]
+    assert "importance sampling" in data["interval"]
