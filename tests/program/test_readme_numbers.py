@@ -330,6 +330,18 @@ def test_p_stick_table(tmp_path):
             )  # fmt: skip
 
 
+def test_when_importance_sampling_replaces_the_fraction_of_the_pads():
+    from mcsim.studies.pads import MIN_ESS, MIN_TAIL_PADS, SWITCH
+
+    check_exact(r"\| at least (\d+) pads stick and (\d+) do not \| `pads`", SWITCH, SWITCH)
+    check_exact(r"\| fewer than (\d+) on either side, at least (\d+) pads \| `importance`",
+                SWITCH, MIN_TAIL_PADS)  # fmt: skip
+    check_exact(r"\| the same with fewer than (\d+) pads \| `pads`", MIN_TAIL_PADS)
+    check_exact(r"\| `--tail` \(at least (\d+) pads\) \| `importance`", MIN_TAIL_PADS)
+    check_exact(r"pilot stages of a tenth as many pads \(at least (\d+)\)", MIN_TAIL_PADS)
+    check_exact(r"where its effective sample size `p_stick_ess` is at least (\d+);", MIN_ESS)
+
+
 @pytest.mark.slow
 def test_force_control_against_a_common_turn():
     # "Force control matters": 400 jkr pads of 30 µm² at σ = 2.5 nm (seed 1, the sweep's
