@@ -183,22 +183,29 @@ def test_sweep_never_stores_a_model_probability_outside_0_1():
     assert result.data["p_stick_method"][0] == "pads"
 
 
-def test_cli_sweep_tail_stores_the_method_and_its_effective_sample_size(tmp_path, capsys):
+def test_cli_sweep_tail_stores_the_method_its_effective_sample_size_and_draws_them(
+    tmp_path, capsys
+):
     from conftest import run_cli
 
+    from mcsim.figures.stiction import stiction_figure
     from mcsim.store.sweepfile import read_sweep
 
     out = tmp_path / "tail.h5"
-    code, _, err = run_cli(capsys, "sweep", "--surface", "smooth", "--law", "jkr", "--vary", "sigma=3nm",
-                           "--preload", "1MPa", "--pads", 100, "--area", "3um^2", "--restoring-force",
-                           "6uN", "--seed", 1, "--tail", "--out", out, "--quiet")  # fmt: skip
+    code, _, err = run_cli(capsys, "sweep", "--surface", "smooth", "--law", "jkr", "--vary",
+                           "sigma=2.8nm,3nm", "--preload", "1MPa", "--pads", 100, "--area", "3um^2",
+                           "--restoring-force", "6uN", "--seed", 1, "--tail", "--out", out, "--quiet")  # fmt: skip
     assert code == 0, err
-    d = read_sweep(out).data
-    assert d["p_stick_method"][0] == "importance" and d["p_stick_ess"][0] >= 30
-    assert 0 <= d["p_stick_low"][0] <= d["p_stick"][0] <= d["p_stick_high"][0] <= 1
-    assert "p_stick by importance sampling at 1 of 1 points" in err
-    # p_stick_model (0.063) lies outside the interval here: one warning line says so
+    result = read_sweep(out)
+    d = result.data
+    assert list(d["p_stick_method"]) == ["importance"] * 2 and np.all(d["p_stick_ess"] >= 30)
+    assert np.all((0 <= d["p_stick_low"]) & (d["p_stick_low"] <= d["p_stick"]))
+    assert np.all((d["p_stick"] <= d["p_stick_high"]) & (d["p_stick_high"] <= 1))
+    assert "p_stick by importance sampling at 2 of 2 points" in err
+    # p_stick_model (~0.06) lies outside the intervals here: one warning line says so
     assert sum("p_stick_model lies outside" in line for line in err.splitlines()) == 1
+    labels = [t.get_text() for t in stiction_figure(result).axes[0].get_legend().get_texts()]
+    assert any("importance sampling" in t for t in labels), labels
 
 
 def test_cli_tail_with_too_few_pads_is_a_one_line_error(tmp_path, capsys):
