@@ -20,8 +20,8 @@ Criteria (PASS/FAIL lines, exit status 1 on a FAIL):
   on 2 cores in the full run (the machine's load, ``uptime``, is printed with it).
 
 Run: ``python validation/tail_benchmark.py`` (~15 min on 2 cores under load: 2·10⁴
-brute-force pads, 40 repeated runs, the 1e-6 point) or ``--quick`` (1000 brute-force pads,
-the 1e-2 comparison, a reach point of 600 final pads, judged on its evaluations, timing
+brute-force pads, 40 repeated runs, the 1e-6 point) or ``--quick`` (600 brute-force pads,
+the 1e-2 comparison, a reach point of 200 final pads, judged on its evaluations, timing
 not judged). Writes ``tail_benchmark.txt``.
 """
 
@@ -83,7 +83,7 @@ def main() -> None:
     checks = Checks(timing_judged=not args.quick)
     surface = dataclasses.replace(SURFACES["smooth"], sigma=SIGMA)
     turn = preload_turn(surface, MATERIALS["silicon"], PRELOAD, "jkr")
-    n_bf, repeats = (1000, 0) if args.quick else (20_000, 40)
+    n_bf, repeats = (600, 0) if args.quick else (20_000, 40)
     seeds = child_seeds(args.seed, 3 + repeats)
     lines = ["| F_r uN | brute force k/n [p] | importance p [95 %] | rel. se | ESS | evaluations | s | z |",
              "|---|---|---|---|---|---|---|---|"]  # fmt: skip
@@ -100,7 +100,7 @@ def main() -> None:
                                pilot=pilot, workers=WORKERS)  # fmt: skip
         return e, time.perf_counter() - t
 
-    compared = [(F_2, 600, 200)] if args.quick else [(F_2, 2000, 500), (F_3, 2000, 500)]
+    compared = [(F_2, 400, 200)] if args.quick else [(F_2, 2000, 500), (F_3, 2000, 500)]
     for i, (fr, pads, pilot) in enumerate(compared):
         k = int(np.count_nonzero(force > fr))
         e, sec = tail(fr, seeds[1 + i], pads, pilot)
@@ -118,7 +118,7 @@ def main() -> None:
         lines.append(f"coverage at F_r {F_2 * 1e6:.0f} uN: {covered:.3f} of {repeats} runs "
                      f"(300 pads, pilot 200) cover p_BF = {p_bf:.4g}")  # fmt: skip
         checks.at_least(f"coverage of the 95 % interval over {repeats} runs", covered, bound)
-    pads, pilot = (600, 300) if args.quick else (12_000, 1000)
+    pads, pilot = (200, 200) if args.quick else (12_000, 1000)
     e, sec = tail(F_6, seeds[2], pads, pilot)
     half = (e.high - e.low) / (2 * e.p_stick) if e.p_stick > 0 else math.inf
     load = os.getloadavg()[0]
