@@ -15,8 +15,8 @@ the event; q only sets the variance.
   from a tilted Poisson process of intensity r_k λ φ(s) in height bin k (:data:`BINS` bins
   of :data:`BIN` σ from the cut, the last one open; :class:`Tilt`): in each bin a
   Poisson(r_k m_k) count, m_k = λ P(bin k) the nominal one, of heights from φ restricted to
-  the bin. The likelihood ratio of the two Poisson processes (Kingman, *Poisson processes*,
-  1993, Sect. 3.2; Owen, Sect. 9.1 for the ratio of densities) is
+  the bin. The likelihood ratio of the two Poisson processes (the ratio of their densities:
+  Poisson counts per bin, the same heights within a bin; Owen, ch. 9) is
 
       L = exp(Σ_k m_k (r_k − 1)) · Π_k r_k^(−n_k),
 
@@ -27,18 +27,18 @@ the event; q only sets the variance.
   summit could not do both (measured at p ≈ 6e-6, σ = 3 nm, 2000 pads: relative standard
   error 12 % against 19 %).
 * **The tilt, by the cross-entropy method** (Rubinstein & Kroese, *The cross-entropy
-  method*, 2004, Algorithm 3.4.1). Under force control the pull-off is not monotone in the
+  method*, 2004, ch. 3, the multilevel algorithm for rare events). Under force control the pull-off is not monotone in the
   heights (a taller summit turns the pad higher and weakens it), so the tilt is found, not
   assumed: stage 0 draws pads from the nominal law (or takes the plain pads already
   evaluated), each stage keeps its elite, the :data:`RHO` fraction of pads nearest the
   event (all pads in the event once they are that many), and sets r_k to the elite's
   weighted mean count in bin k over m_k (the maximum-likelihood intensity of a Poisson
-  process, weights L), smoothed by :data:`SMOOTHING` (Rubinstein & Kroese, Remark 3.4.2)
-  and kept above :data:`RATIO_FLOOR`. At most :data:`STAGES` stages.
+  process, weights L), smoothed by :data:`SMOOTHING` (Rubinstein & Kroese's smoothed
+  updating) and kept above :data:`RATIO_FLOOR`. At most :data:`STAGES` stages.
 * **The estimate.** ``pads`` pads drawn from the last tilt: p̂ = mean(L·1{event}) with the
   standard error of that mean (sample standard deviation, ddof = 1, over √n) and the normal
   95 % interval p̂ ± 1.96 se clipped to [0, 1]; the effective sample size of the weights in
-  the event, (Σ L·1)²/Σ (L·1)² (Kish; Owen, Sect. 9.3): the pads outside the event do not
+  the event, (Σ L·1)²/Σ (L·1)² (Kish's effective sample size; Owen, ch. 9): the pads outside the event do not
   enter p̂, and their weights, large or not, say nothing of its precision. The event is
   sticking when sticking is rare, and not sticking (p = 1 − P(not sticking)) when that is
   the rarer one.
