@@ -345,6 +345,27 @@ def test_when_importance_sampling_replaces_the_fraction_of_the_pads():
 
 
 @pytest.mark.slow
+def test_tail_example(tmp_path):
+    # the README's sweep of "Far in the tail: importance sampling" (about 50 s of CPU)
+    import xarray as xr
+
+    args = quoted(
+        r"mcsim (sweep --surface smooth --law jkr --vary sigma=3nm --preload 1MPa --pads 2000 "
+        r"\\ --area 30um\^2 --restoring-force 110uN --tail --seed 1) --out tail"
+    )
+    mcsim(*args[0].replace("\\ ", "").split(), "--out", str(tmp_path / "tail.h5"), "--quiet")
+    with xr.open_dataset(tmp_path / "tail.h5", engine="h5netcdf") as ds:
+        row = ds.isel(sigma=0)
+        assert str(row["p_stick_method"].values) == "importance"
+        check_rounded(
+            r"gives p_stick = (\S+) \[(\S+), (\S+)\] \(`p_stick_ess` (\S+)\) where `p_stick_model` "
+            r"says (\S+): (\S+) summits touch a pad here",
+            *(float(row[v]) for v in ("p_stick", "p_stick_low", "p_stick_high", "p_stick_ess",
+                                      "p_stick_model", "contacting_summits")),
+        )  # fmt: skip
+
+
+@pytest.mark.slow
 def test_force_control_against_a_common_turn():
     # "Force control matters": 400 jkr pads of 30 µm² at σ = 2.5 nm (seed 1, the sweep's
     # default grid h = 4 … −1), each pressed to 1 MPa, then all turned at the mean-field turn
