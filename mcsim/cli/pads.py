@@ -104,9 +104,10 @@ def _p_stick_notes(report, n: int, asked: bool) -> None:
     s = report.stick
     rare = round(min(s["p_stick"], 1 - s["p_stick"]) * n)
     if s["p_stick_method"] == "importance":
-        print(f"mcsim: note: p_stick by importance sampling ({n} pads of a tilted law after "
-              f"cross-entropy stages; effective pads on the rarer side {s['p_stick_ess']:.3g}): "
-              "the run's pads give the pull-off statistics", file=sys.stderr)  # fmt: skip
+        print(f"mcsim: note: p_stick by importance sampling (pads of a tilted law found in "
+              "cross-entropy stages, each weighted by its likelihood ratio; effective pads on the "
+              f"rarer side {s['p_stick_ess']:.3g}): the run's {n} pads give the pull-off "
+              "statistics", file=sys.stderr)  # fmt: skip
     elif rare < SWITCH or asked:
         why = (f"importance sampling needs at least {MIN_TAIL_PADS} pads" if n < MIN_TAIL_PADS
                else f"importance sampling's effective sample size stayed below {MIN_ESS} "
