@@ -243,8 +243,8 @@ FEW_CONTACTS = 10
 
 #: Fewer pads than this on the rarer side (sticking or not) switch p_stick to importance sampling.
 SWITCH = 10
-#: Fewest pads with which importance sampling runs: a cross-entropy stage of them keeps
-#: RHO · MIN_TAIL_PADS = 10 elite pads (:mod:`mcsim.studies.tail`).
+#: Fewest plain pads with which importance sampling runs: fewer than SWITCH of fewer pads on
+#: one side does not say that side is rare (its own stages hold TAIL_PILOT pads).
 MIN_TAIL_PADS = 100
 
 #: Fewest final pads of importance sampling (more where more plain pads were simulated): at
@@ -386,7 +386,7 @@ def tail_p_stick(spec, statistics: PadStatistics, restoring_force: float, *, tur
              "p_stick_method": "pads"}  # fmt: skip
     if tail is True and n < MIN_TAIL_PADS:
         raise ParameterError(f"pads = {n}: importance sampling (tail) needs at least "
-                             f"{MIN_TAIL_PADS} pads for its pilot stages")  # fmt: skip
+                             f"{MIN_TAIL_PADS} pads")  # fmt: skip
     if tail is False or (
         tail is None and (rare >= SWITCH or n < MIN_TAIL_PADS or spec.count != "poisson")
     ):

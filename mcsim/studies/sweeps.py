@@ -518,7 +518,7 @@ def _check_pads(
         raise ParameterError(f"pads = {pads!r} is out of range (allowed: integer >= 1)")
     if tail is True and pads < MIN_TAIL_PADS:
         raise ParameterError(f"pads = {pads}: importance sampling (tail) needs at least "
-                             f"{MIN_TAIL_PADS} pads for its pilot stages")  # fmt: skip
+                             f"{MIN_TAIL_PADS} pads")  # fmt: skip
     if restoring_force is None:
         raise ParameterError(
             "pads need the restoring force (restoring_force=..., --restoring-force)"
