@@ -26,6 +26,8 @@ def run(args) -> int:
         if fr < 0:
             raise ParameterError(f"--restoring-force: {args.restoring_force!r} is negative "
                                  "(allowed: a force >= 0, e.g. 2uN)")  # fmt: skip
+    if args.tail and fr is None:
+        raise ParameterError("--tail: importance sampling estimates p_stick; add --restoring-force")
     if args.plot:
         from mcsim.store.outputs import check_output
 
@@ -36,7 +38,7 @@ def run(args) -> int:
         check_output(args.plot, inputs=[args.run], overwrite=args.overwrite)
     run = read_run(args.run, allow_incomplete=args.partial)
     try:
-        report = pad_report(run, fr, args.interval)
+        report = pad_report(run, fr, args.interval, tail=True if args.tail else None)
     except ParameterError as err:
         raise ParameterError(f"{args.run}: {err}") from None
     pull_off, stats = report.pull_off, report.statistics
@@ -52,6 +54,10 @@ def run(args) -> int:
         print(f"mcsim: warning: a pad touches with {report.contacts:.3g} summits on average (fewer "
               f"than {FEW_CONTACTS}): its tallest summits decide it; trust the Monte Carlo p_stick, "
               "not p_stick_model", file=sys.stderr)  # fmt: skip
+    if fr is not None:
+        _p_stick_notes(report, stats.pads, args.tail)
+        if report.stick["p_stick_method"] == "importance":
+            interval = "normal 95 % (importance sampling)"
     if fr is not None and run.spec.environment is not None:
         print("mcsim: note: p_stick_model is not given with an environment (the model has not "
               "been checked against humid pads); the pads' own p_stick is the answer",
@@ -61,6 +67,8 @@ def run(args) -> int:
     if args.format == "json":  # the same fields as the table, with their units
         clean = {k: (None if isinstance(v, float) and not math.isfinite(v) else v)
                  for k, (v, _) in fields.items()}  # fmt: skip
+        if fr is not None:
+            clean["p_stick_method"] = report.stick["p_stick_method"]
         clean |= {"interval": interval, "pull_off_method": method,
                   "units": {k: u for k, (_, u) in fields.items()}}  # fmt: skip
         print(json.dumps(clean, indent=1, allow_nan=False))
@@ -91,6 +99,32 @@ def run(args) -> int:
         save(fig, args.plot, overwrite=args.overwrite, inputs=[args.run])
         announce(args.plot, quiet=args.quiet)
     return 0
+
+
+def _p_stick_notes(report, n: int, asked: bool) -> None:
+    """How p_stick was found; a warning where p_stick_model lies outside its interval."""
+    from mcsim.studies.pads import MIN_ESS, MIN_TAIL_PADS, SWITCH
+
+    s = report.stick
+    rare = round(min(s["p_stick"], 1 - s["p_stick"]) * n)
+    if s["p_stick_method"] == "importance":
+        print(f"mcsim: note: p_stick by importance sampling (pads of a tilted law found in "
+              "cross-entropy stages, each weighted by its likelihood ratio; effective pads on the "
+              f"rarer side {s['p_stick_ess']:.3g}): the run's {n} pads give the pull-off "
+              "statistics", file=sys.stderr)  # fmt: skip
+    elif rare < SWITCH or asked:
+        why = (f"importance sampling needs at least {MIN_TAIL_PADS} pads" if n < MIN_TAIL_PADS
+               else f"importance sampling's effective sample size stayed below {MIN_ESS} "
+               "(more pads raise it; it stays 0 where no pad reaches the restoring force), or the "
+               "summit count is fixed")  # fmt: skip
+        print(f"mcsim: note: fewer than {SWITCH} of the {n} pads lie on the rarer side (sticking or "
+              f"not), or --tail, but p_stick is their fraction, not importance sampling: {why}",
+              file=sys.stderr)  # fmt: skip
+    model = report.p_stick_model
+    if not s["p_stick_low"] <= model <= s["p_stick_high"]:
+        print(f"mcsim: warning: p_stick_model {model:.3g} lies outside the 95 % interval of "
+              f"p_stick [{s['p_stick_low']:.3g}, {s['p_stick_high']:.3g}]: the model does not "
+              "hold here", file=sys.stderr)  # fmt: skip
 
 
 def _print_pads(pull_off) -> None:
@@ -142,6 +176,9 @@ def add_parser(sub) -> None:
     p.add_argument("--interval", choices=("clopper-pearson", "wilson"), default="clopper-pearson",
                    help="95 %% interval of the probability of sticking: Clopper-Pearson exact (default; "
                         "coverage never below 95 %%) or Wilson's score interval (Wilson 1927; shorter)")  # fmt: skip
+    p.add_argument("--tail", action="store_true",
+                   help="with --restoring-force and >= 100 pads: p_stick by importance sampling, down "
+                   "to 1e-6 (default: only where fewer than 10 pads stick, or fewer than 10 do not)")  # fmt: skip
     p.add_argument("--format", choices=FORMATS, default="table",
                    help="table or json: the statistics; csv: one row per pad (pull-off in N)")  # fmt: skip
     p.add_argument(

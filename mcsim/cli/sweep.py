@@ -54,7 +54,7 @@ def run(args) -> int:
         try:
             result = sweep(
                 surface, material, vary, law=args.law, h=parse_h(args.h), turn=parse_turn(args.turn),
-                environment=environment, mc=args.mc, pads=args.pads, restoring_force=args.restoring_force, preload=args.preload, area=args.area, realizations=args.realizations or 1, seed=args.seed, device=args.device,
+                environment=environment, mc=args.mc, pads=args.pads, restoring_force=args.restoring_force, preload=args.preload, tail=True if args.tail else None, area=args.area, realizations=args.realizations or 1, seed=args.seed, device=args.device,
                 workers=args.workers, scheduler=args.scheduler or args.dask, out=out,
                 overwrite=args.overwrite, resume=args.resume, checkpoint_every=args.checkpoint_every,
                 progress=not args.quiet and sys.stderr.isatty(), command=cli_command(),
@@ -74,6 +74,7 @@ def run(args) -> int:
             print(f"mcsim: warning: {n_warned} of {warned.size} points outside their law set's regime "
                   f"(variable regime_warning), e.g.: {first}", file=sys.stderr)  # fmt: skip
         _warn_few_contacts(result)
+        _p_stick_notes(result)
         failed = result.failed
         for inputs, error in failed[:MAX_FAILED_SHOWN]:
             shown = ", ".join(f"{k} = {v:.6g}" if isinstance(v, float) else f"{k} = {v}"
@@ -102,6 +103,42 @@ def _warn_few_contacts(result) -> None:
               f"than {FEW_CONTACTS} summits on average (variable contacting_summits, lowest "
               f"{np.nanmin(contacts):.3g}): its tallest summits decide it; trust the Monte Carlo "
               "p_stick there, not a model", file=sys.stderr)  # fmt: skip
+
+
+def _p_stick_notes(result) -> None:
+    """Where p_stick came from importance sampling, where the plain fraction stayed though its
+    pads were too few on the rarer side, and where p_stick_model lies outside p_stick's interval."""
+    import numpy as np
+
+    from mcsim.studies.pads import MIN_ESS, MIN_TAIL_PADS, SWITCH
+
+    d = result.data
+    if "p_stick_method" not in d:
+        return
+    n, done = result.attrs["pads"], np.isfinite(d["p_stick"])
+    tail = (d["p_stick_method"] == "importance") & done
+    if tail.any():
+        print(f"mcsim: note: p_stick by importance sampling at {int(tail.sum())} of {tail.size} "
+              f"points (variable p_stick_method; effective pads on the rarer side p_stick_ess, "
+              f"lowest {np.min(d['p_stick_ess'][tail]):.3g})", file=sys.stderr)  # fmt: skip
+    rare = np.minimum(d["p_stick"], 1 - d["p_stick"]) * n
+    asked = result.attrs.get("p_stick_tail")
+    plain = done & ~tail & ((np.round(rare) < SWITCH) | (asked == "importance"))
+    if plain.any() and asked != "pads":
+        why = (f"importance sampling needs at least {MIN_TAIL_PADS} pads (--pads)" if n < MIN_TAIL_PADS
+               else f"importance sampling's effective sample size stayed below {MIN_ESS} "
+               "(more --pads raise it; it stays 0 where no pad reaches the restoring force)")  # fmt: skip
+        print(f"mcsim: note: at {int(plain.sum())} of {plain.size} points fewer than {SWITCH} of "
+              f"the {n} pads lie on the rarer side (sticking or not), or --tail, but p_stick is "
+              f"their fraction (Clopper-Pearson), not importance sampling: {why}", file=sys.stderr)  # fmt: skip
+    model = d["p_stick_model"]
+    outside = done & ((model < d["p_stick_low"]) | (model > d["p_stick_high"]))
+    if outside.any():
+        i = np.unravel_index(int(np.flatnonzero(outside.ravel())[0]), outside.shape)
+        print(f"mcsim: warning: at {int(outside.sum())} of {outside.size} points p_stick_model "
+              f"lies outside the 95 % interval of p_stick (e.g. {model[i]:.3g} against "
+              f"[{d['p_stick_low'][i]:.3g}, {d['p_stick_high'][i]:.3g}]): the model does not "
+              "hold there", file=sys.stderr)  # fmt: skip
 
 
 def add_parser(sub) -> None:
@@ -134,6 +171,9 @@ def add_parser(sub) -> None:
                    help="also N finite pads of --area per point through a cycle, from the point's own "
                    "stream of --seed: p_stick with its 95%% Clopper-Pearson interval and the pads' pull-off "
                    "statistics (N) beside the GW mean (as mcsim simulate --cycle + mcsim pads)")  # fmt: skip
+    p.add_argument("--tail", action="store_true",
+                   help="with --pads (>= 100): p_stick by importance sampling at every point, down to "
+                   "1e-6 (default: only where fewer than 10 pads stick, or fewer than 10 do not)")  # fmt: skip
     p.add_argument("--restoring-force", metavar="F",
                    help="with --pads: force pulling a pad off (N or with a unit, '20uN'); a pad sticks "
                    "when its pull-off exceeds it (or --vary restoring_force=...)")  # fmt: skip

@@ -1,10 +1,13 @@
 """Figures of a pads sweep (``mcsim sweep --pads``): the probability that a pad sticks.
 
-* One varied input: p_stick (points) with its 95 % Clopper-Pearson interval (bars) and the
-  model estimate ``p_stick_model`` (line) against the input, p on a log axis.
-* Two: p_stick over the map in log colour, with the contours of :data:`LEVELS` (1e-3, and
-  0.5: the stiction boundary); hatched where the Monte Carlo interval straddles a level, i.e.
-  where the data cannot tell on which side of it the point lies.
+* One varied input: p_stick (points) with its 95 % interval (bars) and the model estimate
+  ``p_stick_model`` (line) against the input, p on a log axis down to the smallest p or
+  interval end drawn (1e-6 and below with importance sampling): circles for the fraction
+  of the pads (Clopper-Pearson), squares for importance sampling (normal interval;
+  ``p_stick_method``).
+* Two: p_stick over the map in log colour, with the contours of :data:`LEVELS` (1e-6, 1e-3,
+  and 0.5: the stiction boundary) that its range holds; hatched where the interval
+  straddles a level, i.e. where the data cannot tell on which side of it the point lies.
 """
 
 from __future__ import annotations
@@ -14,7 +17,7 @@ import numpy as np
 from mcsim.figures.sweeps import _edges, _scaled, _squeezed, axis_label, is_log_grid
 
 #: Probabilities drawn as contours on a 2-D map.
-LEVELS = (1e-3, 0.5)
+LEVELS = (1e-6, 1e-3, 0.5)
 
 
 def is_pads_sweep(sweep) -> bool:
@@ -55,12 +58,18 @@ def _line(sweep, dim: str):
 
     x = _scaled(sweep, dim)
     d = sweep.data
-    floor = 0.5 / sweep.attrs["pads"]  # p = 0 drawn at half a pad, marked as an upper bound
+    floor = _floor(sweep)  # p = 0 drawn at the floor, marked as an upper bound
     p = np.maximum(d["p_stick"], floor)
+    bottom = floor * 0.2
     fig = Figure(figsize=(7, 4.5), layout="constrained")
     ax = fig.subplots()
-    ax.errorbar(x, p, yerr=[p - np.maximum(d["p_stick_low"], floor * 0.2), d["p_stick_high"] - p],
-                fmt="o", color="k", capsize=3, label="Monte Carlo p_stick, 95 % Clopper-Pearson interval")  # fmt: skip
+    tail = _importance(sweep)
+    for mask, fmt, label in ((~tail, "o", "pads: fraction sticking, 95 % Clopper-Pearson interval"),
+                             (tail, "s", "importance sampling, 95 % normal interval")):  # fmt: skip
+        if mask.any():
+            low = np.maximum(d["p_stick_low"][mask], bottom)
+            ax.errorbar(x[mask], p[mask], yerr=[p[mask] - low, d["p_stick_high"][mask] - p[mask]],
+                        fmt=fmt, color="k", capsize=3, label=f"Monte Carlo p_stick, {label}")  # fmt: skip
     if "p_stick_model" in d:
         ax.plot(x, np.clip(d["p_stick_model"], 1e-12, None), color="C3",
                 label="model (compound Poisson, saddlepoint)")  # fmt: skip
@@ -77,7 +86,7 @@ def _line(sweep, dim: str):
     for level in LEVELS:
         ax.axhline(level, color="0.6", ls=":", lw=1)
     ax.set_yscale("log")
-    ax.set_ylim(min(floor * 0.2, np.nanmin(p) / 2), 1.5)
+    ax.set_ylim(min(bottom, np.nanmin(p) / 2), 1.5)
     if is_log_grid(sweep.coords[dim]):
         ax.set_xscale("log")
     ax.set_xlabel(axis_label(sweep, dim))
@@ -87,13 +96,27 @@ def _line(sweep, dim: str):
     return fig
 
 
+def _importance(sweep) -> np.ndarray:
+    """Where p_stick came from importance sampling (``p_stick_method``; none in older files)."""
+    method = sweep.data.get("p_stick_method")
+    return np.zeros(sweep.data["p_stick"].shape, bool) if method is None else method == "importance"
+
+
+def _floor(sweep) -> float:
+    """Where p = 0 is drawn: half a pad, or below the smallest p of importance sampling."""
+    p = sweep.data["p_stick"][_importance(sweep)]
+    p = p[np.isfinite(p) & (p > 0)]
+    floor = 0.5 / sweep.attrs["pads"]
+    return min(floor, p.min() / 2) if p.size else floor
+
+
 def _map(sweep, dims: list[str]):
     from matplotlib.colors import LogNorm
     from matplotlib.figure import Figure
 
     (xd, yd), d = dims, sweep.data
     x, y = _scaled(sweep, xd), _scaled(sweep, yd)
-    floor = 0.5 / sweep.attrs["pads"]
+    floor = _floor(sweep)
     p = np.maximum(d["p_stick"], floor).T  # rows: y
     fig = Figure(figsize=(7.5, 5.5), layout="constrained")
     ax = fig.subplots()
@@ -102,10 +125,12 @@ def _map(sweep, dims: list[str]):
                          cmap="viridis", shading="flat")  # fmt: skip
     fig.colorbar(mesh, ax=ax, label="probability that a pad sticks, p_stick (Monte Carlo)")
     if x.size > 1 and y.size > 1:
-        cs = ax.contour(x, y, p, levels=list(LEVELS), colors=["w", "r"], linewidths=1.5)
-        ax.clabel(
-            cs, fmt={LEVELS[0]: "1e-3", LEVELS[1]: "0.5: stiction boundary"}, fontsize="small"
-        )
+        names = {1e-6: "1e-6", 1e-3: "1e-3", 0.5: "0.5: stiction boundary"}
+        levels = [v for v in LEVELS if np.nanmin(p) < v < np.nanmax(p)]
+        if levels:
+            cs = ax.contour(x, y, p, levels=levels, linewidths=1.5,
+                            colors=["r" if v == 0.5 else "w" for v in levels])  # fmt: skip
+            ax.clabel(cs, fmt={v: names[v] for v in levels}, fontsize="small")
         low, high = d["p_stick_low"].T, d["p_stick_high"].T
         for level in LEVELS:
             unsure = ((low < level) & (high > level)).astype(float)

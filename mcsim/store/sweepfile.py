@@ -32,9 +32,9 @@ every variable has ``units`` and ``long_name`` attributes; schema :data:`SCHEMA_
                             p_stick_high (1), the pads' pull_off_mean, pull_off_std,
                             pull_off_q05, pull_off_q50, pull_off_q95 and the GW
                             pull_off_analytic (N), their work_of_separation_mean, _std,
-                            _q05, _q50, _q95 (J/m^2), p_stick_model and
-                            contacting_summits (1)
-                            (:data:`PADS`)
+                            _q05, _q50, _q95 (J/m^2), p_stick_model, p_stick_ess and
+                            contacting_summits (1) (:data:`PADS`), p_stick_method (text,
+                            :data:`PAD_STRINGS`)
     root attributes         sweep_schema_version, mcsim_version, created, command,
                             law, varied (JSON list of the dimension names), surface,
                             material (JSON of the inputs before variation, SI),
@@ -134,9 +134,22 @@ ENVIRONMENT_SUMMARY = {
 
 #: Per-point variables of a pads sweep (``mcsim sweep --pads``): unit and meaning.
 PADS = {
-    "p_stick": ("1", "fraction of the pads whose pull-off exceeds the restoring force"),
-    "p_stick_low": ("1", "lower end of the 95 % Clopper-Pearson interval of p_stick"),
-    "p_stick_high": ("1", "upper end of the 95 % Clopper-Pearson interval of p_stick"),
+    "p_stick": (
+        "1",
+        "probability that a pad's pull-off exceeds the restoring force (p_stick_method)",
+    ),
+    "p_stick_low": (
+        "1",
+        "lower end of the 95 % interval of p_stick (pads: Clopper-Pearson; importance: normal)",
+    ),
+    "p_stick_high": (
+        "1",
+        "upper end of the 95 % interval of p_stick (pads: Clopper-Pearson; importance: normal)",
+    ),
+    "p_stick_ess": (
+        "1",
+        "effective number of pads on the rarer side, sticking or not (pads: their count)",
+    ),
     "pull_off_mean": ("N", "mean pull-off force of the pads"),
     "pull_off_std": ("N", "standard deviation of the pads' pull-off force (ddof = 1)"),
     "pull_off_q05": ("N", "5 % quantile of the pads' pull-off force"),
@@ -159,6 +172,12 @@ PADS = {
         "1",
         "expected summits per pad above the mean-field turn, eta A S(h_turn)",
     ),
+}
+
+#: Text variables of a pads sweep: meaning.
+PAD_STRINGS = {
+    "p_stick_method": "how p_stick was estimated: pads (fraction of the pads) or importance "
+    "(importance sampling, mcsim.studies.tail)",
 }
 
 
@@ -350,6 +369,9 @@ def empty_sweep(
     if pads:
         for k, (u, m) in PADS.items():
             add(k, u, m)
+        for k, m in PAD_STRINGS.items():
+            data[k] = np.full(shape, "", dtype=object)
+            vdims[k], units[k], long_names[k] = grid_dims, "1", m
     attrs = {"varied": json.dumps(list(dims))}
     return Sweep(coords, data, vdims, units, long_names, attrs)
 
@@ -548,14 +570,20 @@ def _grid(path: Path, varied: list) -> tuple[str, ...]:
 
 def _dtype(name: str) -> str:
     """Kind of values of variable ``name`` (:data:`mcsim.store.schema.DTYPES`)."""
-    return "S" if name in STRINGS else "iu" if name == "done" else "f"
+    return "S" if name in STRINGS or name in PAD_STRINGS else "iu" if name == "done" else "f"
 
 
 def _shapes(name: str, grid: tuple, per_h: tuple) -> tuple[tuple, ...]:
     """Shapes variable ``name`` may have: per point, or per point and separation."""
     if name in CURVES or name.startswith("mc_"):
         return (per_h,)
-    if name in SUMMARY or name in REGIME or name in STRINGS or name == "done":
+    if (
+        name in SUMMARY
+        or name in REGIME
+        or name in STRINGS
+        or name in PAD_STRINGS
+        or name == "done"
+    ):
         return (grid,)
     return (grid, per_h)
 

@@ -95,8 +95,8 @@ def _lugannani_rice(g: np.ndarray, w: np.ndarray, y0: float) -> float:
         return float(y0 >= 0)
     scale = 1 / math.sqrt(k2)
     if abs(y0 - k1) < 1e-6 * math.sqrt(k2):
-        k3 = float(np.sum(w * g**3))
-        return 0.5 + k3 / (6 * math.sqrt(2 * math.pi) * k2**1.5)
+        k3 = float(np.sum(w * g**3))  # clipped: a skewness past ±3√(2π) leaves [0, 1]
+        return min(1.0, max(0.0, 0.5 + k3 / (6 * math.sqrt(2 * math.pi) * k2**1.5)))
     lo, hi = (-scale, 0.0) if y0 < k1 else (0.0, scale)
     while (moments(lo)[1] - y0) > 0:
         if lo < -1e6 * scale:

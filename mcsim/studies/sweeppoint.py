@@ -155,6 +155,7 @@ class Config:
     pads: int | None = None
     restoring_force: float | None = None
     preload: float | None = None
+    tail: bool | None = None
 
 
 def make_point(base_surface, base_material, base_environment, law, area, names, values,
@@ -259,7 +260,7 @@ def _pads(point: Point, config: Config, law: str, turn: float, h_pull_off: float
                           environment=point.environment)  # fmt: skip
     force = config.restoring_force if point.restoring_force is None else point.restoring_force
     return finite_pads(spec, force, preload=config.preload, turn=turn,
-                       h_pull_off=h_pull_off)  # fmt: skip
+                       h_pull_off=h_pull_off, tail=config.tail)  # fmt: skip
 
 
 def pads_seed(entropy: int, index: int) -> int:

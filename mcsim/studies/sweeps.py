@@ -106,6 +106,7 @@ def sweep(
     pads: int | None = None,
     restoring_force: float | str | None = None,
     preload: float | str | None = None,
+    tail: bool | None = None,
     area: float | str | None = None,
     realizations: int = 1,
     seed: int | None = None,
@@ -167,6 +168,11 @@ def sweep(
         approach separation that balances P on the mean curve
         (:func:`mcsim.physics.loadcontrol.preload_turn`), and pads are pressed with P·A.
         Not together with ``turn``.
+    tail : bool, optional
+        With ``pads``: p_stick by importance sampling (:mod:`mcsim.studies.tail`) where the
+        pads see fewer than 10 on the rarer side (None, needs >= 100 pads, else the fraction
+        stays), at every point (True, needs >= 100 pads) or never (False); variables
+        ``p_stick_method`` and ``p_stick_ess`` (:func:`mcsim.studies.pads.tail_p_stick`).
     area : float or str, optional
         Patch area of the Monte Carlo runs and the pads, m² or with a unit.
     realizations : int
@@ -214,7 +220,7 @@ def sweep(
     environment = as_environment(environment)
     names, grid = _check_vary(vary, law, mc or bool(pads), bool(pads))
     restoring_force, preload = _check_pads(pads, restoring_force, preload, turn,
-                                           "restoring_force" in names)  # fmt: skip
+                                           "restoring_force" in names, tail)  # fmt: skip
     checkpoint_every = check_checkpoint_every(checkpoint_every)
     workers = check_workers(workers)
     law = "seed" if law is None else law
@@ -245,7 +251,8 @@ def sweep(
         if seed is None and claim is not None:
             seed = _recorded_seed(claim)
         entropy = np.random.SeedSequence(seed).entropy if mc or pads else None
-        config = Config(h, turn, mc, realizations, entropy, device, pads, restoring_force, preload)
+        config = Config(h, turn, mc, realizations, entropy, device, pads, restoring_force, preload,
+                        tail)  # fmt: skip
         result = _empty_result(material, law, names, dims, grid, config, environment is not None)
         if command is None:
             command = (
@@ -522,10 +529,14 @@ def _pads_index(index: int, names, shape) -> int:
 
 
 def _check_pads(
-    pads, restoring_force, preload, turn, varied: bool
+    pads, restoring_force, preload, turn, varied: bool, tail=None
 ) -> tuple[float | None, float | None]:
     """Check the pads' options; the restoring force (N; None where ``varied``) and the
     preload (Pa), SI."""
+    from mcsim.studies.pads import MIN_TAIL_PADS
+
+    if tail not in (None, True, False):
+        raise ParameterError(f"tail = {tail!r}: allowed None (automatic), True or False")
     if preload is not None:
         if turn is not None:
             raise ParameterError("turn and preload: give one of them (the preload sets the turn)")
@@ -533,11 +544,15 @@ def _check_pads(
         if not (math.isfinite(preload) and preload >= 0):  # 0: resting under its attraction
             raise ParameterError(f"preload = {preload!r} Pa: allowed a finite pressure >= 0")
     if pads is None:
-        if restoring_force is not None:
-            raise ParameterError("restoring_force applies to the pads only (add pads=N, --pads N)")
+        if restoring_force is not None or tail is not None:
+            raise ParameterError(f"{'restoring_force' if tail is None else 'tail'} applies to "
+                                 "the pads only (add pads=N, --pads N)")  # fmt: skip
         return None, preload
     if isinstance(pads, bool) or not isinstance(pads, int) or pads < 1:
         raise ParameterError(f"pads = {pads!r} is out of range (allowed: integer >= 1)")
+    if tail is True and pads < MIN_TAIL_PADS:
+        raise ParameterError(f"pads = {pads}: importance sampling (tail) needs at least "
+                             f"{MIN_TAIL_PADS} pads")  # fmt: skip
     if varied:
         if restoring_force is not None:
             raise ParameterError("restoring_force: given both as a value and as a varied input")
@@ -564,7 +579,8 @@ def _pads_attrs(config: Config, area) -> dict:
             attrs |= {"restoring_force": config.restoring_force, "restoring_force_unit": "N"}
         attrs |= {"pads": config.pads, "area": math.nan if area is None else area,
                   "area_unit": "m^2", "seed_entropy": str(config.entropy),
-                  "pads_streams": "point i: SeedSequence(seed_entropy, spawn_key=(i, 1))"}  # fmt: skip
+                  "pads_streams": "point i: SeedSequence(seed_entropy, spawn_key=(i, 1))",
+                  "p_stick_tail": {None: "auto", True: "importance", False: "pads"}[config.tail]}  # fmt: skip
     return attrs
 
 

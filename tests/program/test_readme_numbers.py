@@ -329,6 +329,41 @@ def test_p_stick_table(tmp_path):
             )  # fmt: skip
 
 
+def test_when_importance_sampling_replaces_the_fraction_of_the_pads():
+    from mcsim.studies.pads import MIN_ESS, MIN_TAIL_PADS, SWITCH, TAIL_PADS, TAIL_PILOT
+
+    check_exact(r"\| at least (\d+) pads stick and (\d+) do not \| `pads`", SWITCH, SWITCH)
+    check_exact(r"\| fewer than (\d+) on either side, at least (\d+) pads \| `importance`",
+                SWITCH, MIN_TAIL_PADS)  # fmt: skip
+    check_exact(r"\| the same with fewer than (\d+) pads \| `pads`", MIN_TAIL_PADS)
+    check_exact(r"\| `--tail` \(at least (\d+) pads\) \| `importance`", MIN_TAIL_PADS)
+    check_exact(r"pilot stages of a tenth as many pads as `--pads` \(at least (\d+); from (\d+) "
+                r"`--pads` on, those pads are its first stage\) and as many pads again \(at least "
+                r"(\d+)\)", TAIL_PILOT, TAIL_PILOT, TAIL_PADS)  # fmt: skip
+    check_exact(r"where its effective sample size `p_stick_ess` is at least (\d+);", MIN_ESS)
+
+
+@pytest.mark.slow
+def test_tail_example(tmp_path):
+    # the README's sweep of "Far in the tail: importance sampling" (about 50 s of CPU)
+    import xarray as xr
+
+    args = quoted(
+        r"mcsim (sweep --surface smooth --law jkr --vary sigma=3nm --preload 1MPa --pads 2000 "
+        r"\\ --area 30um\^2 --restoring-force 110uN --tail --seed 1) --out tail"
+    )
+    mcsim(*args[0].replace("\\ ", "").split(), "--out", str(tmp_path / "tail.h5"), "--quiet")
+    with xr.open_dataset(tmp_path / "tail.h5", engine="h5netcdf") as ds:
+        row = ds.isel(sigma=0)
+        assert str(row["p_stick_method"].values) == "importance"
+        check_rounded(
+            r"gives p_stick = (\S+) \[(\S+), (\S+)\] \(`p_stick_ess` (\S+)\) where `p_stick_model` "
+            r"says (\S+): (\S+) summits touch a pad here",
+            *(float(row[v]) for v in ("p_stick", "p_stick_low", "p_stick_high", "p_stick_ess",
+                                      "p_stick_model", "contacting_summits")),
+        )  # fmt: skip
+
+
 @pytest.mark.slow
 def test_humid_p_stick_table(tmp_path):
     # the README's sweep of "Will my device stick in humid air?" (about 15 s of CPU)

@@ -26,6 +26,7 @@ SCRIPTS = (
     "memory",
     "pad_variation",
     "stiction_model",
+    "tail_benchmark",
 )
 
 
