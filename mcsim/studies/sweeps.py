@@ -579,7 +579,9 @@ def _pads_attrs(config: Config, area) -> dict:
             attrs |= {"restoring_force": config.restoring_force, "restoring_force_unit": "N"}
         attrs |= {"pads": config.pads, "area": math.nan if area is None else area,
                   "area_unit": "m^2", "seed_entropy": str(config.entropy),
-                  "pads_streams": "point i: SeedSequence(seed_entropy, spawn_key=(i, 1))",
+                  "pads_streams": "point i: SeedSequence(seed_entropy, spawn_key=(i, 1)), i the "
+                                  "point's index without its environment and restoring-force "
+                                  "dimensions (the same pads there)",
                   "p_stick_tail": {None: "auto", True: "importance", False: "pads"}[config.tail]}  # fmt: skip
     return attrs
 
