@@ -64,15 +64,19 @@ def _line(sweep, dim: str):
     fig = Figure(figsize=(7, 4.5), layout="constrained")
     ax = fig.subplots()
     tail = _importance(sweep)
-    for mask, fmt, label in ((~tail, "o", "pads: fraction sticking, 95 % Clopper-Pearson interval"),
+    none = ~tail & (d["p_stick"] == 0)  # no pad sticks: only the interval's top says anything
+    for mask, fmt, label in ((~tail & ~none, "o", "pads: fraction sticking, 95 % Clopper-Pearson interval"),
+                             (none, "v", "pads: none sticks (drawn at the floor), 95 % interval"),
                              (tail, "s", "importance sampling, 95 % normal interval")):  # fmt: skip
         if mask.any():
             low = np.maximum(d["p_stick_low"][mask], bottom)
             ax.errorbar(x[mask], p[mask], yerr=[p[mask] - low, d["p_stick_high"][mask] - p[mask]],
                         fmt=fmt, color="k", capsize=3, label=f"Monte Carlo p_stick, {label}")  # fmt: skip
-    if "p_stick_model" in d:
+    if "p_stick_model" in d and np.any(np.isfinite(d["p_stick_model"])):
         ax.plot(x, np.clip(d["p_stick_model"], 1e-12, None), color="C3",
                 label="model (compound Poisson, saddlepoint)")  # fmt: skip
+    elif "p_stick_model" in d:  # NaN everywhere: pads with an environment
+        ax.plot([], [], " ", label="no model estimate with an environment")
     few = d["contacting_summits"] < 10
     if few.any():
         ax.plot(

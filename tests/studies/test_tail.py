@@ -243,3 +243,15 @@ def test_cli_pads_tail_reports_the_method_beside_the_run_pads_statistics(tmp_pat
     assert data["p_stick_method"] == "importance" and plain["p_stick_method"] == "pads"
     assert data["mean"] == plain["mean"] and data["p_stick"] != plain["p_stick"]
     assert "importance sampling" in data["interval"]
+
+
+def test_without_tail_few_sticking_pads_keep_their_fraction_until_importance_intervals_hold():
+    # AUTOMATIC is off (validation/tail_benchmark.py: coverage 0.70 on few-summit pads):
+    # 5 of 100 pads sticking stay the plain fraction without tail=True
+    from mcsim.studies.pads import AUTOMATIC
+
+    assert not AUTOMATIC
+    s = pad_statistics(np.r_[np.full(95, 1.0), np.full(5, 3.0)], 2.0)
+    spec = _spec(2, pads=100, area=3e-12)
+    out = tail_p_stick(spec, s, 2.0, turn=TURN, preload=None, tail=None)
+    assert out["p_stick_method"] == "pads" and out["p_stick"] == 0.05
