@@ -181,7 +181,7 @@ def add_parser(sub) -> None:
                         "coverage never below 95 %%) or Wilson's score interval (Wilson 1927; shorter)")  # fmt: skip
     p.add_argument("--tail", action="store_true",
                    help="with --restoring-force and >= 100 pads: p_stick by importance sampling, down "
-                   "to 1e-6 (default: the pads' fraction; its intervals are not yet validated on few-summit pads)")  # fmt: skip
+                   "to 1e-6 (default: the pads' fraction; importance sampling's intervals are not yet validated on few-summit pads)")  # fmt: skip
     p.add_argument("--format", choices=FORMATS, default="table",
                    help="table or json: the statistics; csv: one row per pad (pull-off in N)")  # fmt: skip
     p.add_argument(

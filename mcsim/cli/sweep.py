@@ -176,7 +176,7 @@ def add_parser(sub) -> None:
                    "statistics (N) beside the GW mean (as mcsim simulate --cycle + mcsim pads)")  # fmt: skip
     p.add_argument("--tail", action="store_true",
                    help="with --pads (>= 100): p_stick by importance sampling at every point, down to "
-                   "1e-6 (default: the pads' fraction; its intervals are not yet validated on few-summit pads)")  # fmt: skip
+                   "1e-6 (default: the pads' fraction; importance sampling's intervals are not yet validated on few-summit pads)")  # fmt: skip
     p.add_argument("--restoring-force", metavar="F",
                    help="with --pads: force pulling a pad off (N or with a unit, '20uN'); a pad sticks "
                    "when its pull-off exceeds it (or --vary restoring_force=...)")  # fmt: skip
