@@ -38,13 +38,20 @@ def z(request) -> dict[tuple[str, float], np.ndarray]:
     estimated SE's own skew puts mean z² at 1.1-1.15, measured)."""
     spec = MonteCarloSpec(SURFACES["intermediate"], MATERIALS["silicon"], H, area=1e-9,
                           realizations=N_PATCHES, entropy=29, count=request.param)  # fmt: skip
+    return z_per_patch(spec, CASES)
+
+
+def z_per_patch(spec: MonteCarloSpec, cases) -> dict[tuple[str, float], np.ndarray]:
+    """z = (estimate − GW)/SE of each (quantity, h) case in every realization of ``spec``,
+    each summarised on its own (:func:`one_patch`)."""
     ens = run_sums(spec, workers=1)
-    expected = expected_values(spec, gw_curves(spec.surface, spec.material, spec.h))
-    out = {case: np.empty(N_PATCHES) for case in CASES}
-    for r in range(N_PATCHES):
+    expected = expected_values(spec, gw_curves(spec.surface, spec.material, spec.h, spec.law_set))
+    rows = list(spec.h)
+    out = {case: np.empty(spec.realizations) for case in cases}
+    for r in range(spec.realizations):
         summary = summarize(one_patch(ens, r))
-        for q, h in CASES:
-            j = H.index(h)
+        for q, h in cases:
+            j = rows.index(h)
             out[q, h][r] = (summary.mean[q][j] - expected[q][j]) / summary.se[q][j]
     return out
 
@@ -95,16 +102,7 @@ def z_humid() -> dict[tuple[str, float], np.ndarray]:
     """z of the caps' sums in each of N_PATCHES patches of 1.1e4 summits (intermediate)."""
     spec = MonteCarloSpec(SURFACES["intermediate"], MATERIALS["silicon"], ENV_H, area=1e-9,
                           realizations=N_PATCHES, entropy=31, environment=HUMID)  # fmt: skip
-    ens = run_sums(spec, workers=1)
-    curves = gw_curves(spec.surface, spec.material, spec.h, spec.law_set)
-    expected = expected_values(spec, curves)
-    out = {case: np.empty(N_PATCHES) for case in ENV_CASES}
-    for r in range(N_PATCHES):
-        summary = summarize(one_patch(ens, r))
-        for q, h in ENV_CASES:
-            j = ENV_H.index(h)
-            out[q, h][r] = (summary.mean[q][j] - expected[q][j]) / summary.se[q][j]
-    return out
+    return z_per_patch(spec, ENV_CASES)
 
 
 @pytest.mark.parametrize("case", ENV_CASES, ids=[f"{q}-h{h:g}" for q, h in ENV_CASES])
