@@ -19,8 +19,9 @@ from lawset_toy import TOY
 from mcsim.engine import cuda as mc
 from mcsim.engine.kernels import block_sums_numpy
 from mcsim.model.presets import MATERIALS, SURFACES
-from mcsim.physics.environment import Environment, with_environment
+from mcsim.physics.environment import Environment
 from mcsim.physics.laws import LAW_SETS
+from mcsim.physics.surfaceenvironment import with_environment
 from mcsim.topography.empirical import Empirical
 
 SURFACE = SURFACES["smooth"]

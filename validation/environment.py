@@ -45,12 +45,12 @@ from mcsim.physics.environment import (
     Environment,
     capillary_pressure,
     capillary_work,
-    environment_curves,
     kelvin_radius,
     vdw_pressure,
     vdw_work,
 )
 from mcsim.physics.gapheights import nayak_heights
+from mcsim.physics.surfaceenvironment import environment_curves
 from mcsim.topography.empirical import Empirical
 
 A, D0, GAMMA = 1.6e-19, 0.2e-9, 0.072

@@ -176,7 +176,7 @@ def log_notes(quiet: bool):
 def environment_notes(surface, environment, varied=(), material=None) -> list[str]:
     """The environment's inputs, the heights it uses (given or estimated), why no liquid
     condenses, if none does, and with ``material`` where its w and the Hamaker constant
-    disagree (:func:`mcsim.physics.environment.interface_warnings`): one line each (empty
+    disagree (:func:`mcsim.physics.surfaceenvironment.interface_warnings`): one line each (empty
     without an environment). The inputs in ``varied`` (a sweep's ``--vary`` names) are said to
     be varied, not given their base value; at RH = 0 there is no Kelvin radius."""
     if environment is None:
@@ -210,7 +210,7 @@ def environment_notes(surface, environment, varied=(), material=None) -> list[st
     if not env.is_dry and not env.has_capillary:
         lines.append(env.no_condensation_reason)
     if material is not None and not {"hamaker", "cutoff", "gamma"} & set(varied):
-        from mcsim.physics.environment import interface_warnings
+        from mcsim.physics.surfaceenvironment import interface_warnings
 
         lines += [f"warning: {w}" for w in interface_warnings(surface, material, env)]
     return lines

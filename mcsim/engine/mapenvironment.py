@@ -8,7 +8,7 @@ its own: the dry one is untouched and gives the same bits as without this part).
 dry kernel, these are plain numba functions that the interpreter also runs:
 
 * **the attraction** at a separation h, as
-  :func:`mcsim.physics.environment.environment_curves` (docs/physics.md, section 'The
+  :func:`mcsim.physics.surfaceenvironment.environment_curves` (docs/physics.md, section 'The
   environment: summits and open gaps'), each term the summits' caps plus the open gaps
   between them (:func:`_attractions`). The caps, over the summit heights s ~ N(0, 1) with
   tip gap g = σ(h − s): the capillary part η 2πR (γ_L/r_K) E[(g_k − max(g, D0))⁺],
@@ -49,7 +49,7 @@ dry kernel, these are plain numba functions that the interpreter also runs:
   where the attraction alone acts, then the bounded minimiser on the net load (:func:`_point_net`);
 * **work of separation and hysteresis**: the contact's, as dry (signed, −∫ load dd from the
   turn), plus the works of the attractions from the turn to infinity by the reference's own
-  function (:func:`mcsim.physics.environment.environment_works`, caps and open gaps) at
+  function (:func:`mcsim.physics.surfaceenvironment.environment_works`, caps and open gaps) at
   each point's turn, after the kernel.
 
 Against ``adhesion_summary`` and ``gw_curves`` with the environment
@@ -82,7 +82,7 @@ from mcsim.engine.mapkernel import (
 )
 from mcsim.physics.adhesion import GAUSSIAN_TOP, GRID, PANELS, _environment_top
 from mcsim.physics.environment import _TAIL as _GAP_TAIL
-from mcsim.physics.environment import environment_works, summit_parameters
+from mcsim.physics.surfaceenvironment import environment_works, summit_parameters
 
 #: Gauss–Legendre nodes of the contact's one-panel rule in u (as
 #: :data:`mcsim.engine.mapkernel.S_NODES`, which has 32): the attraction pulls the turn deep
@@ -219,7 +219,7 @@ def _depth(a, b):
 @numba.njit(**OPTIONS)
 def _attractions(h, n, sigma, p, vdw, capillary):
     """Van der Waals and capillary pressures (Pa) at the first ``n`` separations ``h``, into
-    ``vdw`` and ``capillary``, as :func:`mcsim.physics.environment.environment_curves`, each
+    ``vdw`` and ``capillary``, as :func:`mcsim.physics.surfaceenvironment.environment_curves`, each
     term 0 where its coefficient in ``p`` is 0 (module docstring):
 
     * the summits' caps (g = σ(h − s), s standard normal; m = clip(g, D0, u_c)):
@@ -406,7 +406,7 @@ def environment_params(environment, surfaces, K) -> np.ndarray:
 def _environment_outputs(environment, surfaces, out, curves) -> dict[str, np.ndarray]:
     """The net load, the attraction curves and the summary's works: the works of the
     attractions from each point's turn outward by the reference's own function
-    (:func:`mcsim.physics.environment.environment_works`, as
+    (:func:`mcsim.physics.surfaceenvironment.environment_works`, as
     :func:`mcsim.physics.adhesion._environment_parts`), point by point."""
     works = np.zeros((2, len(environment)))
     for i, (env, surface) in enumerate(zip(environment, surfaces)):

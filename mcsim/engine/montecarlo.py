@@ -41,8 +41,9 @@ import numpy as np
 from mcsim.engine.kernels import block_sums, sum_columns
 from mcsim.model.errors import ParameterError
 from mcsim.model.params import Material, Surface, check_range, check_separations
-from mcsim.physics.environment import Environment, with_environment
+from mcsim.physics.environment import Environment
 from mcsim.physics.laws import BRANCHES, Edges, LawSet, get_law_set
+from mcsim.physics.surfaceenvironment import with_environment
 
 #: Summits per random stream and per partial sum. Part of the reproducibility contract:
 #: changing it changes the numbers.
@@ -102,12 +103,10 @@ class MonteCarloSpec:
     device : {"cpu", "cuda"}
         Where the heights are drawn and the blocks summed (:data:`DEVICES`).
     environment : Environment or None
-        Van der Waals and capillary attraction (:mod:`mcsim.physics.environment`): each
-        summit's cap adds the outputs ``vdw`` and ``capillary`` to the law set
-        (:func:`~mcsim.physics.environment.with_environment`), so the summits sampled reach
-        down to the caps' band edge; the open gaps between the caps are not sampled (a
-        deterministic curve, :func:`~mcsim.physics.environment.open_gap_pressures`). None
-        (default): the contact alone.
+        Van der Waals and capillary attraction: each summit's cap adds the outputs ``vdw`` and
+        ``capillary`` to the law set (:mod:`mcsim.physics.surfaceenvironment`), so the summits
+        drawn reach down to the caps' band edge; the open gaps are a deterministic curve, not
+        sampled. None (default): the contact alone.
     """
 
     surface: Surface

@@ -35,13 +35,13 @@ import numpy as np
 from mcsim.engine.kernels import block_sums, sum_columns
 from mcsim.engine.montecarlo import MonteCarloSpec, plan_patch, sample_block
 from mcsim.model.errors import ParameterError
-from mcsim.physics.environment import (
+from mcsim.physics.laws import Edges, LawSet, get_law_set
+from mcsim.physics.surfaceenvironment import (
     active_terms,
     open_gap_pressures,
     open_gap_works,
     with_environment,
 )
-from mcsim.physics.laws import Edges, LawSet, get_law_set
 
 #: Interior points at which each smooth interval of a pad's curve is evaluated.
 SUB = 3
@@ -79,7 +79,7 @@ def pad_load(spec: MonteCarloSpec, z: np.ndarray, d, d_turn=None) -> np.ndarray:
 
     The sum of the law set's ``load``; with an environment, less its summits' ``vdw`` and
     ``capillary`` and the open gaps' attraction times the pad's area
-    (:func:`mcsim.physics.environment.open_gap_pressures`). On approach without ``d_turn``;
+    (:func:`mcsim.physics.surfaceenvironment.open_gap_pressures`). On approach without ``d_turn``;
     on retraction after the closest approach ``d_turn`` (m).
     """
     d = np.atleast_1d(np.asarray(d, dtype=float))
@@ -136,7 +136,7 @@ OPEN_GAP_POINTS = 4097
 @functools.lru_cache(maxsize=16)
 def open_gaps(spec: MonteCarloSpec):
     """The open gaps' attraction (Pa, van der Waals plus capillary) as a function of h = d/σ,
-    :func:`mcsim.physics.environment.open_gap_pressures` tabulated once per spec.
+    :func:`mcsim.physics.surfaceenvironment.open_gap_pressures` tabulated once per spec.
 
     A pad's curve evaluates it at thousands of separations, the same for every pad: a cubic
     spline through :data:`OPEN_GAP_POINTS` values from the lowest separation of ``spec`` to
@@ -240,7 +240,7 @@ def pad_work(spec: MonteCarloSpec, z: np.ndarray, d_turn: float) -> float:
     (:data:`WORK_NODES` nodes) on each interval between the separations where a summit crosses
     an edge of its contact law, up to where the last summit's reach ends; beyond, the open
     gaps' attraction alone, whose work is in closed form
-    (:func:`mcsim.physics.environment.open_gap_works`). The caps' kinks inside the intervals
+    (:func:`mcsim.physics.surfaceenvironment.open_gap_works`). The caps' kinks inside the intervals
     and the contact law's square-root edges limit it to ~1e-5 relative (measured against 16
     nodes and against intervals cut at every kink; the latter costs 2.5× as much).
     """

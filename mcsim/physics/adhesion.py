@@ -25,7 +25,7 @@ retraction load (searched also above the summits, where the attraction alone act
 work of separation is the integral of the net retraction force from the turn to infinity,
 −∫ F_net dd per nominal area (signed: a compressive part, the elastic energy the pressed
 summits give back, counts against it): the contact part −∫ load dd plus the works of the two
-attractions (:func:`mcsim.physics.environment.environment_works`, each the integral of its
+attractions (:func:`mcsim.physics.surfaceenvironment.environment_works`, each the integral of its
 own pressure). The dry work is that contact part alone; at the zero-load turn its retraction
 load is nowhere compressive. Hysteresis is unchanged in form: the equilibrium menisci and van der
 Waals act alike on both branches.
@@ -53,15 +53,10 @@ import numpy as np
 from mcsim.model.errors import ParameterError
 from mcsim.model.params import Material, Surface, check_range, plasticity_index
 from mcsim.physics.analytic import gw_curves
-from mcsim.physics.environment import (
-    Environment,
-    as_environment,
-    band_edge,
-    environment_curves,
-    environment_works,
-)
+from mcsim.physics.environment import Environment, as_environment
 from mcsim.physics.gapheights import gap_heights
 from mcsim.physics.laws import LawSet, get_law_set
+from mcsim.physics.surfaceenvironment import band_edge, environment_curves, environment_works
 from mcsim.physics.validity import work_warnings
 
 #: Johnson–Greenwood (1997) map at low load: DMT below this Maugis λ.

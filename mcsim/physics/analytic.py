@@ -42,8 +42,9 @@ import numpy as np
 from mcsim.model.errors import ParameterError
 from mcsim.model.params import Material, Surface, check_range, check_separations
 from mcsim.model.presets import as_material, as_surface
-from mcsim.physics.environment import Environment, as_environment, environment_curves
+from mcsim.physics.environment import Environment, as_environment
 from mcsim.physics.laws import Edges, LawSet, get_law_set
+from mcsim.physics.surfaceenvironment import environment_curves
 from mcsim.physics.validity import area_warnings
 
 #: Quantities of a GW curve, in output order, with their meaning.
@@ -277,7 +278,7 @@ def gw_curves(
     environment : Environment or mapping, optional
         An Environment, or its fields as a mapping (:func:`~mcsim.physics.environment.as_environment`).
         Adds the curves ``vdw`` and ``capillary`` (attraction per nominal area over K,
-        > 0 attractive; :func:`mcsim.physics.environment.environment_curves` at the
+        > 0 attractive; :func:`mcsim.physics.surfaceenvironment.environment_curves` at the
         mean-plane gap D = hσ + summit_offset of :func:`~mcsim.physics.gapheights.gap_heights`)
         and makes ``load`` the net load (see the module docstring). None (default): the
         contact curves alone, exactly as without this argument.

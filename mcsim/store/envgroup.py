@@ -18,7 +18,8 @@ from pathlib import Path
 import numpy as np
 
 from mcsim.model.errors import MCSimError, RunFileError
-from mcsim.physics.environment import Environment, band_edge
+from mcsim.physics.environment import Environment
+from mcsim.physics.surfaceenvironment import band_edge
 from mcsim.store.h5layout import by_branch, dataset, row_dims
 from mcsim.store.sweepfile import CURVES
 

@@ -26,8 +26,9 @@ from mcsim.engine.statistics import (
 )
 from mcsim.model.errors import ParameterError
 from mcsim.physics.analytic import gw_curves
-from mcsim.physics.environment import Environment, active_terms, open_gap_pressures
+from mcsim.physics.environment import Environment
 from mcsim.physics.gapheights import GapHeights, gap_heights
+from mcsim.physics.surfaceenvironment import active_terms, open_gap_pressures
 
 #: Normalisation of each dimensionless quantity, spelled out (the ``unit`` of tables and files).
 NORMALISED = {
@@ -116,7 +117,7 @@ class EnvironmentRun:
         Heights about the mean plane (rq, summit offset, their source) used by the open gaps.
     open_gaps : dict of ndarray
         ``"vdw"``, ``"capillary"``: the open gaps' pressures divided by K, per row
-        (:func:`mcsim.physics.environment.open_gap_pressures`).
+        (:func:`mcsim.physics.surfaceenvironment.open_gap_pressures`).
     """
 
     environment: Environment

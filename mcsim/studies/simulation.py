@@ -27,8 +27,9 @@ from mcsim.model.params import Material, Surface, check_range, check_seed, check
 from mcsim.model.presets import as_material, as_surface
 from mcsim.model.units import parse_quantity
 from mcsim.physics.adhesion import regime_warnings
-from mcsim.physics.environment import Environment, as_environment, interface_warnings
+from mcsim.physics.environment import Environment, as_environment
 from mcsim.physics.laws import LAW_SETS, get_law_set
+from mcsim.physics.surfaceenvironment import interface_warnings
 from mcsim.store import runfile
 from mcsim.store.claim import Claim, claim_output
 from mcsim.store.results import Run, assemble
@@ -193,7 +194,7 @@ def simulate(
         ``vdw`` and ``capillary`` to the law set (summed like the contact loads, and
         drawn down to the caps' band edge, so the sums differ from a dry run's), and the
         open gaps between the caps add a deterministic pressure
-        (:func:`mcsim.physics.environment.open_gap_pressures`, heights about the mean
+        (:func:`mcsim.physics.surfaceenvironment.open_gap_pressures`, heights about the mean
         plane from ``surface.rq``/``map_heights`` or the Nayak estimate). A preload is
         then balanced by the net load, and ``preload=0`` is a device resting under its
         own attraction. None: the contact alone, and the file is as before.

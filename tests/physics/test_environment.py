@@ -18,16 +18,14 @@ from mcsim.model.presets import SURFACES
 from mcsim.physics.environment import (
     DEFAULT_CUTOFF,
     Environment,
-    band_edge,
     capillary_pressure,
     capillary_work,
-    environment_curves,
-    environment_works,
     kelvin_radius,
     vdw_pressure,
     vdw_work,
 )
 from mcsim.physics.gapheights import nayak_heights
+from mcsim.physics.surfaceenvironment import band_edge, environment_curves, environment_works
 from mcsim.topography.empirical import Empirical
 
 A = 1.6e-19  # J, silicon across air

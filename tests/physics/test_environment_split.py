@@ -20,17 +20,7 @@ from scipy import integrate
 from tolerances import ROUNDING_FORMULA
 
 from mcsim.model.presets import MATERIALS, SURFACES
-from mcsim.physics.environment import (
-    MIN_KELVIN_RADIUS,
-    Environment,
-    band_edge,
-    environment_curves,
-    environment_works,
-    interface_warnings,
-    open_gap_pressures,
-    summit_parameters,
-    with_environment,
-)
+from mcsim.physics.environment import MIN_KELVIN_RADIUS, Environment
 from mcsim.physics.gapheights import gap_heights
 from mcsim.physics.laws import get_law_set
 from mcsim.physics.laws.attraction import (
@@ -38,6 +28,15 @@ from mcsim.physics.laws.attraction import (
     capillary_summit_work,
     vdw_summit,
     vdw_summit_work,
+)
+from mcsim.physics.surfaceenvironment import (
+    band_edge,
+    environment_curves,
+    environment_works,
+    interface_warnings,
+    open_gap_pressures,
+    summit_parameters,
+    with_environment,
 )
 
 A, D0, R = 1.6e-19, 0.2e-9, 0.5e-6

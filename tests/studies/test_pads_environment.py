@@ -16,9 +16,10 @@ import pytest
 from mcsim.engine import padcurves
 from mcsim.engine.montecarlo import MonteCarloSpec
 from mcsim.model.presets import MATERIALS, SURFACES
-from mcsim.physics.environment import Environment, open_gap_pressures, summit_parameters
+from mcsim.physics.environment import Environment
 from mcsim.physics.laws import get_law_set
 from mcsim.physics.laws.attraction import capillary_summit, vdw_summit
+from mcsim.physics.surfaceenvironment import open_gap_pressures, summit_parameters
 from mcsim.studies.simulation import simulate
 from mcsim.studies.sweeps import sweep
 
@@ -88,7 +89,7 @@ def test_a_pads_work_of_separation_is_the_integral_of_its_net_force():
     d = np.linspace(d_t, top, 400_001)
     net = padcurves.pad_load(s, z, d, d_t)
     far = open_gap_pressures(top / SMOOTH.sigma, SMOOTH, HUMID)  # beyond: the open gaps alone
-    from mcsim.physics.environment import open_gap_works
+    from mcsim.physics.surfaceenvironment import open_gap_works
 
     tail = open_gap_works(np.float64(top / SMOOTH.sigma), SMOOTH, HUMID)
     expected = -np.trapezoid(net, d) / s.area + float(tail["vdw"] + tail["capillary"])

@@ -16,7 +16,8 @@ import pytest
 
 from mcsim.engine.kernels import block_sums_numpy, sum_columns
 from mcsim.model.presets import MATERIALS, SURFACES
-from mcsim.physics.environment import Environment, open_gap_pressures
+from mcsim.physics.environment import Environment
+from mcsim.physics.surfaceenvironment import open_gap_pressures
 from mcsim.store.runfile import read_run
 from mcsim.studies.simulation import simulate
 from mcsim.topography.empirical import Empirical

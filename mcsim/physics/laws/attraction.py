@@ -9,7 +9,7 @@ is u = g + r²/2R, so the cap's area at local gaps in [u, u + du] is 2πR du, th
 every u. A pressed summit (g < 0) keeps this rigid profile outside its contact: no
 elastic deformation of the open gaps, as in the proximity model. The summit owns the
 local gaps u < u_c (its **cap**, u_c the band edge of
-:func:`mcsim.physics.environment.band_edge`); every gap u < D0 (the cutoff) is contact,
+:func:`mcsim.physics.surfaceenvironment.band_edge`); every gap u < D0 (the cutoff) is contact,
 which belongs to the contact law and is charged nothing here. Per summit, attractive
 positive (N):
 

@@ -1,0 +1,250 @@
+"""The environment over a GW surface: each summit's cap, and the open gaps between the caps.
+
+See docs/physics.md, section 'The environment: summits and open gaps'.
+
+The local laws of :mod:`mcsim.physics.environment` (the proximity model over a height
+distribution) applied in two parts that never count one area twice: each GW summit's **cap**
+owns the local gaps D0 ≤ u < u_c near it (per-summit laws,
+:mod:`mcsim.physics.laws.attraction`, appended to the law set by :func:`with_environment`),
+and the **open gaps** between the caps own u ≥ u_c (:func:`open_gap_pressures`: the local laws
+with the cutoff u_c, :func:`band_edge`). :func:`environment_curves` and
+:func:`environment_works` give both, expected over the surface; :func:`interface_warnings`
+says where the inputs do not describe one interface.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import numpy as np
+
+from mcsim.physics.environment import (
+    Environment,
+    capillary_pressure,
+    capillary_work,
+    vdw_pressure,
+    vdw_work,
+)
+from mcsim.physics.gapheights import gap_heights
+from mcsim.physics.laws import Edges, LawSet, Output, attraction
+
+
+def band_edge(R: float, eta: float, env: Environment) -> float:
+    """Band edge u_c, m: the deepest local gap a summit's cap owns (docs/physics.md,
+    section 'The environment: summits and open gaps').
+
+    u_c = D0 + 1/(2πRη): a paraboloid of radius R has area 2πR per unit depth of local gap,
+    so its open part D0 ≤ u < u_c has area 1/η, its summit's share of the nominal area
+    (GW's picture of a summit). Local gaps u ≥ u_c are the open gaps between the caps.
+
+    Parameters
+    ----------
+    R : float
+        Summit radius, m.
+    eta : float
+        Summit density η, m⁻².
+    env : Environment
+    """
+    return env.cutoff + 1 / (2 * math.pi * R * eta)
+
+
+def summit_parameters(surface, env: Environment) -> dict[str, float]:
+    """Parameters of the per-summit laws of :mod:`mcsim.physics.laws.attraction` (SI):
+    ``hamaker`` (0 without van der Waals), ``cutoff`` (D0), ``band`` (u_c), ``laplace``
+    (γ_L/r_K, 0 without condensation) and ``gap_k``, the cap's condensation gap min(g_K, u_c)
+    (D0 without condensation): the rest of the condensate lies in the open gaps."""
+    u_c = band_edge(surface.R, surface.eta, env)
+    return {
+        "hamaker": env.hamaker or 0.0,
+        "cutoff": env.cutoff,
+        "band": u_c,
+        "laplace": env.laplace_pressure,
+        "gap_k": max(min(env.condensation_gap, u_c), env.cutoff)
+        if env.has_capillary
+        else env.cutoff,
+    }
+
+
+def active_terms(env: Environment) -> tuple[str, ...]:
+    """``"vdw"`` and/or ``"capillary"``: the environment's terms that act."""
+    return tuple(t for t, on in (("vdw", env.has_vdw), ("capillary", env.has_capillary)) if on)
+
+
+#: The per-summit outputs of the environment (:func:`with_environment`).
+SUMMIT_OUTPUTS = {
+    "vdw": Output("vdw", "N", attraction.vdw_summit,
+                  "van der Waals attraction of the summit's open cap (> 0 attractive)"),
+    "capillary": Output("capillary", "N", attraction.capillary_summit,
+                        "capillary attraction of the summit's meniscus (> 0 attractive)"),
+}  # fmt: skip
+
+
+def with_environment(law: LawSet, surface, env: Environment | None) -> LawSet:
+    """Law set ``law`` with the environment's per-summit outputs ``vdw`` and ``capillary``
+    (N, > 0 attractive; the active ones) appended, acting down to δ = −u_c.
+
+    The outputs are the summits' caps (:mod:`mcsim.physics.laws.attraction`); the open gaps
+    between them are :func:`open_gap_pressures`, which are not per summit. Without an active
+    environment, ``law`` itself (the same object: nothing changes).
+    """
+    if env is None or not env.active:
+        return law
+    extra = summit_parameters(surface, env)
+    terms = active_terms(env)
+
+    def edges(params) -> Edges:
+        # Down to the band edge whichever terms act: the summits drawn, hence a pad's, are
+        # then the same at every humidity and Hamaker constant (common random numbers).
+        base = law.edges(params)
+        cuts = {-extra["cutoff"], -extra["gap_k"], -extra["band"]}
+        return Edges(min(base.reach, -extra["band"]), base.jump_in, base.break_off,
+                     tuple(sorted({*base.breakpoints, *cuts})))  # fmt: skip
+
+    def constants(s, m) -> dict:
+        return {**law.constants(s, m), **extra}
+
+    outputs = (*law.outputs, *(SUMMIT_OUTPUTS[t] for t in terms))
+    return dataclasses.replace(law, outputs=outputs, edges=edges, constants=constants)
+
+
+#: Panels of the caps' integrals between D0 and u_c, in geometric steps of local gap (the
+#: van der Waals force of a cap varies as u⁻²): 16 give 1e-11 relative on the four presets.
+_CAP_PANELS = 16
+
+
+def _summit_expectation(h, surface, env: Environment, work: bool) -> dict[str, np.ndarray]:
+    """η E[F] (Pa) or η E[W] (J/m²) of the summits' caps at separations ``h`` (= d/σ),
+    over the surface's summit heights (Gaussian or measured), panel by panel."""
+    h = np.atleast_1d(np.asarray(h, dtype=float))
+    sigma, p = surface.sigma, summit_parameters(surface, env)
+    R, D0, u_c, g_k = surface.R, p["cutoff"], p["band"], p["gap_k"]
+    vdw = attraction.vdw_summit_work if work else attraction.vdw_summit
+    cap = attraction.capillary_summit_work if work else attraction.capillary_summit
+
+    def integrand(delta, rows):
+        d = sigma * delta
+        return np.stack([vdw(d, p["hamaker"], R, D0, u_c), cap(d, p["laplace"], R, D0, g_k)])
+
+    # Below δ = −u_c a cap's forces and works are 0; between the edges they are smooth, the
+    # van der Waals ones varying as u⁻² over D0 ≤ u < u_c: panels in geometric steps there.
+    steps = D0 * (u_c / D0) ** (np.arange(1, _CAP_PANELS) / _CAP_PANELS)
+    columns = [-u_c / sigma, *sorted(-np.array([u_c, g_k, D0, *steps]) / sigma), 0.0]
+    breaks = np.tile(np.asarray(columns), (h.size, 1))
+    scale, integral = surface.heights.gw_integrals(integrand, h, breaks)
+    out = surface.eta * scale * integral
+    return {"vdw": out[0], "capillary": out[1]}
+
+
+def _gaps(h, surface, env: Environment):
+    """Mean-plane gaps D = hσ + y_s (m), the heights about the mean plane, and u_c (m)."""
+    gap = gap_heights(surface)
+    D = np.asarray(h, dtype=float) * surface.sigma + gap.summit_offset
+    return D, gap.heights, band_edge(surface.R, surface.eta, env)
+
+
+def open_gap_pressures(h, surface, env: Environment) -> dict[str, np.ndarray]:
+    """Attraction across the open gaps between the summits' caps, Pa (> 0 attractive).
+
+    The proximity model over the surface's heights about its mean plane restricted to local
+    gaps u ≥ u_c (:func:`band_edge`): :func:`vdw_pressure` and :func:`capillary_pressure` with
+    the cutoff u_c, (A/6π) E[g⁻³; g ≥ u_c] and (γ_L/r_K) P(u_c ≤ g < g_K). Nothing is charged
+    for the area nearer the flat: the caps own it.
+
+    Parameters
+    ----------
+    h : array_like
+        Separations d/σ from the mean summit plane (D = hσ + y_s).
+    surface : Surface
+    env : Environment
+
+    Returns
+    -------
+    dict
+        ``"vdw"``, ``"capillary"``, Pa (zeros where off).
+    """
+    D, heights, u_c = _gaps(h, surface, env)
+    zero = np.zeros(np.shape(D))
+    args = u_c, env.surface_tension, env.kelvin_radius, env.contact_angle
+    return {
+        "vdw": vdw_pressure(D, heights, env.hamaker, u_c) if env.has_vdw else zero,
+        "capillary": capillary_pressure(D, heights, *args) if env.has_capillary else zero,
+    }
+
+
+def open_gap_works(h_t, surface, env: Environment) -> dict[str, np.ndarray]:
+    """Works of :func:`open_gap_pressures` from ``h_t`` (= d_t/σ) outward, J/m²:
+    :func:`vdw_work` and :func:`capillary_work` with the cutoff u_c."""
+    D, heights, u_c = _gaps(h_t, surface, env)
+    zero = np.zeros(np.shape(D))
+    args = u_c, env.surface_tension, env.kelvin_radius, env.contact_angle
+    return {
+        "vdw": vdw_work(D, heights, env.hamaker, u_c) if env.has_vdw else zero,
+        "capillary": capillary_work(D, heights, *args) if env.has_capillary else zero,
+    }
+
+
+def _split(caps: dict, gaps: dict, env: Environment, shape) -> dict[str, np.ndarray]:
+    out = {}
+    for term in ("vdw", "capillary"):
+        on = term in active_terms(env)
+        cap = caps[term].reshape(shape) if on else np.zeros(shape)
+        out |= {term: cap + gaps[term], f"{term}_caps": cap, f"{term}_gaps": gaps[term]}
+    return out
+
+
+def environment_curves(h, surface, env: Environment) -> dict[str, np.ndarray]:
+    """The environment's attraction per nominal area over a GW separation grid, Pa.
+
+    The summits' caps (:mod:`mcsim.physics.laws.attraction`, expected over the summit
+    heights) plus the open gaps between them (:func:`open_gap_pressures`), nothing counted
+    twice (docs/physics.md, section 'The environment: summits and open gaps').
+
+    Parameters
+    ----------
+    h : array_like
+        Dimensionless separations d/σ (d from the mean summit plane).
+    surface : Surface
+        Summits (σ, R, η, heights) and, for the open gaps, the heights about the mean plane
+        (:func:`mcsim.physics.gapheights.gap_heights`).
+    env : Environment
+
+    Returns
+    -------
+    dict
+        ``"vdw"``, ``"capillary"`` (totals), and their parts ``"vdw_caps"``, ``"vdw_gaps"``,
+        ``"capillary_caps"``, ``"capillary_gaps"``; Pa, > 0 attractive, zeros where off.
+    """
+    caps = _summit_expectation(h, surface, env, work=False)
+    return _split(caps, open_gap_pressures(h, surface, env), env, np.shape(h))
+
+
+def environment_works(h_t, surface, env: Environment) -> dict[str, np.ndarray]:
+    """Works of the attractions of :func:`environment_curves` from ``h_t`` (= d_t/σ) to far
+    away, J/m² (same keys): each the integral of its own pressure over d (the attractions
+    have no history)."""
+    caps = _summit_expectation(h_t, surface, env, work=True)
+    return _split(caps, open_gap_works(h_t, surface, env), env, np.shape(h_t))
+
+
+def interface_warnings(surface, material, env: Environment | None) -> list[str]:
+    """Where the inputs do not describe one interface (text lines).
+
+    * the contact law's work of adhesion w and the open gaps' A/(12π D0²) differ by more
+      than 2× (both are van der Waals for one interface): w is used inside the contacts,
+      A and D0 across the open gaps;
+    """
+    if env is None:
+        return []
+    out = []
+    if env.has_vdw and material.gamma > 0:
+        w_vdw = env.hamaker / (12 * math.pi * env.cutoff**2)
+        ratio = material.gamma / w_vdw
+        if not 0.5 <= ratio <= 2:
+            out.append(
+                f"the contact law's w = {material.gamma:.3g} J/m^2 and A/(12 pi D0^2) = "
+                f"{w_vdw:.3g} J/m^2 (A = {env.hamaker:.3g} J, D0 = {env.cutoff * 1e9:.3g} nm) "
+                f"differ by {max(ratio, 1 / ratio):.3g}x: w is used inside the contacts, A and D0 "
+                "across the open gaps; for one interface make them agree"
+            )
+    return out
