@@ -33,10 +33,11 @@ MODEL = ("summits' caps (per-summit van der Waals and menisci, local gaps below 
          "plane, local gaps from band_edge)")  # fmt: skip
 
 
-def write_environment(f, run) -> None:
-    """The /environment group (see the module docstring)."""
-    part = run.environment
-    env, gap, spec = part.environment, part.gap, run.spec
+def write_environment(f, spec, part) -> None:
+    """The /environment group of a run of ``spec`` (see the module docstring); ``part`` is
+    :func:`mcsim.store.results.environment_run` of it. Written with every file, checkpoints
+    too: resuming needs the environment, which sets the run's sums."""
+    env, gap = part.environment, part.gap
     g = f.create_group("environment")
     g.attrs.update(
         {k: np.nan if getattr(env, k) is None else getattr(env, k) for k in _ENVIRONMENT_UNITS}

@@ -184,6 +184,8 @@ def _write_inputs(f, spec: MonteCarloSpec, command: str, complete: bool, extra=N
     dataset(f, "d", spec.d, "m", "mean separation d of the surfaces", dims=("h",))
     if spec.cycle:
         axis_scale(f, "branch", len(spec.branches))
+    if spec.environment is not None:  # it sets the sums' columns: checkpoints need it too
+        write_environment(f, spec, environment_run(spec))
     return attrs
 
 
@@ -248,8 +250,6 @@ def write_run(path: str | Path, run, *, command: str, extra: dict | None = None)
                 "expected summits carrying force over the whole ensemble", rows, "R E[N] S(s)")  # fmt: skip
         if run.heights is not None:
             _write_heights(f, run.heights)
-        if run.environment is not None:
-            write_environment(f, run)
 
     atomic_write(path, fill)
     return dataclasses.replace(run, path=path, attrs=attrs)

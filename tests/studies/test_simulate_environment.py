@@ -148,3 +148,20 @@ def test_a_measured_map_keeps_its_heights_about_the_mean_plane_in_the_file(tmp_p
     back = read_run(run.path)
     assert back.spec.surface.rq == 1.6e-9 and back.spec.surface.map_heights is not None
     np.testing.assert_array_equal(back.vdw.mean, run.vdw.mean)
+
+
+def test_an_interrupted_humid_run_resumes_to_the_same_bits(tmp_path):
+    """The checkpoint records the environment (it sets the sums' columns): a run stopped after
+    its first realization and resumed equals the run made in one go, bit for bit."""
+    from mcsim.engine.montecarlo import EnsembleSums
+    from mcsim.store.runfile import read_state, write_checkpoint
+
+    whole = _run(out=tmp_path / "whole.h5")
+    partial = EnsembleSums.start(whole.spec)
+    partial.sums[:1], partial.done_blocks[:1] = whole.sums[:1], whole.ensemble.n_blocks[:1]
+    write_checkpoint(tmp_path / "run.partial.h5", partial, command="test")
+    state, _ = read_state(tmp_path / "run.partial.h5")
+    assert state.spec == whole.spec and state.spec.environment == HUMID
+    resumed = _run(out=tmp_path / "run.h5", resume=True)
+    np.testing.assert_array_equal(resumed.sums, whole.sums)
+    np.testing.assert_array_equal(resumed.vdw.mean, whole.vdw.mean)
