@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import json
 
-from mcsim.cli.display import describe_inputs
+from mcsim.cli.display import describe_inputs, environment_notes
 
 
 def run(args) -> int:
@@ -44,6 +44,11 @@ def run(args) -> int:
                                           if spec.cycle else ""))  # fmt: skip
     for warning in regime_warnings(spec.surface, spec.material, spec.law):
         print(f"regime        warning: {warning}")
+    for line in environment_notes(spec.surface, spec.environment, material=spec.material):
+        print(f"environment   {line.removeprefix('environment: ').removeprefix('environment ')}")
+    preload = a.get("preload")
+    if preload is not None and np.isfinite(preload):  # force control of each pad
+        print(f"preload       {preload:g} Pa: each pad pressed until its own net load reaches P A")
     print(f"device        {spec.device}")
     print(
         f"patch         A = {spec.area * 1e12:.6g} um^2, N ~ {spec.count}, E[N] = {spec.expected_summits:.6g}"

@@ -114,3 +114,17 @@ def test_every_command_takes_the_environment_options(capsys, command):
     for option in ("--hamaker", "--cutoff", "--rh", "--contact-angle", "--temperature",
                    "--liquid-surface-tension", "--molar-volume"):  # fmt: skip
         assert option in out, f"{command} {option}"
+
+
+def test_show_of_a_humid_run_says_its_environment_and_preload(capsys, tmp_path):
+    out_file = tmp_path / "humid.h5"
+    code, _, err = run_cli(capsys, "simulate", "--surface", "smooth", "--law", "jkr", "--area",
+                           "5um^2", "--h=-1:3:5", "--cycle", "--preload", "0", "--rh", "0.6",
+                           "--hamaker", "1.6e-19J", "--realizations", "2", "--seed", "1", "--out",
+                           out_file)  # fmt: skip
+    assert code == 0, err
+    code, out, err = run_cli(capsys, "show", out_file)
+    assert code == 0, err
+    lines = [line for line in out.splitlines() if line.startswith(("environment", "preload"))]
+    assert any("Hamaker A = 1.6e-19 J" in line and "RH = 0.6" in line for line in lines)
+    assert any(line.startswith("preload       0 Pa") for line in lines)
