@@ -257,6 +257,32 @@ def pad_work(spec: MonteCarloSpec, z: np.ndarray, d_turn: float) -> float:
     return work
 
 
+#: Stride of the coarse pass of :func:`_approach_prefix` through a pad's approach points.
+STRIDE = 64
+
+
+def _approach_prefix(spec: MonteCarloSpec, z: np.ndarray, points: np.ndarray, reaches):
+    """The approach load (N) at ``points`` (m, descending) from the first down to the first
+    that ``reaches``, exactly as :func:`pad_load` gives it at all of them (all of them if
+    none does).
+
+    The turn needs only the largest d that reaches the force, and the rows below it hold
+    the most summits. On approach the kernel's rows are ordered by d (its thresholds
+    rise with d), so for a prefix of ``points`` it buckets the summits of those rows as for
+    all of them and adds them in the same order: the prefix's values are those of the
+    whole, bit for bit. A coarse pass (every :data:`STRIDE`-th point, its sums in another
+    order) says where to cut; if the prefix holds no reached point after all (a narrow
+    peak the coarse pass stepped over lies below, or the cut point reached by a rounding
+    only), every point is evaluated.
+    """
+    coarse = np.flatnonzero(reaches(pad_load(spec, z, points[::STRIDE])))
+    if coarse.size:
+        values = pad_load(spec, z, points[: coarse[0] * STRIDE + 1])
+        if np.any(reaches(values)):
+            return values
+    return pad_load(spec, z, points)
+
+
 def force_turn(spec: MonteCarloSpec, z: np.ndarray, force: float) -> tuple[float, float]:
     """A pad's closest approach under force control: the largest d (m) with approach load ≥ ``force``.
 
@@ -288,11 +314,11 @@ def force_turn(spec: MonteCarloSpec, z: np.ndarray, force: float) -> tuple[float
     top = max(float(z.max()) - min(spec.edges.reach, 0.0), bottom) if z.size else bottom
     cuts = _intervals(spec, z, bottom, top, contact_edges(spec))
     points = np.unique(np.concatenate([[bottom, top], _points(cuts, sigma).ravel()]))[::-1]
-    values = pad_load(spec, z, points)
 
     def reaches(load):  # at 0 the force must be exceeded: far away the load is 0 too
         return load > force if force == 0 else load >= force
 
+    values = _approach_prefix(spec, z, points, reaches)
     reached = np.flatnonzero(reaches(values))
     if reached.size == 0:
         raise ParameterError(
