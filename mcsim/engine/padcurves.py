@@ -35,7 +35,7 @@ import numpy as np
 from mcsim.engine.kernels import block_sums, sum_columns
 from mcsim.engine.montecarlo import MonteCarloSpec, plan_patch, sample_block
 from mcsim.model.errors import ParameterError
-from mcsim.physics.laws import Edges, LawSet, get_law_set
+from mcsim.physics.laws import Edges, LawSet, attraction, get_law_set
 from mcsim.physics.surfaceenvironment import (
     active_terms,
     open_gap_pressures,
@@ -83,20 +83,30 @@ def pad_load(spec: MonteCarloSpec, z: np.ndarray, d, d_turn=None) -> np.ndarray:
     on retraction after the closest approach ``d_turn`` (m).
     """
     d = np.atleast_1d(np.asarray(d, dtype=float))
-    turn = None if d_turn is None else np.full_like(d, d_turn)
+    load = contact_load(spec, z, d, d_turn)
     if spec.environment is None:
-        sums = block_sums(z, d, spec.law_set, spec.arguments, d_turn=turn, edges=spec.edges)
-        return sums[:, sum_columns(spec.law_set).index("load")]
-    # Two sums over the pad's summits: the contact law's over those that can touch, and the
-    # caps' over every summit within their reach (each evaluated only where it acts).
-    contact, caps = _split_laws(spec)
-    load = block_sums(z, d, contact.law, contact.args, d_turn=turn, edges=contact.edges)
+        return load
+    # The caps' sum is over every summit within their reach, the contact law's over those
+    # that can touch: each evaluated only where it acts.
+    caps = _split_laws(spec)[1]
     attraction = block_sums(z, d, caps.law, caps.args, edges=caps.edges)
     columns = sum_columns(caps.law)
-    load = load[:, sum_columns(contact.law).index("load")]
     for term in caps.law.names:
         load = load - attraction[:, columns.index(term)]
     return load - spec.area * open_gaps(spec)(d / spec.surface.sigma)
+
+
+def contact_load(spec: MonteCarloSpec, z: np.ndarray, d, d_turn=None) -> np.ndarray:
+    """The contact law's load alone (N, the sum of its ``load``) of the pad of summits ``z``
+    (m) at separations ``d`` (m); on retraction after ``d_turn`` (m), as :func:`pad_load`."""
+    d = np.atleast_1d(np.asarray(d, dtype=float))
+    turn = None if d_turn is None else np.full_like(d, d_turn)
+    if spec.environment is None:
+        law, args, edges = spec.law_set, spec.arguments, spec.edges
+    else:
+        law, args, edges = _split_laws(spec)[0]
+    sums = block_sums(z, d, law, args, d_turn=turn, edges=edges)
+    return sums[:, sum_columns(law).index("load")]
 
 
 class _Part(NamedTuple):
@@ -236,25 +246,35 @@ def pad_work(spec: MonteCarloSpec, z: np.ndarray, d_turn: float) -> float:
     """A pad's work of separation after the closest approach ``d_turn`` (m), J/m².
 
     The integral of its net retraction force from the turn to infinity per nominal area,
-    −∫ F_r dd / A (signed: a compressive start gives back elastic energy): Gauss–Legendre
-    (:data:`WORK_NODES` nodes) on each interval between the separations where a summit crosses
-    an edge of its contact law, up to where the last summit's reach ends; beyond, the open
-    gaps' attraction alone, whose work is in closed form
-    (:func:`mcsim.physics.surfaceenvironment.open_gap_works`). The caps' kinks inside the intervals
-    and the contact law's square-root edges limit it to ~1e-5 relative (measured against 16
-    nodes and against intervals cut at every kink; the latter costs 2.5× as much).
+    −∫ F_r dd / A (signed: a compressive start gives back elastic energy), the sum of its
+    parts' integrals: the contact law's by Gauss–Legendre (:data:`WORK_NODES` nodes) on each
+    interval between the separations where a summit crosses an edge of the contact law, up to
+    where the last summit leaves it (its square-root edges limit it to ~1e-5 relative:
+    measured against 16 nodes); the environment's in closed form, each summit's caps from its
+    interference at the turn (:func:`mcsim.physics.laws.attraction.vdw_summit_work`,
+    :func:`~mcsim.physics.laws.attraction.capillary_summit_work`) and the open gaps from the
+    turn (:func:`mcsim.physics.surfaceenvironment.open_gap_works`).
     """
-    e = spec.edges
+    e = contact_edges(spec)
     top = max(float(z.max()) - min(e.reach, e.break_off, 0.0), d_turn) if z.size else d_turn
-    cuts = _intervals(spec, z, d_turn, top, contact_edges(spec))
+    cuts = _intervals(spec, z, d_turn, top, e)
     x, w = np.polynomial.legendre.leggauss(WORK_NODES)
     half = np.diff(cuts)[:, None] / 2
     nodes = ((cuts[:-1, None] + cuts[1:, None]) / 2 + half * x).ravel()
-    work = -float(np.sum((half * w).ravel() * pad_load(spec, z, nodes, d_turn))) / spec.area
+    work = -float(np.sum((half * w).ravel() * contact_load(spec, z, nodes, d_turn))) / spec.area
     if spec.environment is not None:
-        tail = open_gap_works(np.float64(top / spec.surface.sigma), spec.surface, spec.environment)
-        work += float(tail["vdw"] + tail["capillary"])
+        caps = _split_laws(spec)[1]
+        for term, args in zip(caps.law.names, caps.args):
+            work += float(np.sum(CAP_WORKS[term](z - d_turn, *args))) / spec.area
+        gaps = open_gap_works(
+            np.float64(d_turn / spec.surface.sigma), spec.surface, spec.environment
+        )
+        work += float(gaps["vdw"] + gaps["capillary"])
     return work
+
+
+#: The work of each of the caps' outputs (same parameters as the force).
+CAP_WORKS = {"vdw": attraction.vdw_summit_work, "capillary": attraction.capillary_summit_work}
 
 
 #: Stride of the coarse pass of :func:`_approach_prefix` through a pad's approach points.
