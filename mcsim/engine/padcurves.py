@@ -83,30 +83,25 @@ def pad_load(spec: MonteCarloSpec, z: np.ndarray, d, d_turn=None) -> np.ndarray:
     on retraction after the closest approach ``d_turn`` (m).
     """
     d = np.atleast_1d(np.asarray(d, dtype=float))
-    load = contact_load(spec, z, d, d_turn)
     if spec.environment is None:
-        return load
-    # The caps' sum is over every summit within their reach, the contact law's over those
-    # that can touch: each evaluated only where it acts.
-    caps = _split_laws(spec)[1]
-    attraction = block_sums(z, d, caps.law, caps.args, edges=caps.edges)
-    columns = sum_columns(caps.law)
-    for term in caps.law.names:
-        load = load - attraction[:, columns.index(term)]
-    return load - spec.area * open_gaps(spec)(d / spec.surface.sigma)
+        return contact_load(spec, z, d, d_turn)
+    # Two sums over the pad's summits: the contact law's over those that can touch, and the
+    # caps' over every summit within their reach (each evaluated only where it acts).
+    parts = _split_laws(spec)
+    load = _load(parts.contact, z, d, d_turn)
+    attraction = block_sums(z, d, parts.caps.law, parts.caps.args, edges=parts.caps.edges)
+    for column in parts.caps_columns:
+        load = load - attraction[:, column]
+    return load - spec.area * parts.open_gaps(d / spec.surface.sigma)
 
 
 def contact_load(spec: MonteCarloSpec, z: np.ndarray, d, d_turn=None) -> np.ndarray:
     """The contact law's load alone (N, the sum of its ``load``) of the pad of summits ``z``
     (m) at separations ``d`` (m); on retraction after ``d_turn`` (m), as :func:`pad_load`."""
     d = np.atleast_1d(np.asarray(d, dtype=float))
-    turn = None if d_turn is None else np.full_like(d, d_turn)
     if spec.environment is None:
-        law, args, edges = spec.law_set, spec.arguments, spec.edges
-    else:
-        law, args, edges = _split_laws(spec)[0]
-    sums = block_sums(z, d, law, args, d_turn=turn, edges=edges)
-    return sums[:, sum_columns(law).index("load")]
+        return _load(_Part(spec.law_set, spec.arguments, spec.edges), z, d, d_turn)
+    return _load(_split_laws(spec).contact, z, d, d_turn)
 
 
 class _Part(NamedTuple):
@@ -115,15 +110,32 @@ class _Part(NamedTuple):
     edges: Edges
 
 
+def _load(contact: _Part, z: np.ndarray, d: np.ndarray, d_turn) -> np.ndarray:
+    """The sum of ``contact``'s output ``load`` (N) over summits ``z`` at separations ``d``."""
+    turn = None if d_turn is None else np.full_like(d, d_turn)
+    sums = block_sums(z, d, contact.law, contact.args, d_turn=turn, edges=contact.edges)
+    return sums[:, sum_columns(contact.law).index("load")]
+
+
+class _Split(NamedTuple):
+    contact: _Part
+    caps: _Part
+    caps_columns: tuple[int, ...]
+    open_gaps: object
+
+
 @functools.lru_cache(maxsize=16)
-def _split_laws(spec: MonteCarloSpec) -> tuple[_Part, _Part]:
+def _split_laws(spec: MonteCarloSpec) -> _Split:
     """The contact law set and the environment's caps alone (a law set of the outputs ``vdw``
-    and ``capillary``), with their arguments and edges, for a humid pad's net load."""
+    and ``capillary``), with their arguments and edges, the caps' columns in their sums, and
+    the open gaps' pressure (:func:`open_gaps`), for a humid pad's net load."""
     contact = get_law_set(spec.law)
     caps = with_environment(LawSet("caps", "the environment's caps", ()), spec.surface,
                             spec.environment)  # fmt: skip
-    return tuple(_Part(law, law.arguments(spec.surface, spec.material),
-                       law.edges_for(spec.surface, spec.material)) for law in (contact, caps))  # fmt: skip
+    contact, caps = (_Part(law, law.arguments(spec.surface, spec.material),
+                           law.edges_for(spec.surface, spec.material)) for law in (contact, caps))  # fmt: skip
+    columns = tuple(sum_columns(caps.law).index(term) for term in caps.law.names)
+    return _Split(contact, caps, columns, open_gaps(spec))
 
 
 def net_load(spec: MonteCarloSpec, sums: np.ndarray, d) -> np.ndarray:
@@ -263,7 +275,7 @@ def pad_work(spec: MonteCarloSpec, z: np.ndarray, d_turn: float) -> float:
     nodes = ((cuts[:-1, None] + cuts[1:, None]) / 2 + half * x).ravel()
     work = -float(np.sum((half * w).ravel() * contact_load(spec, z, nodes, d_turn))) / spec.area
     if spec.environment is not None:
-        caps = _split_laws(spec)[1]
+        caps = _split_laws(spec).caps
         for term, args in zip(caps.law.names, caps.args):
             work += float(np.sum(CAP_WORKS[term](z - d_turn, *args))) / spec.area
         gaps = open_gap_works(
