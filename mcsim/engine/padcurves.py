@@ -21,7 +21,8 @@ the pad at any separation is the compiled kernel's sum of the law set's per-summ
   left the range of its law, whatever the run's grid.
 * :func:`force_turn`: the pad's own closest approach under force control, the largest d
   with Σ f_a(z_i − d) ≥ F (an actuator pressing the pad with F = P·A from far away),
-  bracketed on the same intervals of the approach curve and bisected to :data:`XTOL` in h.
+  bracketed on the same intervals of the approach curve, evaluated from the top down to the
+  first point that reaches F only (:func:`_approach_prefix`), and bisected to :data:`XTOL` in h.
 """
 
 from __future__ import annotations
