@@ -7,7 +7,10 @@ a preload of 1 MPa): dry, and humid (A = 1.6e-19 J, D0 = 0.2 nm, RH 0.7: every s
 the caps' band edge u_c = D0 + 1/(2πRη) of the flat acts, not only those that touch). Each is
 timed with the compiled kernel (``kernels.block_sums``) and with the NumPy reference
 (``kernels.block_sums_numpy``, the straightforward baseline) in the same run; peak memory is
-the process's maximum resident set.
+the process's maximum resident set. The report also splits the kernel's time per pad into
+its turn, pull-off and work, and counts the (summit, separation) pairs each sum evaluates per
+pad (the contact law's and the caps'; in a pass outside the timing): a humid pad turns
+deeper, so more summits touch and the contact law's pairs grow about as their square.
 
 Issue 30 asks a humid pad to cost at most 1.5× a dry one. Criteria (PASS/FAIL lines; the
 timing ones INFO under ``--quick``): the humid pad's pull-off and work equal with both
@@ -35,14 +38,25 @@ H = np.linspace(-2.0, 5.0, 8)
 TARGET = 1.5
 
 
+PHASES = ("turn", "pull-off", "work")
+
+
 def one_pad(spec, r):
+    """(pull-off, work, summits) of pad ``r``, and the seconds of each of :data:`PHASES`."""
     z = padcurves.patch_heights(spec, r)
+    t0 = time.perf_counter()
     d_t, _ = padcurves.force_turn(spec, z, PRELOAD * spec.area)
-    return padcurves.pull_off(spec, z, d_t)[0], padcurves.pad_work(spec, z, d_t), z.size
+    t1 = time.perf_counter()
+    pull = padcurves.pull_off(spec, z, d_t)[0]
+    t2 = time.perf_counter()
+    work = padcurves.pad_work(spec, z, d_t)
+    t3 = time.perf_counter()
+    return (pull, work, z.size), (t1 - t0, t2 - t1, t3 - t2)
 
 
 def timed(spec, pads, numpy_baseline: bool):
-    """Seconds per pad and the pads' (pull-off, work, summits), the kernel or NumPy."""
+    """Seconds per pad, seconds per pad in each phase, and the pads' (pull-off, work,
+    summits), with the kernel or NumPy."""
     original = padcurves.block_sums
     if numpy_baseline:
         padcurves.block_sums = kernels.block_sums_numpy
@@ -50,9 +64,32 @@ def timed(spec, pads, numpy_baseline: bool):
         one_pad(spec, pads)  # compile and warm up outside the timing
         start = time.perf_counter()
         out = [one_pad(spec, r) for r in range(pads)]
-        return (time.perf_counter() - start) / pads, out
+        seconds = (time.perf_counter() - start) / pads
+        return seconds, np.mean([o[1] for o in out], axis=0), [o[0] for o in out]
     finally:
         padcurves.block_sums = original
+
+
+def pairs(spec, pads):
+    """(summit, separation) pairs that each law set's sums evaluate per pad, by name (the
+    contact law's and, in humid air, the caps'), counted in a pass outside the timing: what
+    a pad's cost grows with."""
+    count: dict[str, int] = {}
+    original = padcurves.block_sums
+
+    def counting(z, d, law, args, *, d_turn=None, edges=None):
+        d = np.asarray(d, dtype=float)
+        threshold = edges.threshold(d, d if d_turn is None else np.asarray(d_turn, dtype=float))
+        count[law.name] = count.get(law.name, 0) + int(np.sum(z[None, :] > threshold[:, None]))
+        return original(z, d, law, args, d_turn=d_turn, edges=edges)
+
+    padcurves.block_sums = counting
+    try:
+        for r in range(pads):
+            one_pad(spec, r)
+    finally:
+        padcurves.block_sums = original
+    return {name: n / pads for name, n in count.items()}
 
 
 def main() -> None:
@@ -67,17 +104,21 @@ def main() -> None:
         spec = MonteCarloSpec(SURFACES["smooth"], MATERIALS["silicon"], H, AREA, pads + 1,
                               args.seed, "jkr", cycle=True, environment=env)  # fmt: skip
         for how, baseline in (("kernel", False), ("NumPy", True)):
-            seconds[name, how], results[name, how] = timed(spec, pads, baseline)
+            seconds[name, how], phases, results[name, how] = timed(spec, pads, baseline)
+            if how == "kernel":
+                split = " / ".join(f"{t * 1e3:.1f}" for t in phases)
         summits = np.mean([r[2] for r in results[name, "kernel"]])
-        rows.append(f"| {name} | {summits:.0f} | {seconds[name, 'kernel'] * 1e3:.0f} | "
-                    f"{seconds[name, 'NumPy'] * 1e3:.0f} | "
+        evaluated = " / ".join(f"{n / 1e6:.2f}" for n in pairs(spec, pads).values())
+        rows.append(f"| {name} | {summits:.0f} | {seconds[name, 'kernel'] * 1e3:.1f} | {split} | "
+                    f"{evaluated} | {seconds[name, 'NumPy'] * 1e3:.0f} | "
                     f"{seconds[name, 'NumPy'] / seconds[name, 'kernel']:.2g} |")  # fmt: skip
     kernel, numpy_ = (np.array(results["humid RH 0.7", k])[:, :2] for k in ("kernel", "NumPy"))
     peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024**2  # GB (Linux: KiB)
     ratio = seconds["humid RH 0.7", "kernel"] / seconds["dry", "kernel"]
     lines = [f"# One pad (turn at {PRELOAD / 1e6:g} MPa, pull-off, work), {pads} pads a case", "",
-             "| case | summits drawn | kernel (ms/pad) | NumPy (ms/pad) | NumPy/kernel |",
-             "|---|---|---|---|---|", *rows, "",
+             "| case | summits drawn | kernel (ms/pad) | turn / pull-off / work (ms) | "
+             "pairs evaluated (10^6/pad: contact law / caps) | NumPy (ms/pad) | NumPy/kernel |",
+             "|---|---|---|---|---|---|---|", *rows, "",
              f"humid/dry with the kernel: {ratio:.3g}; peak RSS {peak:.3g} GB", ""]  # fmt: skip
     diff = float(np.max(np.abs(kernel - numpy_) / np.abs(numpy_)))
     checks.at_most("humid pads, kernel against NumPy: largest relative difference", diff, 1e-9)

@@ -38,6 +38,7 @@ SUM_COLUMNS = ("n_contact", "P", "F", "T", "PP", "FF", "TT", "PF", "PT", "FT")
 _TOUCHING = Edges()
 
 
+@functools.lru_cache(maxsize=64)
 def sum_columns(law: LawSet) -> tuple[str, ...]:
     """Columns of a block-sum array: ``n_contact``, Σ of each output, Σ of each output
     squared, then the cross products of outputs i < j in lexicographic order of (i, j).
@@ -75,7 +76,11 @@ def _moments(values: list[np.ndarray], n_contact: int) -> list[float]:
 
 def _rows(d, d_turn) -> tuple[np.ndarray, np.ndarray]:
     d = np.ascontiguousarray(d, dtype=float)
-    d_turn = d if d_turn is None else np.ascontiguousarray(d_turn, dtype=float)
+    if d_turn is None:  # approach
+        if d.ndim != 1:
+            raise ValueError("d must be a 1-D array")
+        return d, d
+    d_turn = np.ascontiguousarray(d_turn, dtype=float)
     if d_turn.shape != d.shape or d.ndim != 1:
         raise ValueError("d and d_turn must be 1-D arrays of the same length")
     if np.any(d_turn > d):

@@ -21,7 +21,8 @@ the pad at any separation is the compiled kernel's sum of the law set's per-summ
   left the range of its law, whatever the run's grid.
 * :func:`force_turn`: the pad's own closest approach under force control, the largest d
   with Σ f_a(z_i − d) ≥ F (an actuator pressing the pad with F = P·A from far away),
-  bracketed on the same intervals of the approach curve and bisected to :data:`XTOL` in h.
+  bracketed on the same intervals of the approach curve, evaluated from the top down to the
+  first point that reaches F only (:func:`_approach_prefix`), and bisected to :data:`XTOL` in h.
 """
 
 from __future__ import annotations
@@ -35,7 +36,7 @@ import numpy as np
 from mcsim.engine.kernels import block_sums, sum_columns
 from mcsim.engine.montecarlo import MonteCarloSpec, plan_patch, sample_block
 from mcsim.model.errors import ParameterError
-from mcsim.physics.laws import Edges, LawSet, get_law_set
+from mcsim.physics.laws import Edges, LawSet, attraction, get_law_set
 from mcsim.physics.surfaceenvironment import (
     active_terms,
     open_gap_pressures,
@@ -83,20 +84,25 @@ def pad_load(spec: MonteCarloSpec, z: np.ndarray, d, d_turn=None) -> np.ndarray:
     on retraction after the closest approach ``d_turn`` (m).
     """
     d = np.atleast_1d(np.asarray(d, dtype=float))
-    turn = None if d_turn is None else np.full_like(d, d_turn)
     if spec.environment is None:
-        sums = block_sums(z, d, spec.law_set, spec.arguments, d_turn=turn, edges=spec.edges)
-        return sums[:, sum_columns(spec.law_set).index("load")]
+        return contact_load(spec, z, d, d_turn)
     # Two sums over the pad's summits: the contact law's over those that can touch, and the
     # caps' over every summit within their reach (each evaluated only where it acts).
-    contact, caps = _split_laws(spec)
-    load = block_sums(z, d, contact.law, contact.args, d_turn=turn, edges=contact.edges)
-    attraction = block_sums(z, d, caps.law, caps.args, edges=caps.edges)
-    columns = sum_columns(caps.law)
-    load = load[:, sum_columns(contact.law).index("load")]
-    for term in caps.law.names:
-        load = load - attraction[:, columns.index(term)]
-    return load - spec.area * open_gaps(spec)(d / spec.surface.sigma)
+    parts = _split_laws(spec)
+    load = _load(parts.contact, z, d, d_turn)
+    attraction = block_sums(z, d, parts.caps.law, parts.caps.args, edges=parts.caps.edges)
+    for column in parts.caps_columns:
+        load = load - attraction[:, column]
+    return load - spec.area * parts.open_gaps(d / spec.surface.sigma)
+
+
+def contact_load(spec: MonteCarloSpec, z: np.ndarray, d, d_turn=None) -> np.ndarray:
+    """The contact law's load alone (N, the sum of its ``load``) of the pad of summits ``z``
+    (m) at separations ``d`` (m); on retraction after ``d_turn`` (m), as :func:`pad_load`."""
+    d = np.atleast_1d(np.asarray(d, dtype=float))
+    if spec.environment is None:
+        return _load(_Part(spec.law_set, spec.arguments, spec.edges), z, d, d_turn)
+    return _load(_split_laws(spec).contact, z, d, d_turn)
 
 
 class _Part(NamedTuple):
@@ -105,15 +111,32 @@ class _Part(NamedTuple):
     edges: Edges
 
 
+def _load(contact: _Part, z: np.ndarray, d: np.ndarray, d_turn) -> np.ndarray:
+    """The sum of ``contact``'s output ``load`` (N) over summits ``z`` at separations ``d``."""
+    turn = None if d_turn is None else np.full_like(d, d_turn)
+    sums = block_sums(z, d, contact.law, contact.args, d_turn=turn, edges=contact.edges)
+    return sums[:, sum_columns(contact.law).index("load")]
+
+
+class _Split(NamedTuple):
+    contact: _Part
+    caps: _Part
+    caps_columns: tuple[int, ...]
+    open_gaps: object
+
+
 @functools.lru_cache(maxsize=16)
-def _split_laws(spec: MonteCarloSpec) -> tuple[_Part, _Part]:
+def _split_laws(spec: MonteCarloSpec) -> _Split:
     """The contact law set and the environment's caps alone (a law set of the outputs ``vdw``
-    and ``capillary``), with their arguments and edges, for a humid pad's net load."""
+    and ``capillary``), with their arguments and edges, the caps' columns in their sums, and
+    the open gaps' pressure (:func:`open_gaps`), for a humid pad's net load."""
     contact = get_law_set(spec.law)
     caps = with_environment(LawSet("caps", "the environment's caps", ()), spec.surface,
                             spec.environment)  # fmt: skip
-    return tuple(_Part(law, law.arguments(spec.surface, spec.material),
-                       law.edges_for(spec.surface, spec.material)) for law in (contact, caps))  # fmt: skip
+    contact, caps = (_Part(law, law.arguments(spec.surface, spec.material),
+                           law.edges_for(spec.surface, spec.material)) for law in (contact, caps))  # fmt: skip
+    columns = tuple(sum_columns(caps.law).index(term) for term in caps.law.names)
+    return _Split(contact, caps, columns, open_gaps(spec))
 
 
 def net_load(spec: MonteCarloSpec, sums: np.ndarray, d) -> np.ndarray:
@@ -173,7 +196,7 @@ def contact_edges(spec: MonteCarloSpec) -> Edges:
     """The edges of the contact law alone: where a pad's load can jump or turn sharply.
     The environment's caps add kinks only (their forces are continuous): the search for a
     pad's pull-off and turn samples their intervals inside and does not cut at them."""
-    return get_law_set(spec.law).edges_for(spec.surface, spec.material)
+    return spec.edges if spec.environment is None else _split_laws(spec).contact.edges
 
 
 def _intervals(spec: MonteCarloSpec, z: np.ndarray, low: float, high: float,
@@ -236,25 +259,67 @@ def pad_work(spec: MonteCarloSpec, z: np.ndarray, d_turn: float) -> float:
     """A pad's work of separation after the closest approach ``d_turn`` (m), J/m².
 
     The integral of its net retraction force from the turn to infinity per nominal area,
-    −∫ F_r dd / A (signed: a compressive start gives back elastic energy): Gauss–Legendre
-    (:data:`WORK_NODES` nodes) on each interval between the separations where a summit crosses
-    an edge of its contact law, up to where the last summit's reach ends; beyond, the open
-    gaps' attraction alone, whose work is in closed form
-    (:func:`mcsim.physics.surfaceenvironment.open_gap_works`). The caps' kinks inside the intervals
-    and the contact law's square-root edges limit it to ~1e-5 relative (measured against 16
-    nodes and against intervals cut at every kink; the latter costs 2.5× as much).
+    −∫ F_r dd / A (signed: a compressive start gives back elastic energy), the sum of its
+    parts' integrals: the contact law's by Gauss–Legendre (:data:`WORK_NODES` nodes) on each
+    interval between the separations where a summit crosses an edge of the contact law, up to
+    where the last summit leaves it (its square-root edges limit it to ~1e-5 relative:
+    measured against 16 nodes); the environment's in closed form, each summit's caps from its
+    interference at the turn (:func:`mcsim.physics.laws.attraction.vdw_summit_work`,
+    :func:`~mcsim.physics.laws.attraction.capillary_summit_work`) and the open gaps from the
+    turn (:func:`mcsim.physics.surfaceenvironment.open_gap_works`).
     """
-    e = spec.edges
+    e = contact_edges(spec)
     top = max(float(z.max()) - min(e.reach, e.break_off, 0.0), d_turn) if z.size else d_turn
-    cuts = _intervals(spec, z, d_turn, top, contact_edges(spec))
-    x, w = np.polynomial.legendre.leggauss(WORK_NODES)
+    cuts = _intervals(spec, z, d_turn, top, e)
+    x, w = _gauss_legendre(WORK_NODES)
     half = np.diff(cuts)[:, None] / 2
     nodes = ((cuts[:-1, None] + cuts[1:, None]) / 2 + half * x).ravel()
-    work = -float(np.sum((half * w).ravel() * pad_load(spec, z, nodes, d_turn))) / spec.area
+    work = -float(np.sum((half * w).ravel() * contact_load(spec, z, nodes, d_turn))) / spec.area
     if spec.environment is not None:
-        tail = open_gap_works(np.float64(top / spec.surface.sigma), spec.surface, spec.environment)
-        work += float(tail["vdw"] + tail["capillary"])
+        caps = _split_laws(spec).caps
+        for term, args in zip(caps.law.names, caps.args):
+            work += float(np.sum(CAP_WORKS[term](z - d_turn, *args))) / spec.area
+        gaps = open_gap_works(
+            np.float64(d_turn / spec.surface.sigma), spec.surface, spec.environment
+        )
+        work += float(gaps["vdw"] + gaps["capillary"])
     return work
+
+
+@functools.cache
+def _gauss_legendre(n: int) -> tuple[np.ndarray, np.ndarray]:
+    """Gauss–Legendre nodes and weights on [−1, 1], computed once (an eigenproblem, ~0.3 ms)."""
+    return np.polynomial.legendre.leggauss(n)
+
+
+#: The work of each of the caps' outputs (same parameters as the force).
+CAP_WORKS = {"vdw": attraction.vdw_summit_work, "capillary": attraction.capillary_summit_work}
+
+
+#: Stride of the coarse pass of :func:`_approach_prefix` through a pad's approach points.
+STRIDE = 64
+
+
+def _approach_prefix(spec: MonteCarloSpec, z: np.ndarray, points: np.ndarray, reaches):
+    """The approach load (N) at ``points`` (m, descending) from the first down to the first
+    that ``reaches``, exactly as :func:`pad_load` gives it at all of them (all of them if
+    none does).
+
+    The turn needs only the largest d that reaches the force, and the rows below it hold
+    the most summits. On approach the kernel's rows are ordered by d (its thresholds
+    rise with d), so for a prefix of ``points`` it buckets the summits of those rows as for
+    all of them and adds them in the same order: the prefix's values are those of the
+    whole, bit for bit. A coarse pass (every :data:`STRIDE`-th point, its sums in another
+    order) says where to cut; if the prefix holds no reached point after all (a narrow
+    peak the coarse pass stepped over lies below, or the cut point reached by a rounding
+    only), every point is evaluated.
+    """
+    coarse = np.flatnonzero(reaches(pad_load(spec, z, points[::STRIDE])))
+    if coarse.size:
+        values = pad_load(spec, z, points[: coarse[0] * STRIDE + 1])
+        if np.any(reaches(values)):
+            return values
+    return pad_load(spec, z, points)
 
 
 def force_turn(spec: MonteCarloSpec, z: np.ndarray, force: float) -> tuple[float, float]:
@@ -288,11 +353,11 @@ def force_turn(spec: MonteCarloSpec, z: np.ndarray, force: float) -> tuple[float
     top = max(float(z.max()) - min(spec.edges.reach, 0.0), bottom) if z.size else bottom
     cuts = _intervals(spec, z, bottom, top, contact_edges(spec))
     points = np.unique(np.concatenate([[bottom, top], _points(cuts, sigma).ravel()]))[::-1]
-    values = pad_load(spec, z, points)
 
     def reaches(load):  # at 0 the force must be exceeded: far away the load is 0 too
         return load > force if force == 0 else load >= force
 
+    values = _approach_prefix(spec, z, points, reaches)
     reached = np.flatnonzero(reaches(values))
     if reached.size == 0:
         raise ParameterError(

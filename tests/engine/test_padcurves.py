@@ -16,9 +16,9 @@ SILICON = MATERIALS["silicon"]
 ROUGHER = dataclasses.replace(SURFACES["smooth"], sigma=2.5e-9)
 
 
-def cycle(h, realizations=30, surface=ROUGHER, area=30e-12, seed=1, **kw):
+def cycle(h, realizations=30, surface=ROUGHER, area=30e-12, seed=1, law="jkr", **kw):
     spec = MonteCarloSpec(surface, SILICON, np.asarray(h, float), area, realizations, seed,
-                          law="jkr", cycle=True, **kw)  # fmt: skip
+                          law=law, cycle=True, **kw)  # fmt: skip
     return spec, run_sums(spec, workers=1, keep_heights=True)
 
 
@@ -72,6 +72,24 @@ def test_force_turn_is_the_largest_separation_whose_approach_load_reaches_the_fo
         assert load >= force and padcurves.pad_load(spec, z, [d_t])[0] == load
         above = np.linspace(d_t + padcurves.XTOL * sigma, z.max() + sigma, 20001)
         assert np.all(padcurves.pad_load(spec, z, above) < force)
+
+
+@pytest.mark.parametrize("law", ["jkr", "maugis-dugdale"])
+def test_the_approach_loads_down_to_the_first_reaching_one_are_the_whole_grids_bit_for_bit(law):
+    # force_turn evaluates only a prefix of its points; the kernel's sums depend on the set
+    # of rows summed together, so the prefix must give the whole grid's numbers exactly.
+    spec, ens = cycle(np.linspace(3, -2, 6), realizations=3, law=law)
+    sigma = spec.surface.sigma
+    points = np.linspace(4 * sigma, -2 * sigma, 3001)
+    for z in ens.heights:
+        whole = padcurves.pad_load(spec, z, points)
+        for force in (1e-6, 30e-6, whole[1500]):
+            values = padcurves._approach_prefix(spec, z, points, lambda load, f=force: load >= f)
+            first = np.flatnonzero(whole >= force)[0]
+            assert values.size < points.size and values[-1] >= force
+            np.testing.assert_array_equal(values[: first + 1], whole[: first + 1])
+    never = padcurves._approach_prefix(spec, z, points, lambda load: load > whole.max())
+    np.testing.assert_array_equal(never, whole)
 
 
 def test_force_turn_below_the_grid_is_a_parameter_error():

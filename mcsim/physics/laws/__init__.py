@@ -42,6 +42,7 @@ inlined), the GPU kernel as a CUDA device function (:mod:`mcsim.engine.kernels`,
 from __future__ import annotations
 
 import difflib
+import functools
 import inspect
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
@@ -120,13 +121,20 @@ class Output:
     @property
     def stateful(self) -> bool:
         """Whether the function takes ``delta_max`` (a contact model with branches)."""
-        params = list(inspect.signature(self.law).parameters)
+        params = _parameters(self.law)
         return len(params) > 1 and params[1] == "delta_max"
 
     @property
     def parameter_names(self) -> tuple[str, ...]:
         """Names of the parameters after δ (and δ_max)."""
-        return tuple(list(inspect.signature(self.law).parameters)[2 if self.stateful else 1 :])
+        return _parameters(self.law)[2 if self.stateful else 1 :]
+
+
+@functools.cache
+def _parameters(fn: Law) -> tuple[str, ...]:
+    """Names of law function ``fn``'s parameters, read once (``inspect.signature`` costs
+    ~50 µs, and every call of the kernel asks)."""
+    return tuple(inspect.signature(fn).parameters)
 
 
 @dataclass(frozen=True)
