@@ -25,6 +25,7 @@ SCRIPTS = (
     "humid_pads",
     "memory",
     "pad_variation",
+    "radius_height",
     "stiction_model",
     "tail_benchmark",
 )
