@@ -190,6 +190,7 @@ def test_sweep_never_stores_a_model_probability_outside_0_1():
     assert result.data["p_stick_method"][0] == "pads"
 
 
+@pytest.mark.slow  # importance sampling of 2000 final pads: ~10–30 s
 def test_cli_sweep_tail_stores_the_method_its_effective_sample_size_and_draws_them(
     tmp_path, capsys
 ):
@@ -226,6 +227,7 @@ def test_cli_tail_with_too_few_pads_is_a_one_line_error(tmp_path, capsys):
     )
 
 
+@pytest.mark.slow  # importance sampling of 2000 final pads: ~10–30 s
 def test_cli_pads_tail_reports_the_method_beside_the_run_pads_statistics(tmp_path, capsys):
     import json
 
@@ -252,6 +254,7 @@ def test_cli_pads_tail_reports_the_method_beside_the_run_pads_statistics(tmp_pat
     assert "importance sampling" in data["interval"]
 
 
+@pytest.mark.slow  # importance sampling of 2000 final pads: ~10–30 s
 def test_few_sticking_pads_switch_to_importance_sampling_by_themselves():
     # 100 pads of 3 µm² under 1 MPa, F_r = 18 µN: fewer than SWITCH stick, so tail=None takes
     # importance sampling; the pull-off statistics stay those of the plain pads, bit for bit.
