@@ -41,7 +41,7 @@ the event; q only sets the variance.
   on the few-summit case at p ≈ 1e-2 such pads (3 % of the event) carried 95–99.7 % of
   E_q[L²·1], a relative standard deviation per pad of 13–48 against 9.9 for plain pads, which
   a run of 1000 pads seldom sees: its p̂ lies low, its standard error too small, and its
-  interval covered brute force in 23 of 28 runs (validation/tail_benchmark.py). So the
+  interval covered brute force in 23 of 28 runs (validation/README.md). So the
   ``pads`` final pads are drawn n₀ = ⌈:data:`DEFENSIVE` · pads⌉ from the nominal law p and
   n₁ = pads − n₀ from the last tilt q, and every pad, whichever law drew it, is weighted by
   the balance heuristic of the mixture (Veach & Guibas, SIGGRAPH 1995; Owen, ch. 9.12),
@@ -62,8 +62,7 @@ the event; q only sets the variance.
   1998; not capped at ``pads``, since importance sampling beats plain pads): skewed upwards
   as the sum of a few large weights is, where the normal interval p̂ ± 1.96 se covered in
   fewer runs (41 against 43 of 48 runs of the mixture of 1000 pads; 46 of 48 both with
-  2000; validation/README.md). The effective sample size
-  reported is Kish's of the weights in the event, (Σ w·1)²/Σ (w·1)² (Owen, ch. 9): the pads
+  2000; validation/README.md). The effective sample size reported is Kish's of the weights in the event, (Σ w·1)²/Σ (w·1)² (Owen, ch. 9): the pads
   outside the event do not enter p̂. The event is sticking when sticking is rare, and not
   sticking (p = 1 − P(not sticking)) when that is the rarer one.
 
@@ -381,14 +380,17 @@ def effective_clopper_pearson(q: float, se: float, pads: int) -> tuple[float, fl
 
     Clopper–Pearson's (Clopper & Pearson 1934) on the effective sample size
     n* = q(1 − q)/se² with x* = n* q events, non-integer (Korn & Graubard, *Survey
-    Methodology* 24, 193, 1998, eq. 2.3): the α/2 quantile of Beta(x*, n* − x* + 1) and the
-    1 − α/2 one of Beta(x* + 1, n* − x*). Where no pad lay in the event (q = 0, se = 0), n* is
-    ``pads``: the plain pads' exact interval [0, 1 − 0.025^(1/pads)].
+    Methodology* 24, 193, 1998): the 0.025 quantile of Beta(x*, n* − x* + 1) and the 0.975
+    one of Beta(x* + 1, n* − x*); for 0/1 values (se² = q(1 − q)/n) it is the plain
+    Clopper–Pearson interval of n trials. Where q is 0 or at least 1, or se is 0, the plain
+    one of 0 or ``pads`` events in ``pads`` trials, e.g. [0, 1 − 0.025^(1/pads)].
     """
     from scipy.stats import beta
 
-    n = q * (1 - q) / se**2 if se > 0 else float(pads)
-    x = q * n
-    low = float(beta.ppf(0.025, x, n - x + 1)) if x > 0 else 0.0
-    high = float(beta.ppf(0.975, x + 1, n - x)) if x < n else 1.0
-    return low, high
+    if se > 0 and 0 < q < 1:
+        n = q * (1 - q) / se**2
+        x = q * n
+        return float(beta.ppf(0.025, x, n - x + 1)), float(beta.ppf(0.975, x + 1, n - x))
+    if q >= 1:
+        return 0.025 ** (1 / pads), 1.0
+    return 0.0, 1 - 0.025 ** (1 / pads)

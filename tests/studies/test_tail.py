@@ -22,11 +22,12 @@ from mcsim.studies.pads import (
     MIN_ESS,
     MIN_TAIL_PADS,
     SWITCH,
+    clopper_pearson,
     finite_pads,
     pad_statistics,
     tail_p_stick,
 )
-from mcsim.studies.tail import Tilt, _Law, cut, importance_p_stick
+from mcsim.studies.tail import Tilt, _Law, cut, effective_clopper_pearson, importance_p_stick
 
 #: The few-summit case of the issue: smooth at σ = 3 nm, 30 µm² (λ = 510 summits).
 SURFACE = dataclasses.replace(SURFACES["smooth"], sigma=3e-9)
@@ -85,6 +86,16 @@ def test_tilted_pads_below_the_cut_keep_the_nominal_count():
         * float(SURFACE.heights.sf(spec.s_min) - SURFACE.heights.sf(law.cut))
     )
     assert abs(np.mean(low) - lam) < 5 * math.sqrt(lam / 2000)
+
+
+def test_effective_clopper_pearson_is_the_plain_one_for_unweighted_pads():
+    # 0/1 values: se² = q(1 − q)/n gives n* = n and x* = k, Clopper–Pearson of k in n.
+    for k, n in ((3, 100), (57, 2000), (1, 10)):
+        q = k / n
+        got = effective_clopper_pearson(q, math.sqrt(q * (1 - q) / n), n)
+        np.testing.assert_allclose(got, clopper_pearson(k, n), rtol=1e-9)
+    np.testing.assert_allclose(effective_clopper_pearson(0.0, 0.0, 100), clopper_pearson(0, 100))
+    np.testing.assert_allclose(effective_clopper_pearson(1.0, 0.0, 100), clopper_pearson(100, 100))
 
 
 def test_estimate_is_unbiased_for_an_exact_event_near_1e_2():
