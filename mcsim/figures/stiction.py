@@ -3,8 +3,8 @@
 * One varied input: p_stick (points) with its 95 % interval (bars) and the model estimate
   ``p_stick_model`` (line) against the input, p on a log axis down to the smallest p or
   interval end drawn (1e-6 and below with importance sampling): circles for the fraction
-  of the pads (Clopper-Pearson), squares for importance sampling (normal interval;
-  ``p_stick_method``).
+  of the pads (Clopper-Pearson), squares for importance sampling (Clopper-Pearson on the
+  effective sample size; ``p_stick_method``).
 * Two: p_stick over the map in log colour, with the contours of :data:`LEVELS` (1e-6, 1e-3,
   and 0.5: the stiction boundary) that its range holds; hatched where the interval
   straddles a level, i.e. where the data cannot tell on which side of it the point lies.
@@ -67,7 +67,7 @@ def _line(sweep, dim: str):
     none = ~tail & (d["p_stick"] == 0)  # no pad sticks: only the interval's top says anything
     for mask, fmt, label in ((~tail & ~none, "o", "pads: fraction sticking, 95 % Clopper-Pearson interval"),
                              (none, "v", "pads: none sticks (drawn at the floor), 95 % interval"),
-                             (tail, "s", "importance sampling, 95 % normal interval")):  # fmt: skip
+                             (tail, "s", "importance sampling, 95 % interval on the effective sample size")):  # fmt: skip
         if mask.any():
             low = np.maximum(d["p_stick_low"][mask], bottom)
             ax.errorbar(x[mask], p[mask], yerr=[p[mask] - low, d["p_stick_high"][mask] - p[mask]],

@@ -140,11 +140,11 @@ PADS = {
     ),
     "p_stick_low": (
         "1",
-        "lower end of the 95 % interval of p_stick (pads: Clopper-Pearson; importance: normal)",
+        "lower end of the 95 % interval of p_stick (pads: Clopper-Pearson; importance: Clopper-Pearson on the effective sample size)",
     ),
     "p_stick_high": (
         "1",
-        "upper end of the 95 % interval of p_stick (pads: Clopper-Pearson; importance: normal)",
+        "upper end of the 95 % interval of p_stick (pads: Clopper-Pearson; importance: Clopper-Pearson on the effective sample size)",
     ),
     "p_stick_ess": (
         "1",

@@ -349,7 +349,7 @@ def test_tail_example(tmp_path):
 
     args = quoted(
         r"mcsim (sweep --surface smooth --law jkr --vary sigma=3nm --preload 1MPa --pads 2000 "
-        r"\\ --area 30um\^2 --restoring-force 110uN --tail --seed 1) --out tail"
+        r"\\ --area 30um\^2 --restoring-force 83uN --tail --seed 1) --out tail"
     )
     mcsim(*args[0].replace("\\ ", "").split(), "--out", str(tmp_path / "tail.h5"), "--quiet")
     with xr.open_dataset(tmp_path / "tail.h5", engine="h5netcdf") as ds:
