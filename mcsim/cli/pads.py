@@ -103,7 +103,7 @@ def run(args) -> int:
 
 def _p_stick_notes(report, n: int, asked: bool) -> None:
     """How p_stick was found; a warning where p_stick_model lies outside its interval."""
-    from mcsim.studies.pads import AUTOMATIC, MIN_ESS, MIN_TAIL_PADS, SWITCH
+    from mcsim.studies.pads import MIN_ESS, MIN_TAIL_PADS, SWITCH
 
     s = report.stick
     rare = round(min(s["p_stick"], 1 - s["p_stick"]) * n)
@@ -114,9 +114,6 @@ def _p_stick_notes(report, n: int, asked: bool) -> None:
               "statistics", file=sys.stderr)  # fmt: skip
     elif rare < SWITCH or asked:
         why = (f"importance sampling needs at least {MIN_TAIL_PADS} pads" if n < MIN_TAIL_PADS
-               else "importance sampling runs only with --tail: its intervals are not yet "
-               "validated on few-summit pads (validation/tail_benchmark.py)"
-               if not (asked or AUTOMATIC)
                else f"importance sampling's effective sample size stayed below {MIN_ESS} "
                "(more pads raise it; it stays 0 where no pad reaches the restoring force), or the "
                "summit count is fixed")  # fmt: skip
@@ -181,7 +178,7 @@ def add_parser(sub) -> None:
                         "coverage never below 95 %%) or Wilson's score interval (Wilson 1927; shorter)")  # fmt: skip
     p.add_argument("--tail", action="store_true",
                    help="with --restoring-force and >= 100 pads: p_stick by importance sampling, down "
-                   "to 1e-6 (default: the pads' fraction; importance sampling's intervals are not yet validated on few-summit pads)")  # fmt: skip
+                   "to 1e-6 (default: where fewer than 10 pads lie on the rarer side, else the pads' fraction)")  # fmt: skip
     p.add_argument("--format", choices=FORMATS, default="table",
                    help="table or json: the statistics; csv: one row per pad (pull-off in N)")  # fmt: skip
     p.add_argument(

@@ -110,7 +110,7 @@ def _p_stick_notes(result) -> None:
     pads were too few on the rarer side, and where p_stick_model lies outside p_stick's interval."""
     import numpy as np
 
-    from mcsim.studies.pads import AUTOMATIC, MIN_ESS, MIN_TAIL_PADS, SWITCH
+    from mcsim.studies.pads import MIN_ESS, MIN_TAIL_PADS, SWITCH
 
     d = result.data
     if "p_stick_method" not in d:
@@ -126,9 +126,6 @@ def _p_stick_notes(result) -> None:
     plain = done & ~tail & ((np.round(rare) < SWITCH) | (asked == "importance"))
     if plain.any() and asked != "pads":
         why = (f"importance sampling needs at least {MIN_TAIL_PADS} pads (--pads)" if n < MIN_TAIL_PADS
-               else "importance sampling runs only with --tail: its intervals are not yet "
-               "validated on few-summit pads (validation/tail_benchmark.py)"
-               if asked == "auto" and not AUTOMATIC
                else f"importance sampling's effective sample size stayed below {MIN_ESS} "
                "(more --pads raise it; it stays 0 where no pad reaches the restoring force)")  # fmt: skip
         print(f"mcsim: note: at {int(plain.sum())} of {plain.size} points fewer than {SWITCH} of "
@@ -176,7 +173,7 @@ def add_parser(sub) -> None:
                    "statistics (N) beside the GW mean (as mcsim simulate --cycle + mcsim pads)")  # fmt: skip
     p.add_argument("--tail", action="store_true",
                    help="with --pads (>= 100): p_stick by importance sampling at every point, down to "
-                   "1e-6 (default: the pads' fraction; importance sampling's intervals are not yet validated on few-summit pads)")  # fmt: skip
+                   "1e-6 (default: where fewer than 10 pads lie on the rarer side, else the pads' fraction)")  # fmt: skip
     p.add_argument("--restoring-force", metavar="F",
                    help="with --pads: force pulling a pad off (N or with a unit, '20uN'); a pad sticks "
                    "when its pull-off exceeds it (or --vary restoring_force=...)")  # fmt: skip

@@ -241,23 +241,20 @@ def moment_std(run) -> float:
 FEW_CONTACTS = 10
 
 
-#: Fewer pads than this on the rarer side (sticking or not) would switch p_stick to importance
-#: sampling by itself (with :data:`AUTOMATIC`); they are said to be few in a note either way.
+#: Fewer pads than this on the rarer side (sticking or not) switch p_stick to importance
+#: sampling by itself (``tail=None``): on the few-summit pads of issue 31 its intervals (the
+#: three-part defensive mixture, 2000 final pads) held brute force in 30 of 30 runs of
+#: validation/tail_benchmark.py at p ≈ 1e-2 (Clopper–Pearson 95 %: 0.88–1) and in 63 of 64
+#: runs on other seeds.
 SWITCH = 10
-#: Whether ``tail=None`` switches to importance sampling by itself. Off: on few-summit pads its
-#: intervals (the defensive mixture, 2000 final pads) held brute force in 24 of 30 runs of
-#: validation/tail_benchmark.py (0.80, its check fails) and 145 of 159 runs in all (0.91
-#: [0.86, 0.95]: not shown to reach the 0.90 of issue 31), so it runs only on request
-#: (``tail=True``, ``--tail``); the plain fraction's Clopper–Pearson interval always holds.
-AUTOMATIC = False
 #: Fewest plain pads with which importance sampling runs: fewer than SWITCH of fewer pads on
 #: one side does not say that side is rare (its own stages hold TAIL_PILOT pads).
 MIN_TAIL_PADS = 100
 
 #: Fewest final pads of importance sampling (more where more plain pads were simulated): at
 #: 100 its effective sample size stays below MIN_ESS (measured: 6 to 12 in four cases); at
-#: 1000 its intervals held brute force in 43 of 48 runs on the few-summit pads at p ≈ 1e-2,
-#: at 2000 in 145 of 159 (validation/README.md).
+#: 1000 the two-part mixture's intervals held brute force in 43 of 48 runs on the few-summit
+#: pads at p ≈ 1e-2, at 2000 the three-part one's in 30 of 30 (validation/README.md).
 TAIL_PADS = 2000
 
 #: Fewest pads of a cross-entropy stage (more where more plain pads were simulated): 30 elite
@@ -299,8 +296,8 @@ def finite_pads(spec, restoring_force: float, *, preload: float | None = None, t
         Separation d/σ of the mean curve's pull-off after ``turn`` (NaN: none), for the
         model estimate ``p_stick_model`` (:func:`mcsim.studies.stiction.p_stick_model`).
     tail : bool, optional
-        p_stick by importance sampling (:func:`tail_p_stick`): True always, False or None
-        (:data:`AUTOMATIC` is off) never.
+        p_stick by importance sampling (:func:`tail_p_stick`): True always, None where the
+        pads see fewer than :data:`SWITCH` on the rarer side, False never.
 
     Returns
     -------
@@ -359,7 +356,7 @@ def tail_p_stick(spec, statistics: PadStatistics, restoring_force: float, *, tur
     :data:`TAIL_PADS`) final pads, cross-entropy stages of max(:data:`TAIL_PILOT`, n/10)
     pads after the n plain pads as stage 0, or its own with fewer than TAIL_PILOT) replaces the
     fraction where the plain pads see fewer than :data:`SWITCH` pads on the rarer side
-    (``tail`` None, while :data:`AUTOMATIC` is on; it is off) or always (``tail`` True), not
+    (``tail`` None) or always (``tail`` True), not
     with fewer than :data:`MIN_TAIL_PADS` pads or a fixed summit count (``tail`` None: the
     fraction stays; True: an error), nor where its effective sample size stays below
     :data:`MIN_ESS` (the fraction stays).
@@ -375,8 +372,8 @@ def tail_p_stick(spec, statistics: PadStatistics, restoring_force: float, *, tur
     turn, preload : float
         Mean-field turn (d/σ) and the nominal pressure (Pa, or None), as :func:`finite_pads`.
     tail : bool or None
-        None: automatic (the plain fraction while :data:`AUTOMATIC` is off); True: importance
-        sampling; False: the plain fraction.
+        None: automatic (importance sampling where the plain pads see fewer than
+        :data:`SWITCH` on the rarer side); True: importance sampling; False: the plain fraction.
     start : tuple, optional
         The plain pads as stage 0: their heights above :func:`mcsim.studies.tail.cut` (σ)
         and pull-off (N); else the tail draws its own.
@@ -405,8 +402,7 @@ def tail_p_stick(spec, statistics: PadStatistics, restoring_force: float, *, tur
         raise ParameterError(f"pads = {n}: importance sampling (tail) needs at least "
                              f"{MIN_TAIL_PADS} pads")  # fmt: skip
     if tail is False or (
-        tail is None
-        and (not AUTOMATIC or rare >= SWITCH or n < MIN_TAIL_PADS or spec.count != "poisson")
+        tail is None and (rare >= SWITCH or n < MIN_TAIL_PADS or spec.count != "poisson")
     ):
         return plain
     estimate = importance_p_stick(spec, restoring_force, turn=turn, preload=preload,
@@ -492,8 +488,8 @@ def pad_report(
         Interval of the probability of sticking (:func:`pad_statistics`).
     tail : bool, optional
         With F_r: p_stick by importance sampling (:func:`tail_p_stick`, with pads of its own
-        streams of the run's seed): True always, False or None (:data:`AUTOMATIC` is off)
-        never.
+        streams of the run's seed): True always, None where the pads see fewer than
+        :data:`SWITCH` on the rarer side, False never.
 
     Returns
     -------

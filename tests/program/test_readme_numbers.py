@@ -330,11 +330,13 @@ def test_p_stick_table(tmp_path):
 
 
 def test_when_importance_sampling_replaces_the_fraction_of_the_pads():
-    from mcsim.studies.pads import AUTOMATIC, MIN_ESS, MIN_TAIL_PADS, SWITCH, TAIL_PADS, TAIL_PILOT
+    from mcsim.studies.pads import MIN_ESS, MIN_TAIL_PADS, SWITCH, TAIL_PADS, TAIL_PILOT
 
     check_exact(r"\| at least (\d+) pads stick and (\d+) do not \| `pads`", SWITCH, SWITCH)
-    check_exact(r"\| fewer than (\d+) on either side \| `pads`", SWITCH)
-    assert not AUTOMATIC  # the README says importance sampling runs only when asked
+    check_exact(r"\| fewer than (\d+) on either side \(at least (\d+) pads\) \| `importance`",
+                SWITCH, MIN_TAIL_PADS)  # fmt: skip
+    check_exact(r"\| fewer than (\d+) on either side, but fewer than (\d+) pads or `p_stick_ess` "
+                r"below (\d+) \| `pads`", SWITCH, MIN_TAIL_PADS, MIN_ESS)  # fmt: skip
     check_exact(r"\| `--tail` \(at least (\d+) pads\) \| `importance`", MIN_TAIL_PADS)
     check_exact(r"pilot stages of a tenth as many pads as `--pads` \(at least (\d+); from (\d+) "
                 r"`--pads` on, those pads are its first stage\) and as many pads again \(at least "

@@ -266,28 +266,18 @@ def test_cli_pads_tail_reports_the_method_beside_the_run_pads_statistics(tmp_pat
 
 
 @pytest.mark.slow  # importance sampling of 2000 final pads: ~10–30 s
-def test_tail_replaces_the_fraction_of_few_sticking_pads_and_keeps_their_statistics():
-    # 100 pads of 3 µm² under 1 MPa, F_r = 18 µN: fewer than SWITCH stick; tail=True takes
-    # importance sampling, the pull-off statistics stay those of the plain pads, bit for bit.
-    tail, plain = _pads(18e-6, 100, tail=True), _pads(18e-6, 100, tail=False)
+def test_few_sticking_pads_switch_to_importance_sampling_by_themselves():
+    # 100 pads of 3 µm² under 1 MPa, F_r = 18 µN: fewer than SWITCH stick, so tail=None takes
+    # importance sampling, as tail=True does; the pull-off statistics stay those of the plain
+    # pads, bit for bit.
+    auto, plain = _pads(18e-6, 100), _pads(18e-6, 100, tail=False)
     assert round(plain["p_stick"] * 100) < SWITCH and plain["p_stick_method"] == "pads"
-    assert tail["p_stick_method"] == "importance" and tail["p_stick_ess"] >= MIN_ESS
-    assert tail["p_stick_low"] <= tail["p_stick"] <= tail["p_stick_high"]
-    assert {k: v for k, v in tail.items() if not k.startswith("p_stick")} == {
+    assert auto["p_stick_method"] == "importance" and auto["p_stick_ess"] >= MIN_ESS
+    assert auto["p_stick_low"] <= auto["p_stick"] <= auto["p_stick_high"]
+    assert auto == _pads(18e-6, 100, tail=True)
+    assert {k: v for k, v in auto.items() if not k.startswith("p_stick")} == {
         k: v for k, v in plain.items() if not k.startswith("p_stick")
     }
-
-
-def test_without_tail_few_sticking_pads_keep_their_fraction_until_importance_intervals_hold():
-    # AUTOMATIC is off (validation/tail_benchmark.py: coverage 0.80 over 30 runs, 0.91 [0.86,
-    # 0.95] over 159 in all, against 0.90): 5 of 100 pads sticking stay the plain fraction
-    from mcsim.studies.pads import AUTOMATIC
-
-    assert not AUTOMATIC
-    s = pad_statistics(np.r_[np.full(95, 1.0), np.full(5, 3.0)], 2.0)
-    spec = _spec(2, pads=100, area=3e-12)
-    out = tail_p_stick(spec, s, 2.0, turn=TURN, preload=None, tail=None)
-    assert out["p_stick_method"] == "pads" and out["p_stick"] == 0.05
 
 
 def test_defensive_mixture_is_unbiased_where_the_tilt_alone_has_heavy_weights():
