@@ -34,8 +34,9 @@ The brute-force pull-offs are computed with ``--workers`` processes and kept in 
 those of :func:`mcsim.engine.padcurves.patch_heights` of the seed, the same on any machine
 and for any number of workers.
 
-Run: ``python validation/tail_benchmark.py --workers 2`` (on 2 cores: the brute force
-~40 min the first time, then ~25 min: 30 repeated runs, the 1e-6 point, the humid point)
+Run: ``python validation/tail_benchmark.py --workers 2`` (on 2 cores with the faster
+pads of issue 30: the brute force ~15 min the first time, estimated from its 16-core run;
+then ~3 min: 30 repeated runs, the 1e-6 point, the humid point)
 or ``--quick`` (600 brute-force pads, the 1e-2 comparison, a reach point of 200 final pads
 judged on its evaluations, timing not judged). Writes ``tail_benchmark.txt``.
 """
