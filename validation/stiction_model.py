@@ -12,10 +12,12 @@ Criterion (PASS/FAIL lines, exit status 1 on a FAIL): |z| < 5 at every restoring
 the cases with at least MODEL_FROM = 100 contacting summits, where the model is claimed to
 hold (the first two); at |z| < 5 a chance exceedance has probability 6e-7 per comparison.
 The cases below (75 and 13 contacting summits) are printed, not judged: there the model is
-known to fail.
+known to fail. The full run then takes the first case again with 20 000 pads (RESOLVED),
+printed, not judged: it resolves the model's own error, a tail that runs low by tens of
+percent (validation/README.md).
 
-Run: ``python validation/stiction_model.py`` (20 s on an idle core, 45 s loaded; seed 1, the
-README's table) or ``--quick`` (the two judged cases, 100 pads each). Writes
+Run: ``python validation/stiction_model.py`` (~3 min on one core, most of it the 20 000
+pads; seed 1) or ``--quick`` (the two judged cases, 100 pads each). Writes
 ``stiction_model.txt``.
 """
 
@@ -46,6 +48,9 @@ CASES = [
     (1.4e-9, 30e-12, 1e6, 300, (20e-6, 40e-6, 60e-6, 80e-6)),
     (2.5e-9, 30e-12, 1e6, 300, (5e-6, 20e-6, 40e-6, 60e-6)),
 ]
+#: The first case again with 20 000 pads (full run only; printed with the ratio model/brute
+#: force, not judged): enough pads to resolve the model's own error, which 400 do not.
+RESOLVED = (1.4e-9, 30e-12, None, 20_000, (150e-6, 190e-6, 210e-6, 260e-6, 300e-6, 340e-6, 370e-6))
 
 
 def main() -> None:
@@ -56,10 +61,10 @@ def main() -> None:
     warnings.simplefilter("ignore")
     material = MATERIALS["silicon"]
     checks = Checks()
-    lines = ["| sigma nm | preload | contacting | F_r uN | p_MC [95 %] | p_model | z |",
-             "|---|---|---|---|---|---|---|"]  # fmt: skip
+    lines = ["| sigma nm | preload | contacting | pads | F_r uN | p_MC [95 %] | p_model | "
+             "p_model/p_MC | z |", "|---|---|---|---|---|---|---|---|---|"]  # fmt: skip
     cases = [(*case[:3], 100, case[4]) for case in CASES[:2]] if args.quick else CASES
-    for sigma, area, preload, pads, forces in cases:
+    for sigma, area, preload, pads, forces in cases + ([] if args.quick else [RESOLVED]):
         surface = dataclasses.replace(SURFACES["smooth"], sigma=sigma)
         turn = COMMON_TURN if preload is None else preload_turn(surface, material, preload, "jkr")
         h_off = adhesion_summary(surface, material, "jkr", turn).h_pull_off
@@ -82,10 +87,11 @@ def main() -> None:
             p = p_stick_model(spec, fr, turn=turn, h_pull_off=h_off, preload=preload)
             z_score = (k / pads - p) / math.sqrt(max(p * (1 - p), 1e-12) / pads)
             shown = "none" if preload is None else f"{preload / 1e6:g} MPa"
-            lines.append(f"| {sigma * 1e9:.2f} | {shown} | {contacting:.0f} | {fr * 1e6:.0f} | "
-                         f"{k / pads:.3f} [{lo:.3f}, {hi:.3f}] | {p:.3g} | {z_score:+.1f} |")  # fmt: skip
+            lines.append(f"| {sigma * 1e9:.2f} | {shown} | {contacting:.0f} | {pads} | {fr * 1e6:.0f} | "
+                         f"{k / pads:.4g} [{lo:.4g}, {hi:.4g}] | {p:.3g} | {p / (k / pads):.3f} | "
+                         f"{z_score:+.1f} |")  # fmt: skip
             worst = max(worst, abs(z_score))
-        if contacting >= MODEL_FROM:
+        if contacting >= MODEL_FROM and pads < RESOLVED[3]:
             checks.at_most(f"sigma {sigma * 1e9:.2f} nm, preload {shown}, {contacting:.0f} "
                            f"contacting, {pads} pads: max |z| over {len(forces)} forces",
                            worst, Z_MAX)  # fmt: skip

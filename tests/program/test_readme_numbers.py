@@ -366,6 +366,29 @@ def test_tail_example(tmp_path):
 
 
 @pytest.mark.slow
+def test_p_stick_model_runs_low_in_the_tail_against_importance_sampling():
+    # the README's "its tail runs low" (about 12 s of CPU): 255 summits touch, every pad
+    # retracted from h = 0; the model lies below the importance sampling's interval
+    import dataclasses
+
+    from mcsim.engine.montecarlo import MonteCarloSpec
+    from mcsim.studies.stiction import p_stick_model
+    from mcsim.studies.tail import importance_p_stick
+
+    surface = dataclasses.replace(SURFACES["smooth"], sigma=1.4e-9)
+    spec = MonteCarloSpec(surface, SILICON, np.linspace(4, -1, 51), 30e-12, 2000, 1, "jkr",
+                          cycle=True)  # fmt: skip
+    h_off = adhesion_summary(surface, SILICON, "jkr", 0.0).h_pull_off
+    model = p_stick_model(spec, 340e-6, turn=0.0, h_pull_off=h_off, preload=None)
+    tail = importance_p_stick(spec, 340e-6, turn=0.0, pads=2000, pilot=300)
+    contacting = surface.eta * 30e-12 * float(surface.heights.sf(0.0))
+    check_rounded(r"with (\S+) summits touching \(σ = 1\.4 nm, 30 µm², every pad retracted from "
+                  r"h = 0\) it says (\S+) at 340 µN, where importance sampling finds (\S+) \[(\S+), "
+                  r"(\S+)\]", contacting, model, tail.p_stick, tail.low, tail.high)  # fmt: skip
+    assert model < tail.low
+
+
+@pytest.mark.slow
 def test_humid_p_stick_table(tmp_path):
     # the README's sweep of "Will my device stick in humid air?" (about 15 s of CPU)
     import xarray as xr
