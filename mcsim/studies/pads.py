@@ -409,7 +409,8 @@ def tail_p_stick(spec, statistics: PadStatistics, restoring_force: float, *, tur
                                   pads=max(n, TAIL_PADS),
                                   pilot=max(TAIL_PILOT, n // 10),
                                   start=start if n >= TAIL_PILOT else None,
-                                  event="stick" if k <= n - k else "release")  # fmt: skip
+                                  event="stick" if k <= n - k else "release",
+                                  give_up=tail is None)  # fmt: skip
     if estimate.ess < MIN_ESS:
         return plain
     return {"p_stick": estimate.p_stick, "p_stick_low": estimate.low,

@@ -277,7 +277,7 @@ def _stage(law: _Law, tilt: Tilt | None, n: int, key: int, evaluate, workers: in
 
 def importance_p_stick(spec, restoring_force: float, *, turn: float, preload: float | None = None,
                        pads: int, pilot: int, event: str = "stick", start=None,
-                       workers: int = 1, score=None) -> TailEstimate:  # fmt: skip
+                       workers: int = 1, score=None, give_up: bool = False) -> TailEstimate:  # fmt: skip
     """P(pull-off > F_r) of the pads of ``spec`` by importance sampling (module docstring).
 
     Parameters
@@ -307,6 +307,13 @@ def importance_p_stick(spec, restoring_force: float, *, turn: float, preload: fl
         What is compared with ``restoring_force``, as a function of a pad's summit heights
         above s_min (σ); default its pull-off (:func:`pad_pull_off`). Another score gives
         the probability of another event of the same pads (the tests' exact cases).
+    give_up : bool
+        Stop the stages where their level (the elite's margin to F_r) does not rise from one
+        stage to the next, or rises too slowly to reach F_r in the stages left at its latest
+        pace, and draw no final pads where the stages did not reach the event:
+        then p_stick is NaN and the effective sample size 0 (the automatic switch's way out
+        where F_r lies far beyond any pad: without it, every such point of a sweep spends
+        all the stages and the final pads to find no pad in the event).
 
     Returns
     -------
@@ -346,7 +353,7 @@ def importance_p_stick(spec, restoring_force: float, *, turn: float, preload: fl
         highs, force = start
         log_l = np.zeros(len(highs))
     fitted = Tilt((1.0,) * BINS)  # the nominal law
-    reached, stage = False, 0
+    reached, stage, previous = False, 0, -math.inf
     while True:
         margin = sign * (force - fr)
         hits = hit(force)
@@ -357,6 +364,11 @@ def importance_p_stick(spec, restoring_force: float, *, turn: float, preload: fl
         else:
             level = np.sort(margin)[-elite_size]
             elite = margin >= level
+            # stalled, or too slow to reach F_r in the stages left at its latest pace
+            # (Rubinstein & Kroese 2004, ch. 3: a level that stops rising ends the method)
+            if give_up and (level <= previous or -level > (level - previous) * (STAGES - stage)):
+                break
+            previous = level
         weights = np.exp(log_l[elite] - np.max(log_l[elite]))  # L up to a common factor
         fitted = _fit(law, fitted, [h for h, e in zip(highs, elite) if e], weights)
         tilt = fitted
@@ -365,6 +377,9 @@ def importance_p_stick(spec, restoring_force: float, *, turn: float, preload: fl
         stage += 1
         highs, log_l, force = _stage(law, tilt, pilot, stage, evaluate, workers)
         evaluations += pilot
+    if give_up and not reached:
+        return TailEstimate(math.nan, math.nan, 0.0, 1.0, 0.0, 0, 0, evaluations, stage, False,
+                            event, tilt or fitted, law.cut)  # fmt: skip
     laws = (None, half(tilt), tilt)  # nominal, half-way, tilted
     n = mixture(pads)
     parts = [_stage(law, q, k, STAGES + 1 + j, evaluate, workers)

@@ -27,7 +27,14 @@ from mcsim.studies.pads import (
     pad_statistics,
     tail_p_stick,
 )
-from mcsim.studies.tail import Tilt, _Law, cut, effective_clopper_pearson, importance_p_stick
+from mcsim.studies.tail import (
+    STAGES,
+    Tilt,
+    _Law,
+    cut,
+    effective_clopper_pearson,
+    importance_p_stick,
+)
 
 #: The few-summit case of the issue: smooth at σ = 3 nm, 30 µm² (λ = 510 summits).
 SURFACE = dataclasses.replace(SURFACES["smooth"], sigma=3e-9)
@@ -302,3 +309,20 @@ def test_defensive_mixture_is_unbiased_where_the_tilt_alone_has_heavy_weights():
             for s in seeds]  # fmt: skip
     q = np.array([e.p_stick for e in runs])
     assert abs(q.mean() - p) < 5 * q.std(ddof=1) / math.sqrt(q.size), (q.mean(), p)
+
+
+def test_the_automatic_switch_gives_up_where_the_stages_cannot_reach_the_event():
+    # The summit count in the band reaches ~3x its mean in no pad: with give_up the stages stop
+    # where their level rises too slowly and no final pads are drawn (p NaN, ESS 0: the plain
+    # fraction stays); without it, every stage and the final pads run.
+    def count(s):
+        return float(np.count_nonzero(s > BAND[0]))
+
+    far = 1e6
+    quick = importance_p_stick(_spec(3), far, turn=TURN, pads=400, pilot=100, score=count,
+                               give_up=True)  # fmt: skip
+    assert math.isnan(quick.p_stick) and quick.ess == 0 and quick.pads == 0
+    assert not quick.reached and quick.evaluations < 100 * (STAGES + 1)
+    full = importance_p_stick(_spec(3), far, turn=TURN, pads=400, pilot=100, score=count)
+    assert full.pads == 400 and full.evaluations == 100 * (STAGES + 1) + 400
+    assert full.p_stick == 0 and full.ess == 0
