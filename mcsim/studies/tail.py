@@ -379,7 +379,7 @@ def importance_p_stick(spec, restoring_force: float, *, turn: float, preload: fl
         evaluations += pilot
     if give_up and not reached:
         return TailEstimate(math.nan, math.nan, 0.0, 1.0, 0.0, 0, 0, evaluations, stage, False,
-                            event, tilt or fitted, law.cut)  # fmt: skip
+                            event, tilt, law.cut)  # fmt: skip
     laws = (None, half(tilt), tilt)  # nominal, half-way, tilted
     n = mixture(pads)
     parts = [_stage(law, q, k, STAGES + 1 + j, evaluate, workers)
