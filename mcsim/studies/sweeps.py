@@ -49,7 +49,7 @@ import numpy as np
 from mcsim._version import __version__
 from mcsim.engine import interrupt
 from mcsim.engine.montecarlo import FIRST_CHECKPOINT, default_workers, in_order
-from mcsim.model.errors import ParameterError, RunFileError
+from mcsim.model.errors import ParameterError
 from mcsim.model.params import Material, Surface, check_range, check_seed, check_separations
 from mcsim.model.presets import as_material, as_surface
 from mcsim.model.units import parse_quantity
@@ -68,7 +68,6 @@ from mcsim.store.sweepfile import (
     dimension_name,
     empty_sweep,
     plain,
-    read_partial,
     read_sweep,
     write_sweep,
 )
@@ -85,6 +84,7 @@ from mcsim.studies.sweeppoint import (
     point_curves,
     unknown_input,
 )
+from mcsim.studies.sweepresume import already_finished, read_checkpoint, recorded_seed, restore
 
 log = logging.getLogger(__name__)
 
@@ -246,10 +246,10 @@ def sweep(
         claim = None
         if out is not None:
             claim = claim_output(stack, out, overwrite=overwrite, resume=resume, what="sweep",
-                                 read_finished=read_sweep, read_checkpoint=_read_checkpoint)  # fmt: skip
+                                 read_finished=read_sweep, read_checkpoint=read_checkpoint)  # fmt: skip
         seed_given = seed is not None
         if seed is None and claim is not None:
-            seed = _recorded_seed(claim)
+            seed = recorded_seed(claim)
         entropy = np.random.SeedSequence(seed).entropy if mc or pads else None
         config = Config(h, turn, mc, realizations, entropy, device, pads, restoring_force, preload,
                         tail)  # fmt: skip
@@ -260,10 +260,10 @@ def sweep(
             )
         attrs = _attrs(surface, material, environment, law, dims, grid, config, area_m2, command)
         if claim is not None and claim.finished is not None:
-            return _already_finished(claim, attrs, seed_given)
+            return already_finished(claim, attrs, seed_given)
         done = np.zeros(shape, dtype=bool)
         if claim is not None and claim.checkpoint is not None:
-            done = _restore(claim, result, attrs, shape)
+            done = restore(claim, result, attrs, shape)
         points = (
             make_point(
                 surface,
@@ -341,78 +341,6 @@ def _empty_result(material: Material, law: str, names, dims, grid, config: Confi
     summary = any(has_summary(x) for x in laws)
     return empty_sweep(dims, grid, config.h, curve_names, summary, config.mc, with_env,
                        pads=bool(config.pads))  # fmt: skip
-
-
-def _read_checkpoint(partial: Path) -> tuple[dict, dict]:
-    """A sweep checkpoint (:func:`mcsim.store.sweepfile.read_partial`) and its attributes."""
-    previous = read_partial(partial)
-    return previous, previous["attrs"]
-
-
-def _recorded_seed(claim) -> int | None:
-    """The seed of the finished sweep or checkpoint a resume found (None: neither, or no seed)."""
-    if claim.finished is not None:
-        recorded = claim.finished.attrs.get("seed_entropy")
-    else:
-        recorded = claim.checkpoint_attrs.get("seed_entropy")
-    return int(recorded) if recorded else None
-
-
-def _restore(claim, result: Sweep, attrs: dict, shape: tuple) -> np.ndarray:
-    """The points a checkpoint completed, copied into ``result``, once its inputs are those
-    asked for (``attrs``); which points are done."""
-    previous = claim.checkpoint
-    claim.check_checkpoint(_inputs(claim.partial, previous["attrs"]), _inputs(claim.out, attrs))
-    done = _recorded(claim.partial, previous, result, shape)
-    for k in result.data:
-        result.data[k][done] = previous["data"][k][done]
-    return done
-
-
-#: The names a resume's message gives the entries of a sweep's ``definition``.
-_INPUT_NAMES = {"seed_entropy": "seed", "mcsim_version": "mcsim version",
-                "sweep_schema_version": "schema version", "values": "varied values"}  # fmt: skip
-
-
-def _inputs(path: Path, attrs: dict) -> dict:
-    """What defines the sweep of ``attrs`` (its ``definition``: everything but the time
-    and the command line), as a resume compares it; ``path`` names a damaged file."""
-    try:
-        inputs = json.loads(attrs["definition"])
-        for k in ("surface", "material", "varied"):
-            inputs[k] = json.loads(inputs[k])
-        if inputs.get("seed_entropy") is not None:
-            inputs["seed_entropy"] = int(inputs["seed_entropy"])
-    except (KeyError, TypeError, ValueError):
-        raise RunFileError(f"{path}: damaged sweep file: its definition is not readable") from None
-    return {_INPUT_NAMES.get(k, k): v for k, v in inputs.items()}
-
-
-def _already_finished(claim, attrs: dict, seed_given: bool) -> Sweep:
-    """The complete sweep at the claimed output, if it is the sweep asked for (the same
-    ``definition`` as ``attrs``; see :meth:`mcsim.store.claim.Claim.already_finished`)."""
-    out = claim.out
-    if not claim.finished.attrs.get("complete"):
-        raise RunFileError(f"{out}: damaged sweep file: it holds an unfinished sweep")
-    seed = attrs.get("seed_entropy")
-    return claim.already_finished(
-        _inputs(out, claim.finished.attrs), _inputs(out, attrs),
-        own_checkpoint=lambda partial: read_partial(partial)["attrs"].get("definition") == attrs["definition"],
-        seed_note=f" (no seed given: taken as the file's, {seed})" if seed and not seed_given else "",
-    )  # fmt: skip
-
-
-def _recorded(partial: Path, previous: dict, result: Sweep, shape: tuple) -> np.ndarray:
-    """The completed points of a checkpoint, once its variables are those of ``result``
-    (a checkpoint rewritten elsewhere, checksum included, may lack some)."""
-    variables = {"done": (previous["done"], shape)}
-    variables |= {k: (previous["data"].get(k), v.shape) for k, v in result.data.items()}
-    for k, (values, wanted) in variables.items():
-        if values is None or values.shape != wanted:
-            found = "is missing" if values is None else f"has shape {values.shape}"
-            raise RunFileError(f"{partial}: damaged sweep file: dataset {k} {found}, "
-                               f"the inputs ask for {wanted}")  # fmt: skip
-    return previous["done"]
 
 
 def _shown(values: np.ndarray) -> list:

@@ -280,33 +280,31 @@ def summit_curvatures(
         Per summit in raster order: its height (m) and its mean curvature
         κ = −(z_xx + z_yy)/2 by central differences (1/m; its radius is 1/κ).
     """
-    c, nb, _, peak = _peaks(z, periodic)
+    return _curvatures(z, dx, dy, periodic)[:2]
+
+
+def _curvatures(z: np.ndarray, dx: float, dy: float, periodic: bool):
+    """:func:`summit_curvatures`, and the number of candidate pixels (finite with their 8
+    neighbours)."""
+    c, nb, finite, peak = _peaks(z, periodic)
     with np.errstate(invalid="ignore"):
         z_xx = (nb(0, 1) - 2 * c + nb(0, -1)) / dx**2
         z_yy = (nb(1, 0) - 2 * c + nb(-1, 0)) / dy**2
-    return c[peak], -(z_xx[peak] + z_yy[peak]) / 2
+    return c[peak], -(z_xx[peak] + z_yy[peak]) / 2, np.count_nonzero(finite)
 
 
 def direct_summits(z: np.ndarray, dx: float, dy: float, periodic: bool = False) -> SummitStatistics:
     """Summits as 8-neighbour local maxima of a levelled map (rule in the module docstring).
 
-    Parameters
-    ----------
-    z : ndarray
-        Levelled height map, m (NaN allowed).
-    dx, dy : float
-        Pixel size along columns and rows, m.
-    periodic : bool
-        Neighbours wrap across the map's edges (every pixel a candidate).
+    Parameters as :func:`summit_curvatures`.
 
     Returns
     -------
     SummitStatistics
         NaN fields where no summit is found.
     """
-    heights, kappa = summit_curvatures(z, dx, dy, periodic)
-    finite = _peaks(z, periodic)[2]
-    area = np.count_nonzero(finite) * dx * dy
+    heights, kappa, candidates = _curvatures(z, dx, dy, periodic)
+    area = candidates * dx * dy
     if heights.size == 0:
         return SummitStatistics(math.nan, math.nan, 0.0, math.nan, 0)
     return SummitStatistics(
