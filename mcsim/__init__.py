@@ -21,6 +21,7 @@ _LAZY = {
     "get_law_set": "physics.laws",
     "Material": "model.params",
     "Surface": "model.params",
+    "RadiusByHeight": "model.params",
     "combine_surfaces": "model.params",
     "plasticity_index": "model.params",
     "surface_energy_parameter": "model.params",

@@ -13,7 +13,13 @@ def describe_inputs(surface, material) -> list[str]:
     psi = plasticity_index(surface, material)
     lines = [
         f"surface {surface.name or '(file)'}: sigma = {surface.sigma * 1e9:.4g} nm, R = {surface.R * 1e6:.4g} um, "
-        f"eta = {surface.eta * 1e-12:.4g} um^-2, heights {surface.heights.name}",
+        f"eta = {surface.eta * 1e-12:.4g} um^-2, heights {surface.heights.name}"
+        + (
+            ""
+            if surface.radius_by_height is None
+            else f", radius by height (R x {min(surface.radius_by_height.factors):.3g} .. "
+            f"{max(surface.radius_by_height.factors):.3g} in {len(surface.radius_by_height.factors)} bands)"
+        ),
         f"material {material.name or '(file)'}: K = {material.K / 1e9:.4g} GPa, G = {material.G / 1e9:.4g} GPa, "
         f"w = {material.gamma:.4g} J/m^2 (work of adhesion)",
         f"A0 = eta R sigma = {surface.A0:.4g}, B0 = gamma/(K sigma) = {surface_energy_parameter(surface, material):.4g}, "

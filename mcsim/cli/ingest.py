@@ -42,7 +42,7 @@ def run(args) -> int:
         route=args.route, level=args.level, heights=args.heights, R=length(args.R, "--R"),
         eta=None if args.eta is None else parse_quantity(args.eta, "density", "--eta"),
         channel=args.channel, periodic=args.periodic,
-        calibrate=material if args.calibrate else None,
+        calibrate=material if args.calibrate else None, radius_by_height=args.radius_by_height,
     )  # fmt: skip
     for line in result.summary_lines():
         print(line)
@@ -92,9 +92,14 @@ def add_parser(sub) -> None:
                    help="also plot the analytic curves against the Gaussian GW curves")  # fmt: skip
     p.add_argument("--calibrate", action="store_true",
                    help="fit GW's summit-radius scale to exact elastic solves of the map (mcsim contact) "
-                   "at p/E* = 1e-4 .. 1e-2, so that GW's real contact area follows the exact one; "
-                   "recorded in the surface file and used by every command that reads it (the mean "
-                   "gap is not calibrated)")  # fmt: skip
+                   "at p/E* = 1e-4 .. 1e-2, so that GW's real contact area follows the exact one, "
+                   "on top of a radius by height (--radius-by-height, on with it); recorded in the "
+                   "surface file and used by every command that reads it (the mean gap is not "
+                   "calibrated)")  # fmt: skip
+    p.add_argument("--radius-by-height", action=argparse.BooleanOptionalAction, default=None,
+                   help="give each bin of summit heights its own summit radius, fitted to the "
+                   "summits' curvatures (taller summits are sharper; maps only; default: with "
+                   "--calibrate)")  # fmt: skip
     p.add_argument("--material", default="silicon",
                    help="material of the --plot curves and of the --calibrate solves (its E*): preset "
                    "or FILE.toml (default: silicon)")  # fmt: skip

@@ -158,6 +158,12 @@ class MonteCarloSpec:
             )
         if self.device not in DEVICES:
             raise ParameterError(f"device = {self.device!r} is not one of {', '.join(DEVICES)}")
+        if self.surface.radius_by_height is not None and self.device != "cpu":
+            raise ParameterError(f"device = {self.device!r}: a summit radius by height is summed "
+                                 "on the CPU only (device = 'cpu')")  # fmt: skip
+        if self.surface.radius_by_height is not None and self.environment is not None:
+            raise ParameterError("radius_by_height: the environment is not modelled on a surface "
+                                 "whose summit radius depends on height (drop one of the two)")  # fmt: skip
 
     def fields(self) -> dict:
         """The defining inputs, comparable with ``==`` (h as a tuple)."""
@@ -193,8 +199,21 @@ class MonteCarloSpec:
 
     @functools.cached_property
     def edges(self) -> Edges:
-        """The law set's :class:`~mcsim.physics.laws.Edges` for these inputs, m."""
-        return self.law_set.edges_for(self.surface, self.material)
+        """The law set's :class:`~mcsim.physics.laws.Edges` for these inputs, m; with a
+        radius by height, the widest of its bands' (:meth:`Edges.widest`): where any summit
+        may carry force."""
+        return Edges.widest([edges for _, edges in self.parts])
+
+    @functools.cached_property
+    def parts(self) -> tuple[tuple[tuple, Edges], ...]:
+        """The law functions' parameters and edges of each band of heights
+        (:meth:`~mcsim.model.params.Surface.components`): one pair, or one per band of a
+        radius by height (:func:`sums` sorts the summits into them)."""
+        if self.surface.radius_by_height is None:
+            return ((self.arguments, self.law_set.edges_for(self.surface, self.material)),)
+        return tuple((self.law_set.arguments(part, self.material),
+                      self.law_set.edges_for(part, self.material))
+                     for part in self.surface.components())  # fmt: skip
 
     @property
     def branches(self) -> tuple[str, ...]:
@@ -383,13 +402,27 @@ def run_task(spec: MonteCarloSpec, task: Task, keep_heights: bool = False):
     Returns the per-block partial sums (each ``(rows, C)``, rows as in
     :meth:`MonteCarloSpec.rows`) and, if asked, the sampled heights.
     """
-    law, args, edges = spec.law_set, spec.arguments, spec.edges
     d, d_turn = spec.rows()
     blocks = [
         sample_block(spec, task.plan, task.realization, b) for b in range(task.start, task.stop)
     ]
-    partials = [block_sums(z, d, law, args, d_turn=d_turn, edges=edges) for z in blocks]
+    partials = [sums(spec, z, d, d_turn) for z in blocks]
     return partials, (blocks if keep_heights else None)
+
+
+def sums(spec: MonteCarloSpec, z: np.ndarray, d: np.ndarray, d_turn=None) -> np.ndarray:
+    """The law set's sums (:func:`~mcsim.engine.kernels.block_sums`) over summits ``z`` (m) at
+    separations ``d`` (m; after ``d_turn``, m): one compiled call, or with a radius by height
+    one per band, over its summits in their order, added (every column is a sum over
+    summits). Bit-reproducible as the kernel is."""
+    if spec.surface.radius_by_height is None:
+        return block_sums(z, d, spec.law_set, spec.arguments, d_turn=d_turn, edges=spec.edges)
+    band = spec.surface.radius_by_height.band_of(z / spec.surface.sigma)
+    out = None
+    for k, (args, edges) in enumerate(spec.parts):
+        part = block_sums(z[band == k], d, spec.law_set, args, d_turn=d_turn, edges=edges)
+        out = part if out is None else out + part
+    return out
 
 
 def run_task_cuda(spec: MonteCarloSpec, task: Task, keep_heights: bool = False):

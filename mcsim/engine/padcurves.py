@@ -34,7 +34,7 @@ from typing import NamedTuple
 import numpy as np
 
 from mcsim.engine.kernels import block_sums, sum_columns
-from mcsim.engine.montecarlo import MonteCarloSpec, plan_patch, sample_block
+from mcsim.engine.montecarlo import MonteCarloSpec, plan_patch, sample_block, sums
 from mcsim.model.errors import ParameterError
 from mcsim.physics.laws import Edges, LawSet, attraction, get_law_set
 from mcsim.physics.surfaceenvironment import (
@@ -100,6 +100,9 @@ def contact_load(spec: MonteCarloSpec, z: np.ndarray, d, d_turn=None) -> np.ndar
     """The contact law's load alone (N, the sum of its ``load``) of the pad of summits ``z``
     (m) at separations ``d`` (m); on retraction after ``d_turn`` (m), as :func:`pad_load`."""
     d = np.atleast_1d(np.asarray(d, dtype=float))
+    if spec.surface.radius_by_height is not None:  # each band of heights with its radius
+        turn = None if d_turn is None else np.full_like(d, d_turn)
+        return sums(spec, z, d, turn)[:, sum_columns(spec.law_set).index("load")]
     if spec.environment is None:
         return _load(_Part(spec.law_set, spec.arguments, spec.edges), z, d, d_turn)
     return _load(_split_laws(spec).contact, z, d, d_turn)
@@ -202,10 +205,18 @@ def contact_edges(spec: MonteCarloSpec) -> Edges:
 def _intervals(spec: MonteCarloSpec, z: np.ndarray, low: float, high: float,
                edges: Edges | None = None) -> np.ndarray:  # fmt: skip
     """Sorted separations (m) cutting [low, high] where a summit crosses an edge of its law
-    (of ``edges``; by default the spec's, the environment's caps included)."""
-    e = spec.edges if edges is None else edges
-    in_delta = np.unique([0.0, e.reach, e.jump_in, e.break_off, *e.breakpoints])
-    cuts = (z[:, None] - in_delta[None, :]).ravel()
+    (of ``edges``; by default the spec's, the environment's caps included; with a radius by
+    height, each band's summits at the edges of their radius)."""
+
+    def cuts_at(z, e):
+        in_delta = np.unique([0.0, e.reach, e.jump_in, e.break_off, *e.breakpoints])
+        return (z[:, None] - in_delta[None, :]).ravel()
+
+    if spec.surface.radius_by_height is not None:
+        band = spec.surface.radius_by_height.band_of(z / spec.surface.sigma)
+        cuts = np.concatenate([cuts_at(z[band == k], e) for k, (_, e) in enumerate(spec.parts)])
+    else:
+        cuts = cuts_at(z, spec.edges if edges is None else edges)
     return np.unique(np.concatenate([[low, high], cuts[(cuts > low) & (cuts < high)]]))
 
 
@@ -267,7 +278,7 @@ def pad_work(spec: MonteCarloSpec, z: np.ndarray, d_turn: float) -> float:
     :func:`~mcsim.physics.laws.attraction.capillary_summit_work`) and the open gaps from the
     turn (:func:`mcsim.physics.surfaceenvironment.open_gap_works`).
     """
-    work = -float(np.sum(contact_works(spec, z - d_turn))) / spec.area
+    work = -float(np.sum(contact_works(spec, z, d_turn))) / spec.area
     if spec.environment is not None:
         caps = _split_laws(spec).caps
         for term, args in zip(caps.law.names, caps.args):
@@ -279,10 +290,10 @@ def pad_work(spec: MonteCarloSpec, z: np.ndarray, d_turn: float) -> float:
     return work
 
 
-def contact_works(spec: MonteCarloSpec, delta_turn: np.ndarray) -> np.ndarray:
-    """∫ f_r(δ; δ_t) dδ (J) of the contact law's retraction load of each summit turned at
-    interference ``delta_turn`` (m), from where it leaves the law to δ_t: minus its work of
-    separation.
+def contact_works(spec: MonteCarloSpec, z: np.ndarray, d_turn: float) -> np.ndarray:
+    """∫ f_r(δ; δ_t) dδ (J) of the contact law's retraction load of each summit of heights
+    ``z`` (m) after the closest approach ``d_turn`` (m), from where it leaves the law to its
+    δ_t = z − d_turn: minus its work of separation.
 
     Each summit's load is smooth between the edges of the law (jump-in, break-off, reach,
     breakpoints); on each piece the substitution δ = a + (b − a)(3u² − 2u³) makes the
@@ -293,8 +304,23 @@ def contact_works(spec: MonteCarloSpec, delta_turn: np.ndarray) -> np.ndarray:
     once, where the summit carries force (:meth:`~mcsim.physics.laws.Edges.threshold`), as
     the kernel's reference does (:func:`~mcsim.engine.kernels.block_sums_numpy`).
     """
-    part = _split_laws(spec).contact if spec.environment is not None else _Part(
-        spec.law_set, spec.arguments, spec.edges)  # fmt: skip
+    if spec.environment is not None:
+        parts = [_split_laws(spec).contact]
+    else:
+        parts = [_Part(spec.law_set, args, edges) for args, edges in spec.parts]
+    delta_turn = z - d_turn
+    band = np.zeros(z.shape, dtype=np.intp)
+    if spec.surface.radius_by_height is not None:  # each band of heights with its radius
+        band = spec.surface.radius_by_height.band_of(z / spec.surface.sigma)
+    works = np.zeros(z.shape)
+    for k, part in enumerate(parts):
+        mine = band == k
+        works[mine] = _piece_works(part, delta_turn[mine])
+    return works
+
+
+def _piece_works(part: _Part, delta_turn: np.ndarray) -> np.ndarray:
+    """:func:`contact_works` of summits with the law set, arguments and edges of ``part``."""
     e = part.edges
     low = min(e.reach, e.break_off, 0.0)  # below it no summit carries force on retraction
     works = np.zeros(delta_turn.shape)

@@ -20,7 +20,10 @@ def inputs(surface, material, law: str, h: np.ndarray) -> list[tuple[str, str]]:
         sweep = f"{h.size} values from {np.min(h):g} to {np.max(h):g}"
     return [
         ("surface", f"{s.name or '(unnamed)'}: σ = {s.sigma * 1e9:.4g} nm, R = {s.R * 1e6:.4g} µm, "
-                    f"η = {s.eta * 1e-12:.4g} µm⁻², {s.heights.name} heights"),
+                    f"η = {s.eta * 1e-12:.4g} µm⁻², {s.heights.name} heights"
+                    + ("" if s.radius_by_height is None else
+                       f", radius by height (R × {min(s.radius_by_height.factors):.3g} … "
+                       f"{max(s.radius_by_height.factors):.3g} in {len(s.radius_by_height.factors)} bands)")),
         ("material", f"{m.name or '(unnamed)'}: K = {m.K * 1e-9:.4g} GPa, G = {m.G * 1e-9:.4g} GPa, "
                      f"γ = {m.gamma:.4g} J/m²"),
         ("law set", law),

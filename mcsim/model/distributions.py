@@ -178,4 +178,80 @@ def _piecewise_gaussian(g: LawIntegrand, h: np.ndarray, breaks) -> tuple[np.ndar
     return np.exp(-0.5 * peak**2), np.sum(values * weight, axis=-1)
 
 
+class Band:
+    """The part of a height distribution with s in (lo, hi]: a sub-distribution of mass
+    P(lo < S ≤ hi), so that GW sums over bands add up to the sum over the whole.
+
+    A surface whose summit radius depends on height
+    (:class:`~mcsim.model.params.RadiusByHeight`) is a mixture of plain GW populations, one
+    per band of heights with its own radius (:meth:`~mcsim.model.params.Surface.components`);
+    each is integrated over its band only. The Monte Carlo draws the whole population and
+    sorts each summit into its band, so a band itself is never sampled.
+
+    Parameters
+    ----------
+    parent : HeightDistribution
+        The whole distribution (s = z/σ).
+    lo, hi : float
+        The band, lo < hi; ±inf for the outermost bands.
+    """
+
+    name = "band"
+
+    def __init__(self, parent: HeightDistribution, lo: float, hi: float):
+        if not lo < hi:
+            raise ValueError(f"empty band ({lo}, {hi}]")
+        self.parent, self.lo, self.hi = parent, float(lo), float(hi)
+
+    def __repr__(self) -> str:
+        return f"Band({self.parent!r}, {self.lo:g}, {self.hi:g})"
+
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, Band):
+            return NotImplemented
+        return (self.parent, self.lo, self.hi) == (other.parent, other.lo, other.hi)
+
+    def __hash__(self) -> int:
+        return hash((self.name, self.parent, self.lo, self.hi))
+
+    def pdf(self, s: np.ndarray) -> np.ndarray:
+        s = np.asarray(s, dtype=float)
+        return np.where((s > self.lo) & (s <= self.hi), self.parent.pdf(s), 0.0)
+
+    def sf(self, s: np.ndarray) -> np.ndarray:
+        """P(S > s and lo < S ≤ hi)."""
+        s = np.clip(np.asarray(s, dtype=float), self.lo, self.hi)
+        top = 0.0 if self.hi == np.inf else self.parent.sf(self.hi)
+        return np.maximum(self.parent.sf(s) - top, 0.0)
+
+    def sample_above(self, n: int, s_min: float, rng: np.random.Generator) -> np.ndarray:
+        raise TypeError("a band of heights is not sampled: the Monte Carlo draws the whole "
+                        "distribution and sorts the summits into bands")  # fmt: skip
+
+    def gw_integrals(
+        self, g: LawIntegrand, h: np.ndarray, breaks: np.ndarray | None = None
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """The parent's integrals over the band: the lower limit raised to Δ = lo − h, a
+        breakpoint at Δ = hi − h, and ``g`` zero above it (the panels split there, so the
+        cut is exact)."""
+        h = np.atleast_1d(np.asarray(h, dtype=float))
+        if breaks is None:
+            base = np.zeros((h.size, 1))
+
+            def inner(delta, rows):
+                return g(delta)
+        else:
+            base, inner = np.asarray(breaks, dtype=float).reshape(h.size, -1), g
+        columns = [np.maximum(base[:, 0], self.lo - h), *base[:, 1:].T]
+        upper = self.hi - h
+        if self.hi < np.inf:
+            columns.append(upper)
+
+        def banded(delta, rows):
+            values = np.asarray(inner(delta, rows))
+            return np.where(delta <= upper[rows][:, None], values, 0.0)
+
+        return self.parent.gw_integrals(banded, h, np.stack(columns, axis=1))
+
+
 GAUSSIAN = Gaussian()

@@ -8,11 +8,11 @@ never stored twice.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from mcsim.model.distributions import GAUSSIAN, HeightDistribution
+from mcsim.model.distributions import GAUSSIAN, Band, HeightDistribution
 from mcsim.model.errors import ParameterError
 from mcsim.model.units import SI_UNITS, parse_quantity
 
@@ -254,6 +254,57 @@ class Material:
 
 
 @dataclass(frozen=True)
+class RadiusByHeight:
+    """A summit radius that depends on the summit's height: R·factor_k in band k.
+
+    The summits of a real surface are not all alike: the taller ones are sharper (Nayak,
+    J. Lubr. Technol. 93, 398, 1971, for Gaussian surfaces; measured on a map by
+    ``mcsim ingest``, docs/contact.md). GW's one radius is then a mixture of GW populations,
+    one per band of heights, each with its own radius (:meth:`Surface.components`).
+
+    Parameters
+    ----------
+    edges : tuple of float
+        Band edges in s = z/σ (the surface's standardized summit heights), strictly
+        increasing, at least two. The outermost bands extend to ±inf.
+    factors : tuple of float
+        Radius of each band over the surface's R, one per band (``len(edges) - 1``),
+        each in [1e-3, 1e3].
+    """
+
+    edges: tuple[float, ...]
+    factors: tuple[float, ...]
+
+    def __post_init__(self) -> None:
+        try:
+            edges = tuple(float(e) for e in self.edges)
+            factors = tuple(float(f) for f in self.factors)
+        except (TypeError, ValueError):
+            raise ParameterError("radius_by_height: edges and factors must be numbers") from None
+        if len(edges) < 2 or len(factors) != len(edges) - 1:
+            raise ParameterError(f"radius_by_height: {len(factors)} factors need "
+                                 f"{len(factors) + 1} edges, got {len(edges)} (at least 2)")  # fmt: skip
+        if not all(math.isfinite(e) for e in edges) or any(np.diff(edges) <= 0):
+            raise ParameterError(f"radius_by_height: edges = {list(edges)} must be finite and "
+                                 "strictly increasing")  # fmt: skip
+        for f in factors:
+            if not (math.isfinite(f) and 1e-3 <= f <= 1e3):
+                raise ParameterError(f"radius_by_height: factor = {f!r} is out of range "
+                                     "(allowed: 1e-3 to 1e3)")  # fmt: skip
+        object.__setattr__(self, "edges", edges)
+        object.__setattr__(self, "factors", factors)
+
+    def bands(self) -> list[tuple[float, float, float]]:
+        """(lo, hi, factor) of each band, the outermost open to ±inf."""
+        cuts = (-math.inf, *self.edges[1:-1], math.inf)
+        return list(zip(cuts[:-1], cuts[1:], self.factors))
+
+    def band_of(self, s) -> np.ndarray:
+        """Index of the band holding each standardized height ``s`` (bands are (lo, hi])."""
+        return np.searchsorted(np.asarray(self.edges[1:-1]), np.asarray(s, float), side="left")
+
+
+@dataclass(frozen=True)
 class Surface:
     """A Greenwood–Williamson population of spherical summits (the combined surface).
 
@@ -284,6 +335,9 @@ class Surface:
     map_heights : HeightDistribution or None
         Shape of the heights of the whole surface about its mean plane in units of
         ``rq`` (a measured map's height histogram); None: Gaussian.
+    radius_by_height : RadiusByHeight or None
+        A summit radius that depends on height (R times a factor per band of heights);
+        None: every summit has the radius R, as in GW and the paper.
     """
 
     sigma: float
@@ -294,6 +348,7 @@ class Surface:
     rq: float | None = None
     summit_offset: float | None = None
     map_heights: HeightDistribution | None = None
+    radius_by_height: RadiusByHeight | None = None
 
     def __post_init__(self) -> None:
         for attr in ("sigma", "R", "eta"):
@@ -305,6 +360,26 @@ class Surface:
             offset = check_range("summit_offset", self.summit_offset, unit, low=0.0, high=high,
                                  low_open=False, high_open=False)  # fmt: skip
             object.__setattr__(self, "summit_offset", offset)
+
+        if self.radius_by_height is not None:
+            if not isinstance(self.radius_by_height, RadiusByHeight):
+                raise ParameterError(f"radius_by_height = {self.radius_by_height!r} must be a "
+                                     "RadiusByHeight or None")  # fmt: skip
+            for factor in self.radius_by_height.factors:
+                _in_range("R", self.R * factor)
+
+    def components(self) -> tuple[Surface, ...]:
+        """The plain GW populations this surface is a sum of: itself, or with
+        :attr:`radius_by_height` one per band of heights, each with its radius and its part
+        of the height distribution (:class:`~mcsim.model.distributions.Band`). Quantities
+        that are sums over summits (loads, areas, counts, works) are the sums of theirs."""
+        if self.radius_by_height is None:
+            return (self,)
+        bands = self.radius_by_height.bands()
+        return tuple(
+            replace(self, R=self.R * f, heights=Band(self.heights, lo, hi), radius_by_height=None)
+            for lo, hi, f in bands
+        )
 
     @property
     def A0(self) -> float:
@@ -349,6 +424,9 @@ def combine_surfaces(first: Surface, second: Surface, eta: float, name: str = ""
     name : str
         Label of the result.
     """
+    if first.radius_by_height is not None or second.radius_by_height is not None:
+        raise ParameterError("combine: a surface with a radius by height cannot be combined "
+                             "(the rule is for one radius per surface)")  # fmt: skip
     sigma = math.hypot(first.sigma, second.sigma)
     R = (first.R**-2 + second.R**-2) ** -0.5
     return Surface(sigma=sigma, R=R, eta=eta, name=name)

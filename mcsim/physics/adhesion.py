@@ -265,8 +265,13 @@ def _top(surface: Surface, laws: LawSet, material: Material) -> float:
     """Separation h above which no summit carries force on either branch."""
     heights = surface.heights
     top = float(heights.edges[-1]) if hasattr(heights, "edges") else GAUSSIAN_TOP
-    edges = laws.edges_for(surface, material)
-    return top - min(edges.reach, edges.break_off, 0.0) / surface.sigma
+    lowest = min(min(e.reach, e.break_off, 0.0) for e in _edges(surface, laws, material))
+    return top - lowest / surface.sigma
+
+
+def _edges(surface: Surface, laws: LawSet, material: Material) -> list:
+    """The law set's edges for each of the surface's radii (one, or one per band of heights)."""
+    return [laws.edges_for(part, material) for part in surface.components()]
 
 
 def _bottom(surface: Surface) -> float:
@@ -279,15 +284,18 @@ def _kinks(surface, material, laws, turn: float, top: float) -> np.ndarray:
 
     Where an edge in δ (reach, break-off, 0, jump-in, breakpoints) meets an edge in
     δ_max (jump-in, breakpoints), and, for a histogram, where an edge in δ crosses a
-    bin edge (the density jumps there).
+    bin edge (the density jumps there), or a band edge of a radius by height (the radius
+    does); for each of the surface's radii.
     """
-    edges = laws.edges_for(surface, material)
-    sigma = surface.sigma
-    in_delta = np.array([0.0, edges.reach, edges.break_off, edges.jump_in, *edges.breakpoints])
-    in_max = np.array([edges.jump_in, *edges.breakpoints])
-    h = [turn + (in_max[:, None] - in_delta[None, :]).ravel() / sigma]
-    if hasattr(surface.heights, "edges"):
-        h.append((surface.heights.edges[:, None] - in_delta[None, :] / sigma).ravel())
+    sigma, h = surface.sigma, []
+    jumps = [surface.heights.edges] if hasattr(surface.heights, "edges") else []
+    if surface.radius_by_height is not None:
+        jumps.append(np.asarray(surface.radius_by_height.edges))
+    for edges in _edges(surface, laws, material):
+        in_delta = np.array([0.0, edges.reach, edges.break_off, edges.jump_in, *edges.breakpoints])
+        in_max = np.array([edges.jump_in, *edges.breakpoints])
+        h.append(turn + (in_max[:, None] - in_delta[None, :]).ravel() / sigma)
+        h += [(s[:, None] - in_delta[None, :] / sigma).ravel() for s in jumps]
     h = np.concatenate(h)
     return np.unique(h[(h > turn) & (h < top)])
 

@@ -299,6 +299,8 @@ def gw_curves(
     laws = get_law_set(law)
     h = check_separations(h)
     turn = _check_turn(laws, branch, h, turn)
+    if surface.radius_by_height is not None:
+        return _mixture(surface, material, h, laws, branch, turn, environment)
     args = laws.arguments(surface, material)
     sigma = surface.sigma
     edges = laws.edges_for(surface, material)
@@ -320,6 +322,23 @@ def gw_curves(
         values = {**values, **_friction(laws, material, values)}
     curves = AnalyticCurves(h, values, surface, material, laws.name, branch, turn)
     return curves if environment is None else _with_environment(curves, environment)
+
+
+def _mixture(surface, material, h, laws, branch, turn, environment) -> AnalyticCurves:
+    """Curves of a surface whose radius depends on height: the sums of its bands' curves
+    (:meth:`~mcsim.model.params.Surface.components`), μ from the sums."""
+    if environment is not None:
+        raise ParameterError("radius_by_height: the environment is not modelled on a surface "
+                             "whose summit radius depends on height (drop one of the two)")  # fmt: skip
+    parts = [gw_curves(c, material, h, laws, branch, turn).values for c in surface.components()]
+    values = {k: np.sum([p[k] for p in parts], axis=0) for k in parts[0] if k != "mu"}
+    if laws.name == "seed":  # Eq. 8, as for one radius
+        denominator = (values["P"] + values["F"]) * (material.gamma > 0)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            values["mu"] = np.where(denominator > 0, values["T"] / denominator, np.nan)
+    else:
+        values |= _friction(laws, material, values)
+    return AnalyticCurves(h, values, surface, material, laws.name, branch, turn)
 
 
 def _with_environment(curves: AnalyticCurves, environment: Environment) -> AnalyticCurves:

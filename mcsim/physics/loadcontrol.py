@@ -63,8 +63,11 @@ def balanced_quantity(law: str | LawSet, environment: bool = False) -> str:
 def hertz_area_fraction(surface: Surface, h) -> np.ndarray:
     """GW real contact area of Hertz summits, A_r/A_n = π η R σ F_1(h) (GW 1966, Eq. 9)."""
     h = np.atleast_1d(np.asarray(h, dtype=float))
-    scale, integral = surface.heights.gw_integrals(lambda d: d[None], h)
-    return math.pi * surface.eta * surface.R * surface.sigma * scale * integral[0]
+    out = np.zeros_like(h)
+    for part in surface.components():  # a radius by height: the sum over its bands
+        scale, integral = part.heights.gw_integrals(lambda d: d[None], h)
+        out += math.pi * part.eta * part.R * part.sigma * scale * integral[0]
+    return out
 
 
 @dataclass(frozen=True)

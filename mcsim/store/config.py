@@ -50,6 +50,16 @@ own standard deviation (of its piecewise-uniform density,
 mean plane, whose shape is kept and scaled by ``rq``; ``rq`` defaults to its own standard
 deviation.
 
+A summit radius that depends on height (``mcsim ingest --radius-by-height``,
+:class:`~mcsim.model.params.RadiusByHeight`) is a table of band edges in s = z/σ and the
+radius of each band over R:
+
+.. code-block:: toml
+
+    [surface.radius_by_height]
+    edges = [-2.3, -1.2, 0.0, 1.2, 2.4]   # the outermost bands extend beyond
+    factors = [1.4, 1.1, 0.9, 0.7]
+
 Dimensional quantities in a file must carry their unit (``sigma = "1.4 nm"``): a bare
 number is refused, since ``sigma = 1.4`` would otherwise be read as 1.4 m. (The
 dataclasses and the table builders called from Python take bare numbers as SI.)
@@ -66,7 +76,7 @@ from pathlib import Path
 from typing import Any
 
 from mcsim.model.errors import MCSimError, ParameterError, UnitError
-from mcsim.model.params import Material, Surface, combine_surfaces
+from mcsim.model.params import Material, RadiusByHeight, Surface, combine_surfaces
 from mcsim.model.presets import MATERIALS, SURFACES
 from mcsim.model.units import SI_UNITS, has_unit, parse_quantity
 from mcsim.topography.empirical import Empirical
@@ -278,6 +288,7 @@ def surface_from_table(
             table.pop("map_heights", "gaussian"), f"{where}: map_heights", base_dir, units_required
         )
         scale = _radius_scale(table.pop("calibration", None), where)
+        bands = _radius_by_height(table.pop("radius_by_height", None), where)
         optional = ("rq", "summit_offset") if heights is None else ("sigma", "rq", "summit_offset")
         values = _quantities(table, _SURFACE_KEYS | _GAP_KEYS, where, optional=optional, **strict)
         values["R"] *= scale
@@ -286,11 +297,26 @@ def surface_from_table(
             values["heights"] = heights
         if map_heights is not None:
             values.setdefault("rq", map_heights.sigma)
-        return Surface(**values, map_heights=map_heights, name=name)
+        return Surface(**values, map_heights=map_heights, name=name, radius_by_height=bands)
     except ParameterError as err:
         if str(err).startswith(where):
             raise
         raise ParameterError(f"{where}: {err}") from None
+
+
+def _radius_by_height(table: Any, where: str) -> RadiusByHeight | None:
+    """The ``[surface.radius_by_height]`` table: ``edges`` (in s) and ``factors`` (of R)."""
+    if table is None:
+        return None
+    if not isinstance(table, dict) or set(table) != {"edges", "factors"}:
+        raise ParameterError(f"{where}: radius_by_height must be a table of 'edges' (band edges "
+                             "in s = z/sigma) and 'factors' (radius over R), got "
+                             f"{table!r}")  # fmt: skip
+    edges, factors = table["edges"], table["factors"]
+    if not all(isinstance(v, list) and all(_is_number(x) for x in v) for v in (edges, factors)):
+        raise ParameterError(f"{where}: radius_by_height: edges and factors must be lists of "
+                             "numbers")  # fmt: skip
+    return RadiusByHeight(tuple(edges), tuple(factors))
 
 
 def _radius_scale(table: Any, where: str) -> float:

@@ -16,7 +16,9 @@ the axes ``(h)`` of an approach, or ``(branch, h)`` of a cycle (``--cycle``: the
                            block_size, complete, checksum; load_control (JSON: the
                            nominal pressures, Pa, the separations balance: simulate
                            --pressure/--load only)
-    /input/surface         attrs: sigma [m], R [m], eta [m^-2], name, heights (JSON)
+    /input/surface         attrs: sigma [m], R [m], eta [m^-2], name, heights (JSON);
+                           radius_by_height (JSON: band edges in s, factors of R; absent:
+                           one radius R)
     /input/material        attrs: E1, E2 [Pa], nu1, nu2, gamma [J/m^2], H [Pa], name,
                            z0 [m], tau [Pa] (NaN: not given; absent in older files)
     /h, /d                 coordinate h = d/σ, and d [m] over it (M each)
@@ -94,7 +96,7 @@ from mcsim.engine.montecarlo import BLOCK, EnsembleSums, MonteCarloSpec
 from mcsim.engine.statistics import Summary, quantities
 from mcsim.model.distributions import GAUSSIAN
 from mcsim.model.errors import MCSimError, RunFileError
-from mcsim.model.params import Material, Surface
+from mcsim.model.params import Material, RadiusByHeight, Surface
 from mcsim.store import schema
 from mcsim.store.envgroup import read_environment, write_environment
 from mcsim.store.files import atomic_write, checksum, file_path
@@ -135,6 +137,12 @@ def heights_to_json(surface: Surface) -> str:
     return json.dumps({"name": heights.name, **heights.to_dict()})
 
 
+def radius_to_json(radius: RadiusByHeight) -> str:
+    """A radius by height as run and sweep files store it: JSON ``{"edges": [s...],
+    "factors": [...]}`` (edges in s = z/σ, factors of R)."""
+    return json.dumps({"edges": list(radius.edges), "factors": list(radius.factors)})
+
+
 def _heights_from_dict(data: dict):
     """Inverse of :func:`heights_to_json`, from the parsed JSON object."""
     if data.get("name") == "gaussian":
@@ -172,6 +180,8 @@ def _write_inputs(f, spec: MonteCarloSpec, command: str, complete: bool, extra=N
     s = f.create_group("input/surface")
     s.attrs.update(sigma=spec.surface.sigma, R=spec.surface.R, eta=spec.surface.eta,
                    name=spec.surface.name, heights=heights_to_json(spec.surface))  # fmt: skip
+    if spec.surface.radius_by_height is not None:
+        s.attrs["radius_by_height"] = radius_to_json(spec.surface.radius_by_height)
     s.attrs["units"] = json.dumps({"sigma": "m", "R": "m", "eta": "m^-2"})
     m = f.create_group("input/material")
     mat = spec.material
@@ -366,12 +376,17 @@ def _inputs(path: Path, f) -> tuple[Surface, Material]:
         if not isinstance(f.get(group), h5py.Group):
             raise schema.refuse(path, WHAT, f"group {group} is missing")
     s, m = f["input/surface"], f["input/material"]
+    radius = s.attrs.get("radius_by_height")  # optional: absent, one radius R
     s = {k: schema.attribute(path, s, k, kind, WHAT) for k, kind in SURFACE.items()}
+    if radius is not None:
+        radius = schema.attribute(path, f["input/surface"], "radius_by_height", "JSON object", WHAT)
     optional = {k: kind for k, kind in MATERIAL_OPTIONAL.items() if k in m.attrs}
     m = {k: schema.attribute(path, m, k, kind, WHAT) for k, kind in (MATERIAL | optional).items()}
     try:
         heights = _heights_from_dict(s.pop("heights"))
-        surface = Surface(**s, heights=heights)
+        if radius is not None:
+            radius = RadiusByHeight(radius.get("edges", ()), radius.get("factors", ()))
+        surface = Surface(**s, heights=heights, radius_by_height=radius)
     except MCSimError as err:
         raise schema.refuse(path, WHAT, f"input/surface: {err}") from None
     for k in MATERIAL_OPTIONAL:

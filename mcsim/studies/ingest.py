@@ -64,10 +64,12 @@ from mcsim.topography.readers import histogram as _histogram_format
 from mcsim.topography.summits import (
     TopographyResult,
     periodic_edges,
+    summit_curvatures,
     summit_heights,
     summit_statistics,
 )
 from mcsim.topography.summits import level as level_heights
+from mcsim.topography.summits import radius_by_height as fit_radius
 
 HEIGHTS = ("summits", "map")
 #: Largest number of bins of a written histogram (Freedman–Diaconis otherwise).
@@ -151,6 +153,7 @@ def ingest_file(
     channel: str | None = None,
     periodic: bool | None = None,
     calibrate: Material | None = None,
+    radius_by_height: bool | None = None,
 ) -> IngestResult:
     """Read a height map or a height histogram and derive a GW surface from it.
 
@@ -184,6 +187,11 @@ def ingest_file(
         Fit GW's summit-radius scale to exact elastic solves of the map with this material's
         E* (:func:`mcsim.studies.calibration.calibrate`); recorded in the surface file and
         used by every command that reads it. Maps only.
+    radius_by_height : bool, optional
+        Give each band of summit heights (each histogram bin) its own radius, from a fit of
+        the summits' curvatures against their heights
+        (:func:`mcsim.topography.summits.radius_by_height`): taller summits are sharper.
+        None (default): with ``calibrate`` only. Maps with ``heights="summits"`` only.
 
     Returns
     -------
@@ -221,7 +229,16 @@ def ingest_file(
             raise ParameterError(
                 f"{path}: a text histogram has no map to solve: --calibrate needs a height map"
             )
+        if radius_by_height:
+            raise ParameterError(f"{path}: a text histogram has no summit curvatures: "
+                                 "--radius-by-height needs a height map")  # fmt: skip
         return _ingest_histogram(path, unit, R, eta, name)
+    by_height = calibrate is not None if radius_by_height is None else bool(radius_by_height)
+    if by_height and heights != "summits":
+        if radius_by_height:
+            raise ParameterError(f"{path}: --radius-by-height needs the summits' histogram "
+                                 "(--heights summits), not the map's")  # fmt: skip
+        by_height = False
     if R is not None or eta is not None:
         raise ParameterError(
             f"{path}: R and eta come from the map's summits: give them only with a histogram file"
@@ -263,9 +280,14 @@ def ingest_file(
                 "not a summit population (try --route direct or another --level)"
             )
         plane = float(np.mean(pixels))
+        bands = None
+        if by_height:
+            z_peaks, kappa = summit_curvatures(levelled, hmap.dx, hmap.dy, periodic)
+            bands = fit_radius((z_peaks - shape.mean) / shape.sigma, kappa, shape.edges)[0]
         surface = Surface(sigma=stats.sigma_s, R=stats.R, eta=stats.eta, heights=shape, name=name,
                           rq=float(np.sqrt(np.mean((pixels - plane) ** 2))),
-                          summit_offset=float(np.mean(peaks)) - plane, map_heights=map_shape)  # fmt: skip
+                          summit_offset=float(np.mean(peaks)) - plane, map_heights=map_shape,
+                          radius_by_height=bands)  # fmt: skip
     except ReaderError:
         raise
     except MCSimError as err:
@@ -275,7 +297,7 @@ def ingest_file(
         from mcsim.studies.calibration import calibrate as fit
 
         calibration = fit(path, calibrate, unit=unit, pixel_size=pixel_size, channel=channel,
-                          level=level, periodic=periodic)  # fmt: skip
+                          level=level, periodic=periodic, surface=surface)  # fmt: skip
     return IngestResult(
         source=path,
         format=_FORMAT_NAMES.get(path.suffix.lower(), "text matrix"),

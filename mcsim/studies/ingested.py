@@ -205,6 +205,11 @@ class IngestResult:
             )
         else:
             lines.append(f"histogram  {self.edges.size - 1} bins: {self.summit_heights.line()}")
+        if s.radius_by_height is not None:
+            f = s.radius_by_height.factors
+            lines.append(f"radius     by height: R x {f[0]:.3g} in the lowest band of summit heights "
+                         f"to x {f[-1]:.3g} in the highest ({len(f)} bands, the histogram's bins; "
+                         "ln curvature fitted linear in height)")  # fmt: skip
         if self.calibration is not None:
             lines += self.calibration.lines()
             lines += [f"warning    {w}" for w in self.calibration.warnings()]
@@ -353,6 +358,7 @@ class IngestResult:
                 if s.rq is not None
                 else []
             ),
+            *self._radius_toml(),
             *self._calibration_toml(),
             "",
             "[surface.heights]",
@@ -365,6 +371,22 @@ class IngestResult:
             ),
         ]
         return "\n".join(out) + "\n"
+
+    def _radius_toml(self) -> list[str]:
+        """The ``[surface.radius_by_height]`` table, or nothing."""
+        bands = self.surface.radius_by_height
+        if bands is None:
+            return []
+        return [
+            "",
+            "# Summit radius by height (mcsim ingest --radius-by-height): the summits of each",
+            "# band of heights have the radius R x factor (fitted to the summits' curvatures:",
+            "# ln kappa linear in s). Band edges in s = (z - mean summit height)/sigma, the",
+            "# histogram's bins; the outermost bands extend beyond them.",
+            "[surface.radius_by_height]",
+            "edges = [" + ", ".join(f"{e:.12g}" for e in bands.edges) + "]",
+            "factors = [" + ", ".join(f"{f:.12g}" for f in bands.factors) + "]",
+        ]
 
     def _calibration_toml(self) -> list[str]:
         """The ``[surface.calibration]`` table (:mod:`mcsim.studies.calibration`), or nothing."""

@@ -135,10 +135,11 @@ def p_stick_model(spec, restoring_force: float, *, turn: float, h_pull_off: floa
     float
         P(pull-off > F_r): the Lugannani–Rice tails at h* + :data:`OFFSETS`, joined over
         the offsets by their Gaussian copula (module docstring). NaN for pads with an
-        environment (``spec.environment``): the model has not been checked against their
-        pads there, whose own estimate is the answer.
+        environment (``spec.environment``) or a radius by height
+        (``spec.surface.radius_by_height``): the model has not been checked against their
+        pads there (nor written for several radii), whose own estimate is the answer.
     """
-    if spec.environment is not None:
+    if spec.environment is not None or spec.surface.radius_by_height is not None:
         return math.nan
     low = turn - 1.0
     s, w = _quadrature(spec, low)

@@ -290,11 +290,12 @@ def _fast(point: Point, config: Config) -> bool:
     """Whether :func:`mcsim.engine.designmap.jkr_summaries` computes this point: the jkr law
     set on Gaussian summit heights, without Monte Carlo, pads or a preload, and either
     without an environment or with one over Gaussian heights about the mean plane (not a
-    measured height histogram, which the compiled kernel does not know)."""
+    measured height histogram, which the compiled kernel does not know), with one radius."""
     surface = point.surface
     gaussian_gaps = point.environment is None or surface.map_heights is None
     return (point.law == "jkr" and not config.mc and isinstance(surface.heights, Gaussian)
-            and gaussian_gaps and config.preload is None and not config.pads)  # fmt: skip
+            and gaussian_gaps and config.preload is None and not config.pads
+            and surface.radius_by_height is None)  # fmt: skip
 
 
 def batches(points, config: Config):

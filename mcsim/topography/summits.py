@@ -52,6 +52,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from mcsim.model.errors import ParameterError
+from mcsim.model.params import RadiusByHeight
 
 
 class SaturationWarning(UserWarning):
@@ -281,6 +282,46 @@ def summit_curvatures(
         κ = −(z_xx + z_yy)/2 by central differences (1/m; its radius is 1/κ).
     """
     return _curvatures(z, dx, dy, periodic)[:2]
+
+
+def radius_by_height(heights: np.ndarray, kappa: np.ndarray, edges) -> tuple[RadiusByHeight, float]:
+    """A summit radius by height fitted to the summits' own curvatures, one factor per band.
+
+    The curvature of a summit grows with its height (Nayak 1971; measured on a map by
+    ``validation/radius_height.py``). A log-linear fit ln κ = a + b s over the summits with
+    κ > 0 (s their standardized heights) gives κ(s) ∝ e^{b s}; scaled so that the summits'
+    mean curvature stays 1/R (GW's radius), band k's radius is R times
+    ρ_k = ⟨e^{b s_i}⟩ e^{−b c_k}, c_k its centre. A smooth fit, not each band's own mean: the
+    top bands hold a few summits.
+
+    Parameters
+    ----------
+    heights : ndarray
+        The summits' standardized heights s_i (the histogram's s = (z − mean)/σ).
+    kappa : ndarray
+        Their mean curvatures, 1/m (:func:`summit_curvatures`).
+    edges : array_like
+        Band edges in s (the histogram's standardized bin edges).
+
+    Returns
+    -------
+    RadiusByHeight, float
+        The bands, and the slope b of ln κ against s.
+
+    Raises
+    ------
+    ParameterError
+        Fewer than three summits with κ > 0.
+    """
+    convex = kappa > 0
+    if np.count_nonzero(convex) < 3:
+        raise ParameterError(f"{np.count_nonzero(convex)} summits with a positive curvature: "
+                             "too few to fit a radius by height")  # fmt: skip
+    b = float(np.polyfit(heights[convex], np.log(kappa[convex]), 1)[0])
+    edges = np.asarray(edges, dtype=float)
+    centre = (edges[:-1] + edges[1:]) / 2
+    factors = np.mean(np.exp(b * heights[convex])) * np.exp(-b * centre)
+    return RadiusByHeight(tuple(edges), tuple(np.clip(factors, 1e-3, 1e3))), b
 
 
 def _curvatures(z: np.ndarray, dx: float, dy: float, periodic: bool):

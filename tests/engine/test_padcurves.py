@@ -122,5 +122,5 @@ def test_the_contact_laws_work_summed_summit_by_summit_is_the_integral_of_the_pa
         half = np.diff(cuts)[:, None] / 2
         nodes = ((cuts[:-1, None] + cuts[1:, None]) / 2 + half * x).ravel()
         reference = np.sum((half * w).ravel() * padcurves.contact_load(spec, z, nodes, d_t))
-        summed = np.sum(padcurves.contact_works(spec, z - d_t))
+        summed = np.sum(padcurves.contact_works(spec, z, d_t))
         assert summed == pytest.approx(reference, rel=1e-6)

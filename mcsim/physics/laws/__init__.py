@@ -178,6 +178,16 @@ class Edges:
         """Whether a summit at ``delta`` with history ``delta_max`` is in contact."""
         return (delta_max > self.jump_in) & (delta > self.break_off)
 
+    @staticmethod
+    def widest(edges: list[Edges]) -> Edges:
+        """Edges that every summit of any of ``edges`` lies within: the lowest reach, jump-in
+        and break-off (a threshold at or below each one's), all breakpoints. One: itself."""
+        if len(edges) == 1:
+            return edges[0]
+        return Edges(min(e.reach for e in edges), min(e.jump_in for e in edges),
+                     min(e.break_off for e in edges),
+                     tuple(sorted({b for e in edges for b in e.breakpoints})))  # fmt: skip
+
 
 def _no_constants(surface: Surface, material: Material) -> dict:
     return {}
