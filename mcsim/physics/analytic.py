@@ -329,7 +329,8 @@ def _mixture(surface, material, h, laws, branch, turn, environment) -> AnalyticC
     (:meth:`~mcsim.model.params.Surface.components`), μ from the sums."""
     if environment is not None:
         raise ParameterError("radius_by_height: the environment is not modelled on a surface "
-                             "whose summit radius depends on height (drop one of the two)")  # fmt: skip
+                             "whose summit radius depends on height (ingest the map with "
+                             "--no-radius-by-height for one radius)")  # fmt: skip
     parts = [gw_curves(c, material, h, laws, branch, turn).values for c in surface.components()]
     values = {k: np.sum([p[k] for p in parts], axis=0) for k in parts[0] if k != "mu"}
     if laws.name == "seed":  # Eq. 8, as for one radius
