@@ -121,7 +121,11 @@ def _p_stick_notes(report, n: int, asked: bool) -> None:
               f"not), or --tail, but p_stick is their fraction, not importance sampling: {why}",
               file=sys.stderr)  # fmt: skip
     model = report.p_stick_model
-    if not s["p_stick_low"] <= model <= s["p_stick_high"]:
+    if math.isnan(model):
+        print("mcsim: note: p_stick_model is not given with an environment or a radius by height "
+              "(the model is not checked there): the pads' own p_stick is the answer",
+              file=sys.stderr)  # fmt: skip
+    elif not s["p_stick_low"] <= model <= s["p_stick_high"]:
         print(f"mcsim: warning: p_stick_model {model:.3g} lies outside the 95 % interval of "
               f"p_stick [{s['p_stick_low']:.3g}, {s['p_stick_high']:.3g}]: the model does not "
               "hold here", file=sys.stderr)  # fmt: skip

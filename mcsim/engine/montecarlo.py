@@ -142,6 +142,9 @@ class MonteCarloSpec:
             raise ParameterError(f"environment = {self.environment!r} must be an Environment")
         if self.environment is not None and not self.environment.active:
             object.__setattr__(self, "environment", None)
+        if self.environment is None:  # fields only the environment reads: not the run's inputs
+            bare = dataclasses.replace(self.surface, rq=None, summit_offset=None, map_heights=None)
+            object.__setattr__(self, "surface", bare)
         if not isinstance(self.cycle, bool | np.bool_):
             raise ParameterError(f"cycle = {self.cycle!r} must be True or False")
         object.__setattr__(self, "cycle", bool(self.cycle))

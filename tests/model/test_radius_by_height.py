@@ -4,7 +4,7 @@ the pads and the files."""
 
 import dataclasses
 import io
-from contextlib import redirect_stderr
+from contextlib import redirect_stderr, redirect_stdout
 
 import numpy as np
 import pytest
@@ -169,3 +169,14 @@ def test_a_bad_bands_table_in_a_surface_file_is_one_line(tmp_path):
         code = main(["analytic", "--surface", str(toml), "--h=1"])
     assert code == 2 and err.getvalue().count("\n") == 1
     assert "radius_by_height" in err.getvalue() and "5000" in err.getvalue()
+
+
+def test_pads_of_bands_say_the_model_is_not_given_rather_than_warn_about_nan(tmp_path):
+    out = tmp_path / "run.h5"
+    mcsim.simulate(with_bands(), SILICON, H, area="30 um^2", realizations=5, seed=2, law="jkr",
+                   cycle=True, out=out)  # fmt: skip
+    err = io.StringIO()
+    with redirect_stderr(err), redirect_stdout(io.StringIO()):
+        code = main(["pads", str(out), "--restoring-force", "1uN"])
+    assert code == 0 and "p_stick_model is not given" in err.getvalue()
+    assert "warning: p_stick_model nan" not in err.getvalue()

@@ -332,3 +332,17 @@ def test_resume_refuses_an_unfinished_sweep_at_the_output_path(tmp_path, monkeyp
         RunFileError, match=f"^{re.escape(str(path))}: damaged sweep file: it holds"
     ):
         sweep(**SWEEP, out=path, resume=True)
+
+
+def test_a_surface_with_environment_only_fields_resumes_without_an_environment(tmp_path, caplog):
+    # A surface ingest writes carries rq, summit_offset and the map's heights, which only the
+    # environment reads; a run without one neither uses nor stores them, so resuming it (or a
+    # checkpoint of it) must not see them as a different input.
+    measured = dataclasses.replace(SMOOTH, rq=1.6e-9, summit_offset=1.5e-9)
+    path = tmp_path / "r.h5"
+    first = simulate(**(RUN | {"surface": measured}), out=path)
+    before = snapshot(path)
+    with caplog.at_level(logging.WARNING):
+        again = simulate(**(RUN | {"surface": measured}), out=path, resume=True)
+    assert snapshot(path) == before and "nothing to do" in caplog.text
+    assert again.spec == first.spec and again.spec.surface.rq is None
