@@ -253,6 +253,11 @@ class Material:
         return 1.0 / ((2 - self.nu1) / G1 + (2 - self.nu2) / G2)
 
 
+#: Most bands of a :class:`RadiusByHeight` (as many as ``mcsim ingest`` writes histogram bins;
+#: every band is a GW population of its own in the integrals and the sums).
+MAX_BANDS = 256
+
+
 @dataclass(frozen=True)
 class RadiusByHeight:
     """A summit radius that depends on the summit's height: R·factor_k in band k.
@@ -281,6 +286,9 @@ class RadiusByHeight:
             factors = tuple(float(f) for f in self.factors)
         except (TypeError, ValueError):
             raise ParameterError("radius_by_height: edges and factors must be numbers") from None
+        if len(factors) > MAX_BANDS:
+            raise ParameterError(f"radius_by_height: {len(factors)} bands is out of range "
+                                 f"(allowed: at most {MAX_BANDS}, as many as histogram bins)")  # fmt: skip
         if len(edges) < 2 or len(factors) != len(edges) - 1:
             raise ParameterError(f"radius_by_height: {len(factors)} factors need "
                                  f"{len(factors) + 1} edges, got {len(edges)} (at least 2)")  # fmt: skip

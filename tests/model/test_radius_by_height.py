@@ -153,6 +153,7 @@ def test_a_radius_by_height_is_refused_where_it_is_not_modelled():
         ((0.0, float("nan")), (1.0,), "finite"),
         ((0.0, 1.0), (0.0,), "factor = 0.0 is out of range"),
         ((0.0, 1.0), ("x",), "must be numbers"),
+        (tuple(range(258)), (1.0,) * 257, "257 bands is out of range"),
     ],
 )
 def test_bad_bands_are_one_clear_error(edges, factors, message):
