@@ -164,10 +164,6 @@ class MonteCarloSpec:
         if self.surface.radius_by_height is not None and self.device != "cpu":
             raise ParameterError(f"device = {self.device!r}: a summit radius by height is summed "
                                  "on the CPU only (device = 'cpu')")  # fmt: skip
-        if self.surface.radius_by_height is not None and self.environment is not None:
-            raise ParameterError("radius_by_height: the environment is not modelled on a surface "
-                                 "whose summit radius depends on height (ingest the map with "
-                                 "--no-radius-by-height for one radius)")  # fmt: skip
 
     def fields(self) -> dict:
         """The defining inputs, comparable with ``==`` (h as a tuple)."""

@@ -86,6 +86,9 @@ def pad_load(spec: MonteCarloSpec, z: np.ndarray, d, d_turn=None) -> np.ndarray:
     d = np.atleast_1d(np.asarray(d, dtype=float))
     if spec.environment is None:
         return contact_load(spec, z, d, d_turn)
+    if spec.surface.radius_by_height is not None:  # each band's contact and caps, its radius
+        turn = None if d_turn is None else np.full_like(d, d_turn)
+        return net_load(spec, sums(spec, z, d, turn), d)
     # Two sums over the pad's summits: the contact law's over those that can touch, and the
     # caps' over every summit within their reach (each evaluated only where it acts).
     parts = _split_laws(spec)
@@ -280,9 +283,10 @@ def pad_work(spec: MonteCarloSpec, z: np.ndarray, d_turn: float) -> float:
     """
     work = -float(np.sum(contact_works(spec, z, d_turn))) / spec.area
     if spec.environment is not None:
-        caps = _split_laws(spec).caps
-        for term, args in zip(caps.law.names, caps.args):
-            work += float(np.sum(CAP_WORKS[term](z - d_turn, *args))) / spec.area
+        band = _band(spec, z)
+        for k, caps in enumerate(_caps_parts(spec)):  # each band's caps with its radius
+            for term, args in zip(caps.law.names, caps.args):
+                work += float(np.sum(CAP_WORKS[term](z[band == k] - d_turn, *args))) / spec.area
         gaps = open_gap_works(
             np.float64(d_turn / spec.surface.sigma), spec.surface, spec.environment
         )
@@ -304,19 +308,33 @@ def contact_works(spec: MonteCarloSpec, z: np.ndarray, d_turn: float) -> np.ndar
     once, where the summit carries force (:meth:`~mcsim.physics.laws.Edges.threshold`), as
     the kernel's reference does (:func:`~mcsim.engine.kernels.block_sums_numpy`).
     """
-    if spec.environment is not None:
-        parts = [_split_laws(spec).contact]
-    else:
-        parts = [_Part(spec.law_set, args, edges) for args, edges in spec.parts]
-    delta_turn = z - d_turn
-    band = np.zeros(z.shape, dtype=np.intp)
-    if spec.surface.radius_by_height is not None:  # each band of heights with its radius
-        band = spec.surface.radius_by_height.band_of(z / spec.surface.sigma)
-    works = np.zeros(z.shape)
-    for k, part in enumerate(parts):
-        mine = band == k
-        works[mine] = _piece_works(part, delta_turn[mine])
+    band, works = _band(spec, z), np.zeros(z.shape)
+    for k, part in enumerate(_contact_parts(spec)):  # each band of heights with its radius
+        works[band == k] = _piece_works(part, z[band == k] - d_turn)
     return works
+
+
+def _band(spec: MonteCarloSpec, z: np.ndarray) -> np.ndarray:
+    """The band of heights of each summit (all 0 with one radius)."""
+    if spec.surface.radius_by_height is None:
+        return np.zeros(z.shape, dtype=np.intp)
+    return spec.surface.radius_by_height.band_of(z / spec.surface.sigma)
+
+
+@functools.lru_cache(maxsize=16)
+def _contact_parts(spec: MonteCarloSpec) -> tuple[_Part, ...]:
+    """The contact law alone, with its arguments and edges, for each band of heights."""
+    law = get_law_set(spec.law)
+    return tuple(_Part(law, law.arguments(part, spec.material), law.edges_for(part, spec.material))
+                 for part in spec.surface.components())  # fmt: skip
+
+
+@functools.lru_cache(maxsize=16)
+def _caps_parts(spec: MonteCarloSpec) -> tuple[_Part, ...]:
+    """The environment's caps alone (:func:`_split_laws`) for each band of heights."""
+    caps = _split_laws(spec).caps.law
+    return tuple(_Part(caps, caps.arguments(part, spec.material), caps.edges_for(part, spec.material))
+                 for part in spec.surface.components())  # fmt: skip
 
 
 def _piece_works(part: _Part, delta_turn: np.ndarray) -> np.ndarray:

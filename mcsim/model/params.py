@@ -390,6 +390,17 @@ class Surface:
         )
 
     @property
+    def mean_curvature_radius(self) -> float:
+        """Radius of the summits' mean curvature, m: R, or with a radius by height
+        1/Σ_k p_k/R_k over its bands (p_k the band's share of the summits). What relations
+        written for one radius (Nayak's estimates, the caps' mean band edge) take."""
+        parts = self.components()
+        if len(parts) == 1:
+            return self.R
+        mass = np.array([float(part.heights.sf(-np.inf)) for part in parts])
+        return float(1 / np.sum(mass / np.array([part.R for part in parts])))
+
+    @property
     def A0(self) -> float:
         """Dimensionless roughness parameter A0 = η R σ (Eq. 5)."""
         return self.eta * self.R * self.sigma

@@ -488,7 +488,8 @@ def _environment_top(surface: Surface, environment: Environment) -> float:
     heights = gap.heights
     highest = float(heights.sigma * heights.edges[-1]) if hasattr(heights, "edges") else (
         GAUSSIAN_TOP * gap.rq)  # fmt: skip
-    widest = max(environment.condensation_gap, band_edge(surface.R, surface.eta, environment))
+    sharpest = min(part.R for part in surface.components())  # the deepest band edge
+    widest = max(environment.condensation_gap, band_edge(sharpest, surface.eta, environment))
     return (highest + widest - gap.summit_offset) / surface.sigma
 
 

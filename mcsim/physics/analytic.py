@@ -327,10 +327,6 @@ def gw_curves(
 def _mixture(surface, material, h, laws, branch, turn, environment) -> AnalyticCurves:
     """Curves of a surface whose radius depends on height: the sums of its bands' curves
     (:meth:`~mcsim.model.params.Surface.components`), μ from the sums."""
-    if environment is not None:
-        raise ParameterError("radius_by_height: the environment is not modelled on a surface "
-                             "whose summit radius depends on height (ingest the map with "
-                             "--no-radius-by-height for one radius)")  # fmt: skip
     parts = [gw_curves(c, material, h, laws, branch, turn).values for c in surface.components()]
     values = {k: np.sum([p[k] for p in parts], axis=0) for k in parts[0] if k != "mu"}
     if laws.name == "seed":  # Eq. 8, as for one radius
@@ -339,7 +335,8 @@ def _mixture(surface, material, h, laws, branch, turn, environment) -> AnalyticC
             values["mu"] = np.where(denominator > 0, values["T"] / denominator, np.nan)
     else:
         values |= _friction(laws, material, values)
-    return AnalyticCurves(h, values, surface, material, laws.name, branch, turn)
+    curves = AnalyticCurves(h, values, surface, material, laws.name, branch, turn)
+    return curves if environment is None else _with_environment(curves, environment)
 
 
 def _with_environment(curves: AnalyticCurves, environment: Environment) -> AnalyticCurves:

@@ -95,7 +95,7 @@ def gap_heights(surface) -> GapHeights:
     """
     estimate = None
     if surface.rq is None or surface.summit_offset is None:
-        estimate = nayak_heights(surface.sigma, surface.R, surface.eta)
+        estimate = nayak_heights(surface.sigma, surface.mean_curvature_radius, surface.eta)
     rq = estimate.rq if surface.rq is None else surface.rq
     offset = estimate.summit_offset if surface.summit_offset is None else surface.summit_offset
     source = "given" if estimate is None else f"Nayak estimate (alpha = {estimate.alpha:.3g})"

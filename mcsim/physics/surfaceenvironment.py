@@ -90,19 +90,20 @@ def with_environment(law: LawSet, surface, env: Environment | None) -> LawSet:
     """
     if env is None or not env.active:
         return law
-    extra = summit_parameters(surface, env)
     terms = active_terms(env)
 
     def edges(params) -> Edges:
         # Down to the band edge whichever terms act: the summits drawn, hence a pad's, are
         # then the same at every humidity and Hamaker constant (common random numbers).
         base = law.edges(params)
-        cuts = {-extra["cutoff"], -extra["gap_k"], -extra["band"]}
-        return Edges(min(base.reach, -extra["band"]), base.jump_in, base.break_off,
+        cuts = {-params["cutoff"], -params["gap_k"], -params["band"]}
+        return Edges(min(base.reach, -params["band"]), base.jump_in, base.break_off,
                      tuple(sorted({*base.breakpoints, *cuts})))  # fmt: skip
 
     def constants(s, m) -> dict:
-        return {**law.constants(s, m), **extra}
+        # the caps' parameters of the surface asked (its radius: one band of a radius by
+        # height gets its own band edge)
+        return {**law.constants(s, m), **summit_parameters(s, env)}
 
     outputs = (*law.outputs, *(SUMMIT_OUTPUTS[t] for t in terms))
     return dataclasses.replace(law, outputs=outputs, edges=edges, constants=constants)
@@ -115,7 +116,12 @@ _CAP_PANELS = 16
 
 def _summit_expectation(h, surface, env: Environment, work: bool) -> dict[str, np.ndarray]:
     """η E[F] (Pa) or η E[W] (J/m²) of the summits' caps at separations ``h`` (= d/σ),
-    over the surface's summit heights (Gaussian or measured), panel by panel."""
+    over the surface's summit heights (Gaussian or measured), panel by panel; with a radius by
+    height, the sum over its bands, each with its own radius and band edge."""
+    parts = surface.components()
+    if len(parts) > 1:
+        out = [_summit_expectation(h, part, env, work) for part in parts]
+        return {term: np.sum([o[term] for o in out], axis=0) for term in out[0]}
     h = np.atleast_1d(np.asarray(h, dtype=float))
     sigma, p = surface.sigma, summit_parameters(surface, env)
     R, D0, u_c, g_k = surface.R, p["cutoff"], p["band"], p["gap_k"]
@@ -140,7 +146,8 @@ def _gaps(h, surface, env: Environment):
     """Mean-plane gaps D = hσ + y_s (m), the heights about the mean plane, and u_c (m)."""
     gap = gap_heights(surface)
     D = np.asarray(h, dtype=float) * surface.sigma + gap.summit_offset
-    return D, gap.heights, band_edge(surface.R, surface.eta, env)
+    # the caps own on average the local gaps below D0 + ⟨1/(2πR_iη)⟩: the mean curvature's
+    return D, gap.heights, band_edge(surface.mean_curvature_radius, surface.eta, env)
 
 
 def open_gap_pressures(h, surface, env: Environment) -> dict[str, np.ndarray]:

@@ -131,13 +131,55 @@ def test_a_run_file_keeps_the_bands_and_its_pads_use_them(tmp_path):
     np.testing.assert_array_equal(again.pull_off().force, run.pull_off().force)
 
 
+HUMID = Environment(hamaker=1.6e-19, cutoff=0.2e-9, rh=0.7)
+
+
+def test_in_humid_air_each_band_has_its_caps_and_bands_of_one_radius_are_the_plain_surface():
+    # Each band's summits carry caps of their own radius (band edge D0 + 1/(2 pi R_k eta)); the
+    # open gaps are bounded by the band edge of the summits' mean curvature, 1/sum p_k/R_k (and
+    # Nayak's estimates of rq and the summit offset take it), which with every factor 1 is R:
+    # the plain surface's curves (bound as above).
+    same = with_bands(SMOOTH, RadiusByHeight((-1.5, -0.2, 0.4, 1.3), (1.0, 1.0, 1.0)))
+    plain = gw_curves(SMOOTH, SILICON, H, "jkr", environment=HUMID).values
+    split = gw_curves(same, SILICON, H, "jkr", environment=HUMID).values
+    for name, values in plain.items():
+        scale = 1e-10 * np.nanmax(np.abs(values), initial=0.0)
+        np.testing.assert_allclose(split[name], values, rtol=1e-10, atol=scale, err_msg=name)
+    # every band sharper by one factor: the plain surface of that radius, caps' band edges and
+    # the open gaps' included
+    sharper = with_bands(SMOOTH, RadiusByHeight((-1.5, -0.2, 0.4, 1.3), (0.6, 0.6, 0.6)))
+    scaled = gw_curves(dataclasses.replace(SMOOTH, R=0.6 * SMOOTH.R), SILICON, H, "jkr",
+                       environment=HUMID).values  # fmt: skip
+    banded = gw_curves(sharper, SILICON, H, "jkr", environment=HUMID).values
+    for name, values in scaled.items():
+        scale = 1e-10 * np.nanmax(np.abs(values), initial=0.0)
+        np.testing.assert_allclose(banded[name], values, rtol=1e-10, atol=scale, err_msg=name)
+    surface = with_bands()
+    mass = [float(p.heights.sf(-np.inf)) for p in surface.components()]
+    radius = surface.mean_curvature_radius
+    assert radius == pytest.approx(1 / (mass[0] / 1.8 + mass[1] / 0.6) * SMOOTH.R, rel=1e-14)
+
+
+def test_the_humid_monte_carlo_of_bands_agrees_with_their_analytic_curves():
+    # 300 patches of 300 um^2 at RH 0.7: contact, caps (vdw, capillary) within 5 SE.
+    run = mcsim.simulate(with_bands(), SILICON, H[::2], area="300 um^2", realizations=300,
+                         seed=4, law="jkr", cycle=True, environment=HUMID)  # fmt: skip
+    table = run.compare()
+    assert {"vdw", "capillary"} <= set(table.quantity)
+    z = table.z.to_numpy()
+    assert np.all(np.abs(z[np.isfinite(z)]) < 5)
+    # the comparison's caps (the law set's outputs, band by band) are the environment's own
+    # expectation of each band's caps (mcsim.physics.surfaceenvironment), to quadrature error
+    from mcsim.physics.surfaceenvironment import environment_curves
+
+    caps = environment_curves(H[::2], with_bands(), HUMID)
+    for term in ("vdw", "capillary"):
+        got = table.query(f"quantity == '{term}' and branch == 'approach'").analytic.to_numpy()
+        np.testing.assert_allclose(got, caps[f"{term}_caps"] / SILICON.K, rtol=1e-8)
+
+
 def test_a_radius_by_height_is_refused_where_it_is_not_modelled():
     surface = with_bands()
-    humid = Environment(hamaker=1.6e-19, cutoff=0.2e-9, rh=0.5)
-    with pytest.raises(ParameterError, match="radius_by_height: the environment"):
-        gw_curves(surface, SILICON, H, "jkr", environment=humid)
-    with pytest.raises(ParameterError, match="radius_by_height: the environment"):
-        MonteCarloSpec(surface, SILICON, H, 30e-12, 1, 0, "jkr", environment=humid)
     with pytest.raises(ParameterError, match="on the CPU only"):
         MonteCarloSpec(surface, SILICON, H, 30e-12, 1, 0, "jkr", device="cuda")
     with pytest.raises(ParameterError, match="cannot be combined"):
@@ -181,3 +223,37 @@ def test_pads_of_bands_say_the_model_is_not_given_rather_than_warn_about_nan(tmp
         code = main(["pads", str(out), "--restoring-force", "1uN"])
     assert code == 0 and "p_stick_model is not given" in err.getvalue()
     assert "warning: p_stick_model nan" not in err.getvalue()
+
+
+def test_a_humid_pad_of_bands_sums_each_summits_caps_with_its_own_radius():
+    # The net load against a direct sum: the contact law per band (checked above) less each
+    # summit's van der Waals and meniscus forces with its band's radius and band edge
+    # (mcsim.physics.laws.attraction, summit by summit) less the open gaps' pressure.
+    from mcsim.physics.laws.attraction import capillary_summit, vdw_summit
+    from mcsim.physics.surfaceenvironment import open_gap_works, summit_parameters
+
+    spec = MonteCarloSpec(with_bands(), SILICON, H, 30e-12, 2, 3, "jkr", cycle=True,
+                          environment=HUMID)  # fmt: skip
+    sigma = SMOOTH.sigma
+    for r in range(2):
+        z = padcurves.patch_heights(spec, r)
+        d_t = padcurves.force_turn(spec, z, 1e6 * spec.area)[0]
+        band = TWO.band_of(z / sigma)
+        top = z.max() + max(summit_parameters(p, HUMID)["band"] for p in with_bands().components())
+        d = np.linspace(d_t, top, 50001)
+        caps = np.zeros_like(d)
+        for k, part in enumerate(with_bands().components()):
+            p = summit_parameters(part, HUMID)
+            delta = z[band == k][None, :] - d[:, None]
+            vdw = vdw_summit(delta, p["hamaker"], part.R, p["cutoff"], p["band"])
+            meniscus = capillary_summit(delta, p["laplace"], part.R, p["cutoff"], p["gap_k"])
+            caps += (vdw + meniscus).sum(axis=1)
+        gaps = spec.area * padcurves.open_gaps(spec)(d / sigma)
+        expected = padcurves.contact_load(spec, z, d, d_t) - caps - gaps
+        load = padcurves.pad_load(spec, z, d, d_t)
+        np.testing.assert_allclose(load, expected, rtol=1e-9, atol=1e-9 * np.abs(load).max())
+        force = padcurves.pull_off(spec, z, d_t)[0]
+        assert force > 0 and -force <= load.min() + 1e-6 * force
+        tail = open_gap_works(np.float64(top / sigma), spec.surface, HUMID)
+        dense = -np.trapezoid(load, d) / spec.area + float(tail["vdw"] + tail["capillary"])
+        assert padcurves.pad_work(spec, z, d_t) == pytest.approx(dense, rel=1e-4)
