@@ -92,11 +92,10 @@ def pad_load(spec: MonteCarloSpec, z: np.ndarray, d, d_turn=None) -> np.ndarray:
     # Two sums over the pad's summits: the contact law's over those that can touch, and the
     # caps' over every summit within their reach (each evaluated only where it acts).
     parts = _split_laws(spec)
-    load = _load(parts.contact, z, d, d_turn)
-    attraction = block_sums(z, d, parts.caps.law, parts.caps.args, edges=parts.caps.edges)
-    for column in parts.caps_columns:
-        load = load - attraction[:, column]
-    return load - spec.area * parts.open_gaps(d / spec.surface.sigma)
+    contact = _load(parts.contact, z, d, d_turn)
+    caps = block_sums(z, d, parts.caps.law, parts.caps.args, edges=parts.caps.edges)
+    caps = caps[:, list(parts.caps_columns)].sum(axis=1)
+    return contact - caps - spec.area * open_gaps(spec)(d / spec.surface.sigma)
 
 
 def contact_load(spec: MonteCarloSpec, z: np.ndarray, d, d_turn=None) -> np.ndarray:
@@ -173,6 +172,31 @@ def open_gaps(spec: MonteCarloSpec):
     smooth function of h (a Gaussian average), and the spline is within 1e-9 of its largest
     value (tests/engine/test_padcurves.py).
     """
+    table = _open_gap_table(spec)
+
+    def pressure(h):
+        h = np.asarray(h, dtype=float)
+        inside = (h >= table.lo) & (h <= table.hi)
+        if np.all(inside):
+            return table.spline(h)
+        return np.where(inside, table.spline(h), table.exact(h))
+
+    return pressure
+
+
+class _GapTable(NamedTuple):
+    spline: object
+    lo: float
+    hi: float
+    exact: object
+    slope: float
+
+
+@functools.lru_cache(maxsize=16)
+def _open_gap_table(spec: MonteCarloSpec) -> _GapTable:
+    """The spline of :func:`open_gaps`, its range [lo, hi] in h, the function itself, and the
+    spline's largest |dp/dh| (Pa) on the range: its derivative is a quadratic on each piece,
+    so the largest magnitude lies at a knot or where the (linear) second derivative is 0."""
     from scipy.interpolate import CubicSpline
 
     surface, env = spec.surface, spec.environment
@@ -187,15 +211,13 @@ def open_gaps(spec: MonteCarloSpec):
     lo, hi = float(spec.h.min()) - 1.0, top + reach + 1.0
     grid = np.linspace(lo, hi, OPEN_GAP_POINTS)
     spline = CubicSpline(grid, exact(grid))
-
-    def pressure(h):
-        h = np.asarray(h, dtype=float)
-        inside = (h >= lo) & (h <= hi)
-        if np.all(inside):
-            return spline(h)
-        return np.where(inside, spline(h), exact(h))
-
-    return pressure
+    slope = spline.derivative()
+    c = spline.c  # piece k: c[0] t^3 + c[1] t^2 + c[2] t + c[3], t = h - grid[k]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        vertex = np.clip(-c[1] / (3 * c[0]), 0.0, np.diff(grid))  # p'' = 0 inside the piece
+    vertex = np.where(np.isfinite(vertex), vertex, 0.0)
+    steepest = max(np.max(np.abs(slope(grid))), np.max(np.abs(slope(grid[:-1] + vertex))))
+    return _GapTable(spline, lo, hi, exact, float(steepest))
 
 
 def contact_edges(spec: MonteCarloSpec) -> Edges:
@@ -243,11 +265,16 @@ def pull_off(spec: MonteCarloSpec, z: np.ndarray, d_turn: float) -> tuple[float,
     top = float(z.max()) - min(e.reach, e.break_off, 0.0)  # no summit reaches beyond
     if top <= d_turn:
         return 0.0, math.nan
-    cuts = _intervals(spec, z, d_turn, top, contact_edges(spec))
-    points = _points(cuts, sigma)
-    values = pad_load(spec, z, points.ravel(), d_turn).reshape(points.shape)
-    best = int(np.argmin(values))
-    force, at = float(values.flat[best]), float(points.flat[best])
+    if spec.environment is None:
+        cuts = _intervals(spec, z, d_turn, top, contact_edges(spec))
+        points = _points(cuts, sigma)
+        values = pad_load(spec, z, points.ravel(), d_turn).reshape(points.shape)
+        best = int(np.argmin(values))
+        force, at = float(values.flat[best]), float(points.flat[best])
+    else:
+        points, values, force, at = _humid_pull_off(spec, z, d_turn, top)
+        if values.size == 0:
+            return (-force, at) if force < 0 else (0.0, math.nan)
     # Zoom on the lowest interior point of the REFINE lowest intervals, all at once: a
     # grid of ZOOM points between its neighbours, the lowest again, until within XTOL.
     rows = np.argsort(values[:, 1:-1].min(axis=1))[:REFINE]
@@ -264,6 +291,289 @@ def pull_off(spec: MonteCarloSpec, z: np.ndarray, d_turn: float) -> tuple[float,
             force, at = float(v.min()), float(x.flat[np.argmin(v)])
     return (-force, at) if force < 0 else (0.0, math.nan)
 
+
+# --- Humid pads: branch and bound on the pad's curve ------------------------------------
+
+
+class _Branch(NamedTuple):
+    """One branch of the contact law's ``load`` of a summit, f(δ) (:func:`branches`): it
+    carries force above ``low``, does not rise up to ``falling``, does not fall from
+    ``rising`` on, and its values are ``fa`` = f(falling), ``fb`` = f(rising) and at least
+    ``m`` (N; interferences in m)."""
+
+    low: float
+    falling: float
+    rising: float
+    fa: float
+    fb: float
+    m: float
+
+
+#: Points of :func:`branches`' grid on each branch, reaching this many times the law's
+#: largest edge at first.
+_BRANCH_POINTS, _BRANCH_SPAN = 4001, 64.0
+#: Margin on the minimum found numerically, relative to the branch's largest |f| on the grid.
+_MIN_MARGIN = 1e-6
+
+
+@functools.lru_cache(maxsize=16)
+def branches(spec: MonteCarloSpec) -> tuple[_Branch, _Branch]:
+    """The approach and retraction branches of the contact law's load of one summit.
+
+    Law sets with a retraction are *quasiconvex* on each branch (a requirement of
+    :mod:`mcsim.physics.laws`): as δ grows, f(δ) is 0 up to the branch's lowest edge, then
+    does not rise (it jumps down and falls) to its minimum at some x*, then does not fall.
+    On retraction a summit in contact at the turn follows a branch that does not depend on
+    δ_max, and one out of contact keeps its approach load (also required). This finds, on a
+    geometric grid from the lowest edge, the lowest point y: ``falling`` is the last grid
+    point before y with f > f(y) (or the edge) and ``rising`` the first after y with
+    f > f(y). Both are proven sides of x*: were ``rising`` at or before x*, f could not rise
+    from y to it; were ``falling`` at or past x*, f could not fall from it to y. So f does
+    not rise on (−∞, falling] and does not fall on [rising, ∞), and on [falling, rising] it
+    stays below max(fa, fb). ``m`` is the least value met, with a golden-section search
+    between y's neighbours, less :data:`_MIN_MARGIN` of the largest |f| (rounding): the
+    one number here found numerically, not proven.
+    """
+    from scipy.optimize import minimize_scalar
+
+    part = _split_laws(spec).contact
+    e = part.edges
+    i = part.law.names.index("load")
+    out, args = part.law.outputs[i], part.args[i]
+    scale = max(abs(x) for x in (e.reach, e.jump_in, e.break_off, *e.breakpoints, 1e-12))
+    result = []
+    for low, retract in ((e.reach, False), (min(e.reach, e.break_off), True)):
+        span = _BRANCH_SPAN
+        while True:
+            x = low + scale * np.geomspace(1e-9, span, _BRANCH_POINTS)
+            turn = max(x[-1], e.jump_in) + scale  # on retraction: in contact, past every x
+
+            def f(delta, turn=turn if retract else None):
+                delta = np.asarray(delta, dtype=float)
+                state = delta if turn is None else np.full_like(delta, turn)
+                return out.law(delta, state, *args) if out.stateful else out.law(delta, *args)
+
+            y = f(x)
+            k = int(np.argmin(y))
+            after = np.flatnonzero(y[k + 1 :] > y[k])
+            if after.size:
+                break
+            span *= 4  # the minimum lies beyond the grid: look further
+        before = np.flatnonzero(y[:k] > y[k])
+        falling = float(x[before[-1]]) if before.size else low
+        rising = float(x[k + 1 + after[0]])
+        left = x[k - 1] if k else low
+        best = minimize_scalar(lambda t: float(f(np.array([t]))[0]), bounds=(left, x[k + 1]),
+                               method="bounded", options={"xatol": 1e-12 * (x[k + 1] - left)})  # fmt: skip
+        m = min(float(y[k]), float(best.fun), 0.0) - _MIN_MARGIN * float(np.max(np.abs(y)))
+        fa = float(f(np.array([falling]))[0]) if before.size else 0.0
+        result.append(_Branch(low, falling, rising, fa, float(f(np.array([rising]))[0]), m))
+    return result[0], result[1]
+
+
+def _count(zs: np.ndarray, lo, hi) -> np.ndarray:
+    """How many of the sorted heights ``zs`` lie in (lo, hi] (m), elementwise (0 if empty)."""
+    return np.maximum(np.searchsorted(zs, hi, "right") - np.searchsorted(zs, lo, "right"), 0)
+
+
+class _Group(NamedTuple):
+    """Summits on one branch: sorted heights (m) and the branch."""
+
+    z: np.ndarray
+    branch: _Branch
+
+
+class _Setup(NamedTuple):
+    """What a humid pad's search needs of its spec, looked up once (hashing a spec costs)."""
+
+    sigma: float
+    area: float
+    parts: _Split
+    edges: Edges
+    branches: tuple[_Branch, _Branch]
+    gaps: object
+    table: _GapTable
+
+
+@functools.lru_cache(maxsize=16)
+def _setup(spec: MonteCarloSpec) -> _Setup:
+    parts = _split_laws(spec)
+    return _Setup(spec.surface.sigma, spec.area, parts, parts.contact.edges, branches(spec),
+                  open_gaps(spec), _open_gap_table(spec))  # fmt: skip
+
+
+def _above(part: _Part, z, d, d_turn, theta):
+    """The contact law's load (N) summed over the summits above d + ``theta`` (m) at ``d``."""
+    return _load(_Part(part.law, part.args, Edges(theta, theta, theta)), z, d, d_turn)
+
+
+class _Curve:
+    """The points of a humid pad's curve evaluated so far (ascending d, m), per point the
+    net load and, for each group of summits, the sums of :func:`_range_bounds` (N)."""
+
+    def __init__(self, setup, groups, z, d_turn, cuts):
+        self.setup, self.groups, self.z, self.d_turn, self.cuts = setup, groups, z, d_turn, cuts
+        self.x = np.empty(0)
+        self.sums = np.empty((0, 3 * len(groups) + 1))
+
+    def add(self, d):
+        """Evaluate the curve at the new separations ``d`` (m)."""
+        if d.size == 0:
+            return
+        setup = self.setup
+        contact, caps = setup.parts.contact, setup.parts.caps
+        columns = []
+        for g in self.groups:
+            b = g.branch
+            whole = _load(contact, g.z, d, self.d_turn)
+            columns.append(whole)
+            for theta in (b.falling, b.rising):  # what the summits in (d + low, d + theta] add
+                empty = theta <= b.low or not np.any(_count(g.z, d + b.low, d + theta))
+                columns.append(np.zeros(d.size) if empty else
+                               whole - _above(contact, g.z, d, self.d_turn, theta))  # fmt: skip
+        turn = None if self.d_turn is None else np.full_like(d, self.d_turn)
+        k = block_sums(self.z, d, caps.law, caps.args, edges=caps.edges, d_turn=turn)
+        columns.append(k[:, list(setup.parts.caps_columns)].sum(axis=1))
+        x = np.concatenate([self.x, d])
+        order = np.argsort(x, kind="stable")
+        self.x = x[order]
+        self.sums = np.concatenate([self.sums, np.stack(columns, axis=1)])[order]
+        self.gaps = setup.area * setup.gaps(self.x / setup.sigma)
+        self.net = self.sums[:, 0:-1:3].sum(axis=1) - self.sums[:, -1] - self.gaps
+
+    def bounds(self):
+        """Per gap between points: the highest and the lowest net load it can hold (N)."""
+        x, s = self.x, self.sums
+        lo_x, hi_x = x[:-1], x[1:]
+        table, h = self.setup.table, x / self.setup.sigma
+        inside = (h[:-1] >= table.lo) & (h[1:] <= table.hi)
+        slack = np.where(inside, self.setup.area * table.slope * np.diff(h) / 2, np.inf)
+        mean = (self.gaps[:-1] + self.gaps[1:]) / 2
+        upper = -s[1:, -1] - (mean - slack)  # the caps attract least at the top of a gap
+        lower = -s[:-1, -1] - (mean + slack)
+        for j, g in enumerate(self.groups):
+            whole, below_a, below_b = s[:, 3 * j], s[:, 3 * j + 1], s[:, 3 * j + 2]
+            above_b = whole - below_b
+            b, zs = g.branch, g.z
+            a, r, m, top = b.falling, b.rising, b.m, max(b.fa, b.fb)
+            # lowest: f(δ2) below the falling end, f(δ1) past the rising one, m between
+            lower = lower + below_a[:-1] + above_b[1:] + m * _count(zs, lo_x + a, hi_x + r)
+            # highest: f(δ1) for δ1 <= a, f(δ2) for δ2 > r, what the rest can add
+            n1 = _count(zs, lo_x + a, np.minimum(hi_x + a, lo_x + r))
+            n2 = _count(zs, np.maximum(hi_x + a, lo_x + r), hi_x + r)
+            n3 = _count(zs, lo_x + r, hi_x + a)
+            n4 = _count(zs, hi_x + a, lo_x + r)
+            upper = upper + below_a[1:] + above_b[:-1] + (top - m) * n1
+            upper = upper + max(top - b.fb, 0.0) * n2 + (top - 2 * m) * n3 + top * n4
+        return upper, lower
+
+    def split(self, gaps, ends=(), force=None):
+        """New points splitting each gap ``gaps`` (indices; or the range ``ends``): at up to
+        :data:`PARTS` − 1 of the cuts inside it, just on either side (:data:`EDGE`); with
+        none, evenly into :data:`EVEN` parts, or, where the net load crosses ``force``
+        (N) between the gap's ends, on a ladder about where a straight line crosses it."""
+        side = EDGE * self.setup.sigma
+        ranges = [(None, *ends)] if len(ends) else zip(gaps, self.x[gaps], self.x[gaps + 1])
+        new = [np.asarray(ends, dtype=float)]
+        for g, a, b in ranges:
+            i, j = np.searchsorted(self.cuts, [a + side, b - side], "right")
+            inside = self.cuts[i:j]
+            inside = inside[(inside - side > a) & (inside + side < b)]
+            if inside.size:
+                pick = inside[np.unique(np.linspace(0, inside.size - 1, PARTS - 1).round().astype(int))]
+                new += [pick - side, pick + side]
+            elif force is not None and (self.net[g] - force) * (self.net[g + 1] - force) < 0:
+                new.append(self._ladder(g, force))
+            else:
+                new.append(a + (b - a) * np.arange(1, EVEN) / EVEN)
+        return np.concatenate(new)
+
+    def _ladder(self, g, force):
+        """Points in gap ``g`` at x ± (XTOL σ/2)·r^k about the crossing x of ``force`` by the
+        straight line between its ends, r from how fast the load changes against how much
+        its parts do (so that the gaps of the ladder can be bounded away from the force)."""
+        a, b = self.x[g], self.x[g + 1]
+        fa, fb = self.net[g], self.net[g + 1]
+        x = a + (b - a) * (fa - force) / (fa - fb)
+        change = np.sum(np.abs(self.sums[g + 1] - self.sums[g])) + abs(self.gaps[g + 1] - self.gaps[g])
+        r = float(np.clip(1 + abs(fb - fa) / (2 * change), LADDER[0], LADDER[1]))
+        step = XTOL * self.setup.sigma / 2 * r ** np.arange(math.ceil(math.log((b - a) / (XTOL * self.setup.sigma)) / math.log(r)) + 1)
+        points = np.concatenate([x - step, x + step])
+        return points[(points > a) & (points < b)]
+
+    def unsplit(self, gaps):
+        """Whether each gap ``gaps`` holds a cut not yet split on (:meth:`split`)."""
+        side = EDGE * self.setup.sigma
+        x = self.x
+        n = np.searchsorted(self.cuts, x[gaps + 1] - side) - np.searchsorted(
+            self.cuts, x[gaps] + side, "right")  # fmt: skip
+        return n > 0
+
+
+#: Parts into which a humid pad's search splits a range that may hold its turn or pull-off:
+#: at its cuts, or evenly where it holds none.
+PARTS, EVEN = 16, 32
+#: Least and largest ratio of :meth:`_Curve._ladder`'s steps.
+LADDER = (1.2, 2.0)
+
+
+def _cuts(z: np.ndarray, low: float, high: float, in_delta) -> np.ndarray:
+    """Sorted separations in (low, high) (m) where a summit of ``z`` crosses ``in_delta``."""
+    cuts = (z[:, None] - np.unique(in_delta)[None, :]).ravel()
+    return np.unique(cuts[(cuts > low) & (cuts < high)])
+
+
+def _humid_turn(spec, z, force, bottom, top, reaches):
+    """:func:`force_turn` in humid air, by branch and bound (see :func:`force_turn`)."""
+    setup = _setup(spec)
+    e = setup.edges
+    cuts = _cuts(z, bottom, top, (e.reach, e.jump_in, *e.breakpoints))
+    curve = _Curve(setup, (_Group(np.sort(z), setup.branches[0]),), z, None, cuts)
+    new = curve.split(None, (bottom, top))
+    while new.size:
+        curve.add(new)
+        hit = np.flatnonzero(reaches(curve.net))
+        first = int(hit[-1]) if hit.size else 0
+        upper, _ = curve.bounds()
+        live = np.flatnonzero(reaches(upper) & (np.diff(curve.x) > XTOL * setup.sigma))
+        new = curve.split(live[live >= first], force=force)
+    if not hit.size:
+        raise ParameterError(
+            f"preload force {force:.4g} N: the pad's approach load is {curve.net[0]:.4g} N at "
+            f"the grid's lowest separation h = {spec.h.min():g}; extend the separations (--h) down"
+        )
+    return float(curve.x[first]), float(curve.net[first])
+
+
+def _humid_pull_off(spec, z, d_turn, top):
+    """The points and values of :func:`pull_off`'s intervals in humid air that may hold the
+    pull-off (branch and bound; see :func:`pull_off`), and the lowest value met and where."""
+    setup = _setup(spec)
+    e = setup.edges
+    approach, retract = setup.branches
+    held = z - d_turn > e.jump_in  # in contact at the turn: on the retraction branch
+    groups = [_Group(np.sort(z[held]), retract)]
+    cuts = [_cuts(z[held], d_turn, top, (e.reach, e.break_off, *e.breakpoints))]
+    if approach.low < e.jump_in and not np.all(held):  # the others may feel an attraction
+        groups.append(_Group(np.sort(z[~held]), approach))
+        cuts.append(_cuts(z[~held], d_turn, top, (e.reach, *e.breakpoints)))
+    curve = _Curve(setup, tuple(groups), z, d_turn, np.unique(np.concatenate(cuts)))
+    new = curve.split(None, (d_turn, top))
+    while new.size:
+        curve.add(new)
+        _, lower = curve.bounds()
+        live = np.flatnonzero(lower <= curve.net.min())
+        new = curve.split(live[curve.unsplit(live)], ())
+    # the live gaps between cuts (not the 2·EDGE about one), sampled as _points does
+    x = curve.x
+    live = live[np.diff(x)[live] > 2 * EDGE * setup.sigma]
+    a, b = x[live, None], x[live + 1, None]
+    inner = a + (b - a) * (np.arange(1, SUB + 1) / (SUB + 1))[None, :]
+    values = pad_load(spec, z, inner.ravel(), d_turn).reshape(inner.shape)
+    points = np.hstack([a, inner, b])
+    values = np.hstack([curve.net[live, None], values, curve.net[live + 1, None]])
+    best = int(np.argmin(curve.net))
+    return points, values, float(curve.net[best]), float(x[best])
 
 #: Gauss–Legendre nodes on each smooth piece of a summit's retraction load for its work.
 WORK_NODES = 16
@@ -430,12 +740,14 @@ def force_turn(spec: MonteCarloSpec, z: np.ndarray, force: float) -> tuple[float
     sigma = spec.surface.sigma
     bottom = float(spec.h.min()) * sigma
     top = max(float(z.max()) - min(spec.edges.reach, 0.0), bottom) if z.size else bottom
-    cuts = _intervals(spec, z, bottom, top, contact_edges(spec))
-    points = np.unique(np.concatenate([[bottom, top], _points(cuts, sigma).ravel()]))[::-1]
 
     def reaches(load):  # at 0 the force must be exceeded: far away the load is 0 too
         return load > force if force == 0 else load >= force
 
+    if spec.environment is not None:
+        return _humid_turn(spec, z, force, bottom, top, reaches)
+    cuts = _intervals(spec, z, bottom, top, contact_edges(spec))
+    points = np.unique(np.concatenate([[bottom, top], _points(cuts, sigma).ravel()]))[::-1]
     values = _approach_prefix(spec, z, points, reaches)
     reached = np.flatnonzero(reaches(values))
     if reached.size == 0:
