@@ -312,7 +312,7 @@ class _Branch(NamedTuple):
 #: Points of :func:`branches`' grid on each branch, reaching this many times the law's
 #: largest edge at first.
 _BRANCH_POINTS, _BRANCH_SPAN = 4001, 64.0
-#: Margin on the minimum found numerically, relative to the branch's largest |f| on the grid.
+#: Margin on the minimum found numerically, relative.
 _MIN_MARGIN = 1e-6
 
 
@@ -365,7 +365,7 @@ def branches(spec: MonteCarloSpec) -> tuple[_Branch, _Branch]:
         left = x[k - 1] if k else low
         best = minimize_scalar(lambda t: float(f(np.array([t]))[0]), bounds=(left, x[k + 1]),
                                method="bounded", options={"xatol": 1e-12 * (x[k + 1] - left)})  # fmt: skip
-        m = min(float(y[k]), float(best.fun), 0.0) - _MIN_MARGIN * float(np.max(np.abs(y)))
+        m = min(float(y[k]), float(best.fun), 0.0) * (1 + _MIN_MARGIN)
         fa = float(f(np.array([falling]))[0]) if before.size else 0.0
         result.append(_Branch(low, falling, rising, fa, float(f(np.array([rising]))[0]), m))
     return result[0], result[1]
