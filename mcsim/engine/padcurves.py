@@ -473,19 +473,25 @@ class _Curve:
         none, evenly into :data:`EVEN` parts, or, where the net load crosses ``force``
         (N) between the gap's ends, on a ladder about where a straight line crosses it."""
         side = EDGE * self.setup.sigma
-        ranges = [(None, *ends)] if len(ends) else zip(gaps, self.x[gaps], self.x[gaps + 1])
+        if len(ends):
+            a, b, gaps = np.array([ends[0]]), np.array([ends[1]]), None
+        else:
+            a, b = self.x[gaps], self.x[gaps + 1]
+        i = np.searchsorted(self.cuts, a + side, "right")
+        n = np.searchsorted(self.cuts, b - side, "left") - i
         new = [np.asarray(ends, dtype=float)]
-        for g, a, b in ranges:
-            i, j = np.searchsorted(self.cuts, [a + side, b - side], "right")
-            inside = self.cuts[i:j]
-            inside = inside[(inside - side > a) & (inside + side < b)]
-            if inside.size:
-                pick = inside[np.unique(np.linspace(0, inside.size - 1, PARTS - 1).round().astype(int))]
-                new += [pick - side, pick + side]
-            elif force is not None and (self.net[g] - force) * (self.net[g + 1] - force) < 0:
-                new.append(self._ladder(g, force))
-            else:
-                new.append(a + (b - a) * np.arange(1, EVEN) / EVEN)
+        cut = n > 0
+        if np.any(cut):  # up to PARTS - 1 of the cuts inside, evenly by rank
+            rank = np.arange(PARTS - 1) / (PARTS - 2)
+            pick = np.unique(i[cut, None] + np.round(rank[None, :] * (n[cut, None] - 1)).astype(int))
+            new += [self.cuts[pick] - side, self.cuts[pick] + side]
+        even = ~cut
+        if force is not None:
+            crossing = even & ((self.net[gaps] - force) * (self.net[gaps + 1] - force) < 0)
+            new += [self._ladder(g, force) for g in gaps[crossing]]
+            even &= ~crossing
+        frac = np.arange(1, EVEN) / EVEN
+        new.append((a[even, None] + (b - a)[even, None] * frac[None, :]).ravel())
         return np.concatenate(new)
 
     def _ladder(self, g, force):
@@ -512,7 +518,7 @@ class _Curve:
 
 #: Parts into which a humid pad's search splits a range that may hold its turn or pull-off:
 #: at its cuts, or evenly where it holds none.
-PARTS, EVEN = 16, 32
+PARTS, EVEN = 64, 32
 #: Least and largest ratio of :meth:`_Curve._ladder`'s steps.
 LADDER = (1.2, 2.0)
 
