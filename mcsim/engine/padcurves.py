@@ -23,6 +23,17 @@ the pad at any separation is the compiled kernel's sum of the law set's per-summ
   with Σ f_a(z_i − d) ≥ F (an actuator pressing the pad with F = P·A from far away),
   bracketed on the same intervals of the approach curve, evaluated from the top down to the
   first point that reaches F only (:func:`_approach_prefix`), and bisected to :data:`XTOL` in h.
+
+In humid air (an environment) both searches are one branch and bound instead
+(:func:`_humid_turn`, :func:`_humid_pull_off`): every summit within the caps' band edge
+attracts at every separation, and the attraction turns the pad deeper (hundreds of summits
+touch), so sampling every interval between every summit's edges costs the square of the
+summits. Bounds on the net load over a whole range of separations, proven summit by summit
+from the shape of each branch of the contact law (:func:`branches`, :meth:`_Curve.bounds`),
+leave only the ranges that can hold the turn or the pull-off to be split; the same
+tolerance (:data:`XTOL`) and, for the pull-off, the same sampling and zoom of the intervals
+left. The dry path keeps its own points: its results are bit-identical to what they were
+(its sums, summed in other batches, would move in their last bits).
 """
 
 from __future__ import annotations
@@ -330,9 +341,11 @@ def branches(spec: MonteCarloSpec) -> tuple[_Branch, _Branch]:
     f > f(y). Both are proven sides of x*: were ``rising`` at or before x*, f could not rise
     from y to it; were ``falling`` at or past x*, f could not fall from it to y. So f does
     not rise on (−∞, falling] and does not fall on [rising, ∞), and on [falling, rising] it
-    stays below max(fa, fb). ``m`` is the least value met, with a golden-section search
-    between y's neighbours, less :data:`_MIN_MARGIN` of the largest |f| (rounding): the
-    one number here found numerically, not proven.
+    stays below max(fa, fb) (the argument takes the law's values as exact; its rounding moves
+    these points by where f changes in its last bits only). ``m`` is the least value met,
+    with a golden-section search between y's neighbours, made :data:`_MIN_MARGIN` more
+    negative: the one number here found numerically rather than proven (the tests check it
+    against Johnson's forces for JKR and a dense grid for every law set).
     """
     from scipy.optimize import minimize_scalar
 
@@ -397,6 +410,7 @@ class _Setup(NamedTuple):
 
 @functools.lru_cache(maxsize=16)
 def _setup(spec: MonteCarloSpec) -> _Setup:
+    """The :class:`_Setup` of ``spec``."""
     parts = _split_laws(spec)
     return _Setup(spec.surface.sigma, spec.area, parts, parts.contact.edges, branches(spec),
                   open_gaps(spec), _open_gap_table(spec))  # fmt: skip
@@ -408,8 +422,11 @@ def _above(part: _Part, z, d, d_turn, theta):
 
 
 class _Curve:
-    """The points of a humid pad's curve evaluated so far (ascending d, m), per point the
-    net load and, for each group of summits, the sums of :func:`_range_bounds` (N)."""
+    """The points of a humid pad's curve evaluated so far: separations ``x`` (ascending, m),
+    net load ``net`` (N), and the ``sums`` (N) its bounds need (:meth:`bounds`): for each
+    group of summits (one branch each) the contact load, and what the summits between the
+    branch's lowest edge and its ``falling`` and ``rising`` points add to it; last the caps'
+    attraction. ``cuts`` (m) are where a summit crosses an edge of its branch."""
 
     def __init__(self, setup, groups, z, d_turn, cuts):
         self.setup, self.groups, self.z, self.d_turn, self.cuts = setup, groups, z, d_turn, cuts
@@ -442,7 +459,23 @@ class _Curve:
         self.net = self.sums[:, 0:-1:3].sum(axis=1) - self.sums[:, -1] - self.gaps
 
     def bounds(self):
-        """Per gap between points: the highest and the lowest net load it can hold (N)."""
+        """The highest and the lowest net load (N) that each gap between two points can hold.
+
+        Proven, summit by summit. In the gap [x_k, x_k+1] a summit at z spans the
+        interferences [δ1, δ2] = [z − x_k+1, z − x_k]; on its branch (:func:`branches`) its
+        load f does not rise up to a = ``falling``, does not fall from r = ``rising`` on, and
+        lies between m and top = max(f(a), f(r)) on [a, r]. Its lowest value over the gap:
+        f(δ2) (at x_k) if δ2 <= a, f(δ1) (at x_k+1) if δ1 > r, else at least m. Its highest:
+        f(δ1) (at x_k+1) if δ2 <= a, f(δ2) (at x_k) if δ1 > r; if δ1 <= a < δ2 <= r at most
+        f(δ1) + top − m; if a < δ1 <= r < δ2 at most f(δ2) + (top − f(r))⁺; if it spans
+        [a, r] at most f(δ1) + f(δ2) + top − 2m (all three at least m); inside (a, r] top.
+        The sums over each class are the kernel's sums at x_k or x_k+1 over the summits
+        above or below d + a or d + r, where d is that end (``sums``); the counts come from
+        the sorted heights. The caps attract more the closer (each summit's van der Waals
+        and meniscus force rise with δ: :mod:`mcsim.physics.laws.attraction`), so they lie
+        between their sums at the two ends; the open gaps' term between the mean of its ends
+        ∓ the spline's steepest slope times half the gap (:func:`_open_gap_table`).
+        """
         x, s = self.x, self.sums
         lo_x, hi_x = x[:-1], x[1:]
         table, h = self.setup.table, x / self.setup.sigma
@@ -483,7 +516,8 @@ class _Curve:
         cut = n > 0
         if np.any(cut):  # up to PARTS - 1 of the cuts inside, evenly by rank
             rank = np.arange(PARTS - 1) / (PARTS - 2)
-            pick = np.unique(i[cut, None] + np.round(rank[None, :] * (n[cut, None] - 1)).astype(int))
+            pick = i[cut, None] + np.round(rank[None, :] * (n[cut, None] - 1)).astype(int)
+            pick = np.unique(pick)
             new += [self.cuts[pick] - side, self.cuts[pick] + side]
         even = ~cut
         if force is not None:
@@ -501,9 +535,13 @@ class _Curve:
         a, b = self.x[g], self.x[g + 1]
         fa, fb = self.net[g], self.net[g + 1]
         x = a + (b - a) * (fa - force) / (fa - fb)
-        change = np.sum(np.abs(self.sums[g + 1] - self.sums[g])) + abs(self.gaps[g + 1] - self.gaps[g])
-        r = float(np.clip(1 + abs(fb - fa) / (2 * change), LADDER[0], LADDER[1]))
-        step = XTOL * self.setup.sigma / 2 * r ** np.arange(math.ceil(math.log((b - a) / (XTOL * self.setup.sigma)) / math.log(r)) + 1)
+        # >= |fb - fa| > 0: the net load is a sum of the parts, signed
+        change = np.sum(np.abs(self.sums[g + 1] - self.sums[g])) + abs(
+            self.gaps[g + 1] - self.gaps[g]
+        )
+        r = float(np.clip(1 + abs(fb - fa) / (2 * change), *LADDER))
+        tol = XTOL * self.setup.sigma
+        step = tol / 2 * r ** np.arange(math.ceil(math.log((b - a) / tol) / math.log(r)) + 1)
         points = np.concatenate([x - step, x + step])
         return points[(points > a) & (points < b)]
 
@@ -530,7 +568,17 @@ def _cuts(z: np.ndarray, low: float, high: float, in_delta) -> np.ndarray:
 
 
 def _humid_turn(spec, z, force, bottom, top, reaches):
-    """:func:`force_turn` in humid air, by branch and bound (see :func:`force_turn`)."""
+    """:func:`force_turn` in humid air: the largest d in [bottom, top] (m) whose net load
+    ``reaches`` the force, and the load there (N).
+
+    Branch and bound: evaluate points, and split every gap above the highest point that
+    reaches whose upper bound (:meth:`_Curve.bounds`) still reaches, at the approach's cuts
+    while it holds some (jump-in, reach, breakpoints: the caps' forces are continuous), then
+    evenly, or on a ladder about the crossing (:meth:`_Curve._ladder`), down to
+    :data:`XTOL`. Every d above the returned point lies in a gap whose bound stays below
+    the force, or in one narrower than XTOL (tests/engine/test_padcurves.py checks both
+    against a dense evaluation).
+    """
     setup = _setup(spec)
     e = setup.edges
     cuts = _cuts(z, bottom, top, (e.reach, e.jump_in, *e.breakpoints))
@@ -552,8 +600,15 @@ def _humid_turn(spec, z, force, bottom, top, reaches):
 
 
 def _humid_pull_off(spec, z, d_turn, top):
-    """The points and values of :func:`pull_off`'s intervals in humid air that may hold the
-    pull-off (branch and bound; see :func:`pull_off`), and the lowest value met and where."""
+    """The intervals of a humid pad's retraction that may hold its pull-off: their points
+    and values as :func:`_points` gives them, and the lowest value met (N) and where (m).
+
+    Branch and bound on the retraction's cuts (break-off, reach, breakpoints for a summit in
+    contact at the turn; reach, breakpoints for one that is not): evaluate points, drop
+    every gap whose lower bound (:meth:`_Curve.bounds`) lies above the lowest value met,
+    split the others at their cuts, until none is left; the intervals left between the
+    cuts are then sampled and zoomed on as on the dry path (:func:`pull_off`).
+    """
     setup = _setup(spec)
     e = setup.edges
     approach, retract = setup.branches
@@ -569,7 +624,7 @@ def _humid_pull_off(spec, z, d_turn, top):
         curve.add(new)
         _, lower = curve.bounds()
         live = np.flatnonzero(lower <= curve.net.min())
-        new = curve.split(live[curve.unsplit(live)], ())
+        new = curve.split(live[curve.unsplit(live)])
     # the live gaps between cuts (not the 2·EDGE about one), sampled as _points does
     x = curve.x
     live = live[np.diff(x)[live] > 2 * EDGE * setup.sigma]
@@ -580,6 +635,7 @@ def _humid_pull_off(spec, z, d_turn, top):
     values = np.hstack([curve.net[live, None], values, curve.net[live + 1, None]])
     best = int(np.argmin(curve.net))
     return points, values, float(curve.net[best]), float(x[best])
+
 
 #: Gauss–Legendre nodes on each smooth piece of a summit's retraction load for its work.
 WORK_NODES = 16
