@@ -276,6 +276,7 @@ def pull_off(spec: MonteCarloSpec, z: np.ndarray, d_turn: float) -> tuple[float,
     top = float(z.max()) - min(e.reach, e.break_off, 0.0)  # no summit reaches beyond
     if top <= d_turn:
         return 0.0, math.nan
+    floor = None  # in humid air: a lower bound of each interval's values
     if spec.environment is None:
         cuts = _intervals(spec, z, d_turn, top, contact_edges(spec))
         points = _points(cuts, sigma)
@@ -283,16 +284,22 @@ def pull_off(spec: MonteCarloSpec, z: np.ndarray, d_turn: float) -> tuple[float,
         best = int(np.argmin(values))
         force, at = float(values.flat[best]), float(points.flat[best])
     else:
-        points, values, force, at = _humid_pull_off(spec, z, d_turn, top)
+        points, values, floor, force, at = _humid_pull_off(spec, z, d_turn, top)
         if values.size == 0:
             return (-force, at) if force < 0 else (0.0, math.nan)
+        if values.min() < force:
+            force, at = float(values.min()), float(points.flat[np.argmin(values)])
     # Zoom on the lowest interior point of the REFINE lowest intervals, all at once: a
-    # grid of ZOOM points between its neighbours, the lowest again, until within XTOL.
+    # grid of ZOOM points between its neighbours, the lowest again, until within XTOL
+    # (in humid air, dropping the intervals whose bound lies above the lowest value met).
     rows = np.argsort(values[:, 1:-1].min(axis=1))[:REFINE]
     j = 1 + np.argmin(values[rows, 1:-1], axis=1)
     lo, hi = points[rows, j - 1], points[rows, j + 1]
+    if floor is not None:
+        floor = floor[rows]
+        lo, hi, floor = lo[floor <= force], hi[floor <= force], floor[floor <= force]
     frac = np.linspace(0.0, 1.0, ZOOM + 2)[None, :]
-    while np.max(hi - lo) > XTOL * sigma:
+    while lo.size and np.max(hi - lo) > XTOL * sigma:
         x = lo[:, None] + (hi - lo)[:, None] * frac
         v = pad_load(spec, z, x.ravel(), d_turn).reshape(x.shape)
         k = np.clip(np.argmin(v, axis=1), 1, ZOOM)
@@ -300,6 +307,8 @@ def pull_off(spec: MonteCarloSpec, z: np.ndarray, d_turn: float) -> tuple[float,
         lo, hi = x[i, k - 1], x[i, k + 1]
         if v.min() < force:
             force, at = float(v.min()), float(x.flat[np.argmin(v)])
+        if floor is not None:
+            lo, hi, floor = lo[floor <= force], hi[floor <= force], floor[floor <= force]
     return (-force, at) if force < 0 else (0.0, math.nan)
 
 
@@ -428,8 +437,9 @@ class _Curve:
     branch's lowest edge and its ``falling`` and ``rising`` points add to it; last the caps'
     attraction. ``cuts`` (m) are where a summit crosses an edge of its branch."""
 
-    def __init__(self, setup, groups, z, d_turn, cuts):
+    def __init__(self, setup, groups, z, d_turn, cuts, lower=False):
         self.setup, self.groups, self.z, self.d_turn, self.cuts = setup, groups, z, d_turn, cuts
+        self.lower = lower  # only the lower bounds are asked for
         self.x = np.empty(0)
         self.sums = np.empty((0, 3 * len(groups) + 1))
 
@@ -446,6 +456,7 @@ class _Curve:
             columns.append(whole)
             for theta in (b.falling, b.rising):  # what the summits in (d + low, d + theta] add
                 empty = theta <= b.low or not np.any(_count(g.z, d + b.low, d + theta))
+                empty |= theta == b.rising and self.lower  # the lower bound needs falling only
                 columns.append(np.zeros(d.size) if empty else
                                whole - _above(contact, g.z, d, self.d_turn, theta))  # fmt: skip
         turn = None if self.d_turn is None else np.full_like(d, self.d_turn)
@@ -465,7 +476,10 @@ class _Curve:
         interferences [δ1, δ2] = [z − x_k+1, z − x_k]; on its branch (:func:`branches`) its
         load f does not rise up to a = ``falling``, does not fall from r = ``rising`` on, and
         lies between m and top = max(f(a), f(r)) on [a, r]. Its lowest value over the gap:
-        f(δ2) (at x_k) if δ2 <= a, f(δ1) (at x_k+1) if δ1 > r, else at least m. Its highest:
+        f(δ2) (at x_k) if δ2 <= a, f(δ1) (at x_k+1) if δ1 > r, else at least m, which is
+        at most f(δ1) − (top − m) where a < δ1 <= r: so the lower bound needs the sums about
+        a only (a curve asked for ``lower`` bounds only leaves the sums about r out, and
+        has no upper bounds: None). Its highest:
         f(δ1) (at x_k+1) if δ2 <= a, f(δ2) (at x_k) if δ1 > r; if δ1 <= a < δ2 <= r at most
         f(δ1) + top − m; if a < δ1 <= r < δ2 at most f(δ2) + (top − f(r))⁺; if it spans
         [a, r] at most f(δ1) + f(δ2) + top − 2m (all three at least m); inside (a, r] top.
@@ -489,8 +503,11 @@ class _Curve:
             above_b = whole - below_b
             b, zs = g.branch, g.z
             a, r, m, top = b.falling, b.rising, b.m, max(b.fa, b.fb)
-            # lowest: f(δ2) below the falling end, f(δ1) past the rising one, m between
-            lower = lower + below_a[:-1] + above_b[1:] + m * _count(zs, lo_x + a, hi_x + r)
+            # lowest: f(δ2) if δ2 <= a; f(δ1) if δ1 > a, less top - m if δ1 <= r; else m
+            lower = (
+                lower + below_a[:-1] + (whole - below_a)[1:] + m * _count(zs, lo_x + a, hi_x + a)
+            )
+            lower = lower - (top - m) * _count(zs, hi_x + a, hi_x + r)
             # highest: f(δ1) for δ1 <= a, f(δ2) for δ2 > r, what the rest can add
             n1 = _count(zs, lo_x + a, np.minimum(hi_x + a, lo_x + r))
             n2 = _count(zs, np.maximum(hi_x + a, lo_x + r), hi_x + r)
@@ -498,7 +515,7 @@ class _Curve:
             n4 = _count(zs, hi_x + a, lo_x + r)
             upper = upper + below_a[1:] + above_b[:-1] + (top - m) * n1
             upper = upper + max(top - b.fb, 0.0) * n2 + (top - 2 * m) * n3 + top * n4
-        return upper, lower
+        return (None if self.lower else upper), lower
 
     def split(self, gaps, ends=(), force=None):
         """New points splitting each gap ``gaps`` (indices; or the range ``ends``): at up to
@@ -601,7 +618,8 @@ def _humid_turn(spec, z, force, bottom, top, reaches):
 
 def _humid_pull_off(spec, z, d_turn, top):
     """The intervals of a humid pad's retraction that may hold its pull-off: their points
-    and values as :func:`_points` gives them, and the lowest value met (N) and where (m).
+    and values as :func:`_points` gives them and the lower bound of their values (N), and
+    the lowest value met (N) and where (m).
 
     Branch and bound on the retraction's cuts (break-off, reach, breakpoints for a summit in
     contact at the turn; reach, breakpoints for one that is not): evaluate points, drop
@@ -618,7 +636,7 @@ def _humid_pull_off(spec, z, d_turn, top):
     if approach.low < e.jump_in and not np.all(held):  # the others may feel an attraction
         groups.append(_Group(np.sort(z[~held]), approach))
         cuts.append(_cuts(z[~held], d_turn, top, (e.reach, *e.breakpoints)))
-    curve = _Curve(setup, tuple(groups), z, d_turn, np.unique(np.concatenate(cuts)))
+    curve = _Curve(setup, tuple(groups), z, d_turn, np.unique(np.concatenate(cuts)), lower=True)
     new = curve.split(None, (d_turn, top))
     while new.size:
         curve.add(new)
@@ -634,7 +652,7 @@ def _humid_pull_off(spec, z, d_turn, top):
     points = np.hstack([a, inner, b])
     values = np.hstack([curve.net[live, None], values, curve.net[live + 1, None]])
     best = int(np.argmin(curve.net))
-    return points, values, float(curve.net[best]), float(x[best])
+    return points, values, lower[live], float(curve.net[best]), float(x[best])
 
 
 #: Gauss–Legendre nodes on each smooth piece of a summit's retraction load for its work.
