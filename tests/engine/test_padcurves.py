@@ -266,3 +266,28 @@ def test_humid_turns_and_pull_offs_are_those_of_a_dense_evaluation_of_the_pads_c
             assert tensile <= pull * (1 + 1e-9)
             assert tensile >= pull * (1 - 1e-2)
             assert -padcurves.pad_load(spec, z, [at], d_t)[0] == pytest.approx(pull, rel=1e-12)
+
+
+@pytest.mark.parametrize("law", ["jkr", "maugis-dugdale"])
+def test_a_humid_turn_on_a_narrow_peak_just_before_a_jump_in_is_not_stepped_over(law):
+    # Just above a summit's jump-in the approach load peaks (the summit then pulls the pad
+    # down by its jump). A force between that peak and everything above it is reached only
+    # within the jump-in's one-sided limit: force_turn must find it there, not lower down.
+    spec = humid(law)
+    sigma = spec.surface.sigma
+    e = padcurves.contact_edges(spec)
+    z = padcurves.patch_heights(spec, 0)
+    d_t = padcurves.force_turn(spec, z, 1e6 * spec.area)[0]
+    found = 0
+    for c in np.sort(z - e.jump_in)[::-1]:
+        if not d_t < c < d_t + 0.3 * sigma:
+            continue
+        peak = padcurves.pad_load(spec, z, [c + padcurves.EDGE * sigma])[0]
+        far = np.linspace(c + 1e-3 * sigma, z.max() + 10 * sigma, 40001)  # beyond: load < 0
+        above = padcurves.pad_load(spec, z, far)
+        if peak > max(above.max(), 0.0):
+            force = (peak + above.max()) / 2
+            turn, load = padcurves.force_turn(spec, z, force)
+            assert c < turn < c + 1e-3 * sigma and load >= force
+            found += 1
+    assert found >= 2  # the pad has such peaks to test on
