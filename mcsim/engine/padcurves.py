@@ -138,21 +138,20 @@ class _Split(NamedTuple):
     contact: _Part
     caps: _Part
     caps_columns: tuple[int, ...]
-    open_gaps: object
 
 
 @functools.lru_cache(maxsize=16)
 def _split_laws(spec: MonteCarloSpec) -> _Split:
     """The contact law set and the environment's caps alone (a law set of the outputs ``vdw``
-    and ``capillary``), with their arguments and edges, the caps' columns in their sums, and
-    the open gaps' pressure (:func:`open_gaps`), for a humid pad's net load."""
+    and ``capillary``), with their arguments and edges, and the caps' columns in their sums,
+    for a humid pad's net load."""
     contact = get_law_set(spec.law)
     caps = with_environment(LawSet("caps", "the environment's caps", ()), spec.surface,
                             spec.environment)  # fmt: skip
     contact, caps = (_Part(law, law.arguments(spec.surface, spec.material),
                            law.edges_for(spec.surface, spec.material)) for law in (contact, caps))  # fmt: skip
     columns = tuple(sum_columns(caps.law).index(term) for term in caps.law.names)
-    return _Split(contact, caps, columns, open_gaps(spec))
+    return _Split(contact, caps, columns)
 
 
 def net_load(spec: MonteCarloSpec, sums: np.ndarray, d) -> np.ndarray:
@@ -459,8 +458,7 @@ class _Curve:
                 empty |= theta == b.rising and self.lower  # the lower bound needs falling only
                 columns.append(np.zeros(d.size) if empty else
                                whole - _above(contact, g.z, d, self.d_turn, theta))  # fmt: skip
-        turn = None if self.d_turn is None else np.full_like(d, self.d_turn)
-        k = block_sums(self.z, d, caps.law, caps.args, edges=caps.edges, d_turn=turn)
+        k = block_sums(self.z, d, caps.law, caps.args, edges=caps.edges)  # no history
         columns.append(k[:, list(setup.parts.caps_columns)].sum(axis=1))
         x = np.concatenate([self.x, d])
         order = np.argsort(x, kind="stable")
