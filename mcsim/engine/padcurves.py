@@ -24,7 +24,7 @@ the pad at any separation is the compiled kernel's sum of the law set's per-summ
   bracketed on the same intervals of the approach curve, evaluated from the top down to the
   first point that reaches F only (:func:`_approach_prefix`), and bisected to :data:`XTOL` in h.
 
-In humid air (an environment) both searches are one branch and bound instead
+In humid air (an environment; one summit radius) both searches are one branch and bound instead
 (:func:`_humid_turn`, :func:`_humid_pull_off`): every summit within the caps' band edge
 attracts at every separation, and the attraction turns the pad deeper (hundreds of summits
 touch), so sampling every interval between every summit's edges costs the square of the
@@ -276,7 +276,7 @@ def pull_off(spec: MonteCarloSpec, z: np.ndarray, d_turn: float) -> tuple[float,
     if top <= d_turn:
         return 0.0, math.nan
     floor = None  # in humid air: a lower bound of each interval's values
-    if spec.environment is None:
+    if not _bounded(spec):
         cuts = _intervals(spec, z, d_turn, top, contact_edges(spec))
         points = _points(cuts, sigma)
         values = pad_load(spec, z, points.ravel(), d_turn).reshape(points.shape)
@@ -312,6 +312,13 @@ def pull_off(spec: MonteCarloSpec, z: np.ndarray, d_turn: float) -> tuple[float,
 
 
 # --- Humid pads: branch and bound on the pad's curve ------------------------------------
+
+
+def _bounded(spec: MonteCarloSpec) -> bool:
+    """Whether a pad's turn and pull-off are searched by branch and bound: in humid air with
+    one summit radius (with a radius by height each band has its own law; those pads keep
+    the sampling of every interval)."""
+    return spec.environment is not None and spec.surface.radius_by_height is None
 
 
 class _Branch(NamedTuple):
@@ -822,7 +829,7 @@ def force_turn(spec: MonteCarloSpec, z: np.ndarray, force: float) -> tuple[float
     def reaches(load):  # at 0 the force must be exceeded: far away the load is 0 too
         return load > force if force == 0 else load >= force
 
-    if spec.environment is not None:
+    if _bounded(spec):
         return _humid_turn(spec, z, force, bottom, top, reaches)
     cuts = _intervals(spec, z, bottom, top, contact_edges(spec))
     points = np.unique(np.concatenate([[bottom, top], _points(cuts, sigma).ravel()]))[::-1]
