@@ -195,6 +195,9 @@ def open_gaps(spec: MonteCarloSpec):
 
 
 class _GapTable(NamedTuple):
+    """:func:`_open_gap_table`: the spline (Pa of h), its range in h, the function, the
+    spline's steepest |slope| (Pa per unit h)."""
+
     spline: object
     lo: float
     hi: float
