@@ -45,7 +45,7 @@ import warnings
 import numpy as np
 from reporting import Checks, parser, save_figure, write_summary
 
-from mcsim.engine import padcurves
+from mcsim.engine import padcurves, padload
 from mcsim.engine.montecarlo import MonteCarloSpec
 from mcsim.model.params import Surface
 from mcsim.model.presets import MATERIALS
@@ -79,7 +79,7 @@ def pads(rq: float, rh: float, n: int, seed: int) -> dict:
     spec = MonteCarloSpec(s, MATERIAL, H, AREA, n, seed, "jkr", cycle=True, environment=env)
     work, force, gap = np.empty(n), np.empty(n), np.empty(n)
     for r in range(n):
-        z = padcurves.patch_heights(spec, r)
+        z = padload.patch_heights(spec, r)
         d_t, _ = padcurves.force_turn(spec, z, 0.0)
         work[r] = padcurves.pad_work(spec, z, d_t)
         force[r] = padcurves.pull_off(spec, z, d_t)[0]

@@ -29,7 +29,7 @@ import warnings
 import numpy as np
 from reporting import Checks, parser, write_summary
 
-from mcsim.engine import kernels, padcurves
+from mcsim.engine import kernels, padbounds, padcurves, padload
 from mcsim.engine.montecarlo import MonteCarloSpec
 from mcsim.model.presets import MATERIALS, SURFACES
 from mcsim.physics.environment import Environment
@@ -46,7 +46,7 @@ PHASES = ("turn", "pull-off", "work")
 def one_pad(spec, r, turn=None):
     """(pull-off, work, summits) of pad ``r``, and the seconds of each of :data:`PHASES`;
     with ``turn`` (m), pad ``r`` turned there instead of at its own turn (no turn timed)."""
-    z = padcurves.patch_heights(spec, r)
+    z = padload.patch_heights(spec, r)
     t0 = time.perf_counter()
     d_t = padcurves.force_turn(spec, z, PRELOAD * spec.area)[0] if turn is None else turn
     t1 = time.perf_counter()
@@ -61,7 +61,7 @@ def same_depth(dry, humid, pads):
     """Seconds per pad of the pull-off and work, humid and dry, the dry pads turned where the
     humid ones turn: what the environment itself costs once as many summits touch (the
     attraction turns a humid pad deeper, and that alone multiplies the contact law's pairs)."""
-    turns = [padcurves.force_turn(humid, padcurves.patch_heights(humid, r), PRELOAD * AREA)[0]
+    turns = [padcurves.force_turn(humid, padload.patch_heights(humid, r), PRELOAD * AREA)[0]
              for r in range(pads)]  # fmt: skip
     out = {}
     for name, spec in (("dry", dry), ("humid", humid)):
@@ -73,9 +73,9 @@ def same_depth(dry, humid, pads):
 def timed(spec, pads, numpy_baseline: bool):
     """Seconds per pad, seconds per pad in each phase, and the pads' (pull-off, work,
     summits), with the kernel or NumPy."""
-    original = padcurves.block_sums
+    original = padload.block_sums
     if numpy_baseline:
-        padcurves.block_sums = kernels.block_sums_numpy
+        padload.block_sums = padbounds.block_sums = kernels.block_sums_numpy
     try:
         one_pad(spec, pads)  # compile and warm up outside the timing
         start = time.perf_counter()
@@ -83,7 +83,7 @@ def timed(spec, pads, numpy_baseline: bool):
         seconds = (time.perf_counter() - start) / pads
         return seconds, np.mean([o[1] for o in out], axis=0), [o[0] for o in out]
     finally:
-        padcurves.block_sums = original
+        padload.block_sums = padbounds.block_sums = original
 
 
 def pairs(spec, pads):
@@ -91,7 +91,7 @@ def pairs(spec, pads):
     contact law's and, in humid air, the caps'), counted in a pass outside the timing: what
     a pad's cost grows with."""
     count: dict[str, int] = {}
-    original = padcurves.block_sums
+    original = padload.block_sums
 
     def counting(z, d, law, args, *, d_turn=None, edges=None):
         d = np.asarray(d, dtype=float)
@@ -99,12 +99,12 @@ def pairs(spec, pads):
         count[law.name] = count.get(law.name, 0) + int(np.sum(z[None, :] > threshold[:, None]))
         return original(z, d, law, args, d_turn=d_turn, edges=edges)
 
-    padcurves.block_sums = counting
+    padload.block_sums = padbounds.block_sums = counting
     try:
         for r in range(pads):
             one_pad(spec, r)
     finally:
-        padcurves.block_sums = original
+        padload.block_sums = padbounds.block_sums = original
     return {name: n / pads for name, n in count.items()}
 
 

@@ -28,7 +28,7 @@ import warnings
 import numpy as np
 from reporting import Checks, parser, write_summary
 
-from mcsim.engine import padcurves
+from mcsim.engine import padcurves, padload
 from mcsim.engine.montecarlo import MonteCarloSpec
 from mcsim.model.presets import MATERIALS, SURFACES
 from mcsim.physics.adhesion import adhesion_summary
@@ -72,7 +72,7 @@ def main() -> None:
                               "jkr", cycle=True)  # fmt: skip
         pull = []
         for r in range(pads):
-            z = padcurves.patch_heights(spec, r)
+            z = padload.patch_heights(spec, r)
             if preload is None:  # a common turn
                 d_t = turn * surface.sigma
             else:  # force control

@@ -31,7 +31,7 @@ Criteria (PASS/FAIL lines, exit status 1 on a FAIL):
 
 The brute-force pull-offs are computed with ``--workers`` processes and kept in ``--out``
 (``tail_brute_force_<case>_<n>_<seed>.npy``), so a second run reuses them; the pads are
-those of :func:`mcsim.engine.padcurves.patch_heights` of the seed, the same on any machine
+those of :func:`mcsim.engine.padload.patch_heights` of the seed, the same on any machine
 and for any number of workers.
 
 Run: ``python validation/tail_benchmark.py --workers 2`` (on 2 cores with the faster
@@ -53,7 +53,7 @@ import numpy as np
 from reporting import Checks, child_seeds, parser, write_summary
 from scipy.stats import beta
 
-from mcsim.engine import padcurves
+from mcsim.engine import padcurves, padload
 from mcsim.engine.montecarlo import MonteCarloSpec
 from mcsim.model.presets import MATERIALS, SURFACES
 from mcsim.physics.environment import Environment
@@ -87,7 +87,7 @@ def _pull_offs(job):
     spec = _spec(n, seed, environment)
     out = np.empty(hi - lo)
     for i, r in enumerate(range(lo, hi)):
-        z = padcurves.patch_heights(spec, r)
+        z = padload.patch_heights(spec, r)
         d_t, _ = padcurves.force_turn(spec, z, PRELOAD * AREA)
         out[i] = padcurves.pull_off(spec, z, d_t)[0]
     return out

@@ -290,7 +290,7 @@ class Run:
         given; else each pad's own under force control where the run was pressed with a
         preload (attribute ``preload``, Pa); else the run's min(h).
         """
-        from mcsim.engine import padcurves
+        from mcsim.engine import padcurves, padload
 
         spec = self.spec
         if not spec.cycle or "load" not in spec.law_set.names:
@@ -302,7 +302,7 @@ class Run:
             raise ParameterError(f"turn = {turn!r}: allowed >= the run's lowest separation "
                                  f"h = {spec.turn:g} (no summit below it is drawn)")  # fmt: skip
         M, R, sigma = spec.h.size, self.sums.shape[0], spec.surface.sigma
-        load = padcurves.net_load(spec, self.sums, spec.rows()[0])
+        load = padload.net_load(spec, self.sums, spec.rows()[0])
         j = np.argmin(load[:, M:], axis=1)
         grid_force = np.maximum(-load[np.arange(R), M + j], 0.0)
         grid = np.unique(spec.h)
@@ -315,7 +315,7 @@ class Run:
             h_turn[:] = turn
         if exact:
             for r in range(R):
-                z = padcurves.patch_heights(spec, r)
+                z = padload.patch_heights(spec, r)
                 _check_regenerated(spec, r, z, load[r, :M])
                 if preload is not None:
                     d_t, turn_load[r] = padcurves.force_turn(spec, z, preload * spec.area)
@@ -364,7 +364,7 @@ class Run:
 
 def _check_regenerated(spec: MonteCarloSpec, r: int, z: np.ndarray, stored: np.ndarray) -> None:
     """Refuse heights drawn again that do not give the run's own approach sums (1e-9 relative)."""
-    from mcsim.engine.padcurves import pad_load
+    from mcsim.engine.padload import pad_load
 
     again = pad_load(spec, z, spec.d)
     scale = np.max(np.abs(stored), initial=0.0)

@@ -276,7 +276,7 @@ def finite_pads(spec, restoring_force: float, *, preload: float | None = None, t
     """Pull-off statistics of the ``spec.realizations`` pads of a cycle spec, as sweep variables.
 
     Each pad's summits are drawn from ``spec``'s seed as a ``--cycle`` run of the same spec
-    draws them (:func:`mcsim.engine.padcurves.patch_heights`), so ``mcsim simulate --cycle``
+    draws them (:func:`mcsim.engine.padload.patch_heights`), so ``mcsim simulate --cycle``
     with that seed followed by ``mcsim pads`` gives the same pads.
 
     Parameters
@@ -311,7 +311,7 @@ def finite_pads(spec, restoring_force: float, *, preload: float | None = None, t
         A turn below the spec's lowest separation (no summit below it is drawn), or a pad
         whose approach load stays below P·A down to it.
     """
-    from mcsim.engine import padcurves
+    from mcsim.engine import padcurves, padload
     from mcsim.studies import tail as sampling
     from mcsim.studies.stiction import p_stick_model
 
@@ -322,7 +322,7 @@ def finite_pads(spec, restoring_force: float, *, preload: float | None = None, t
     force, work = np.empty(spec.realizations), np.empty(spec.realizations)
     cut, highs = sampling.cut(spec, turn), []  # the summits a tail's stage 0 needs
     for r in range(spec.realizations):
-        z = padcurves.patch_heights(spec, r)
+        z = padload.patch_heights(spec, r)
         d_turn = turn * sigma
         if preload is not None:
             d_turn, _ = padcurves.force_turn(spec, z, preload * spec.area)

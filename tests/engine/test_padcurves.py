@@ -6,7 +6,7 @@ import math
 import numpy as np
 import pytest
 
-from mcsim.engine import padcurves
+from mcsim.engine import padbounds, padcurves, padload
 from mcsim.engine.montecarlo import MonteCarloSpec, run_sums
 from mcsim.model.presets import MATERIALS, SURFACES
 from mcsim.store.results import assemble
@@ -25,7 +25,7 @@ def cycle(h, realizations=30, surface=ROUGHER, area=30e-12, seed=1, law="jkr", *
 def test_heights_drawn_again_are_the_ones_the_run_summed_bit_for_bit():
     spec, ens = cycle(np.linspace(3, -1, 9), realizations=5)
     for r in range(5):
-        np.testing.assert_array_equal(padcurves.patch_heights(spec, r), ens.heights[r])
+        np.testing.assert_array_equal(padload.patch_heights(spec, r), ens.heights[r])
 
 
 def test_pull_off_does_not_depend_on_the_grids_spacing_or_top():
@@ -45,7 +45,7 @@ def test_pull_off_is_the_minimum_of_a_dense_evaluation_of_the_pads_own_curve():
     for r in range(6):
         z = ens.heights[r]
         d = np.linspace(spec.turn, z.max() / sigma + 1, 40001) * sigma
-        dense = -padcurves.pad_load(spec, z, d, spec.turn * sigma).min()
+        dense = -padload.pad_load(spec, z, d, spec.turn * sigma).min()
         # No point of the curve is more tensile than its minimum; a grid of spacing 1.5e-4 in h
         # comes within 1 % (it can miss the square-root cusp of a summit at its break-off).
         assert dense <= pull.force[r] * (1 + 1e-12)
@@ -69,9 +69,9 @@ def test_force_turn_is_the_largest_separation_whose_approach_load_reaches_the_fo
     for z in ens.heights:
         force = 30e-6
         d_t, load = padcurves.force_turn(spec, z, force)
-        assert load >= force and padcurves.pad_load(spec, z, [d_t])[0] == load
-        above = np.linspace(d_t + padcurves.XTOL * sigma, z.max() + sigma, 20001)
-        assert np.all(padcurves.pad_load(spec, z, above) < force)
+        assert load >= force and padload.pad_load(spec, z, [d_t])[0] == load
+        above = np.linspace(d_t + padload.XTOL * sigma, z.max() + sigma, 20001)
+        assert np.all(padload.pad_load(spec, z, above) < force)
 
 
 @pytest.mark.parametrize("law", ["jkr", "maugis-dugdale"])
@@ -82,7 +82,7 @@ def test_the_approach_loads_down_to_the_first_reaching_one_are_the_whole_grids_b
     sigma = spec.surface.sigma
     points = np.linspace(4 * sigma, -2 * sigma, 3001)
     for z in ens.heights:
-        whole = padcurves.pad_load(spec, z, points)
+        whole = padload.pad_load(spec, z, points)
         for force in (1e-6, 30e-6, whole[1500]):
             values = padcurves._approach_prefix(spec, z, points, lambda load, f=force: load >= f)
             first = np.flatnonzero(whole >= force)[0]
@@ -114,14 +114,14 @@ def test_the_contact_laws_work_summed_summit_by_summit_is_the_integral_of_the_pa
     spec = MonteCarloSpec(SURFACES["smooth"], SILICON, np.linspace(-2, 5, 8), 30e-12, 3, 0,
                           law=law, cycle=True, environment=env)  # fmt: skip
     for r in range(2):
-        z = padcurves.patch_heights(spec, r)
+        z = padload.patch_heights(spec, r)
         d_t = padcurves.force_turn(spec, z, 1e6 * spec.area)[0]
-        e = padcurves.contact_edges(spec)
-        cuts = padcurves._intervals(spec, z, d_t, z.max() - min(e.reach, e.break_off, 0.0), e)
+        e = padload.contact_edges(spec)
+        cuts = padload._intervals(spec, z, d_t, z.max() - min(e.reach, e.break_off, 0.0), e)
         x, w = np.polynomial.legendre.leggauss(40)
         half = np.diff(cuts)[:, None] / 2
         nodes = ((cuts[:-1, None] + cuts[1:, None]) / 2 + half * x).ravel()
-        reference = np.sum((half * w).ravel() * padcurves.contact_load(spec, z, nodes, d_t))
+        reference = np.sum((half * w).ravel() * padload.contact_load(spec, z, nodes, d_t))
         summed = np.sum(padcurves.contact_works(spec, z, d_t))
         assert summed == pytest.approx(reference, rel=1e-6)
 
@@ -153,7 +153,7 @@ def test_the_pad_laws_are_the_ones_with_a_retraction():
 def test_every_pad_law_is_quasiconvex_on_each_branch_and_retracts_independently_of_its_history(
     law, material
 ):
-    # The requirements of mcsim.physics.laws that padcurves.branches rests on, on a dense
+    # The requirements of mcsim.physics.laws that padbounds.branches rests on, on a dense
     # grid: 0 up to the branch's lowest edge, then no rise down to the minimum, then no fall;
     # the retraction of a summit in contact the same for every delta_max; one out of contact
     # at the turn keeps its approach load. Tolerance of "no rise": 1e-12 of the largest |f|
@@ -187,19 +187,19 @@ def test_every_pad_law_is_quasiconvex_on_each_branch_and_retracts_independently_
 @pytest.mark.parametrize("law", PAD_LAWS)
 def test_the_branches_bracket_their_minimum_and_jkr_gives_johnsons_forces(law):
     spec = humid(law)
-    part = padcurves._split_laws(spec).contact
+    part = padload._split_laws(spec).contact
     out, args = part.law.outputs[part.law.names.index("load")], part.args[0]
-    for b, retract in zip(padcurves.branches(spec), (False, True)):
+    for b, retract in zip(padbounds.branches(spec), (False, True)):
         x = np.linspace(b.low, b.rising + (b.rising - b.low), 200001)[1:]
         state = np.full_like(x, 1e-6) if retract else x
         f = out.law(x, state, *args) if out.stateful else out.law(x, *args)
         assert b.low <= b.falling <= x[np.argmin(f)] <= b.rising
-        assert b.m <= f.min() and b.m >= f.min() * (1 + 2 * padcurves._MIN_MARGIN)
+        assert b.m <= f.min() and b.m >= f.min() * (1 + 2 * padbounds._MIN_MARGIN)
     if law == "jkr":
         # Johnson (1985, Eq. 5.60): -P_c = -1.5 pi w R on retraction; on approach the jump
         # in at delta = 0 lands at -8/9 P_c. Each within the margin of 1e-6 below.
         pc = 1.5 * math.pi * SILICON.gamma * spec.surface.R
-        approach, retract = padcurves.branches(spec)
+        approach, retract = padbounds.branches(spec)
         assert approach.m == pytest.approx(-8 / 9 * pc, rel=2e-6) and approach.m < -8 / 9 * pc
         assert retract.m == pytest.approx(-pc, rel=2e-6) and retract.m < -pc
 
@@ -207,17 +207,17 @@ def test_the_branches_bracket_their_minimum_and_jkr_gives_johnsons_forces(law):
 @pytest.mark.parametrize("law", PAD_LAWS)
 @pytest.mark.parametrize("surface", ["smooth", "intermediate"])
 def test_the_bounds_of_a_humid_curve_hold_every_value_between_its_points(law, surface):
-    # The proven bound (padcurves._Curve.bounds): every value of the pad's net load in a gap
+    # The proven bound (padbounds._Curve.bounds): every value of the pad's net load in a gap
     # between two evaluated points lies between the gap's lower and upper bound. Checked on
     # 300 dense points in each of the gaps of random separations (many summits crossing their
     # edges in each), on approach and on retraction; slack 1e-12 of the pad's largest sum
     # (the sums' rounding, batched differently).
     spec = humid(law, rh=0.9, surface=surface)
-    setup = padcurves._setup(spec)
+    setup = padbounds._setup(spec)
     rng = np.random.default_rng(5)
     sigma = spec.surface.sigma
     for r in range(2):
-        z = padcurves.patch_heights(spec, r)
+        z = padload.patch_heights(spec, r)
         d_t = padcurves.force_turn(spec, z, 1e6 * spec.area)[0]
         e = setup.edges
         for retract in (False, True):
@@ -225,16 +225,16 @@ def test_the_bounds_of_a_humid_curve_hold_every_value_between_its_points(law, su
             x = np.sort(np.concatenate([low + rng.uniform(0, 2, 12) ** 2 * sigma, [low]]))
             if retract:
                 held = z - d_t > e.jump_in
-                groups = [padcurves._Group(np.sort(z[held]), setup.branches[1]),
-                          padcurves._Group(np.sort(z[~held]), setup.branches[0])]  # fmt: skip
-                curve = padcurves._Curve(setup, tuple(groups), z, d_t, np.empty(0))
+                groups = [padbounds._Group(np.sort(z[held]), setup.branches[1]),
+                          padbounds._Group(np.sort(z[~held]), setup.branches[0])]  # fmt: skip
+                curve = padbounds._Curve(setup, tuple(groups), z, d_t, np.empty(0))
             else:
-                group = padcurves._Group(np.sort(z), setup.branches[0])
-                curve = padcurves._Curve(setup, (group,), z, None, np.empty(0))
+                group = padbounds._Group(np.sort(z), setup.branches[0])
+                curve = padbounds._Curve(setup, (group,), z, None, np.empty(0))
             curve.add(x)
             upper, lower = curve.bounds()
             inside = x[:-1, None] + np.diff(x)[:, None] * np.linspace(0, 1, 300)[None, :]
-            values = padcurves.pad_load(spec, z, inside.ravel(), d_t if retract else None)
+            values = padload.pad_load(spec, z, inside.ravel(), d_t if retract else None)
             values = values.reshape(inside.shape)
             slack = 1e-12 * np.max(np.abs(curve.sums))
             assert np.all(values.max(axis=1) <= upper + slack)
@@ -253,19 +253,19 @@ def test_humid_turns_and_pull_offs_are_those_of_a_dense_evaluation_of_the_pads_c
     for rh in (0.3, 0.7, 0.9):
         spec = humid(law, rh=rh, surface=surface, pads=2, seed=int(rh * 10))
         for preload, r in ((0.0, 0), (1e6, 1)):
-            z = padcurves.patch_heights(spec, r)
+            z = padload.patch_heights(spec, r)
             force = preload * spec.area
             d_t, load = padcurves.force_turn(spec, z, force)
             assert (load > force) if force == 0 else (load >= force)
-            above = np.linspace(d_t + padcurves.XTOL * sigma, z.max() + 2 * sigma, 30001)
-            dense = padcurves.pad_load(spec, z, above)
+            above = np.linspace(d_t + padload.XTOL * sigma, z.max() + 2 * sigma, 30001)
+            dense = padload.pad_load(spec, z, above)
             assert np.all((dense <= force) if force == 0 else (dense < force))
             pull, at = padcurves.pull_off(spec, z, d_t)
             d = np.linspace(d_t, z.max() + 2 * sigma, 30001)
-            tensile = -padcurves.pad_load(spec, z, d, d_t).min()
+            tensile = -padload.pad_load(spec, z, d, d_t).min()
             assert tensile <= pull * (1 + 1e-9)
             assert tensile >= pull * (1 - 1e-2)
-            assert -padcurves.pad_load(spec, z, [at], d_t)[0] == pytest.approx(pull, rel=1e-12)
+            assert -padload.pad_load(spec, z, [at], d_t)[0] == pytest.approx(pull, rel=1e-12)
 
 
 @pytest.mark.parametrize("law", ["jkr", "maugis-dugdale"])
@@ -275,16 +275,16 @@ def test_a_humid_turn_on_a_narrow_peak_just_before_a_jump_in_is_not_stepped_over
     # within the jump-in's one-sided limit: force_turn must find it there, not lower down.
     spec = humid(law)
     sigma = spec.surface.sigma
-    e = padcurves.contact_edges(spec)
-    z = padcurves.patch_heights(spec, 0)
+    e = padload.contact_edges(spec)
+    z = padload.patch_heights(spec, 0)
     d_t = padcurves.force_turn(spec, z, 1e6 * spec.area)[0]
     found = 0
     for c in np.sort(z - e.jump_in)[::-1]:
         if not d_t < c < d_t + 0.3 * sigma:
             continue
-        peak = padcurves.pad_load(spec, z, [c + padcurves.EDGE * sigma])[0]
+        peak = padload.pad_load(spec, z, [c + padload.EDGE * sigma])[0]
         far = np.linspace(c + 1e-3 * sigma, z.max() + 10 * sigma, 40001)  # beyond: load < 0
-        above = padcurves.pad_load(spec, z, far)
+        above = padload.pad_load(spec, z, far)
         if peak > max(above.max(), 0.0):
             force = (peak + above.max()) / 2
             turn, load = padcurves.force_turn(spec, z, force)

@@ -12,7 +12,7 @@ from scipy import integrate
 
 import mcsim
 from mcsim.cli.main import main
-from mcsim.engine import padcurves
+from mcsim.engine import padcurves, padload
 from mcsim.engine.montecarlo import MonteCarloSpec, run_sums
 from mcsim.model.errors import ParameterError
 from mcsim.model.params import RadiusByHeight, combine_surfaces
@@ -103,7 +103,7 @@ def test_a_pads_pull_off_and_work_sum_each_band_with_its_radius():
     spec = MonteCarloSpec(with_bands(), SILICON, H, 30e-12, 3, 2, "jkr", cycle=True)
     sigma = SMOOTH.sigma
     for r in range(3):
-        z = padcurves.patch_heights(spec, r)
+        z = padload.patch_heights(spec, r)
         d_t = padcurves.force_turn(spec, z, 1e6 * spec.area)[0]
         force = padcurves.pull_off(spec, z, d_t)[0]
         # the load is the sum of each band's summits under their own radius
@@ -111,8 +111,8 @@ def test_a_pads_pull_off_and_work_sum_each_band_with_its_radius():
         d = np.linspace(d_t, z.max() + sigma, 20001)
         specs = [MonteCarloSpec(part, SILICON, H, 30e-12, 3, 2, "jkr", cycle=True)
                  for part in with_bands().components()]  # fmt: skip
-        parts = sum(padcurves.contact_load(s, z[band == k], d, d_t) for k, s in enumerate(specs))
-        load = padcurves.pad_load(spec, z, d, d_t)
+        parts = sum(padload.contact_load(s, z[band == k], d, d_t) for k, s in enumerate(specs))
+        load = padload.pad_load(spec, z, d, d_t)
         np.testing.assert_allclose(load, parts, rtol=1e-12, atol=1e-18)
         # the exact pull-off lies at or below a dense evaluation's minimum, within 1e-6
         assert -force <= load.min() + 1e-6 * force and force > 0
@@ -236,7 +236,7 @@ def test_a_humid_pad_of_bands_sums_each_summits_caps_with_its_own_radius():
                           environment=HUMID)  # fmt: skip
     sigma = SMOOTH.sigma
     for r in range(2):
-        z = padcurves.patch_heights(spec, r)
+        z = padload.patch_heights(spec, r)
         d_t = padcurves.force_turn(spec, z, 1e6 * spec.area)[0]
         band = TWO.band_of(z / sigma)
         top = z.max() + max(summit_parameters(p, HUMID)["band"] for p in with_bands().components())
@@ -248,9 +248,9 @@ def test_a_humid_pad_of_bands_sums_each_summits_caps_with_its_own_radius():
             vdw = vdw_summit(delta, p["hamaker"], part.R, p["cutoff"], p["band"])
             meniscus = capillary_summit(delta, p["laplace"], part.R, p["cutoff"], p["gap_k"])
             caps += (vdw + meniscus).sum(axis=1)
-        gaps = spec.area * padcurves.open_gaps(spec)(d / sigma)
-        expected = padcurves.contact_load(spec, z, d, d_t) - caps - gaps
-        load = padcurves.pad_load(spec, z, d, d_t)
+        gaps = spec.area * padload.open_gaps(spec)(d / sigma)
+        expected = padload.contact_load(spec, z, d, d_t) - caps - gaps
+        load = padload.pad_load(spec, z, d, d_t)
         np.testing.assert_allclose(load, expected, rtol=1e-9, atol=1e-9 * np.abs(load).max())
         force = padcurves.pull_off(spec, z, d_t)[0]
         assert force > 0 and -force <= load.min() + 1e-6 * force

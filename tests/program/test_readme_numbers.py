@@ -267,7 +267,7 @@ def test_design_map_stiction_boundary():
 
 
 def test_engine_and_file_constants():
-    from mcsim.engine import montecarlo, padcurves
+    from mcsim.engine import montecarlo, padload
     from mcsim.model import distributions
     from mcsim.store.schema import MAX_EXPANSION
     from mcsim.studies.ingest import BYTES_PER_PIXEL
@@ -276,7 +276,7 @@ def test_engine_and_file_constants():
 
     check_exact(r"located to (\S+) in h\) at `h_pull_off`", adhesion.H_TOLERANCE)
     check_exact(r"the minimum of the mean curve, located to (\S+) in h", adhesion.H_TOLERANCE)
-    check_exact(r"located in continuous h to (\S+) between the grid's", padcurves.XTOL)
+    check_exact(r"located in continuous h to (\S+) between the grid's", padload.XTOL)
     check_exact(r"drawn in fixed blocks of (\S+) summits", montecarlo.BLOCK)
     assert quoted(r"(ηA is limited to 10¹⁸ summits)") and montecarlo.MAX_SUMMITS == 1e18
     check_exact(r"\(after (\S+) s of work, then every", montecarlo.FIRST_CHECKPOINT)
@@ -421,7 +421,7 @@ def test_force_control_against_a_common_turn():
     # (about 5 s of CPU)
     import dataclasses
 
-    from mcsim.engine import padcurves
+    from mcsim.engine import padcurves, padload
     from mcsim.engine.montecarlo import MonteCarloSpec
     from mcsim.physics.loadcontrol import preload_turn
     from mcsim.studies.pads import pad_statistics
@@ -431,7 +431,7 @@ def test_force_control_against_a_common_turn():
     spec = MonteCarloSpec(surface, SILICON, np.linspace(4, -1, 51), area, 400, 1, "jkr", cycle=True)
     own, common, turns = [], [], []
     for r in range(spec.realizations):
-        z = padcurves.patch_heights(spec, r)
+        z = padload.patch_heights(spec, r)
         d_turn, _ = padcurves.force_turn(spec, z, 1e6 * area)
         turns.append(d_turn)
         own.append(padcurves.pull_off(spec, z, d_turn)[0])

@@ -373,7 +373,7 @@ def preload_run(tmp_path_factory):
 
 
 def test_each_pad_turns_where_its_own_approach_load_reaches_the_preload(preload_run):
-    from mcsim.engine import padcurves
+    from mcsim.engine import padload
     from mcsim.store.runfile import read_run
 
     run = read_run(preload_run)
@@ -382,9 +382,9 @@ def test_each_pad_turns_where_its_own_approach_load_reaches_the_preload(preload_
     assert run.attrs["preload"] == 1e6 and pull.preload == 1e6
     assert np.all(pull.turn_load >= force) and np.ptp(pull.h_turn) > 0.1
     for r in range(3):
-        z = padcurves.patch_heights(spec, r)
+        z = padload.patch_heights(spec, r)
         above = (pull.h_turn[r] + 1e-6) * spec.surface.sigma
-        assert padcurves.pad_load(spec, z, [above])[0] < force
+        assert padload.pad_load(spec, z, [above])[0] < force
 
 
 def test_pad_turns_scatter_about_the_mean_field_turn(preload_run):

@@ -13,7 +13,7 @@ import dataclasses
 import numpy as np
 import pytest
 
-from mcsim.engine import padcurves
+from mcsim.engine import padcurves, padload
 from mcsim.engine.montecarlo import MonteCarloSpec
 from mcsim.model.presets import MATERIALS, SURFACES
 from mcsim.physics.environment import Environment
@@ -45,7 +45,7 @@ def test_the_net_load_of_a_one_summit_pad_is_its_laws_less_the_open_gaps():
     expected = contact - caps - s.area * (gaps["vdw"] + gaps["capillary"])
     # the open gaps come from a cubic spline within 1e-9 of their largest value
     scale = s.area * np.max(gaps["vdw"] + gaps["capillary"])
-    np.testing.assert_allclose(padcurves.pad_load(s, z, d), expected, rtol=1e-12,
+    np.testing.assert_allclose(padload.pad_load(s, z, d), expected, rtol=1e-12,
                                atol=1e-9 * scale)  # fmt: skip
 
 
@@ -54,7 +54,7 @@ def test_the_open_gaps_table_is_within_1e_9_of_the_function():
     h = np.random.default_rng(2).uniform(H.min(), 14.0, 500)
     exact = open_gap_pressures(h, SMOOTH, HUMID)
     exact = exact["vdw"] + exact["capillary"]
-    np.testing.assert_allclose(padcurves.open_gaps(s)(h), exact, rtol=0,
+    np.testing.assert_allclose(padload.open_gaps(s)(h), exact, rtol=0,
                                atol=1e-9 * np.max(np.abs(exact)))  # fmt: skip
 
 
@@ -62,32 +62,32 @@ def test_a_pad_at_zero_preload_rests_where_its_net_load_turns_compressive_below_
     s = spec()
     sigma = SMOOTH.sigma
     for r in range(s.realizations):
-        z = padcurves.patch_heights(s, r)
+        z = padload.patch_heights(s, r)
         d_t, load = padcurves.force_turn(s, z, 0.0)
         assert load > 0 and d_t < z.max()
         # just above the turn (beyond the bisection's tolerance) the net load is not compressive
-        above = padcurves.pad_load(s, z, [d_t + 2 * padcurves.XTOL * sigma])[0]
+        above = padload.pad_load(s, z, [d_t + 2 * padload.XTOL * sigma])[0]
         assert above <= 0
         # and from far away down to there it never was (the first compressive point)
-        d = np.linspace(d_t + 2 * padcurves.XTOL * sigma, z.max() + 10e-9, 4001)
-        assert np.all(padcurves.pad_load(s, z, d) <= 0)
+        d = np.linspace(d_t + 2 * padload.XTOL * sigma, z.max() + 10e-9, 4001)
+        assert np.all(padload.pad_load(s, z, d) <= 0)
 
 
 def test_pads_at_every_humidity_are_drawn_from_the_same_summits():
-    heights = [padcurves.patch_heights(spec(dataclasses.replace(HUMID, rh=rh)), 1)
+    heights = [padload.patch_heights(spec(dataclasses.replace(HUMID, rh=rh)), 1)
                for rh in (0.0, 0.5, 0.9)]  # fmt: skip
-    heights.append(padcurves.patch_heights(spec(dataclasses.replace(HUMID, hamaker=3e-19)), 1))
+    heights.append(padload.patch_heights(spec(dataclasses.replace(HUMID, hamaker=3e-19)), 1))
     for z in heights[1:]:
         np.testing.assert_array_equal(z, heights[0])
 
 
 def test_a_pads_work_of_separation_is_the_integral_of_its_net_force():
     s = spec(pads=2)
-    z = padcurves.patch_heights(s, 0)
+    z = padload.patch_heights(s, 0)
     d_t, _ = padcurves.force_turn(s, z, 1e6 * s.area)
     top = z.max() + summit_parameters(SMOOTH, HUMID)["band"]
     d = np.linspace(d_t, top, 400_001)
-    net = padcurves.pad_load(s, z, d, d_t)
+    net = padload.pad_load(s, z, d, d_t)
     far = open_gap_pressures(top / SMOOTH.sigma, SMOOTH, HUMID)  # beyond: the open gaps alone
     from mcsim.physics.surfaceenvironment import open_gap_works
 
@@ -107,17 +107,17 @@ def test_a_pads_work_is_exact_where_the_caps_kinks_fall_inside_the_contact_laws_
     # law's quadrature, ~1e-7 relative (padcurves.contact_works' docstring).
     s = MonteCarloSpec(SURFACES["intermediate"], SILICON, H, 30e-12, 10, 7, "jkr", cycle=True,
                        environment=HUMID)  # fmt: skip
-    z = padcurves.patch_heights(s, 6)
+    z = padload.patch_heights(s, 6)
     d_t, _ = padcurves.force_turn(s, z, 1e6 * s.area)
     top = z.max() + summit_parameters(s.surface, HUMID)["band"]
-    cuts = padcurves._intervals(s, z, d_t, top)
+    cuts = padload._intervals(s, z, d_t, top)
     x, w = np.polynomial.legendre.leggauss(40)
     half = np.diff(cuts)[:, None] / 2
     nodes = ((cuts[:-1, None] + cuts[1:, None]) / 2 + half * x).ravel()
     from mcsim.physics.surfaceenvironment import open_gap_works
 
     tail = open_gap_works(np.float64(top / s.surface.sigma), s.surface, HUMID)
-    dense = -np.sum((half * w).ravel() * padcurves.pad_load(s, z, nodes, d_t)) / s.area
+    dense = -np.sum((half * w).ravel() * padload.pad_load(s, z, nodes, d_t)) / s.area
     dense += float(tail["vdw"] + tail["capillary"])
     assert padcurves.pad_work(s, z, d_t) == pytest.approx(dense, rel=1e-6)
 

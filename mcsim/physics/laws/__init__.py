@@ -29,7 +29,7 @@ grows it is 0 up to the branch's lowest edge (``reach`` on approach, min(``reach
 minimum, then does not fall. On retraction a summit in contact at the turn (δ_max >
 ``jump_in``) follows a branch that does not depend on δ_max, and one out of contact keeps
 its approach load. A humid pad's search bounds its load on these
-(:func:`mcsim.engine.padcurves.branches`); tests/engine/test_padcurves.py checks them for
+(:func:`mcsim.engine.padbounds.branches`); tests/engine/test_padcurves.py checks them for
 every registered law set.
 
 Law functions are restricted to a small vocabulary so that the same source also

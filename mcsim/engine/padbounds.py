@@ -1,0 +1,386 @@
+"""Humid pads: their turn and pull-off by branch and bound on the pad's curve.
+
+In humid air every summit within the caps' band edge attracts at every separation, and the
+attraction turns the pad deeper (hundreds of summits touch), so sampling every interval
+between every summit's edges, as :mod:`mcsim.engine.padcurves` does for a dry pad, costs the
+square of the summits. Bounds on the net load over a whole range of separations, proven
+summit by summit from the shape of each branch of the contact law (:func:`branches`,
+:meth:`_Curve.bounds`), leave only the ranges that can hold the turn (:func:`humid_turn`) or
+the pull-off (:func:`humid_pull_off`) to be split; the same tolerance
+(:data:`~mcsim.engine.padload.XTOL`) and, for the pull-off, the same sampling and zoom of the
+intervals left (:func:`mcsim.engine.padcurves.pull_off`). With one summit radius only
+(:func:`bounded`): with a radius by height each band has its own law, and those pads keep
+the sampling of every interval.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+from typing import NamedTuple
+
+import numpy as np
+
+from mcsim.engine.kernels import block_sums
+from mcsim.engine.montecarlo import MonteCarloSpec
+from mcsim.engine.padload import (
+    EDGE,
+    SUB,
+    XTOL,
+    _GapTable,
+    _load,
+    _open_gap_table,
+    _Part,
+    _Split,
+    _split_laws,
+    open_gaps,
+    pad_load,
+)
+from mcsim.model.errors import ParameterError
+from mcsim.physics.laws import Edges
+
+
+def bounded(spec: MonteCarloSpec) -> bool:
+    """Whether a pad's turn and pull-off are searched by branch and bound: in humid air with
+    one summit radius (with a radius by height each band has its own law; those pads keep
+    the sampling of every interval)."""
+    return spec.environment is not None and spec.surface.radius_by_height is None
+
+
+class _Branch(NamedTuple):
+    """One branch of the contact law's ``load`` of a summit, f(δ) (:func:`branches`): it
+    carries force above ``low``, does not rise up to ``falling``, does not fall from
+    ``rising`` on, and its values are ``fa`` = f(falling), ``fb`` = f(rising) and at least
+    ``m`` (N; interferences in m)."""
+
+    low: float
+    falling: float
+    rising: float
+    fa: float
+    fb: float
+    m: float
+
+
+#: Points of :func:`branches`' grid on each branch, reaching this many times the law's
+#: largest edge at first.
+_BRANCH_POINTS, _BRANCH_SPAN = 4001, 64.0
+#: Margin on the minimum found numerically, relative.
+_MIN_MARGIN = 1e-6
+
+
+@functools.lru_cache(maxsize=16)
+def branches(spec: MonteCarloSpec) -> tuple[_Branch, _Branch]:
+    """The approach and retraction branches of the contact law's load of one summit.
+
+    Law sets with a retraction are *quasiconvex* on each branch (a requirement of
+    :mod:`mcsim.physics.laws`): as δ grows, f(δ) is 0 up to the branch's lowest edge, then
+    does not rise (it jumps down and falls) to its minimum at some x*, then does not fall.
+    On retraction a summit in contact at the turn follows a branch that does not depend on
+    δ_max, and one out of contact keeps its approach load (also required). This finds, on a
+    geometric grid from the lowest edge, the lowest point y: ``falling`` is the last grid
+    point before y with f > f(y) (or the edge) and ``rising`` the first after y with
+    f > f(y). Both are proven sides of x*: were ``rising`` at or before x*, f could not rise
+    from y to it; were ``falling`` at or past x*, f could not fall from it to y. So f does
+    not rise on (−∞, falling] and does not fall on [rising, ∞), and on [falling, rising] it
+    stays below max(fa, fb) (the argument takes the law's values as exact; its rounding moves
+    these points by where f changes in its last bits only). ``m`` is the least value met,
+    with a golden-section search between y's neighbours, made :data:`_MIN_MARGIN` more
+    negative: the one number here found numerically rather than proven (the tests check it
+    against Johnson's forces for JKR and a dense grid for every law set).
+    """
+    from scipy.optimize import minimize_scalar
+
+    part = _split_laws(spec).contact
+    e = part.edges
+    i = part.law.names.index("load")
+    out, args = part.law.outputs[i], part.args[i]
+    scale = max(abs(x) for x in (e.reach, e.jump_in, e.break_off, *e.breakpoints, 1e-12))
+    result = []
+    for low, retract in ((e.reach, False), (min(e.reach, e.break_off), True)):
+        span = _BRANCH_SPAN
+        while True:
+            x = low + scale * np.geomspace(1e-9, span, _BRANCH_POINTS)
+            turn = max(x[-1], e.jump_in) + scale  # on retraction: in contact, past every x
+
+            def f(delta, turn=turn if retract else None):
+                delta = np.asarray(delta, dtype=float)
+                state = delta if turn is None else np.full_like(delta, turn)
+                return out.law(delta, state, *args) if out.stateful else out.law(delta, *args)
+
+            y = f(x)
+            k = int(np.argmin(y))
+            after = np.flatnonzero(y[k + 1 :] > y[k])
+            if after.size:
+                break
+            span *= 4  # the minimum lies beyond the grid: look further
+        before = np.flatnonzero(y[:k] > y[k])
+        falling = float(x[before[-1]]) if before.size else low
+        rising = float(x[k + 1 + after[0]])
+        left = x[k - 1] if k else low
+        best = minimize_scalar(lambda t: float(f(np.array([t]))[0]), bounds=(left, x[k + 1]),
+                               method="bounded", options={"xatol": 1e-12 * (x[k + 1] - left)})  # fmt: skip
+        m = min(float(y[k]), float(best.fun), 0.0) * (1 + _MIN_MARGIN)
+        fa = float(f(np.array([falling]))[0]) if before.size else 0.0
+        result.append(_Branch(low, falling, rising, fa, float(f(np.array([rising]))[0]), m))
+    return result[0], result[1]
+
+
+def _count(zs: np.ndarray, lo, hi) -> np.ndarray:
+    """How many of the sorted heights ``zs`` lie in (lo, hi] (m), elementwise (0 if empty)."""
+    return np.maximum(np.searchsorted(zs, hi, "right") - np.searchsorted(zs, lo, "right"), 0)
+
+
+class _Group(NamedTuple):
+    """Summits on one branch: sorted heights (m) and the branch."""
+
+    z: np.ndarray
+    branch: _Branch
+
+
+class _Setup(NamedTuple):
+    """What a humid pad's search needs of its spec, looked up once (hashing a spec costs)."""
+
+    sigma: float
+    area: float
+    parts: _Split
+    edges: Edges
+    branches: tuple[_Branch, _Branch]
+    gaps: object
+    table: _GapTable
+
+
+@functools.lru_cache(maxsize=16)
+def _setup(spec: MonteCarloSpec) -> _Setup:
+    """The :class:`_Setup` of ``spec``."""
+    parts = _split_laws(spec)
+    return _Setup(spec.surface.sigma, spec.area, parts, parts.contact.edges, branches(spec),
+                  open_gaps(spec), _open_gap_table(spec))  # fmt: skip
+
+
+def _above(part: _Part, z, d, d_turn, theta):
+    """The contact law's load (N) summed over the summits above d + ``theta`` (m) at ``d``."""
+    return _load(_Part(part.law, part.args, Edges(theta, theta, theta)), z, d, d_turn)
+
+
+class _Curve:
+    """The points of a humid pad's curve evaluated so far: separations ``x`` (ascending, m),
+    net load ``net`` (N), and the ``sums`` (N) its bounds need (:meth:`bounds`): for each
+    group of summits (one branch each) the contact load, and what the summits between the
+    branch's lowest edge and its ``falling`` and ``rising`` points add to it; last the caps'
+    attraction. ``cuts`` (m) are where a summit crosses an edge of its branch."""
+
+    def __init__(self, setup, groups, z, d_turn, cuts, lower=False):
+        self.setup, self.groups, self.z, self.d_turn, self.cuts = setup, groups, z, d_turn, cuts
+        self.lower = lower  # only the lower bounds are asked for
+        self.x = np.empty(0)
+        self.sums = np.empty((0, 3 * len(groups) + 1))
+
+    def add(self, d):
+        """Evaluate the curve at the new separations ``d`` (m)."""
+        if d.size == 0:
+            return
+        setup = self.setup
+        contact, caps = setup.parts.contact, setup.parts.caps
+        columns = []
+        for g in self.groups:
+            b = g.branch
+            whole = _load(contact, g.z, d, self.d_turn)
+            columns.append(whole)
+            for theta in (b.falling, b.rising):  # what the summits in (d + low, d + theta] add
+                empty = theta <= b.low or not np.any(_count(g.z, d + b.low, d + theta))
+                empty |= theta == b.rising and self.lower  # the lower bound needs falling only
+                columns.append(np.zeros(d.size) if empty else
+                               whole - _above(contact, g.z, d, self.d_turn, theta))  # fmt: skip
+        k = block_sums(self.z, d, caps.law, caps.args, edges=caps.edges)  # no history
+        columns.append(k[:, list(setup.parts.caps_columns)].sum(axis=1))
+        x = np.concatenate([self.x, d])
+        order = np.argsort(x, kind="stable")
+        self.x = x[order]
+        self.sums = np.concatenate([self.sums, np.stack(columns, axis=1)])[order]
+        self.gaps = setup.area * setup.gaps(self.x / setup.sigma)
+        self.net = self.sums[:, 0:-1:3].sum(axis=1) - self.sums[:, -1] - self.gaps
+
+    def bounds(self):
+        """The highest and the lowest net load (N) that each gap between two points can hold.
+
+        Proven, summit by summit. In the gap [x_k, x_k+1] a summit at z spans the
+        interferences [δ1, δ2] = [z − x_k+1, z − x_k]; on its branch (:func:`branches`) its
+        load f does not rise up to a = ``falling``, does not fall from r = ``rising`` on, and
+        lies between m and top = max(f(a), f(r)) on [a, r]. Its lowest value over the gap:
+        f(δ2) (at x_k) if δ2 <= a, f(δ1) (at x_k+1) if δ1 > r, else at least m, which is
+        at most f(δ1) − (top − m) where a < δ1 <= r: so the lower bound needs the sums about
+        a only (a curve asked for ``lower`` bounds only leaves the sums about r out, and
+        has no upper bounds: None). Its highest:
+        f(δ1) (at x_k+1) if δ2 <= a, f(δ2) (at x_k) if δ1 > r; if δ1 <= a < δ2 <= r at most
+        f(δ1) + top − m; if a < δ1 <= r < δ2 at most f(δ2) + (top − f(r))⁺; if it spans
+        [a, r] at most f(δ1) + f(δ2) + top − 2m (all three at least m); inside (a, r] top.
+        The sums over each class are the kernel's sums at x_k or x_k+1 over the summits
+        above or below d + a or d + r, where d is that end (``sums``); the counts come from
+        the sorted heights. The caps attract more the closer (each summit's van der Waals
+        and meniscus force rise with δ: :mod:`mcsim.physics.laws.attraction`), so they lie
+        between their sums at the two ends; the open gaps' term between the mean of its ends
+        ∓ the spline's steepest slope times half the gap (:func:`_open_gap_table`).
+        """
+        x, s = self.x, self.sums
+        lo_x, hi_x = x[:-1], x[1:]
+        table, h = self.setup.table, x / self.setup.sigma
+        inside = (h[:-1] >= table.lo) & (h[1:] <= table.hi)
+        slack = np.where(inside, self.setup.area * table.slope * np.diff(h) / 2, np.inf)
+        mean = (self.gaps[:-1] + self.gaps[1:]) / 2
+        upper = -s[1:, -1] - (mean - slack)  # the caps attract least at the top of a gap
+        lower = -s[:-1, -1] - (mean + slack)
+        for j, g in enumerate(self.groups):
+            whole, below_a, below_b = s[:, 3 * j], s[:, 3 * j + 1], s[:, 3 * j + 2]
+            above_b = whole - below_b
+            b, zs = g.branch, g.z
+            a, r, m, top = b.falling, b.rising, b.m, max(b.fa, b.fb)
+            # lowest: f(δ2) if δ2 <= a; f(δ1) if δ1 > a, less top - m if δ1 <= r; else m
+            lower = (
+                lower + below_a[:-1] + (whole - below_a)[1:] + m * _count(zs, lo_x + a, hi_x + a)
+            )
+            lower = lower - (top - m) * _count(zs, hi_x + a, hi_x + r)
+            # highest: f(δ1) for δ1 <= a, f(δ2) for δ2 > r, what the rest can add
+            n1 = _count(zs, lo_x + a, np.minimum(hi_x + a, lo_x + r))
+            n2 = _count(zs, np.maximum(hi_x + a, lo_x + r), hi_x + r)
+            n3 = _count(zs, lo_x + r, hi_x + a)
+            n4 = _count(zs, hi_x + a, lo_x + r)
+            upper = upper + below_a[1:] + above_b[:-1] + (top - m) * n1
+            upper = upper + max(top - b.fb, 0.0) * n2 + (top - 2 * m) * n3 + top * n4
+        return (None if self.lower else upper), lower
+
+    def split(self, gaps, ends=(), force=None):
+        """New points splitting each gap ``gaps`` (indices; or the range ``ends``): at up to
+        :data:`PARTS` − 1 of the cuts inside it, just on either side (:data:`~mcsim.engine.padload.EDGE`); with
+        none, evenly into :data:`EVEN` parts, or, where the net load crosses ``force``
+        (N) between the gap's ends, on a ladder about where a straight line crosses it."""
+        side = EDGE * self.setup.sigma
+        if len(ends):
+            a, b, gaps = np.array([ends[0]]), np.array([ends[1]]), None
+        else:
+            a, b = self.x[gaps], self.x[gaps + 1]
+        i = np.searchsorted(self.cuts, a + side, "right")
+        n = np.searchsorted(self.cuts, b - side, "left") - i
+        new = [np.asarray(ends, dtype=float)]
+        cut = n > 0
+        if np.any(cut):  # up to PARTS - 1 of the cuts inside, evenly by rank
+            rank = np.arange(PARTS - 1) / (PARTS - 2)
+            pick = i[cut, None] + np.round(rank[None, :] * (n[cut, None] - 1)).astype(int)
+            pick = np.unique(pick)
+            new += [self.cuts[pick] - side, self.cuts[pick] + side]
+        even = ~cut
+        if force is not None:
+            crossing = even & ((self.net[gaps] - force) * (self.net[gaps + 1] - force) < 0)
+            new += [self._ladder(g, force) for g in gaps[crossing]]
+            even &= ~crossing
+        frac = np.arange(1, EVEN) / EVEN
+        new.append((a[even, None] + (b - a)[even, None] * frac[None, :]).ravel())
+        return np.concatenate(new)
+
+    def _ladder(self, g, force):
+        """Points in gap ``g`` at x ± (XTOL σ/2)·r^k about the crossing x of ``force`` by the
+        straight line between its ends, r from how fast the load changes against how much
+        its parts do (so that the gaps of the ladder can be bounded away from the force)."""
+        a, b = self.x[g], self.x[g + 1]
+        fa, fb = self.net[g], self.net[g + 1]
+        x = a + (b - a) * (fa - force) / (fa - fb)
+        # >= |fb - fa| > 0: the net load is a sum of the parts, signed
+        change = np.sum(np.abs(self.sums[g + 1] - self.sums[g])) + abs(
+            self.gaps[g + 1] - self.gaps[g]
+        )
+        r = float(np.clip(1 + abs(fb - fa) / (2 * change), *LADDER))
+        tol = XTOL * self.setup.sigma
+        step = tol / 2 * r ** np.arange(math.ceil(math.log((b - a) / tol) / math.log(r)) + 1)
+        points = np.concatenate([x - step, x + step])
+        return points[(points > a) & (points < b)]
+
+    def unsplit(self, gaps):
+        """Whether each gap ``gaps`` holds a cut not yet split on (:meth:`split`)."""
+        side = EDGE * self.setup.sigma
+        x = self.x
+        n = np.searchsorted(self.cuts, x[gaps + 1] - side) - np.searchsorted(
+            self.cuts, x[gaps] + side, "right")  # fmt: skip
+        return n > 0
+
+
+#: Parts into which a humid pad's search splits a range that may hold its turn or pull-off:
+#: at its cuts, or evenly where it holds none.
+PARTS, EVEN = 64, 32
+#: Least and largest ratio of :meth:`_Curve._ladder`'s steps.
+LADDER = (1.2, 2.0)
+
+
+def _cuts(z: np.ndarray, low: float, high: float, in_delta) -> np.ndarray:
+    """Sorted separations in (low, high) (m) where a summit of ``z`` crosses ``in_delta``."""
+    cuts = (z[:, None] - np.unique(in_delta)[None, :]).ravel()
+    return np.unique(cuts[(cuts > low) & (cuts < high)])
+
+
+def humid_turn(spec, z, force, bottom, top, reaches):
+    """:func:`~mcsim.engine.padcurves.force_turn` in humid air: the largest d in [bottom, top] (m) whose net load
+    ``reaches`` the force, and the load there (N).
+
+    Branch and bound: evaluate points, and split every gap above the highest point that
+    reaches whose upper bound (:meth:`_Curve.bounds`) still reaches, at the approach's cuts
+    while it holds some (jump-in, reach, breakpoints: the caps' forces are continuous), then
+    evenly, or on a ladder about the crossing (:meth:`_Curve._ladder`), down to
+    :data:`~mcsim.engine.padload.XTOL`. Every d above the returned point lies in a gap whose bound stays below
+    the force, or in one narrower than XTOL (tests/engine/test_padcurves.py checks both
+    against a dense evaluation).
+    """
+    setup = _setup(spec)
+    e = setup.edges
+    cuts = _cuts(z, bottom, top, (e.reach, e.jump_in, *e.breakpoints))
+    curve = _Curve(setup, (_Group(np.sort(z), setup.branches[0]),), z, None, cuts)
+    new = curve.split(None, (bottom, top))
+    while new.size:
+        curve.add(new)
+        hit = np.flatnonzero(reaches(curve.net))
+        first = int(hit[-1]) if hit.size else 0
+        upper, _ = curve.bounds()
+        live = np.flatnonzero(reaches(upper) & (np.diff(curve.x) > XTOL * setup.sigma))
+        new = curve.split(live[live >= first], force=force)
+    if not hit.size:
+        raise ParameterError(
+            f"preload force {force:.4g} N: the pad's approach load is {curve.net[0]:.4g} N at "
+            f"the grid's lowest separation h = {spec.h.min():g}; extend the separations (--h) down"
+        )
+    return float(curve.x[first]), float(curve.net[first])
+
+
+def humid_pull_off(spec, z, d_turn, top):
+    """The intervals of a humid pad's retraction that may hold its pull-off: their points
+    and values as :func:`~mcsim.engine.padload._points` gives them and the lower bound of their values (N), and
+    the lowest value met (N) and where (m).
+
+    Branch and bound on the retraction's cuts (break-off, reach, breakpoints for a summit in
+    contact at the turn; reach, breakpoints for one that is not): evaluate points, drop
+    every gap whose lower bound (:meth:`_Curve.bounds`) lies above the lowest value met,
+    split the others at their cuts, until none is left; the intervals left between the
+    cuts are then sampled and zoomed on as on the dry path (:func:`~mcsim.engine.padcurves.pull_off`).
+    """
+    setup = _setup(spec)
+    e = setup.edges
+    approach, retract = setup.branches
+    held = z - d_turn > e.jump_in  # in contact at the turn: on the retraction branch
+    groups = [_Group(np.sort(z[held]), retract)]
+    cuts = [_cuts(z[held], d_turn, top, (e.reach, e.break_off, *e.breakpoints))]
+    if approach.low < e.jump_in and not np.all(held):  # the others may feel an attraction
+        groups.append(_Group(np.sort(z[~held]), approach))
+        cuts.append(_cuts(z[~held], d_turn, top, (e.reach, *e.breakpoints)))
+    curve = _Curve(setup, tuple(groups), z, d_turn, np.unique(np.concatenate(cuts)), lower=True)
+    new = curve.split(None, (d_turn, top))
+    while new.size:
+        curve.add(new)
+        _, lower = curve.bounds()
+        live = np.flatnonzero(lower <= curve.net.min())
+        new = curve.split(live[curve.unsplit(live)])
+    # the live gaps between cuts (not the 2·EDGE about one), sampled as _points does
+    x = curve.x
+    live = live[np.diff(x)[live] > 2 * EDGE * setup.sigma]
+    a, b = x[live, None], x[live + 1, None]
+    inner = a + (b - a) * (np.arange(1, SUB + 1) / (SUB + 1))[None, :]
+    values = pad_load(spec, z, inner.ravel(), d_turn).reshape(inner.shape)
+    points = np.hstack([a, inner, b])
+    values = np.hstack([curve.net[live, None], values, curve.net[live + 1, None]])
+    best = int(np.argmin(curve.net))
+    return points, values, lower[live], float(curve.net[best]), float(x[best])

@@ -1,0 +1,257 @@
+"""One pad's own load, exactly: its summits regenerated from the run's seed, and where its
+curve is smooth.
+
+A ``--cycle`` run stores sums on a grid of separations, so the most tensile grid value
+of a pad's retraction load is biased (the grid misses the minimum between its points,
+and ends somewhere). Its summits, though, are a pure function of the seed: realization
+r draws its counts from the stream ``(r, 0)`` and block b its heights from ``(r, 1 + b)``
+(:func:`mcsim.engine.montecarlo.plan_patch`, :func:`~mcsim.engine.montecarlo.sample_block`).
+:func:`patch_heights` draws them again, the same numbers the run summed, and the load of
+the pad at any separation (:func:`pad_load`) is the compiled kernel's sum of the law set's
+per-summit ``load`` (:func:`mcsim.engine.kernels.block_sums`) over those heights; in humid
+air less its summits' caps and the open gaps (:func:`open_gaps`). The curve is smooth
+between the separations where a summit crosses an edge of its law set (break-off, jump-in,
+reach, breakpoints: d = z_i − e, :func:`_intervals`), which the searches of
+:mod:`mcsim.engine.padcurves` and :mod:`mcsim.engine.padbounds` sample (:func:`_points`).
+"""
+
+from __future__ import annotations
+
+import functools
+from typing import NamedTuple
+
+import numpy as np
+
+from mcsim.engine.kernels import block_sums, sum_columns
+from mcsim.engine.montecarlo import MonteCarloSpec, plan_patch, sample_block, sums
+from mcsim.model.errors import ParameterError
+from mcsim.physics.laws import Edges, LawSet, get_law_set
+from mcsim.physics.surfaceenvironment import active_terms, open_gap_pressures, with_environment
+
+#: Interior points at which each smooth interval of a pad's curve is evaluated.
+SUB = 3
+#: Tolerance of the pull-off and turn separations, in h = d/σ.
+XTOL = 1e-7
+#: One-sided limits at an interval's ends are evaluated this far inside it, in h
+#: (a summit's load at its break-off is then within ~1e-6 relative of the limit even
+#: where it has a square-root singularity, as JKR's at δ_c).
+EDGE = 1e-13
+
+
+def patch_heights(spec: MonteCarloSpec, r: int) -> np.ndarray:
+    """The heights (m) that realization ``r`` of ``spec`` summed: every summit above s_min.
+
+    Raises
+    ------
+    ParameterError
+        For a run on the GPU (its heights come from other streams).
+    """
+    if spec.device != "cpu":
+        raise ParameterError(f"device = {spec.device!r}: the summit heights of a GPU run cannot "
+                             "be drawn again on the CPU (other random streams)")  # fmt: skip
+    plan = plan_patch(spec, r)
+    blocks = [sample_block(spec, plan, r, b) for b in range(plan.n_blocks)]
+    return np.concatenate(blocks) if blocks else np.empty(0)
+
+
+def pad_load(spec: MonteCarloSpec, z: np.ndarray, d, d_turn=None) -> np.ndarray:
+    """Net load (N, compressive positive) of the pad of summits ``z`` (m) at separations ``d`` (m).
+
+    The sum of the law set's ``load``; with an environment, less its summits' ``vdw`` and
+    ``capillary`` and the open gaps' attraction times the pad's area
+    (:func:`mcsim.physics.surfaceenvironment.open_gap_pressures`). On approach without ``d_turn``;
+    on retraction after the closest approach ``d_turn`` (m).
+    """
+    d = np.atleast_1d(np.asarray(d, dtype=float))
+    if spec.environment is None:
+        return contact_load(spec, z, d, d_turn)
+    if spec.surface.radius_by_height is not None:  # each band's contact and caps, its radius
+        turn = None if d_turn is None else np.full_like(d, d_turn)
+        return net_load(spec, sums(spec, z, d, turn), d)
+    # Two sums over the pad's summits: the contact law's over those that can touch, and the
+    # caps' over every summit within their reach (each evaluated only where it acts).
+    parts = _split_laws(spec)
+    contact = _load(parts.contact, z, d, d_turn)
+    caps = block_sums(z, d, parts.caps.law, parts.caps.args, edges=parts.caps.edges)
+    caps = caps[:, list(parts.caps_columns)].sum(axis=1)
+    return contact - caps - spec.area * open_gaps(spec)(d / spec.surface.sigma)
+
+
+def contact_load(spec: MonteCarloSpec, z: np.ndarray, d, d_turn=None) -> np.ndarray:
+    """The contact law's load alone (N, the sum of its ``load``) of the pad of summits ``z``
+    (m) at separations ``d`` (m); on retraction after ``d_turn`` (m), as :func:`pad_load`."""
+    d = np.atleast_1d(np.asarray(d, dtype=float))
+    if spec.surface.radius_by_height is not None:  # each band of heights with its radius
+        turn = None if d_turn is None else np.full_like(d, d_turn)
+        return sums(spec, z, d, turn)[:, sum_columns(spec.law_set).index("load")]
+    if spec.environment is None:
+        return _load(_Part(spec.law_set, spec.arguments, spec.edges), z, d, d_turn)
+    return _load(_split_laws(spec).contact, z, d, d_turn)
+
+
+class _Part(NamedTuple):
+    law: LawSet
+    args: tuple
+    edges: Edges
+
+
+def _load(contact: _Part, z: np.ndarray, d: np.ndarray, d_turn) -> np.ndarray:
+    """The sum of ``contact``'s output ``load`` (N) over summits ``z`` at separations ``d``."""
+    turn = None if d_turn is None else np.full_like(d, d_turn)
+    sums = block_sums(z, d, contact.law, contact.args, d_turn=turn, edges=contact.edges)
+    return sums[:, sum_columns(contact.law).index("load")]
+
+
+class _Split(NamedTuple):
+    contact: _Part
+    caps: _Part
+    caps_columns: tuple[int, ...]
+
+
+@functools.lru_cache(maxsize=16)
+def _split_laws(spec: MonteCarloSpec) -> _Split:
+    """The contact law set and the environment's caps alone (a law set of the outputs ``vdw``
+    and ``capillary``), with their arguments and edges, and the caps' columns in their sums,
+    for a humid pad's net load."""
+    contact = get_law_set(spec.law)
+    caps = with_environment(LawSet("caps", "the environment's caps", ()), spec.surface,
+                            spec.environment)  # fmt: skip
+    contact, caps = (_Part(law, law.arguments(spec.surface, spec.material),
+                           law.edges_for(spec.surface, spec.material)) for law in (contact, caps))  # fmt: skip
+    columns = tuple(sum_columns(caps.law).index(term) for term in caps.law.names)
+    return _Split(contact, caps, columns)
+
+
+def net_load(spec: MonteCarloSpec, sums: np.ndarray, d) -> np.ndarray:
+    """Net load (N) of a pad of area ``spec.area`` from its sums (last axis the columns of
+    :func:`~mcsim.engine.kernels.sum_columns`) at separations ``d`` (m, the second-last axis):
+    ``load``, less the caps' ``vdw`` and ``capillary`` and the open gaps' attraction."""
+    columns = sum_columns(spec.law_set)
+    load = sums[..., columns.index("load")]
+    if spec.environment is None:
+        return load
+    for term in active_terms(spec.environment):
+        load = load - sums[..., columns.index(term)]
+    return load - spec.area * open_gaps(spec)(np.asarray(d) / spec.surface.sigma)
+
+
+#: Points of the table of the open gaps' pressure (:func:`open_gaps`), equally spaced in h.
+OPEN_GAP_POINTS = 4097
+
+
+@functools.lru_cache(maxsize=16)
+def open_gaps(spec: MonteCarloSpec):
+    """The open gaps' attraction (Pa, van der Waals plus capillary) as a function of h = d/σ,
+    :func:`mcsim.physics.surfaceenvironment.open_gap_pressures` tabulated once per spec.
+
+    A pad's curve evaluates it at thousands of separations, the same for every pad: a cubic
+    spline through :data:`OPEN_GAP_POINTS` values from the lowest separation of ``spec`` to
+    where the highest summit's cap ends (beyond, and below, the function itself). It is a
+    smooth function of h (a Gaussian average), and the spline is within 1e-9 of its largest
+    value (tests/engine/test_padcurves.py).
+    """
+    table = _open_gap_table(spec)
+
+    def pressure(h):
+        h = np.asarray(h, dtype=float)
+        inside = (h >= table.lo) & (h <= table.hi)
+        if np.all(inside):
+            return table.spline(h)
+        return np.where(inside, table.spline(h), table.exact(h))
+
+    return pressure
+
+
+class _GapTable(NamedTuple):
+    """:func:`_open_gap_table`: the spline (Pa of h), its range in h, the function, the
+    spline's steepest |slope| (Pa per unit h)."""
+
+    spline: object
+    lo: float
+    hi: float
+    exact: object
+    slope: float
+
+
+@functools.lru_cache(maxsize=16)
+def _open_gap_table(spec: MonteCarloSpec) -> _GapTable:
+    """The spline of :func:`open_gaps`, its range [lo, hi] in h, the function itself, and the
+    spline's largest |dp/dh| (Pa) on the range: its derivative is a quadratic on each piece,
+    so the largest magnitude lies at a knot or where the (linear) second derivative is 0."""
+    from scipy.interpolate import CubicSpline
+
+    surface, env = spec.surface, spec.environment
+
+    def exact(h):
+        p = open_gap_pressures(h, surface, env)
+        return p["vdw"] + p["capillary"]
+
+    reach = -spec.edges.reach / surface.sigma
+    heights = surface.heights  # the highest summit: a measured histogram's top, else 12σ
+    top = float(heights.edges[-1]) if hasattr(heights, "edges") else 12.0
+    lo, hi = float(spec.h.min()) - 1.0, top + reach + 1.0
+    grid = np.linspace(lo, hi, OPEN_GAP_POINTS)
+    spline = CubicSpline(grid, exact(grid))
+    slope = spline.derivative()
+    c = spline.c  # piece k: c[0] t^3 + c[1] t^2 + c[2] t + c[3], t = h - grid[k]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        vertex = np.clip(-c[1] / (3 * c[0]), 0.0, np.diff(grid))  # p'' = 0 inside the piece
+    vertex = np.where(np.isfinite(vertex), vertex, 0.0)
+    steepest = max(np.max(np.abs(slope(grid))), np.max(np.abs(slope(grid[:-1] + vertex))))
+    return _GapTable(spline, lo, hi, exact, float(steepest))
+
+
+def contact_edges(spec: MonteCarloSpec) -> Edges:
+    """The edges of the contact law alone: where a pad's load can jump or turn sharply.
+    The environment's caps add kinks only (their forces are continuous): the search for a
+    pad's pull-off and turn samples their intervals inside and does not cut at them."""
+    return spec.edges if spec.environment is None else _split_laws(spec).contact.edges
+
+
+def _intervals(spec: MonteCarloSpec, z: np.ndarray, low: float, high: float,
+               edges: Edges | None = None) -> np.ndarray:  # fmt: skip
+    """Sorted separations (m) cutting [low, high] where a summit crosses an edge of its law
+    (of ``edges``; by default the spec's, the environment's caps included; with a radius by
+    height, each band's summits at the edges of their radius)."""
+
+    def cuts_at(z, e):
+        in_delta = np.unique([0.0, e.reach, e.jump_in, e.break_off, *e.breakpoints])
+        return (z[:, None] - in_delta[None, :]).ravel()
+
+    if spec.surface.radius_by_height is not None:
+        band = spec.surface.radius_by_height.band_of(z / spec.surface.sigma)
+        cuts = np.concatenate([cuts_at(z[band == k], e) for k, (_, e) in enumerate(spec.parts)])
+    else:
+        cuts = cuts_at(z, spec.edges if edges is None else edges)
+    return np.unique(np.concatenate([[low, high], cuts[(cuts > low) & (cuts < high)]]))
+
+
+def _points(cuts: np.ndarray, sigma: float) -> np.ndarray:
+    """Per interval of ``cuts``: its two one-sided ends and :data:`SUB` interior points."""
+    a, b = cuts[:-1, None], cuts[1:, None]
+    inside = np.minimum(EDGE * sigma, (b - a) / 4)
+    frac = (np.arange(1, SUB + 1) / (SUB + 1))[None, :]
+    return np.hstack([a + inside, a + (b - a) * frac, b - inside])  # (intervals, SUB + 2)
+
+
+def _band(spec: MonteCarloSpec, z: np.ndarray) -> np.ndarray:
+    """The band of heights of each summit (all 0 with one radius)."""
+    if spec.surface.radius_by_height is None:
+        return np.zeros(z.shape, dtype=np.intp)
+    return spec.surface.radius_by_height.band_of(z / spec.surface.sigma)
+
+
+@functools.lru_cache(maxsize=16)
+def _contact_parts(spec: MonteCarloSpec) -> tuple[_Part, ...]:
+    """The contact law alone, with its arguments and edges, for each band of heights."""
+    law = get_law_set(spec.law)
+    return tuple(_Part(law, law.arguments(part, spec.material), law.edges_for(part, spec.material))
+                 for part in spec.surface.components())  # fmt: skip
+
+
+@functools.lru_cache(maxsize=16)
+def _caps_parts(spec: MonteCarloSpec) -> tuple[_Part, ...]:
+    """The environment's caps alone (:func:`_split_laws`) for each band of heights."""
+    caps = _split_laws(spec).caps.law
+    return tuple(_Part(caps, caps.arguments(part, spec.material), caps.edges_for(part, spec.material))
+                 for part in spec.surface.components())  # fmt: skip
