@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import sys
 from pathlib import Path
 
 from mcsim.cli.display import announce
@@ -13,7 +14,7 @@ def run(args) -> int:
 
     import numpy as np
 
-    from mcsim.figures.runs import run_figure
+    from mcsim.figures.runs import PANELS, run_figure
     from mcsim.figures.style import save
     from mcsim.figures.topography import comparison_figure
     from mcsim.model.distributions import GAUSSIAN
@@ -50,9 +51,13 @@ def run(args) -> int:
             out, "each patch's load and area or friction over the analytic curves", quiet=args.quiet
         )
         return 0
-    other = None  # measured heights: also against the Gaussian GW curves
+    other = None  # measured heights: also against the Gaussian GW curves (the seed's panels)
     if len(runs) == 1 and surface.heights != GAUSSIAN:
-        other = out.with_name(f"{out.stem}-vs-gaussian.png")
+        if run.spec.cycle or tuple(run.quantities) != PANELS:
+            print("mcsim: note: the figure of measured heights against the Gaussian GW curves "
+                  "is drawn for runs of the seed law set without --cycle only", file=sys.stderr)  # fmt: skip
+        else:
+            other = out.with_name(f"{out.stem}-vs-gaussian.png")
     for path in (out, other) if other else (out,):  # both refused before either is written
         check_output(path, inputs=args.run, overwrite=args.overwrite)
     figure = run_figure(runs if len(runs) > 1 else run)
