@@ -77,7 +77,13 @@ def inputs_text(surface, material, law: str) -> list[str]:
     s, m = surface, material
     return [
         f"surface {s.name}: $\\sigma$ = {s.sigma * 1e9:.4g} nm, $R$ = {s.R * 1e6:.4g} µm,",
-        f"   $\\eta$ = {s.eta * 1e-12:.4g} µm$^{{-2}}$, heights {s.heights.name}",
+        f"   $\\eta$ = {s.eta * 1e-12:.4g} µm$^{{-2}}$, heights {s.heights.name}"
+        + (
+            ""
+            if s.radius_by_height is None
+            else f", radius by height ($R$ × {min(s.radius_by_height.factors):.3g} … "
+            f"{max(s.radius_by_height.factors):.3g})"
+        ),
         f"material {m.name}: $K$ = {m.K * 1e-9:.4g} GPa, $G$ = {m.G * 1e-9:.4g} GPa,",
         f"   $\\gamma$ = {m.gamma:.3g} J/m$^2$; law set '{law}'",
     ]
