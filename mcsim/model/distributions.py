@@ -19,6 +19,8 @@ from typing import Protocol, runtime_checkable
 import numpy as np
 from scipy import special
 
+from mcsim.model.errors import ParameterError
+
 LawIntegrand = Callable[[np.ndarray], np.ndarray]
 
 
@@ -200,7 +202,7 @@ class Band:
 
     def __init__(self, parent: HeightDistribution, lo: float, hi: float):
         if not lo < hi:
-            raise ValueError(f"empty band ({lo}, {hi}]")
+            raise ParameterError(f"band ({lo}, {hi}] is empty (need lo < hi)")
         self.parent, self.lo, self.hi = parent, float(lo), float(hi)
 
     def __repr__(self) -> str:
@@ -225,8 +227,9 @@ class Band:
         return np.maximum(self.parent.sf(s) - top, 0.0)
 
     def sample_above(self, n: int, s_min: float, rng: np.random.Generator) -> np.ndarray:
-        raise TypeError("a band of heights is not sampled: the Monte Carlo draws the whole "
-                        "distribution and sorts the summits into bands")  # fmt: skip
+        raise ParameterError("a band of heights is not sampled: the Monte Carlo draws the whole "
+                             "distribution and sorts the summits into bands (give the surface "
+                             "its radius_by_height instead)")  # fmt: skip
 
     def gw_integrals(
         self, g: LawIntegrand, h: np.ndarray, breaks: np.ndarray | None = None
