@@ -35,7 +35,7 @@ HUMID = Environment(hamaker=1.6e-19, cutoff=0.2e-9, rh=0.7)
 
 def law_sets() -> dict:
     """Every registered law set, the toy, and jkr with the environment's caps, by name."""
-    humid = with_environment(LAW_SETS["jkr"], SURFACE, HUMID)
+    humid = with_environment(LAW_SETS["jkr"], HUMID)
     return {**LAW_SETS, TOY.name: TOY, "jkr+environment": humid}
 
 

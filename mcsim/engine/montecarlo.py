@@ -189,7 +189,7 @@ class MonteCarloSpec:
     @functools.cached_property
     def law_set(self) -> LawSet:
         """The law set, with the environment's per-summit outputs if there is one."""
-        return with_environment(get_law_set(self.law), self.surface, self.environment)
+        return with_environment(get_law_set(self.law), self.environment)
 
     @functools.cached_property
     def arguments(self) -> tuple[tuple, ...]:

@@ -112,14 +112,10 @@ class _Split(NamedTuple):
 def _split_laws(spec: MonteCarloSpec) -> _Split:
     """The contact law set and the environment's caps alone (a law set of the outputs ``vdw``
     and ``capillary``), with their arguments and edges, and the caps' columns in their sums,
-    for a humid pad's net load."""
-    contact = get_law_set(spec.law)
-    caps = with_environment(LawSet("caps", "the environment's caps", ()), spec.surface,
-                            spec.environment)  # fmt: skip
-    contact, caps = (_Part(law, law.arguments(spec.surface, spec.material),
-                           law.edges_for(spec.surface, spec.material)) for law in (contact, caps))  # fmt: skip
+    for a humid pad's net load (one summit radius: the first of :func:`_contact_parts`)."""
+    caps = _caps_parts(spec)[0]
     columns = tuple(sum_columns(caps.law).index(term) for term in caps.law.names)
-    return _Split(contact, caps, columns)
+    return _Split(_contact_parts(spec)[0], caps, columns)
 
 
 def net_load(spec: MonteCarloSpec, sums: np.ndarray, d) -> np.ndarray:
@@ -244,14 +240,19 @@ def _band(spec: MonteCarloSpec, z: np.ndarray) -> np.ndarray:
 @functools.lru_cache(maxsize=16)
 def _contact_parts(spec: MonteCarloSpec) -> tuple[_Part, ...]:
     """The contact law alone, with its arguments and edges, for each band of heights."""
-    law = get_law_set(spec.law)
-    return tuple(_Part(law, law.arguments(part, spec.material), law.edges_for(part, spec.material))
-                 for part in spec.surface.components())  # fmt: skip
+    return _per_band(spec, get_law_set(spec.law))
 
 
 @functools.lru_cache(maxsize=16)
 def _caps_parts(spec: MonteCarloSpec) -> tuple[_Part, ...]:
-    """The environment's caps alone (:func:`_split_laws`) for each band of heights."""
-    caps = _split_laws(spec).caps.law
-    return tuple(_Part(caps, caps.arguments(part, spec.material), caps.edges_for(part, spec.material))
+    """The environment's caps alone (a law set of the outputs ``vdw`` and ``capillary``) for
+    each band of heights."""
+    caps = with_environment(LawSet("caps", "the environment's caps", ()), spec.environment)
+    return _per_band(spec, caps)
+
+
+def _per_band(spec: MonteCarloSpec, law: LawSet) -> tuple[_Part, ...]:
+    """``law`` with its arguments and edges for each of the surface's components."""
+    m = spec.material
+    return tuple(_Part(law, law.arguments(part, m), law.edges_for(part, m))
                  for part in spec.surface.components())  # fmt: skip

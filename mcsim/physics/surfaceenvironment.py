@@ -80,13 +80,15 @@ SUMMIT_OUTPUTS = {
 }  # fmt: skip
 
 
-def with_environment(law: LawSet, surface, env: Environment | None) -> LawSet:
+def with_environment(law: LawSet, env: Environment | None) -> LawSet:
     """Law set ``law`` with the environment's per-summit outputs ``vdw`` and ``capillary``
     (N, > 0 attractive; the active ones) appended, acting down to δ = −u_c.
 
     The outputs are the summits' caps (:mod:`mcsim.physics.laws.attraction`); the open gaps
-    between them are :func:`open_gap_pressures`, which are not per summit. Without an active
-    environment, ``law`` itself (the same object: nothing changes).
+    between them are :func:`open_gap_pressures`, which are not per summit. Their parameters
+    (:func:`summit_parameters`) are the surface's the law set is asked for: one band of a
+    radius by height gets its own. Without an active environment, ``law`` itself (the same
+    object: nothing changes).
     """
     if env is None or not env.active:
         return law
@@ -101,8 +103,6 @@ def with_environment(law: LawSet, surface, env: Environment | None) -> LawSet:
                      tuple(sorted({*base.breakpoints, *cuts})))  # fmt: skip
 
     def constants(s, m) -> dict:
-        # the caps' parameters of the surface asked (its radius: one band of a radius by
-        # height gets its own band edge)
         return {**law.constants(s, m), **summit_parameters(s, env)}
 
     outputs = (*law.outputs, *(SUMMIT_OUTPUTS[t] for t in terms))

@@ -178,11 +178,11 @@ def test_the_caps_own_at_most_their_summits_share_of_the_area():
 
 def test_the_law_set_with_an_environment_appends_the_caps_and_reaches_down_to_the_band_edge():
     surface, material = SURFACES["smooth"], MATERIALS["silicon"]
-    law = with_environment(get_law_set("jkr"), surface, HUMID)
+    law = with_environment(get_law_set("jkr"), HUMID)
     assert law.names == ("load", "area", "vdw", "capillary")
     params = summit_parameters(surface, HUMID)
     assert law.edges_for(surface, material).reach == -params["band"]
-    assert with_environment(get_law_set("jkr"), surface, Environment()) is get_law_set("jkr")
+    assert with_environment(get_law_set("jkr"), Environment()) is get_law_set("jkr")
     z = np.array([3e-9])
     d = np.array([1e-9, 4e-9])
     values = law.evaluate(z - d, surface, material)
