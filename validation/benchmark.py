@@ -62,7 +62,8 @@ import time
 import numpy as np
 from reporting import Checks, child_seeds, parser, provenance
 
-from mcsim.engine.montecarlo import MonteCarloSpec, default_workers, run_sums
+from mcsim.engine.montecarlo import default_workers, run_sums
+from mcsim.engine.spec import MonteCarloSpec
 from mcsim.model.presets import MATERIALS, SURFACES
 from mcsim.physics.laws import SEED
 

@@ -34,7 +34,8 @@ from numba import cuda
 from reporting import Checks
 
 from mcsim.engine import cuda as mc
-from mcsim.engine.montecarlo import BLOCK, MonteCarloSpec, default_workers, plan_patch, run_sums
+from mcsim.engine.montecarlo import BLOCK, default_workers, plan_patch, run_sums
+from mcsim.engine.spec import MonteCarloSpec
 from mcsim.model.presets import MATERIALS, SURFACES
 from mcsim.physics.laws import SEED
 

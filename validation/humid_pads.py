@@ -46,7 +46,7 @@ import numpy as np
 from reporting import Checks, parser, save_figure, write_summary
 
 from mcsim.engine import padcurves, padload
-from mcsim.engine.montecarlo import MonteCarloSpec
+from mcsim.engine.spec import MonteCarloSpec
 from mcsim.model.params import Surface
 from mcsim.model.presets import MATERIALS
 from mcsim.physics.environment import Environment

@@ -30,7 +30,7 @@ import numpy as np
 from reporting import Checks, parser, write_summary
 
 from mcsim.engine import kernels, padbounds, padcurves, padload
-from mcsim.engine.montecarlo import MonteCarloSpec
+from mcsim.engine.spec import MonteCarloSpec
 from mcsim.model.presets import MATERIALS, SURFACES
 from mcsim.physics.environment import Environment
 

@@ -29,7 +29,7 @@ import numpy as np
 from reporting import Checks, parser, write_summary
 
 from mcsim.engine import padcurves, padload
-from mcsim.engine.montecarlo import MonteCarloSpec
+from mcsim.engine.spec import MonteCarloSpec
 from mcsim.model.presets import MATERIALS, SURFACES
 from mcsim.physics.adhesion import adhesion_summary
 from mcsim.physics.loadcontrol import preload_turn

@@ -54,7 +54,7 @@ from reporting import Checks, child_seeds, parser, write_summary
 from scipy.stats import beta
 
 from mcsim.engine import padcurves, padload
-from mcsim.engine.montecarlo import MonteCarloSpec
+from mcsim.engine.spec import MonteCarloSpec
 from mcsim.model.presets import MATERIALS, SURFACES
 from mcsim.physics.environment import Environment
 from mcsim.physics.loadcontrol import preload_turn

@@ -22,7 +22,6 @@ from typing import NamedTuple
 import numpy as np
 
 from mcsim.engine.kernels import block_sums
-from mcsim.engine.montecarlo import MonteCarloSpec
 from mcsim.engine.padload import (
     EDGE,
     SUB,
@@ -36,6 +35,7 @@ from mcsim.engine.padload import (
     open_gaps,
     pad_load,
 )
+from mcsim.engine.spec import MonteCarloSpec
 from mcsim.model.errors import ParameterError
 from mcsim.physics.laws import Edges
 

@@ -32,7 +32,6 @@ import math
 import numpy as np
 
 from mcsim.engine import padbounds
-from mcsim.engine.montecarlo import MonteCarloSpec
 from mcsim.engine.padload import (
     XTOL,
     _band,
@@ -44,6 +43,7 @@ from mcsim.engine.padload import (
     contact_edges,
     pad_load,
 )
+from mcsim.engine.spec import MonteCarloSpec
 from mcsim.model.errors import ParameterError
 from mcsim.physics.laws import attraction
 from mcsim.physics.surfaceenvironment import open_gap_works

@@ -23,7 +23,8 @@ from typing import NamedTuple
 import numpy as np
 
 from mcsim.engine.kernels import block_sums, sum_columns
-from mcsim.engine.montecarlo import MonteCarloSpec, plan_patch, sample_block, sums
+from mcsim.engine.montecarlo import plan_patch, sample_block, sums
+from mcsim.engine.spec import MonteCarloSpec
 from mcsim.model.errors import ParameterError
 from mcsim.physics.laws import Edges, LawSet, get_law_set
 from mcsim.physics.surfaceenvironment import active_terms, open_gap_pressures, with_environment

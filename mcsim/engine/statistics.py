@@ -31,7 +31,7 @@ close to normal even with few realizations. The spread across realizations
 carrying force in the whole ensemble is below :data:`MIN_CONTACTS`, z is not
 reported: the sums are then too skewed for a normal approximation.
 
-Every curve has one value per row of the run (:meth:`mcsim.engine.montecarlo.MonteCarloSpec.rows`):
+Every curve has one value per row of the run (:meth:`mcsim.engine.spec.MonteCarloSpec.rows`):
 the separations of ``h`` on approach, then on retraction for a cycle.
 """
 

@@ -14,7 +14,7 @@ import json
 import numpy as np
 
 from mcsim.engine.kernels import sum_columns, sum_units
-from mcsim.engine.montecarlo import MonteCarloSpec
+from mcsim.engine.spec import MonteCarloSpec
 from mcsim.physics.laws import LawSet
 from mcsim.store.files import storage
 from mcsim.store.sweepfile import CURVES

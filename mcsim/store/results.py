@@ -15,7 +15,8 @@ from typing import NamedTuple
 
 import numpy as np
 
-from mcsim.engine.montecarlo import EnsembleSums, MonteCarloSpec
+from mcsim.engine.montecarlo import EnsembleSums
+from mcsim.engine.spec import MonteCarloSpec
 from mcsim.engine.statistics import (
     Summary,
     compare_table,

@@ -92,11 +92,10 @@ import numpy as np
 
 from mcsim._version import __version__
 from mcsim.engine.kernels import sum_columns
-from mcsim.engine.montecarlo import BLOCK, EnsembleSums, MonteCarloSpec
+from mcsim.engine.montecarlo import BLOCK, EnsembleSums
+from mcsim.engine.spec import MonteCarloSpec
 from mcsim.engine.statistics import Summary, quantities
-from mcsim.model.distributions import GAUSSIAN
 from mcsim.model.errors import MCSimError, RunFileError
-from mcsim.model.params import Material, RadiusByHeight, Surface
 from mcsim.store import schema
 from mcsim.store.envgroup import read_environment, write_environment
 from mcsim.store.files import atomic_write, checksum, file_path
@@ -112,6 +111,7 @@ from mcsim.store.h5layout import (
     row_shape,
     sum_variables,
 )
+from mcsim.store.inputgroup import read_inputs, write_inputs
 from mcsim.store.results import STATS, Run, assemble, environment_run
 
 SCHEMA_VERSION = 3
@@ -127,29 +127,6 @@ WHAT = "run file"
 
 
 # --- writing --------------------------------------------------------------------------
-
-
-def heights_to_json(surface: Surface) -> str:
-    """The summit-height distribution as run and sweep files store it (JSON text)."""
-    heights = surface.heights
-    if heights == GAUSSIAN:
-        return json.dumps({"name": "gaussian"})
-    return json.dumps({"name": heights.name, **heights.to_dict()})
-
-
-def radius_to_json(radius: RadiusByHeight) -> str:
-    """A radius by height as run and sweep files store it: JSON ``{"edges": [s...],
-    "factors": [...]}`` (edges in s = z/σ, factors of R)."""
-    return json.dumps({"edges": list(radius.edges), "factors": list(radius.factors)})
-
-
-def _heights_from_dict(data: dict):
-    """Inverse of :func:`heights_to_json`, from the parsed JSON object."""
-    if data.get("name") == "gaussian":
-        return GAUSSIAN
-    from mcsim.topography.empirical import Empirical
-
-    return Empirical.from_dict({k: v for k, v in data.items() if k != "name"})
 
 
 def _write_inputs(f, spec: MonteCarloSpec, command: str, complete: bool, extra=None) -> dict:
@@ -177,19 +154,7 @@ def _write_inputs(f, spec: MonteCarloSpec, command: str, complete: bool, extra=N
         **(extra or {}),
     }
     f.attrs.update(attrs)
-    s = f.create_group("input/surface")
-    s.attrs.update(sigma=spec.surface.sigma, R=spec.surface.R, eta=spec.surface.eta,
-                   name=spec.surface.name, heights=heights_to_json(spec.surface))  # fmt: skip
-    if spec.surface.radius_by_height is not None:
-        s.attrs["radius_by_height"] = radius_to_json(spec.surface.radius_by_height)
-    s.attrs["units"] = json.dumps({"sigma": "m", "R": "m", "eta": "m^-2"})
-    m = f.create_group("input/material")
-    mat = spec.material
-    m.attrs.update(E1=mat.E1, E2=mat.E2, nu1=mat.nu1, nu2=mat.nu2, gamma=mat.gamma,
-                   H=np.nan if mat.H is None else mat.H, name=mat.name)  # fmt: skip
-    m.attrs.update({k: np.nan if getattr(mat, k) is None else getattr(mat, k) for k in ("z0", "tau")})  # fmt: skip
-    m.attrs["units"] = json.dumps({"E1": "Pa", "E2": "Pa", "nu1": "1", "nu2": "1", "gamma": "J/m^2",
-                                   "H": "Pa", "z0": "m", "tau": "Pa"})  # fmt: skip
+    write_inputs(f, spec.surface, spec.material)
     dataset(f, "h", spec.h, *AXES["h"]).make_scale("h")
     dataset(f, "d", spec.d, "m", "mean separation d of the surfaces", dims=("h",))
     if spec.cycle:
@@ -331,17 +296,6 @@ ATTRIBUTES_2 = {"law_outputs": "JSON object", "quantities": "JSON object", "cycl
 OPTIONAL = {"device": "text", "turn": "number", "load_control": "JSON object", "preload": "number",
             "preload_turn_mean_field": "number"}  # fmt: skip
 
-#: Attributes of /input/surface and /input/material (NaN: not given), and their kinds.
-SURFACE = {
-    "sigma": "number",
-    "R": "number",
-    "eta": "number",
-    "name": "text",
-    "heights": "JSON object",
-}
-MATERIAL = {k: "number" for k in ("E1", "E2", "nu1", "nu2", "gamma")} | {"name": "text"}
-MATERIAL_OPTIONAL = {k: "number" for k in ("H", "z0", "tau")}
-
 
 def _attributes(path: Path, f) -> dict:
     """The root attributes a reader uses, checked against :data:`ATTRIBUTES`."""
@@ -368,41 +322,11 @@ def _attributes(path: Path, f) -> dict:
     return attrs
 
 
-def _inputs(path: Path, f) -> tuple[Surface, Material]:
-    """The surface and material of /input, checked against :data:`SURFACE` and :data:`MATERIAL`."""
-    import h5py
-
-    for group in ("input/surface", "input/material"):
-        if not isinstance(f.get(group), h5py.Group):
-            raise schema.refuse(path, WHAT, f"group {group} is missing")
-    s, m = f["input/surface"], f["input/material"]
-    radius = s.attrs.get("radius_by_height")  # optional: absent, one radius R
-    s = {k: schema.attribute(path, s, k, kind, WHAT) for k, kind in SURFACE.items()}
-    if radius is not None:
-        radius = schema.attribute(path, f["input/surface"], "radius_by_height", "JSON object", WHAT)
-    optional = {k: kind for k, kind in MATERIAL_OPTIONAL.items() if k in m.attrs}
-    m = {k: schema.attribute(path, m, k, kind, WHAT) for k, kind in (MATERIAL | optional).items()}
-    try:
-        heights = _heights_from_dict(s.pop("heights"))
-        if radius is not None:
-            radius = RadiusByHeight(radius.get("edges", ()), radius.get("factors", ()))
-        surface = Surface(**s, heights=heights, radius_by_height=radius)
-    except MCSimError as err:
-        raise schema.refuse(path, WHAT, f"input/surface: {err}") from None
-    for k in MATERIAL_OPTIONAL:
-        m[k] = None if math.isnan(m.get(k, math.nan)) else m[k]
-    try:
-        material = Material(**m)
-    except MCSimError as err:
-        raise schema.refuse(path, WHAT, f"input/material: {err}") from None
-    return surface, material
-
-
 def _read_state(path: Path, f) -> tuple[EnsembleSums, dict]:
     """The sums and progress of an open run file, and its root attributes (those a
     reader uses checked against :data:`ATTRIBUTES`; NumPy scalars as Python values)."""
     attrs = _attributes(path, f)
-    surface, material = _inputs(path, f)
+    surface, material = read_inputs(path, f, WHAT)
     h = schema.dataset(path, f, "h", "f", None, WHAT)
     environment, surface = read_environment(path, f, surface)
     try:

@@ -21,7 +21,8 @@ import numpy as np
 
 from mcsim._version import __version__
 from mcsim.engine import interrupt
-from mcsim.engine.montecarlo import DEFAULT_CHUNK, MonteCarloSpec, default_workers, run_sums
+from mcsim.engine.montecarlo import DEFAULT_CHUNK, default_workers, run_sums
+from mcsim.engine.spec import MonteCarloSpec
 from mcsim.model.errors import ParameterError
 from mcsim.model.params import Material, Surface, check_range, check_seed, check_separations
 from mcsim.model.presets import as_material, as_surface

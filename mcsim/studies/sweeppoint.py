@@ -251,7 +251,7 @@ def _evaluate(point: Point, config: Config, out: dict) -> None:
 
 def _pads(point: Point, config: Config, law: str, turn: float, h_pull_off: float) -> dict:
     """The pads of one point: ``config.pads`` pads of the point's area from its own stream."""
-    from mcsim.engine.montecarlo import MonteCarloSpec
+    from mcsim.engine.spec import MonteCarloSpec
 
     if not math.isfinite(turn):
         raise ParameterError(f"pads need the adhesion summary's turn; law {law!r} has none")

@@ -58,7 +58,7 @@ from mcsim.physics.adhesion import (
 )
 from mcsim.physics.environment import Environment, as_environment
 from mcsim.physics.laws import get_law_set
-from mcsim.store import runfile
+from mcsim.store import inputgroup
 from mcsim.store.claim import claim_output
 from mcsim.store.sweepfile import (
     ENVIRONMENT_INPUTS,
@@ -413,9 +413,9 @@ def _check_values(surface: Surface, material: Material, environment, names, grid
 def _attrs(surface, material, environment, law, dims, grid, config: Config, area, command) -> dict:
     bands = surface.radius_by_height
     surface_json = json.dumps({"sigma": surface.sigma, "R": surface.R, "eta": surface.eta,
-                               "name": surface.name, "heights": runfile.heights_to_json(surface),
-                               **({} if bands is None else {"radius_by_height": json.loads(
-                                   runfile.radius_to_json(bands))}),
+                               "name": surface.name, "heights": inputgroup.heights_to_json(surface),
+                               **({} if bands is None else
+                                  {"radius_by_height": inputgroup.radius_to_dict(bands)}),
                                "units": {"sigma": "m", "R": "m", "eta": "m^-2"}})  # fmt: skip
     material_json = json.dumps({**{k: getattr(material, k) for k in ("E1", "E2", "nu1", "nu2", "gamma", "H", "z0", "tau", "name")},
                                 "units": {"E1": "Pa", "E2": "Pa", "nu1": "1", "nu2": "1", "gamma": "J/m^2",

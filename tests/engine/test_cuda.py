@@ -302,7 +302,7 @@ def test_a_gpu_run_agrees_with_the_analytic_curves(checks):
 
 
 def test_an_unknown_device_is_a_parameter_error():
-    from mcsim.engine.montecarlo import MonteCarloSpec
+    from mcsim.engine.spec import MonteCarloSpec
 
     with pytest.raises(ParameterError, match="device = 'tpu'"):
         MonteCarloSpec(SURFACE, MATERIAL, [0.0], 1e-10, 1, 1, device="tpu")
@@ -366,7 +366,8 @@ def test_a_cpu_run_file_records_its_device(tmp_path):
 
 
 def test_a_run_cannot_be_resumed_on_another_device():
-    from mcsim.engine.montecarlo import EnsembleSums, MonteCarloSpec, run_sums
+    from mcsim.engine.montecarlo import EnsembleSums, run_sums
+    from mcsim.engine.spec import MonteCarloSpec
 
     cpu = MonteCarloSpec(SURFACE, MATERIAL, [0.0], 1e-10, 1, 1)
     gpu = MonteCarloSpec(SURFACE, MATERIAL, [0.0], 1e-10, 1, 1, device="cuda")

@@ -11,7 +11,8 @@ from tolerances import ROUNDING_SUM, assert_close
 from mcsim import ParameterError
 from mcsim.cli.options import LAW_SET_NAMES
 from mcsim.engine.kernels import block_sums, block_sums_numpy
-from mcsim.engine.montecarlo import BLOCK, MonteCarloSpec, run_sums
+from mcsim.engine.montecarlo import BLOCK, run_sums
+from mcsim.engine.spec import MonteCarloSpec
 from mcsim.model.distributions import GAUSSIAN
 from mcsim.model.presets import MATERIALS, SURFACES
 from mcsim.physics.laws import LAW_SETS, SEED

@@ -7,7 +7,8 @@ import numpy as np
 import pytest
 
 from mcsim.engine import padbounds, padcurves, padload
-from mcsim.engine.montecarlo import MonteCarloSpec, run_sums
+from mcsim.engine.montecarlo import run_sums
+from mcsim.engine.spec import MonteCarloSpec
 from mcsim.model.presets import MATERIALS, SURFACES
 from mcsim.store.results import assemble
 

@@ -16,7 +16,8 @@ import dataclasses
 import numpy as np
 import pytest
 
-from mcsim.engine.montecarlo import EnsembleSums, MonteCarloSpec, run_sums
+from mcsim.engine.montecarlo import EnsembleSums, run_sums
+from mcsim.engine.spec import MonteCarloSpec
 from mcsim.engine.statistics import expected_values, summarize
 from mcsim.model.presets import MATERIALS, SURFACES
 from mcsim.physics.analytic import gw_curves

@@ -142,7 +142,7 @@ def test_a_reader_message_quoting_binary_data_stays_one_short_line():
 
 
 def test_a_run_whose_state_cannot_fit_is_refused_before_anything_is_planned():
-    from mcsim.engine.montecarlo import MAX_STATE_BYTES, MonteCarloSpec, state_bytes
+    from mcsim.engine.spec import MAX_STATE_BYTES, MonteCarloSpec, state_bytes
 
     inputs = dict(surface=SURFACES["smooth"], material=MATERIALS["silicon"], h=[2.0, 1.0],
                   area=2e-12, entropy=1)  # fmt: skip

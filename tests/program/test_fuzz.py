@@ -944,7 +944,8 @@ class RunSeeds(dict):
 @pytest.fixture(scope="module")
 def run_files(tmp_path_factory) -> RunSeeds:
     """A complete run with kept heights and an incomplete checkpoint, as bytes."""
-    from mcsim.engine.montecarlo import EnsembleSums, MonteCarloSpec, run_sums
+    from mcsim.engine.montecarlo import EnsembleSums, run_sums
+    from mcsim.engine.spec import MonteCarloSpec
     from mcsim.model.presets import MATERIALS, SURFACES
     from mcsim.store.runfile import write_checkpoint
     from mcsim.studies.simulation import simulate

@@ -267,7 +267,7 @@ def test_design_map_stiction_boundary():
 
 
 def test_engine_and_file_constants():
-    from mcsim.engine import montecarlo, padload
+    from mcsim.engine import montecarlo, padload, spec
     from mcsim.model import distributions
     from mcsim.store.schema import MAX_EXPANSION
     from mcsim.studies.ingest import BYTES_PER_PIXEL
@@ -278,7 +278,7 @@ def test_engine_and_file_constants():
     check_exact(r"the minimum of the mean curve, located to (\S+) in h", adhesion.H_TOLERANCE)
     check_exact(r"located in continuous h to (\S+) between the grid's", padload.XTOL)
     check_exact(r"drawn in fixed blocks of (\S+) summits", montecarlo.BLOCK)
-    assert quoted(r"(ηA is limited to 10¹⁸ summits)") and montecarlo.MAX_SUMMITS == 1e18
+    assert quoted(r"(ηA is limited to 10¹⁸ summits)") and spec.MAX_SUMMITS == 1e18
     check_exact(r"\(after (\S+) s of work, then every", montecarlo.FIRST_CHECKPOINT)
     check_exact(r"no more than (\S+) times the file's size", MAX_EXPANSION)
     check_exact(r"one Monte Carlo patch of (\S+) mm² per surface", MC_AREA * 1e6)
@@ -371,7 +371,7 @@ def test_p_stick_model_runs_low_in_the_tail_against_importance_sampling():
     # retracted from h = 0; the model lies below the importance sampling's interval
     import dataclasses
 
-    from mcsim.engine.montecarlo import MonteCarloSpec
+    from mcsim.engine.spec import MonteCarloSpec
     from mcsim.studies.stiction import p_stick_model
     from mcsim.studies.tail import importance_p_stick
 
@@ -422,7 +422,7 @@ def test_force_control_against_a_common_turn():
     import dataclasses
 
     from mcsim.engine import padcurves, padload
-    from mcsim.engine.montecarlo import MonteCarloSpec
+    from mcsim.engine.spec import MonteCarloSpec
     from mcsim.physics.loadcontrol import preload_turn
     from mcsim.studies.pads import pad_statistics
 

@@ -195,7 +195,8 @@ def test_a_truncated_file_is_refused_with_a_clear_message(tmp_path, keep):
 
 
 def test_an_incomplete_run_is_refused_unless_the_completed_part_is_asked_for(tmp_path):
-    from mcsim.engine.montecarlo import EnsembleSums, MonteCarloSpec, run_sums
+    from mcsim.engine.montecarlo import EnsembleSums, run_sums
+    from mcsim.engine.spec import MonteCarloSpec
     from mcsim.store.runfile import write_checkpoint
 
     spec = MonteCarloSpec(SURFACES["smooth"], MATERIALS["silicon"], np.array(H), 3e-10, 4, 9)

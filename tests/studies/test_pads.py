@@ -212,7 +212,8 @@ def test_a_missing_file_is_a_one_line_error_naming_it(tmp_path, capsys):
 def half_done_checkpoint(path):
     """A checkpoint of a jkr cycle run of 4 pads (smooth, 1e-12 m², seed 9) holding its
     first two; returns the partial sums written."""
-    from mcsim.engine.montecarlo import EnsembleSums, MonteCarloSpec, run_sums
+    from mcsim.engine.montecarlo import EnsembleSums, run_sums
+    from mcsim.engine.spec import MonteCarloSpec
     from mcsim.model.presets import MATERIALS, SURFACES
     from mcsim.store.runfile import write_checkpoint
 

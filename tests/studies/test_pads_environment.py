@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 from mcsim.engine import padcurves, padload
-from mcsim.engine.montecarlo import MonteCarloSpec
+from mcsim.engine.spec import MonteCarloSpec
 from mcsim.model.presets import MATERIALS, SURFACES
 from mcsim.physics.environment import Environment
 from mcsim.physics.laws import get_law_set

@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 from scipy.stats import poisson
 
-from mcsim.engine.montecarlo import MonteCarloSpec
+from mcsim.engine.spec import MonteCarloSpec
 from mcsim.model.errors import ParameterError
 from mcsim.model.presets import MATERIALS, SURFACES
 from mcsim.studies.pads import (
