@@ -21,7 +21,7 @@ from mcsim.model.errors import MCSimError, RunFileError
 from mcsim.physics.environment import Environment
 from mcsim.physics.surfaceenvironment import band_edge
 from mcsim.store.h5layout import by_branch, dataset, row_dims
-from mcsim.store.sweepfile import CURVES
+from mcsim.store.sweepvariables import CURVES
 
 #: Fields of the Environment as stored, with their units.
 _ENVIRONMENT_UNITS = {"hamaker": "J", "cutoff": "m", "rh": "1", "contact_angle": "rad",

@@ -17,7 +17,7 @@ from mcsim.engine.kernels import sum_columns, sum_units
 from mcsim.engine.spec import MonteCarloSpec
 from mcsim.physics.laws import LawSet
 from mcsim.store.files import storage
-from mcsim.store.sweepfile import CURVES
+from mcsim.store.sweepvariables import CURVES
 
 
 def dataset(f, name: str, data, units: str, long_name: str, dims=(), description=None):

@@ -302,7 +302,7 @@ def finite_pads(spec, restoring_force: float, *, preload: float | None = None, t
     Returns
     -------
     dict
-        The keys of :data:`mcsim.store.sweepfile.PADS` (floats, SI) and ``p_stick_method``
+        The keys of :data:`mcsim.store.sweepvariables.PADS` (floats, SI) and ``p_stick_method``
         (one of :data:`METHODS`).
 
     Raises

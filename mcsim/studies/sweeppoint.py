@@ -36,7 +36,7 @@ from mcsim.physics.environment import Environment
 from mcsim.physics.gapheights import gap_heights
 from mcsim.physics.laws import get_law_set
 from mcsim.physics.loadcontrol import preload_turn
-from mcsim.store.sweepfile import (
+from mcsim.store.sweepvariables import (
     ENVIRONMENT_INPUTS,
     ENVIRONMENT_SUMMARY,
     INPUTS,

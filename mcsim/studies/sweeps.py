@@ -60,17 +60,8 @@ from mcsim.physics.environment import Environment, as_environment
 from mcsim.physics.laws import get_law_set
 from mcsim.store import inputgroup
 from mcsim.store.claim import claim_output
-from mcsim.store.sweepfile import (
-    ENVIRONMENT_INPUTS,
-    INPUTS,
-    SCHEMA_VERSION,
-    Sweep,
-    dimension_name,
-    empty_sweep,
-    plain,
-    read_sweep,
-    write_sweep,
-)
+from mcsim.store.sweepfile import SCHEMA_VERSION, Sweep, empty_sweep, read_sweep, write_sweep
+from mcsim.store.sweepvariables import ENVIRONMENT_INPUTS, INPUTS, dimension_name, plain
 from mcsim.studies.runoptions import check_checkpoint_every, check_workers
 from mcsim.studies.sweeppoint import (
     MAX_POINTS,

@@ -17,7 +17,7 @@ from mcsim.model.errors import MCSimError, ParameterError
 from mcsim.model.presets import MATERIALS, PAPER_SURFACES, SURFACES
 from mcsim.physics.adhesion import RegimeWarning, adhesion_summary
 from mcsim.physics.analytic import gw_curves
-from mcsim.store.sweepfile import SUMMARY
+from mcsim.store.sweepvariables import SUMMARY
 from mcsim.studies.sweeps import sweep
 
 SMOOTH, SILICON = SURFACES["smooth"], MATERIALS["silicon"]

@@ -15,7 +15,8 @@ from mcsim.model.presets import MATERIALS, SURFACES
 from mcsim.physics.adhesion import adhesion_summary
 from mcsim.physics.analytic import gw_curves
 from mcsim.physics.loadcontrol import preload_turn
-from mcsim.store.sweepfile import PADS, read_sweep
+from mcsim.store.sweepfile import read_sweep
+from mcsim.store.sweepvariables import PADS
 from mcsim.studies.sweeppoint import pads_seed
 from mcsim.studies.sweeps import sweep
 
