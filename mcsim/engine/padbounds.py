@@ -125,9 +125,9 @@ def branches(spec: MonteCarloSpec) -> tuple[_Branch, _Branch]:
     return result[0], result[1]
 
 
-def _count(zs: np.ndarray, lo, hi) -> np.ndarray:
-    """How many of the sorted heights ``zs`` lie in (lo, hi] (m), elementwise (0 if empty)."""
-    return np.maximum(np.searchsorted(zs, hi, "right") - np.searchsorted(zs, lo, "right"), 0)
+def _ranks(zs: np.ndarray, x) -> np.ndarray:
+    """How many of the sorted heights ``zs`` lie at or below each ``x`` (m)."""
+    return np.searchsorted(zs, x, "right")
 
 
 class _Group(NamedTuple):
@@ -166,14 +166,13 @@ class _Curve:
     """The points of a humid pad's curve evaluated so far: separations ``x`` (ascending, m),
     net load ``net`` (N), and the ``sums`` (N) its bounds need (:meth:`bounds`): for each
     group of summits (one branch each) the contact load, and what the summits between the
-    branch's lowest edge and its ``falling`` and ``rising`` points add to it; last the caps'
-    attraction. ``cuts`` (m) are where a summit crosses an edge of its branch."""
+    branch's lowest edge and its ``falling`` point add to it; last the caps' attraction. ``cuts`` (m) are where a summit crosses an edge of its branch."""
 
     def __init__(self, setup, groups, z, d_turn, cuts, lower=False):
         self.setup, self.groups, self.z, self.d_turn, self.cuts = setup, groups, z, d_turn, cuts
         self.lower = lower  # only the lower bounds are asked for
-        self.x = np.empty(0)
-        self.sums = np.empty((0, 3 * len(groups) + 1))
+        self.x = self.gaps = np.empty(0)
+        self.sums = np.empty((0, 2 * len(groups) + 1))
 
     def add(self, d):
         """Evaluate the curve at the new separations ``d`` (m)."""
@@ -186,19 +185,18 @@ class _Curve:
             b = g.branch
             whole = _load(contact, g.z, d, self.d_turn)
             columns.append(whole)
-            for theta in (b.falling, b.rising):  # what the summits in (d + low, d + theta] add
-                empty = theta <= b.low or not np.any(_count(g.z, d + b.low, d + theta))
-                empty |= theta == b.rising and self.lower  # the lower bound needs falling only
-                columns.append(np.zeros(d.size) if empty else
-                               whole - _above(contact, g.z, d, self.d_turn, theta))  # fmt: skip
+            # what the summits in (d + low, d + falling] add
+            columns.append(np.zeros(d.size) if b.falling <= b.low else
+                           whole - _above(contact, g.z, d, self.d_turn, b.falling))  # fmt: skip
         k = block_sums(self.z, d, caps.law, caps.args, edges=caps.edges)  # no history
         columns.append(k[:, list(setup.parts.caps_columns)].sum(axis=1))
         x = np.concatenate([self.x, d])
         order = np.argsort(x, kind="stable")
         self.x = x[order]
         self.sums = np.concatenate([self.sums, np.stack(columns, axis=1)])[order]
-        self.gaps = setup.area * setup.gaps(self.x / setup.sigma)
-        self.net = self.sums[:, 0:-1:3].sum(axis=1) - self.sums[:, -1] - self.gaps
+        gaps = setup.area * setup.gaps(d / setup.sigma)
+        self.gaps = np.concatenate([self.gaps, gaps])[order]
+        self.net = self.sums[:, 0:-1:2].sum(axis=1) - self.sums[:, -1] - self.gaps
 
     def bounds(self):
         """The highest and the lowest net load (N) that each gap between two points can hold.
@@ -222,7 +220,6 @@ class _Curve:
         ∓ the spline's steepest slope times half the gap (:func:`_open_gap_table`).
         """
         x, s = self.x, self.sums
-        lo_x, hi_x = x[:-1], x[1:]
         table, h = self.setup.table, x / self.setup.sigma
         inside = (h[:-1] >= table.lo) & (h[1:] <= table.hi)
         slack = np.where(inside, self.setup.area * table.slope * np.diff(h) / 2, np.inf)
@@ -230,21 +227,24 @@ class _Curve:
         upper = -s[1:, -1] - (mean - slack)  # the caps attract least at the top of a gap
         lower = -s[:-1, -1] - (mean + slack)
         for j, g in enumerate(self.groups):
-            whole, below_a, below_b = s[:, 3 * j], s[:, 3 * j + 1], s[:, 3 * j + 2]
-            above_b = whole - below_b
-            b, zs = g.branch, g.z
+            whole, below_a = s[:, 2 * j], s[:, 2 * j + 1]
+            b = g.branch
             a, r, m, top = b.falling, b.rising, b.m, max(b.fa, b.fb)
+            # summits at or below x + a and x + r: the counts in each class are differences
+            ra, rr = _ranks(g.z, x + a), _ranks(g.z, x + r)
+            ra_lo, ra_hi, rr_lo, rr_hi = ra[:-1], ra[1:], rr[:-1], rr[1:]
             # lowest: f(δ2) if δ2 <= a; f(δ1) if δ1 > a, less top - m if δ1 <= r; else m
-            lower = (
-                lower + below_a[:-1] + (whole - below_a)[1:] + m * _count(zs, lo_x + a, hi_x + a)
-            )
-            lower = lower - (top - m) * _count(zs, hi_x + a, hi_x + r)
+            lower = lower + below_a[:-1] + (whole - below_a)[1:] + m * np.maximum(ra_hi - ra_lo, 0)
+            lower = lower - (top - m) * np.maximum(rr_hi - ra_hi, 0)
+            if self.lower:
+                continue
             # highest: f(δ1) for δ1 <= a, f(δ2) for δ2 > r, what the rest can add
-            n1 = _count(zs, lo_x + a, np.minimum(hi_x + a, lo_x + r))
-            n2 = _count(zs, np.maximum(hi_x + a, lo_x + r), hi_x + r)
-            n3 = _count(zs, lo_x + r, hi_x + a)
-            n4 = _count(zs, hi_x + a, lo_x + r)
-            upper = upper + below_a[1:] + above_b[:-1] + (top - m) * n1
+            n1 = np.maximum(np.minimum(ra_hi, rr_lo) - ra_lo, 0)  # in (lo + a, min(hi + a, lo + r)]
+            n2 = np.maximum(rr_hi - np.maximum(ra_hi, rr_lo), 0)  # in (max(hi + a, lo + r), hi + r]
+            n3 = np.maximum(ra_hi - rr_lo, 0)  # in (lo + r, hi + a]
+            n4 = np.maximum(rr_lo - ra_hi, 0)  # in (hi + a, lo + r]
+            above_r = (whole - below_a)[:-1] - m * np.maximum(rr_lo - ra_lo, 0)  # f >= m in (a, r]
+            upper = upper + below_a[1:] + above_r + (top - m) * n1
             upper = upper + max(top - b.fb, 0.0) * n2 + (top - 2 * m) * n3 + top * n4
         return (None if self.lower else upper), lower
 

@@ -41,12 +41,12 @@ from mcsim.engine.padload import (
     _Part,
     _points,
     contact_edges,
+    open_gap_work,
     pad_load,
 )
 from mcsim.engine.spec import MonteCarloSpec
 from mcsim.model.errors import ParameterError
 from mcsim.physics.laws import attraction
-from mcsim.physics.surfaceenvironment import open_gap_works
 
 #: Intervals whose lowest interior point is refined.
 REFINE = 4
@@ -117,7 +117,8 @@ def pad_work(spec: MonteCarloSpec, z: np.ndarray, d_turn: float) -> float:
     summit's caps from its interference at the turn
     (:func:`mcsim.physics.laws.attraction.vdw_summit_work`,
     :func:`~mcsim.physics.laws.attraction.capillary_summit_work`) and the open gaps from the
-    turn (:func:`mcsim.physics.surfaceenvironment.open_gap_works`).
+    turn, the integral of the pressure the curve subtracts
+    (:func:`~mcsim.engine.padload.open_gap_work`).
     """
     work = -float(np.sum(contact_works(spec, z, d_turn))) / spec.area
     if spec.environment is not None:
@@ -125,10 +126,7 @@ def pad_work(spec: MonteCarloSpec, z: np.ndarray, d_turn: float) -> float:
         for k, caps in enumerate(_caps_parts(spec)):  # each band's caps with its radius
             for term, args in zip(caps.law.names, caps.args):
                 work += float(np.sum(CAP_WORKS[term](z[band == k] - d_turn, *args))) / spec.area
-        gaps = open_gap_works(
-            np.float64(d_turn / spec.surface.sigma), spec.surface, spec.environment
-        )
-        work += float(gaps["vdw"] + gaps["capillary"])
+        work += float(open_gap_work(spec)(d_turn / spec.surface.sigma))
     return work
 
 

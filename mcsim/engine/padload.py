@@ -27,7 +27,12 @@ from mcsim.engine.montecarlo import plan_patch, sample_block, sums
 from mcsim.engine.spec import MonteCarloSpec
 from mcsim.model.errors import ParameterError
 from mcsim.physics.laws import Edges, LawSet, get_law_set
-from mcsim.physics.surfaceenvironment import active_terms, open_gap_pressures, with_environment
+from mcsim.physics.surfaceenvironment import (
+    active_terms,
+    open_gap_pressures,
+    open_gap_works,
+    with_environment,
+)
 
 #: Interior points at which each smooth interval of a pad's curve is evaluated.
 SUB = 3
@@ -148,33 +153,73 @@ def open_gaps(spec: MonteCarloSpec):
     value (tests/engine/test_padcurves.py).
     """
     table = _open_gap_table(spec)
+    return functools.partial(_gap_pressure, table)
 
-    def pressure(h):
-        h = np.asarray(h, dtype=float)
-        inside = (h >= table.lo) & (h <= table.hi)
-        if np.all(inside):
-            return table.spline(h)
-        return np.where(inside, table.spline(h), table.exact(h))
 
-    return pressure
+def _gap_pressure(table: _GapTable, h) -> np.ndarray:
+    """:func:`open_gaps` of ``table`` at ``h`` (Pa)."""
+    h = np.asarray(h, dtype=float)
+    inside = (h >= table.lo) & (h <= table.hi)
+    value = _piecewise(table.grid, table.c, h)
+    return value if np.all(inside) else np.where(inside, value, table.exact(h))
+
+
+@functools.lru_cache(maxsize=16)
+def open_gap_work(spec: MonteCarloSpec):
+    """The open gaps' work of separation (J/m²) from h_t = d_t/σ outward, as a function of h_t:
+    the integral of the pressure a pad's curve subtracts (:func:`open_gaps`), σ times the
+    spline's antiderivative from h_t to the table's top (in closed form) plus
+    :func:`mcsim.physics.surfaceenvironment.open_gap_works` from there outward (outside the
+    table, that function itself). Within 1e-9 of its largest value
+    (tests/studies/test_pads_environment.py)."""
+    return functools.partial(_gap_work, _open_gap_table(spec), spec.surface.sigma)
+
+
+def _gap_work(table: _GapTable, sigma: float, h_t) -> np.ndarray:
+    """:func:`open_gap_work` of ``table`` at ``h_t`` (J/m²)."""
+    h_t = np.asarray(h_t, dtype=float)
+    inside = (h_t >= table.lo) & (h_t <= table.hi)
+    value = sigma * (table.w_top - _piecewise(table.grid, table.w, h_t)) + table.tail
+    return value if np.all(inside) else np.where(inside, value, table.exact_work(h_t))
+
+
+def _piecewise(grid: np.ndarray, c: np.ndarray, h: np.ndarray) -> np.ndarray:
+    """The piecewise polynomial of knots ``grid`` and coefficients ``c`` (one row per piece,
+    highest power first, in t = h − knot) at ``h``, by Horner's rule (a pad's search calls
+    this hundreds of times on a few points, where a :class:`scipy.interpolate.PPoly` call
+    costs several times more). Below and above the knots, the end pieces."""
+    k = np.searchsorted(grid[1:-1], h, "right")
+    t, c = h - grid[k], c[k]
+    value = c[..., 0]
+    for j in range(1, c.shape[-1]):
+        value = value * t + c[..., j]
+    return value
 
 
 class _GapTable(NamedTuple):
-    """:func:`_open_gap_table`: the spline (Pa of h), its range in h, the function, the
-    spline's steepest |slope| (Pa per unit h)."""
+    """:func:`_open_gap_table`: the spline's knots (h), its cubics' coefficients (Pa) and its
+    antiderivative's from the first knot (Pa, per unit h: :func:`_piecewise`) and that at the
+    last knot; its range [lo, hi] in h; the work from hi outward (J/m²); the functions
+    themselves (pressure and work); the spline's steepest |slope| (Pa per unit h)."""
 
-    spline: object
+    grid: np.ndarray
+    c: np.ndarray
+    w: np.ndarray
+    w_top: float
     lo: float
     hi: float
+    tail: float
     exact: object
+    exact_work: object
     slope: float
 
 
 @functools.lru_cache(maxsize=16)
 def _open_gap_table(spec: MonteCarloSpec) -> _GapTable:
-    """The spline of :func:`open_gaps`, its range [lo, hi] in h, the function itself, and the
-    spline's largest |dp/dh| (Pa) on the range: its derivative is a quadratic on each piece,
-    so the largest magnitude lies at a knot or where the (linear) second derivative is 0."""
+    """The spline of :func:`open_gaps` and its antiderivative, its range [lo, hi] in h, the
+    functions themselves, and the spline's largest |dp/dh| (Pa) on the range: its derivative
+    is a quadratic on each piece, so the largest magnitude lies at a knot or where the
+    (linear) second derivative is 0."""
     from scipy.interpolate import CubicSpline
 
     surface, env = spec.surface, spec.environment
@@ -182,6 +227,10 @@ def _open_gap_table(spec: MonteCarloSpec) -> _GapTable:
     def exact(h):
         p = open_gap_pressures(h, surface, env)
         return p["vdw"] + p["capillary"]
+
+    def exact_work(h_t):
+        w = open_gap_works(h_t, surface, env)
+        return w["vdw"] + w["capillary"]
 
     reach = -spec.edges.reach / surface.sigma
     heights = surface.heights  # the highest summit: a measured histogram's top, else 12σ
@@ -195,7 +244,10 @@ def _open_gap_table(spec: MonteCarloSpec) -> _GapTable:
         vertex = np.clip(-c[1] / (3 * c[0]), 0.0, np.diff(grid))  # p'' = 0 inside the piece
     vertex = np.where(np.isfinite(vertex), vertex, 0.0)
     steepest = max(np.max(np.abs(slope(grid))), np.max(np.abs(slope(grid[:-1] + vertex))))
-    return _GapTable(spline, lo, hi, exact, float(steepest))
+    anti = spline.antiderivative()
+    return _GapTable(grid, np.ascontiguousarray(c.T), np.ascontiguousarray(anti.c.T),
+                     float(anti(hi)), lo, hi, float(exact_work(np.float64(hi))), exact,
+                     exact_work, float(steepest))  # fmt: skip
 
 
 def contact_edges(spec: MonteCarloSpec) -> Edges:

@@ -83,7 +83,9 @@ class MonteCarloSpec:
     environment: Environment | None = None
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "h", check_separations(self.h))
+        h = check_separations(self.h).copy()  # its own, read-only: the spec's hash is cached
+        h.flags.writeable = False
+        object.__setattr__(self, "h", h)
         object.__setattr__(self, "area", check_range("area", self.area, "m^2", low=0))
         if self.surface.eta * self.area > MAX_SUMMITS:
             raise ParameterError(
@@ -135,6 +137,12 @@ class MonteCarloSpec:
         return isinstance(other, MonteCarloSpec) and self.fields() == other.fields()
 
     def __hash__(self) -> int:
+        return self._hash
+
+    @functools.cached_property
+    def _hash(self) -> int:
+        """The hash of :meth:`fields`, computed once (the caches keyed by a spec look it up
+        many times a pad, and the fields are immutable)."""
         return hash(tuple(self.fields().values()))
 
     def differences(self, other: MonteCarloSpec) -> list[str]:
