@@ -70,12 +70,22 @@ def same_depth(dry, humid, pads):
     return out
 
 
+def use(numpy_baseline: bool) -> None:
+    """Sum with the compiled kernel or with the NumPy reference (``kernels.block_sums_numpy``)
+    everywhere a pad's search sums (the humid search's kernels are looked up once per spec:
+    their caches are cleared)."""
+    padload.block_sums = kernels.block_sums_numpy if numpy_baseline else kernels.block_sums
+    padload.prepared = padbounds.prepared = (
+        kernels.prepared_numpy if numpy_baseline else kernels.prepared
+    )
+    padload._split_laws.cache_clear()
+    padbounds._setup.cache_clear()
+
+
 def timed(spec, pads, numpy_baseline: bool):
     """Seconds per pad, seconds per pad in each phase, and the pads' (pull-off, work,
     summits), with the kernel or NumPy."""
-    original = padload.block_sums
-    if numpy_baseline:
-        padload.block_sums = padbounds.block_sums = kernels.block_sums_numpy
+    use(numpy_baseline)
     try:
         one_pad(spec, pads)  # compile and warm up outside the timing
         start = time.perf_counter()
@@ -83,7 +93,7 @@ def timed(spec, pads, numpy_baseline: bool):
         seconds = (time.perf_counter() - start) / pads
         return seconds, np.mean([o[1] for o in out], axis=0), [o[0] for o in out]
     finally:
-        padload.block_sums = padbounds.block_sums = original
+        use(False)
 
 
 def pairs(spec, pads):
@@ -91,20 +101,32 @@ def pairs(spec, pads):
     contact law's and, in humid air, the caps'), counted in a pass outside the timing: what
     a pad's cost grows with."""
     count: dict[str, int] = {}
-    original = padload.block_sums
 
-    def counting(z, d, law, args, *, d_turn=None, edges=None):
-        d = np.asarray(d, dtype=float)
-        threshold = edges.threshold(d, d if d_turn is None else np.asarray(d_turn, dtype=float))
+    def tally(z, d, d_turn, law, edges):
+        threshold = edges.threshold(np.asarray(d, dtype=float), np.asarray(d_turn, dtype=float))
         count[law.name] = count.get(law.name, 0) + int(np.sum(z[None, :] > threshold[:, None]))
-        return original(z, d, law, args, d_turn=d_turn, edges=edges)
 
-    padload.block_sums = padbounds.block_sums = counting
+    def counting_sums(z, d, law, args, *, d_turn=None, edges=None):
+        tally(z, d, d if d_turn is None else d_turn, law, edges)
+        return kernels.block_sums(z, d, law, args, d_turn=d_turn, edges=edges)
+
+    def counting_prepared(law, args, edges=None):
+        sums = kernels.prepared(law, args, edges)
+
+        def counted(z, d, d_turn):
+            tally(z, d, d_turn, law, edges)
+            return sums(z, d, d_turn)
+
+        return counted
+
+    use(False)
+    padload.block_sums, padload.prepared = counting_sums, counting_prepared
+    padbounds.prepared = counting_prepared
     try:
         for r in range(pads):
             one_pad(spec, r)
     finally:
-        padload.block_sums = padbounds.block_sums = original
+        use(False)
     return {name: n / pads for name, n in count.items()}
 
 

@@ -424,13 +424,29 @@ def block_sums(
     arguments, never frozen into the compiled code.
     """
     d, d_turn = _rows(d, d_turn)
+    return prepared(law, args, edges)(np.ascontiguousarray(z, dtype=float), d, d_turn)
+
+
+def prepared_numpy(law: LawSet, args, edges: Edges | None = None):
+    """:func:`prepared` with the reference sums (:func:`block_sums_numpy`)."""
+    return lambda z, d, d_turn: block_sums_numpy(z, d, law, args, d_turn=d_turn, edges=edges)
+
+
+def prepared(law: LawSet, args, edges: Edges | None = None):
+    """:func:`block_sums` of ``law`` with ``args`` and ``edges``, its kernel looked up once:
+    a function ``sums(z, d, d_turn)`` of contiguous float arrays (``d_turn`` the rows'
+    closest approaches, ``d`` itself on approach), unchecked, for callers that sum one law
+    set many times on a few rows (a pad's search: the lookup costs as much as the sums)."""
     edges = _TOUCHING if edges is None else edges
-    threshold = np.asarray(edges.threshold(d, d_turn), dtype=float)
-    order = np.argsort(-threshold, kind="stable")
-    out = np.zeros((d.size, len(sum_columns(law))))
-    counting = _counting(law, edges)
-    _compiled(law, counting)(
-        np.ascontiguousarray(z, dtype=float), d, d_turn, np.ascontiguousarray(threshold[order]),
-        order, out, float(edges.jump_in), float(edges.break_off), *args,
-    )  # fmt: skip
-    return out
+    kernel = _compiled(law, _counting(law, edges))
+    columns, jump_in, break_off = len(sum_columns(law)), float(edges.jump_in), float(edges.break_off)
+
+    def sums(z: np.ndarray, d: np.ndarray, d_turn: np.ndarray) -> np.ndarray:
+        threshold = np.asarray(edges.threshold(d, d_turn), dtype=float)
+        order = np.argsort(-threshold, kind="stable")
+        out = np.zeros((d.size, columns))
+        kernel(z, d, d_turn, np.ascontiguousarray(threshold[order]), order, out, jump_in,
+               break_off, *args)  # fmt: skip
+        return out
+
+    return sums

@@ -21,15 +21,13 @@ from typing import NamedTuple
 
 import numpy as np
 
-from mcsim.engine.kernels import block_sums
+from mcsim.engine.kernels import prepared
 from mcsim.engine.padload import (
     EDGE,
     SUB,
     XTOL,
     _GapTable,
-    _load,
     _open_gap_table,
-    _Part,
     _Split,
     _split_laws,
     open_gaps,
@@ -147,19 +145,17 @@ class _Setup(NamedTuple):
     branches: tuple[_Branch, _Branch]
     gaps: object
     table: _GapTable
+    above: dict  # a branch's ``falling`` -> the contact law's sums over the summits above it
 
 
 @functools.lru_cache(maxsize=16)
 def _setup(spec: MonteCarloSpec) -> _Setup:
     """The :class:`_Setup` of ``spec``."""
     parts = _split_laws(spec)
+    above = {b.falling: prepared(parts.contact.law, parts.contact.args, Edges(*[b.falling] * 3))
+             for b in branches(spec) if b.falling > b.low}  # fmt: skip
     return _Setup(spec.surface.sigma, spec.area, parts, parts.contact.edges, branches(spec),
-                  open_gaps(spec), _open_gap_table(spec))  # fmt: skip
-
-
-def _above(part: _Part, z, d, d_turn, theta):
-    """The contact law's load (N) summed over the summits above d + ``theta`` (m) at ``d``."""
-    return _load(_Part(part.law, part.args, Edges(theta, theta, theta)), z, d, d_turn)
+                  open_gaps(spec), _open_gap_table(spec), above)  # fmt: skip
 
 
 class _Curve:
@@ -178,18 +174,17 @@ class _Curve:
         """Evaluate the curve at the new separations ``d`` (m)."""
         if d.size == 0:
             return
-        setup = self.setup
-        contact, caps = setup.parts.contact, setup.parts.caps
+        setup, parts = self.setup, self.setup.parts
+        turn = d if self.d_turn is None else np.full_like(d, self.d_turn)
         columns = []
         for g in self.groups:
             b = g.branch
-            whole = _load(contact, g.z, d, self.d_turn)
+            whole = parts.contact_load(g.z, d, self.d_turn)
             columns.append(whole)
             # what the summits in (d + low, d + falling] add
             columns.append(np.zeros(d.size) if b.falling <= b.low else
-                           whole - _above(contact, g.z, d, self.d_turn, b.falling))  # fmt: skip
-        k = block_sums(self.z, d, caps.law, caps.args, edges=caps.edges)  # no history
-        columns.append(k[:, list(setup.parts.caps_columns)].sum(axis=1))
+                           whole - setup.above[b.falling](g.z, d, turn)[:, parts.load])  # fmt: skip
+        columns.append(parts.caps_load(self.z, d))  # no history
         x = np.concatenate([self.x, d])
         order = np.argsort(x, kind="stable")
         self.x = x[order]
@@ -329,6 +324,7 @@ def humid_turn(spec, z, force, bottom, top, reaches):
     """
     setup = _setup(spec)
     e = setup.edges
+    z = np.ascontiguousarray(z, dtype=float)
     cuts = _cuts(z, bottom, top, (e.reach, e.jump_in, *e.breakpoints))
     curve = _Curve(setup, (_Group(np.sort(z), setup.branches[0]),), z, None, cuts)
     new = curve.split(None, (bottom, top))
@@ -360,6 +356,7 @@ def humid_pull_off(spec, z, d_turn, top):
     """
     setup = _setup(spec)
     e = setup.edges
+    z = np.ascontiguousarray(z, dtype=float)
     approach, retract = setup.branches
     held = z - d_turn > e.jump_in  # in contact at the turn: on the retraction branch
     groups = [_Group(np.sort(z[held]), retract)]

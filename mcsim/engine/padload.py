@@ -22,7 +22,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from mcsim.engine.kernels import block_sums, sum_columns
+from mcsim.engine.kernels import block_sums, prepared, sum_columns
 from mcsim.engine.montecarlo import plan_patch, sample_block, sums
 from mcsim.engine.spec import MonteCarloSpec
 from mcsim.model.errors import ParameterError
@@ -74,13 +74,7 @@ def pad_load(spec: MonteCarloSpec, z: np.ndarray, d, d_turn=None) -> np.ndarray:
     if spec.surface.radius_by_height is not None:  # each band's contact and caps, its radius
         turn = None if d_turn is None else np.full_like(d, d_turn)
         return net_load(spec, sums(spec, z, d, turn), d)
-    # Two sums over the pad's summits: the contact law's over those that can touch, and the
-    # caps' over every summit within their reach (each evaluated only where it acts).
-    parts = _split_laws(spec)
-    contact = _load(parts.contact, z, d, d_turn)
-    caps = block_sums(z, d, parts.caps.law, parts.caps.args, edges=parts.caps.edges)
-    caps = caps[:, list(parts.caps_columns)].sum(axis=1)
-    return contact - caps - spec.area * open_gaps(spec)(d / spec.surface.sigma)
+    return _split_laws(spec).net(z, d, d_turn)
 
 
 def contact_load(spec: MonteCarloSpec, z: np.ndarray, d, d_turn=None) -> np.ndarray:
@@ -108,20 +102,43 @@ def _load(contact: _Part, z: np.ndarray, d: np.ndarray, d_turn) -> np.ndarray:
     return sums[:, sum_columns(contact.law).index("load")]
 
 
-class _Split(NamedTuple):
-    contact: _Part
-    caps: _Part
-    caps_columns: tuple[int, ...]
+class _Split:
+    """A humid pad's net load (one summit radius: the first of :func:`_contact_parts`) as two
+    sums over its summits, each evaluated only where it acts: the contact law set's
+    (``contact``, with its arguments and edges) over those that can touch, and the
+    environment's caps' (``caps``: a law set of the outputs ``vdw`` and ``capillary``) over
+    every summit within their reach; less the open gaps' attraction times the pad's area.
+    Their kernels are looked up once (:func:`mcsim.engine.kernels.prepared`): a pad's search
+    sums them hundreds of times on a few rows."""
+
+    def __init__(self, spec: MonteCarloSpec):
+        self.contact, self.caps = _contact_parts(spec)[0], _caps_parts(spec)[0]
+        self.contact_sums = prepared(*self.contact)
+        self.caps_sums = prepared(*self.caps)
+        self.load = sum_columns(self.contact.law).index("load")
+        self.attraction = [sum_columns(self.caps.law).index(t) for t in self.caps.law.names]
+        self.area, self.sigma, self.gaps = spec.area, spec.surface.sigma, open_gaps(spec)
+
+    def contact_load(self, z: np.ndarray, d: np.ndarray, d_turn=None) -> np.ndarray:
+        """The contact law's load (N) over summits ``z`` (m, contiguous) at ``d`` (m)."""
+        turn = d if d_turn is None else np.full_like(d, d_turn)
+        return self.contact_sums(z, d, turn)[:, self.load]
+
+    def caps_load(self, z: np.ndarray, d: np.ndarray) -> np.ndarray:
+        """The caps' attraction (N, > 0) of summits ``z`` (m, contiguous) at ``d`` (m)."""
+        return self.caps_sums(z, d, d)[:, self.attraction].sum(axis=1)
+
+    def net(self, z: np.ndarray, d: np.ndarray, d_turn=None) -> np.ndarray:
+        """The net load (N) of the pad of summits ``z`` (m) at ``d`` (m), as :func:`pad_load`."""
+        z, d = np.ascontiguousarray(z, dtype=float), np.ascontiguousarray(d, dtype=float)
+        contact = self.contact_load(z, d, d_turn)
+        return contact - self.caps_load(z, d) - self.area * self.gaps(d / self.sigma)
 
 
 @functools.lru_cache(maxsize=16)
 def _split_laws(spec: MonteCarloSpec) -> _Split:
-    """The contact law set and the environment's caps alone (a law set of the outputs ``vdw``
-    and ``capillary``), with their arguments and edges, and the caps' columns in their sums,
-    for a humid pad's net load (one summit radius: the first of :func:`_contact_parts`)."""
-    caps = _caps_parts(spec)[0]
-    columns = tuple(sum_columns(caps.law).index(term) for term in caps.law.names)
-    return _Split(_contact_parts(spec)[0], caps, columns)
+    """The :class:`_Split` of a humid pad of ``spec``, built once."""
+    return _Split(spec)
 
 
 def net_load(spec: MonteCarloSpec, sums: np.ndarray, d) -> np.ndarray:
