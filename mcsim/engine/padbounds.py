@@ -16,7 +16,6 @@ the sampling of every interval.
 from __future__ import annotations
 
 import functools
-import math
 from typing import NamedTuple
 
 import numpy as np
@@ -213,80 +212,45 @@ class _Curve:
         and meniscus force rise with δ: :mod:`mcsim.physics.laws.attraction`), so they lie
         between their sums at the two ends; the open gaps' term between the mean of its ends
         ∓ the spline's steepest slope times half the gap (:func:`_open_gap_table`).
+        Compiled: :func:`mcsim.engine.padgaps.environment_bounds` and
+        :func:`~mcsim.engine.padgaps.branch_bounds`.
         """
-        x, s = self.x, self.sums
-        table, h = self.setup.table, x / self.setup.sigma
-        inside = (h[:-1] >= table.lo) & (h[1:] <= table.hi)
-        slack = np.where(inside, self.setup.area * table.slope * np.diff(h) / 2, np.inf)
-        mean = (self.gaps[:-1] + self.gaps[1:]) / 2
-        upper = -s[1:, -1] - (mean - slack)  # the caps attract least at the top of a gap
-        lower = -s[:-1, -1] - (mean + slack)
+        from mcsim.engine import padgaps
+
+        x, s, setup = self.x, self.sums, self.setup
+        upper, lower = np.empty(x.size - 1), np.empty(x.size - 1)
+        padgaps.environment_bounds(x, s[:, -1], self.gaps, setup.sigma, setup.table.lo,
+                                   setup.table.hi, setup.area * setup.table.slope, upper, lower)  # fmt: skip
         for j, g in enumerate(self.groups):
-            whole, below_a = s[:, 2 * j], s[:, 2 * j + 1]
             b = g.branch
-            a, r, m, top = b.falling, b.rising, b.m, max(b.fa, b.fb)
-            # summits at or below x + a and x + r: the counts in each class are differences
-            ra, rr = _ranks(g.z, x + a), _ranks(g.z, x + r)
-            ra_lo, ra_hi, rr_lo, rr_hi = ra[:-1], ra[1:], rr[:-1], rr[1:]
-            # lowest: f(δ2) if δ2 <= a; f(δ1) if δ1 > a, less top - m if δ1 <= r; else m
-            lower = lower + below_a[:-1] + (whole - below_a)[1:] + m * np.maximum(ra_hi - ra_lo, 0)
-            lower = lower - (top - m) * np.maximum(rr_hi - ra_hi, 0)
-            if self.lower:
-                continue
-            # highest: f(δ1) for δ1 <= a, f(δ2) for δ2 > r, what the rest can add
-            n1 = np.maximum(np.minimum(ra_hi, rr_lo) - ra_lo, 0)  # in (lo + a, min(hi + a, lo + r)]
-            n2 = np.maximum(rr_hi - np.maximum(ra_hi, rr_lo), 0)  # in (max(hi + a, lo + r), hi + r]
-            n3 = np.maximum(ra_hi - rr_lo, 0)  # in (lo + r, hi + a]
-            n4 = np.maximum(rr_lo - ra_hi, 0)  # in (hi + a, lo + r]
-            above_r = (whole - below_a)[:-1] - m * np.maximum(rr_lo - ra_lo, 0)  # f >= m in (a, r]
-            upper = upper + below_a[1:] + above_r + (top - m) * n1
-            upper = upper + max(top - b.fb, 0.0) * n2 + (top - 2 * m) * n3 + top * n4
+            padgaps.branch_bounds(x, s[:, 2 * j], s[:, 2 * j + 1], g.z, b.falling, b.rising, b.m,
+                                  max(b.fa, b.fb), b.fb, upper, lower, self.lower)  # fmt: skip
         return (None if self.lower else upper), lower
 
     def split(self, gaps, ends=(), force=None):
         """New points splitting each gap ``gaps`` (indices; or the range ``ends``): at up to
         :data:`PARTS` − 1 of the cuts inside it, just on either side (:data:`~mcsim.engine.padload.EDGE`); with
         none, evenly into :data:`EVEN` parts, or, where the net load crosses ``force``
-        (N) between the gap's ends, on a ladder about where a straight line crosses it."""
-        side = EDGE * self.setup.sigma
-        if len(ends):
-            a, b, gaps = np.array([ends[0]]), np.array([ends[1]]), None
-        else:
-            a, b = self.x[gaps], self.x[gaps + 1]
-        i = np.searchsorted(self.cuts, a + side, "right")
-        n = np.searchsorted(self.cuts, b - side, "left") - i
-        new = [np.asarray(ends, dtype=float)]
-        cut = n > 0
-        if np.any(cut):  # up to PARTS - 1 of the cuts inside, evenly by rank
-            rank = np.arange(PARTS - 1) / (PARTS - 2)
-            pick = i[cut, None] + np.round(rank[None, :] * (n[cut, None] - 1)).astype(int)
-            pick = np.unique(pick)
-            new += [self.cuts[pick] - side, self.cuts[pick] + side]
-        even = ~cut
-        if force is not None:
-            crossing = even & ((self.net[gaps] - force) * (self.net[gaps + 1] - force) < 0)
-            new += [self._ladder(g, force) for g in gaps[crossing]]
-            even &= ~crossing
-        frac = np.arange(1, EVEN) / EVEN
-        new.append((a[even, None] + (b - a)[even, None] * frac[None, :]).ravel())
-        return np.concatenate(new)
+        (N) between the gap's ends, on a ladder: at x ± 0.45·XTOL σ·r^k about where the
+        straight line between its ends crosses it, r (within :data:`LADDER`) from how fast
+        the load changes against how much its parts do, so that the gaps of the ladder can
+        be bounded away from the force. Compiled: :func:`mcsim.engine.padgaps.split_points`."""
+        from mcsim.engine import padgaps
 
-    def _ladder(self, g, force):
-        """Points in gap ``g`` at x ± (XTOL σ/2)·r^k about the crossing x of ``force`` by the
-        straight line between its ends, r from how fast the load changes against how much
-        its parts do (so that the gaps of the ladder can be bounded away from the force)."""
-        a, b = self.x[g], self.x[g + 1]
-        fa, fb = self.net[g], self.net[g + 1]
-        x = a + (b - a) * (fa - force) / (fa - fb)
-        # >= |fb - fa| > 0: the net load is a sum of the parts, signed
-        change = np.sum(np.abs(self.sums[g + 1] - self.sums[g])) + abs(
-            self.gaps[g + 1] - self.gaps[g]
-        )
-        r = float(np.clip(1 + abs(fb - fa) / (2 * change), *LADDER))
-        tol = XTOL * self.setup.sigma
-        step = tol / 2 * r ** np.arange(math.ceil(math.log((b - a) / tol) / math.log(r)) + 1)
-        points = np.concatenate([x - step, x + step])
-        return points[(points > a) & (points < b)]
+        side, tol = EDGE * self.setup.sigma, XTOL * self.setup.sigma
+        if len(ends):
+            a, b = np.array([ends[0]]), np.array([ends[1]])
+            fa = fb = change = np.full(1, np.nan)
+        else:
+            a, b, fa, fb = self.x[gaps], self.x[gaps + 1], self.net[gaps], self.net[gaps + 1]
+            # >= |fb - fa| > 0 where it crosses: the net load is a sum of the parts, signed
+            change = np.abs(self.sums[gaps + 1] - self.sums[gaps]).sum(axis=1) + np.abs(
+                self.gaps[gaps + 1] - self.gaps[gaps]
+            )
+        force = np.nan if force is None else force
+        new = padgaps.split_points(a, b, fa, fb, change, self.cuts, side, force, tol, PARTS,
+                                   EVEN, np.array(LADDER))  # fmt: skip
+        return np.concatenate([np.asarray(ends, dtype=float), new])
 
     def unsplit(self, gaps):
         """Whether each gap ``gaps`` holds a cut not yet split on (:meth:`split`)."""
@@ -300,7 +264,7 @@ class _Curve:
 #: Parts into which a humid pad's search splits a range that may hold its turn or pull-off:
 #: at its cuts, or evenly where it holds none.
 PARTS, EVEN = 64, 32
-#: Least and largest ratio of :meth:`_Curve._ladder`'s steps.
+#: Least and largest ratio of the steps of :meth:`_Curve.split`'s ladder.
 LADDER = (1.2, 2.0)
 
 
@@ -317,7 +281,7 @@ def humid_turn(spec, z, force, bottom, top, reaches):
     Branch and bound: evaluate points, and split every gap above the highest point that
     reaches whose upper bound (:meth:`_Curve.bounds`) still reaches, at the approach's cuts
     while it holds some (jump-in, reach, breakpoints: the caps' forces are continuous), then
-    evenly, or on a ladder about the crossing (:meth:`_Curve._ladder`), down to
+    evenly, or on a ladder about the crossing (:meth:`_Curve.split`), down to
     :data:`~mcsim.engine.padload.XTOL`. Every d above the returned point lies in a gap whose bound stays below
     the force, or in one narrower than XTOL (tests/engine/test_padcurves.py checks both
     against a dense evaluation).

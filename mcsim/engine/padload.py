@@ -176,9 +176,9 @@ def open_gaps(spec: MonteCarloSpec):
 def _gap_pressure(table: _GapTable, h) -> np.ndarray:
     """:func:`open_gaps` of ``table`` at ``h`` (Pa)."""
     h = np.asarray(h, dtype=float)
-    inside = (h >= table.lo) & (h <= table.hi)
     value = _piecewise(table.grid, table.c, h)
-    return value if np.all(inside) else np.where(inside, value, table.exact(h))
+    inside = (h >= table.lo) & (h <= table.hi)
+    return value if inside.all() else np.where(inside, value, table.exact(h))
 
 
 @functools.lru_cache(maxsize=16)
@@ -195,22 +195,19 @@ def open_gap_work(spec: MonteCarloSpec):
 def _gap_work(table: _GapTable, sigma: float, h_t) -> np.ndarray:
     """:func:`open_gap_work` of ``table`` at ``h_t`` (J/m²)."""
     h_t = np.asarray(h_t, dtype=float)
-    inside = (h_t >= table.lo) & (h_t <= table.hi)
     value = sigma * (table.w_top - _piecewise(table.grid, table.w, h_t)) + table.tail
-    return value if np.all(inside) else np.where(inside, value, table.exact_work(h_t))
+    inside = (h_t >= table.lo) & (h_t <= table.hi)
+    return value if inside.all() else np.where(inside, value, table.exact_work(h_t))
 
 
 def _piecewise(grid: np.ndarray, c: np.ndarray, h: np.ndarray) -> np.ndarray:
     """The piecewise polynomial of knots ``grid`` and coefficients ``c`` (one row per piece,
-    highest power first, in t = h − knot) at ``h``, by Horner's rule (a pad's search calls
-    this hundreds of times on a few points, where a :class:`scipy.interpolate.PPoly` call
-    costs several times more). Below and above the knots, the end pieces."""
-    k = np.searchsorted(grid[1:-1], h, "right")
-    t, c = h - grid[k], c[k]
-    value = c[..., 0]
-    for j in range(1, c.shape[-1]):
-        value = value * t + c[..., j]
-    return value
+    highest power first) at ``h`` (:func:`mcsim.engine.padgaps.piecewise`, compiled: a pad's
+    search calls it hundreds of times on a few points, where a
+    :class:`scipy.interpolate.PPoly` call costs ten times more)."""
+    from mcsim.engine import padgaps
+
+    return padgaps.piecewise(grid, c, np.ascontiguousarray(h).ravel()).reshape(np.shape(h))
 
 
 class _GapTable(NamedTuple):
