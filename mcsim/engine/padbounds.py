@@ -227,7 +227,7 @@ class _Curve:
                                   max(b.fa, b.fb), b.fb, upper, lower, self.lower)  # fmt: skip
         return (None if self.lower else upper), lower
 
-    def split(self, gaps, ends=(), force=None):
+    def split(self, gaps, ends=(), force=None, sides=2):
         """New points splitting each gap ``gaps`` (indices; or the range ``ends``): at up to
         :data:`PARTS` − 1 of the cuts inside it, just on either side (:data:`~mcsim.engine.padload.EDGE`); with
         none, evenly into :data:`EVEN` parts, or, where the net load crosses ``force``
@@ -248,7 +248,7 @@ class _Curve:
                 self.gaps[gaps + 1] - self.gaps[gaps]
             )
         force = np.nan if force is None else force
-        new = padgaps.split_points(a, b, fa, fb, change, self.cuts, side, force, tol, PARTS,
+        new = padgaps.split_points(a, b, fa, fb, change, self.cuts, side, sides, force, tol, PARTS,
                                    EVEN, np.array(LADDER))  # fmt: skip
         return np.concatenate([np.asarray(ends, dtype=float), new])
 
@@ -257,7 +257,7 @@ class _Curve:
         side = EDGE * self.setup.sigma
         x = self.x
         n = np.searchsorted(self.cuts, x[gaps + 1] - side) - np.searchsorted(
-            self.cuts, x[gaps] + side, "right")  # fmt: skip
+            self.cuts, x[gaps] + 2 * side, "right")  # fmt: skip
         return n > 0
 
 
@@ -307,9 +307,39 @@ def humid_turn(spec, z, force, bottom, top, reaches):
     return float(curve.x[first]), float(curve.net[first])
 
 
+def _retraction(spec, z, d_turn, top=None) -> _Curve:
+    """A humid pad's retraction after the closest approach ``d_turn`` (m), as a :class:`_Curve`
+    asked for lower bounds only: the summits in contact at the turn on the retraction
+    branch, the others (if they can feel an attraction) on the approach branch, and the
+    cuts up to ``top`` (m; none without: break-off, reach, breakpoints for a summit in
+    contact, reach, breakpoints for one that is not)."""
+    setup = _setup(spec)
+    e = setup.edges
+    z = np.ascontiguousarray(z, dtype=float)
+    approach, retract = setup.branches
+    held = z - d_turn > e.jump_in  # in contact at the turn: on the retraction branch
+    groups = [_Group(np.sort(z[held]), retract)]
+    ends = (d_turn, d_turn if top is None else top)
+    cuts = [_cuts(z[held], *ends, (e.reach, e.break_off, *e.breakpoints))]
+    if approach.low < e.jump_in and not np.all(held):  # the others may feel an attraction
+        groups.append(_Group(np.sort(z[~held]), approach))
+        cuts.append(_cuts(z[~held], *ends, (e.reach, *e.breakpoints)))
+    return _Curve(setup, tuple(groups), z, d_turn, np.unique(np.concatenate(cuts)), lower=True)
+
+
+def bracket_floors(curve: _Curve, lo, hi) -> np.ndarray:
+    """A lower bound (N) of the retraction load of ``curve``'s pad (:func:`humid_pull_off`) on
+    each of the disjoint ranges [``lo``, ``hi``] (m): :meth:`_Curve.bounds` on a curve of
+    their ends."""
+    ends = _Curve(curve.setup, curve.groups, curve.z, curve.d_turn, curve.cuts, lower=True)
+    ends.add(np.concatenate([lo, hi]))
+    _, lower = ends.bounds()
+    return lower[np.searchsorted(ends.x, lo, "right") - 1]
+
+
 def humid_pull_off(spec, z, d_turn, top):
-    """The intervals of a humid pad's retraction that may hold its pull-off: their points
-    and values as :func:`~mcsim.engine.padload._points` gives them and the lower bound of their values (N), and
+    """The curve of a humid pad's retraction (a :class:`_Curve`, for :func:`bracket_floors`),
+    the intervals of it that may hold its pull-off: their points and values as :func:`~mcsim.engine.padload._points` gives them and the lower bound of their values (N), and
     the lowest value met (N) and where (m).
 
     Branch and bound on the retraction's cuts (break-off, reach, breakpoints for a summit in
@@ -319,22 +349,13 @@ def humid_pull_off(spec, z, d_turn, top):
     cuts are then sampled and zoomed on as on the dry path (:func:`~mcsim.engine.padcurves.pull_off`).
     """
     setup = _setup(spec)
-    e = setup.edges
-    z = np.ascontiguousarray(z, dtype=float)
-    approach, retract = setup.branches
-    held = z - d_turn > e.jump_in  # in contact at the turn: on the retraction branch
-    groups = [_Group(np.sort(z[held]), retract)]
-    cuts = [_cuts(z[held], d_turn, top, (e.reach, e.break_off, *e.breakpoints))]
-    if approach.low < e.jump_in and not np.all(held):  # the others may feel an attraction
-        groups.append(_Group(np.sort(z[~held]), approach))
-        cuts.append(_cuts(z[~held], d_turn, top, (e.reach, *e.breakpoints)))
-    curve = _Curve(setup, tuple(groups), z, d_turn, np.unique(np.concatenate(cuts)), lower=True)
-    new = curve.split(None, (d_turn, top))
+    curve = _retraction(spec, z, d_turn, top)
+    new = curve.split(None, (d_turn, top), sides=1)
     while new.size:
         curve.add(new)
         _, lower = curve.bounds()
         live = np.flatnonzero(lower <= curve.net.min())
-        new = curve.split(live[curve.unsplit(live)])
+        new = curve.split(live[curve.unsplit(live)], sides=1)
     # the live gaps between cuts (not the 2·EDGE about one), sampled as _points does
     x = curve.x
     live = live[np.diff(x)[live] > 2 * EDGE * setup.sigma]
@@ -344,4 +365,4 @@ def humid_pull_off(spec, z, d_turn, top):
     points = np.hstack([a, inner, b])
     values = np.hstack([curve.net[live, None], values, curve.net[live + 1, None]])
     best = int(np.argmin(curve.net))
-    return points, values, lower[live], float(curve.net[best]), float(x[best])
+    return curve, points, values, lower[live], float(curve.net[best]), float(x[best])

@@ -75,7 +75,7 @@ def pull_off(spec: MonteCarloSpec, z: np.ndarray, d_turn: float) -> tuple[float,
         best = int(np.argmin(values))
         force, at = float(values.flat[best]), float(points.flat[best])
     else:
-        points, values, floor, force, at = padbounds.humid_pull_off(spec, z, d_turn, top)
+        curve, points, values, floor, force, at = padbounds.humid_pull_off(spec, z, d_turn, top)
         if values.size == 0:
             return (-force, at) if force < 0 else (0.0, math.nan)
         if values.min() < force:
@@ -98,7 +98,8 @@ def pull_off(spec: MonteCarloSpec, z: np.ndarray, d_turn: float) -> tuple[float,
         lo, hi = x[i, k - 1], x[i, k + 1]
         if v.min() < force:
             force, at = float(v.min()), float(x.flat[np.argmin(v)])
-        if floor is not None:
+        if floor is not None and lo.size > 1:  # the bound of each bracket, now narrower
+            floor = padbounds.bracket_floors(curve, lo, hi)
             lo, hi, floor = lo[floor <= force], hi[floor <= force], floor[floor <= force]
     return (-force, at) if force < 0 else (0.0, math.nan)
 

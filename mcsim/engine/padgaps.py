@@ -72,23 +72,24 @@ def branch_bounds(
 
 @numba.njit(**OPTIONS)
 def split_points(
-    a, b, fa, fb, change, cuts, side, force, tol, parts, even, ladder
+    a, b, fa, fb, change, cuts, side, sides, force, tol, parts, even, ladder
 ):  # pragma: no cover
     """The points that split each gap [``a``, ``b``] (m), as
     :meth:`~mcsim.engine.padbounds._Curve.split` describes: at up to ``parts`` − 1 of the
-    sorted ``cuts`` (m) inside it, evenly by rank, ``side`` (m) on either side of each; with
+    sorted ``cuts`` (m) more than 2·``side`` (m) inside it, evenly by rank, ``side`` below each
+    (``sides`` = 1) or on either side of each (2); with
     none, where the net load (``fa``, ``fb`` at its ends, N) crosses ``force`` (N; NaN: no
     force), on a ladder about where a straight line crosses it, its ratio from how fast
     the load changes against how much its parts do (``change``, N), between the bounds
     ``ladder``, its first step :data:`RUNG` times the tolerance ``tol`` (m); else evenly into ``even``
     parts."""
     n_gaps = a.size
-    first = np.searchsorted(cuts, a + side, side="right")
+    first = np.searchsorted(cuts, a + 2 * side, side="right")
     count = np.searchsorted(cuts, b - side, side="left") - first
     size = 0
     for g in range(n_gaps):
         rungs = max(_rungs(b[g] - a[g], tol, ladder[0]), 0)  # the ratio is at least ladder[0]
-        size += 2 * (parts - 1) if count[g] > 0 else even + 2 * rungs
+        size += sides * (parts - 1) if count[g] > 0 else even + 2 * rungs
     out = np.empty(size)
     n = 0
     for g in range(n_gaps):
@@ -98,8 +99,9 @@ def split_points(
                 pick = first[g] + int(np.round(j / (parts - 2) * (count[g] - 1)))
                 if pick != previous:
                     out[n] = cuts[pick] - side
-                    out[n + 1] = cuts[pick] + side
-                    n += 2
+                    if sides == 2:
+                        out[n + 1] = cuts[pick] + side
+                    n += sides
                     previous = pick
         elif (fa[g] - force) * (fb[g] - force) < 0:  # a ladder about the crossing
             x = a[g] + (b[g] - a[g]) * (fa[g] - force) / (fa[g] - fb[g])

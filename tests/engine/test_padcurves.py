@@ -247,9 +247,10 @@ def test_the_bounds_of_a_humid_curve_hold_every_value_between_its_points(law, su
 def test_humid_turns_and_pull_offs_are_those_of_a_dense_evaluation_of_the_pads_curve(law, surface):
     # Brute force: the turn is the largest d reaching the force (no point of a dense grid
     # above it by more than XTOL reaches it) and the pull-off the most tensile value of the
-    # retraction (no dense point is more tensile: 1e-9 relative, the rounding of sums batched
-    # otherwise and the location to XTOL; and a grid of 1e-4 h comes within 1 %, it can miss
-    # the square-root cusp of a summit at its break-off). RH 0.3, 0.7, 0.9; preloads 0, 1 MPa.
+    # retraction (no dense point, nor any point just either side of an edge a summit crosses,
+    # is more tensile: 1e-9 relative, the rounding of sums batched otherwise and the location
+    # to XTOL; and a grid of 1e-4 h comes within 1 %, it can miss the square-root cusp of a
+    # summit at its break-off). RH 0.3, 0.7, 0.9; preloads 0, 1 MPa.
     sigma = SURFACES[surface].sigma
     for rh in (0.3, 0.7, 0.9):
         spec = humid(law, rh=rh, surface=surface, pads=2, seed=int(rh * 10))
@@ -262,7 +263,15 @@ def test_humid_turns_and_pull_offs_are_those_of_a_dense_evaluation_of_the_pads_c
             dense = padload.pad_load(spec, z, above)
             assert np.all((dense <= force) if force == 0 else (dense < force))
             pull, at = padcurves.pull_off(spec, z, d_t)
-            d = np.linspace(d_t, z.max() + 2 * sigma, 30001)
+            # and both one-sided limits at every edge a summit crosses (the search splits
+            # the retraction just below each, padbounds.humid_pull_off)
+            e = padload.contact_edges(spec)
+            in_delta = np.array([e.reach, e.jump_in, e.break_off, *e.breakpoints])
+            cuts = (z[:, None] - in_delta[None, :]).ravel()
+            cuts = cuts[cuts > d_t]
+            side = 2 * padload.EDGE * sigma
+            d = np.concatenate([np.linspace(d_t, z.max() + 2 * sigma, 30001), cuts - side,
+                                cuts + side])  # fmt: skip
             tensile = -padload.pad_load(spec, z, d, d_t).min()
             assert tensile <= pull * (1 + 1e-9)
             assert tensile >= pull * (1 - 1e-2)
