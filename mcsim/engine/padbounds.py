@@ -166,7 +166,7 @@ class _Curve:
     def __init__(self, setup, groups, z, d_turn, cuts, lower=False):
         self.setup, self.groups, self.z, self.d_turn, self.cuts = setup, groups, z, d_turn, cuts
         self.lower = lower  # only the lower bounds are asked for
-        self.x = self.gaps = np.empty(0)
+        self.x = self.gaps = self.net = np.empty(0)
         self.sums = np.empty((0, 2 * len(groups) + 1))
 
     def add(self, d):
@@ -175,22 +175,21 @@ class _Curve:
             return
         setup, parts = self.setup, self.setup.parts
         turn = d if self.d_turn is None else np.full_like(d, self.d_turn)
-        columns = []
-        for g in self.groups:
+        sums = np.empty((d.size, self.sums.shape[1]))
+        for j, g in enumerate(self.groups):
             b = g.branch
-            whole = parts.contact_load(g.z, d, self.d_turn)
-            columns.append(whole)
+            sums[:, 2 * j] = whole = parts.contact_sums(g.z, d, turn)[:, parts.load]
             # what the summits in (d + low, d + falling] add
-            columns.append(np.zeros(d.size) if b.falling <= b.low else
-                           whole - setup.above[b.falling](g.z, d, turn)[:, parts.load])  # fmt: skip
-        columns.append(parts.caps_load(self.z, d))  # no history
-        x = np.concatenate([self.x, d])
-        order = np.argsort(x, kind="stable")
-        self.x = x[order]
-        self.sums = np.concatenate([self.sums, np.stack(columns, axis=1)])[order]
+            sums[:, 2 * j + 1] = 0.0 if b.falling <= b.low else (
+                whole - setup.above[b.falling](g.z, d, turn)[:, parts.load])  # fmt: skip
+        sums[:, -1] = parts.caps_load(self.z, d)  # no history
         gaps = setup.area * setup.gaps(d / setup.sigma)
-        self.gaps = np.concatenate([self.gaps, gaps])[order]
-        self.net = self.sums[:, 0:-1:2].sum(axis=1) - self.sums[:, -1] - self.gaps
+        net = sums[:, 0:-1:2].sum(axis=1) - sums[:, -1] - gaps
+        if self.x.size:
+            d, sums = np.concatenate([self.x, d]), np.concatenate([self.sums, sums])
+            gaps, net = np.concatenate([self.gaps, gaps]), np.concatenate([self.net, net])
+        order = np.argsort(d, kind="stable")
+        self.x, self.sums, self.gaps, self.net = d[order], sums[order], gaps[order], net[order]
 
     def bounds(self):
         """The highest and the lowest net load (N) that each gap between two points can hold.
