@@ -439,7 +439,8 @@ def prepared(law: LawSet, args, edges: Edges | None = None):
     set many times on a few rows (a pad's search: the lookup costs as much as the sums)."""
     edges = _TOUCHING if edges is None else edges
     kernel = _compiled(law, _counting(law, edges))
-    columns, jump_in, break_off = len(sum_columns(law)), float(edges.jump_in), float(edges.break_off)
+    columns = len(sum_columns(law))
+    jump_in, break_off = float(edges.jump_in), float(edges.break_off)
 
     def sums(z: np.ndarray, d: np.ndarray, d_turn: np.ndarray) -> np.ndarray:
         threshold = np.asarray(edges.threshold(d, d_turn), dtype=float)

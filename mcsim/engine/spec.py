@@ -145,6 +145,11 @@ class MonteCarloSpec:
         many times a pad, and the fields are immutable)."""
         return hash(tuple(self.fields().values()))
 
+    def __getstate__(self) -> dict:
+        """What pickles (a run sent to Dask's workers): not the cached hash, which another
+        process (hashing strings with another seed) computes again."""
+        return {k: v for k, v in self.__dict__.items() if k != "_hash"}
+
     def differences(self, other: MonteCarloSpec) -> list[str]:
         """Names of the inputs that differ from ``other``."""
         a, b = self.fields(), other.fields()

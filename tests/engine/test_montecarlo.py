@@ -532,3 +532,33 @@ def test_z_scores_of_a_law_set_with_hysteresis_over_independent_patches_are_cali
     assert abs(zs.mean()) < 5 * zs.std(ddof=1) / np.sqrt(zs.size)
     assert mean_square_is_one(zs), f"mean z² = {np.mean(zs**2):.3f}"
     assert not mean_square_is_one(zs / 0.85) and not mean_square_is_one(zs / 1.2)
+
+
+def test_a_spec_is_its_own_copy_of_h_and_hashes_alike_in_another_process(tmp_path):
+    # The spec's hash is computed once (the pads' caches look it up many times), so its h
+    # is its own and read-only; pickled to another process (Dask's workers hash strings
+    # with another seed) it hashes as an equal spec built there.
+    import os
+    import pickle
+    import subprocess
+    import sys
+
+    h = np.linspace(-1.0, 3.0, 5)
+    spec = MonteCarloSpec(SURFACES["smooth"], MATERIALS["silicon"], h, 1e-10, 2, 7)
+    h[0] = 99.0
+    assert spec.h[0] == -1.0 and not spec.h.flags.writeable
+    path = tmp_path / "spec.pickle"
+    hash(spec)  # as the caches do, before it is sent
+    path.write_bytes(pickle.dumps(spec))
+    code = (
+        "import pickle, sys, numpy as np\n"
+        "from mcsim.engine.spec import MonteCarloSpec\n"
+        "from mcsim.model.presets import MATERIALS, SURFACES\n"
+        "old = pickle.loads(open(sys.argv[1], 'rb').read())\n"
+        "new = MonteCarloSpec(SURFACES['smooth'], MATERIALS['silicon'],"
+        " np.linspace(-1.0, 3.0, 5), 1e-10, 2, 7)\n"
+        "assert old == new and hash(old) == hash(new) and len({old, new}) == 1\n"
+    )
+    env = {**os.environ, "PYTHONHASHSEED": "12345"}
+    done = subprocess.run([sys.executable, "-c", code, str(path)], env=env, capture_output=True)
+    assert done.returncode == 0, done.stderr.decode()
