@@ -61,6 +61,9 @@ class _Branch(NamedTuple):
 #: Points of :func:`branches`' grid on each branch, reaching this many times the law's
 #: largest edge at first.
 _BRANCH_POINTS, _BRANCH_SPAN = 4001, 64.0
+#: Refinements of :func:`branches`' bracket of the minimum, each on a grid of
+#: :data:`_BRANCH_POINTS` between its two sides (fewer once f is flat there to rounding).
+_BRANCH_REFINE = 8
 #: Margin on the minimum found numerically, relative.
 _MIN_MARGIN = 1e-6
 
@@ -80,7 +83,14 @@ def branches(spec: MonteCarloSpec) -> tuple[_Branch, _Branch]:
     from y to it; were ``falling`` at or past x*, f could not fall from it to y. So f does
     not rise on (−∞, falling] and does not fall on [rising, ∞), and on [falling, rising] it
     stays below max(fa, fb) (the argument takes the law's values as exact; its rounding moves
-    these points by where f changes in its last bits only). ``m`` is the least value met,
+    these points by where f changes in its last bits only). The same argument on a grid
+    between ``falling`` and ``rising``, again and again (:data:`_BRANCH_REFINE`), brings them
+    together until f is flat there to rounding: the bounds of a summit between them
+    (max(fa, fb) above, ``m`` below) then differ by rounding only, so that the bounds of
+    :meth:`_Curve.bounds` close in on the curve as its gaps narrow (with them apart by a
+    grid step, a summit between them kept the bound of a narrow gap a fixed amount above
+    the curve, and the search split on down to XTOL: DMT's pads on the smooth surface took
+    0.1–0.3 s each). ``m`` is the least value met,
     with a golden-section search between y's neighbours, made :data:`_MIN_MARGIN` more
     negative: the one number here found numerically rather than proven (the tests check it
     against Johnson's forces for JKR and a dense grid for every law set).
@@ -116,8 +126,21 @@ def branches(spec: MonteCarloSpec) -> tuple[_Branch, _Branch]:
         left = x[k - 1] if k else low
         best = minimize_scalar(lambda t: float(f(np.array([t]))[0]), bounds=(left, x[k + 1]),
                                method="bounded", options={"xatol": 1e-12 * (x[k + 1] - left)})  # fmt: skip
-        m = min(float(y[k]), float(best.fun), 0.0) * (1 + _MIN_MARGIN)
-        fa = float(f(np.array([falling]))[0]) if before.size else 0.0
+        lowest = min(float(y[k]), float(best.fun))
+        # the same argument on ever finer grids between them, until f is flat to rounding
+        for _ in range(_BRANCH_REFINE):
+            grid = np.linspace(falling, rising, _BRANCH_POINTS)
+            values = f(grid)
+            j = int(np.argmin(values))
+            lowest = min(lowest, float(values[j]))
+            before, after = values[:j] > values[j], values[j + 1 :] > values[j]
+            sides = (float(grid[np.flatnonzero(before)[-1]]) if before.any() else falling,
+                     float(grid[j + 1 + np.flatnonzero(after)[0]]) if after.any() else rising)  # fmt: skip
+            if sides == (falling, rising):
+                break
+            falling, rising = sides
+        m = min(lowest, 0.0) * (1 + _MIN_MARGIN)
+        fa = float(f(np.array([falling]))[0]) if falling > low else 0.0
         result.append(_Branch(low, falling, rising, fa, float(f(np.array([rising]))[0]), m))
     return result[0], result[1]
 
