@@ -88,7 +88,7 @@ def split_points(
     count = np.searchsorted(cuts, b - side, side="left") - first
     size = 0
     for g in range(n_gaps):
-        rungs = max(_rungs(b[g] - a[g], tol, ladder[0]), 0)  # the ratio is at least ladder[0]
+        rungs = _rungs(b[g] - a[g], tol, ladder[0])  # the ratio is at least ladder[0]
         size += sides * (parts - 1) if count[g] > 0 else even + 2 * rungs
     out = np.empty(size)
     n = 0
@@ -121,7 +121,10 @@ def split_points(
 
 @numba.njit(**OPTIONS)
 def _rungs(width, tol, ratio):  # pragma: no cover
-    """Steps tol/2·ratio^k of a ladder, k = 0, 1, ..., until they reach ``width``."""
+    """Steps of a ladder (:data:`RUNG`·tol·ratio^k, k = 0, 1, ...) until they reach ``width``:
+    one in a gap no wider than ``tol`` (or not a number)."""
+    if not width > tol:
+        return 1
     return math.ceil(math.log(width / tol) / math.log(ratio)) + 1
 
 
