@@ -58,10 +58,6 @@ def run(args) -> int:
         _p_stick_notes(report, stats.pads, args.tail)
         if report.stick["p_stick_method"] == "importance":
             interval = "Clopper-Pearson 95 % on the effective sample size (importance sampling)"
-    if fr is not None and run.spec.environment is not None:
-        print("mcsim: note: p_stick_model is not given with an environment (the model has not "
-              "been checked against humid pads); the pads' own p_stick is the answer",
-              file=sys.stderr)  # fmt: skip
     fields = report.quantities()
     method = _method(pull_off)
     if args.format == "json":  # the same fields as the table, with their units

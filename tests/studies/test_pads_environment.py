@@ -150,6 +150,16 @@ def test_humidity_raises_the_work_and_a_humid_run_file_gives_humid_pads(tmp_path
     np.testing.assert_array_equal(back.force, wet.pull_off().force)
     assert np.all(back.force > dry.pull_off().force)  # the same summits, now with menisci
     assert back.preload == 0
+    # `mcsim pads` of it says once that the model estimate is not given there
+    import io
+    from contextlib import redirect_stderr, redirect_stdout
+
+    from mcsim.cli.main import main
+
+    err = io.StringIO()
+    with redirect_stderr(err), redirect_stdout(io.StringIO()):
+        assert main(["pads", str(wet.path), "--restoring-force", "1uN"]) == 0
+    assert err.getvalue().count("p_stick_model is not given") == 1
 
 
 def test_a_pads_sweep_over_rh_stores_the_pads_work_and_no_model_estimate():
