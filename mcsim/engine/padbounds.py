@@ -125,7 +125,8 @@ def branches(spec: MonteCarloSpec) -> tuple[_Branch, _Branch]:
         rising = float(x[k + 1 + after[0]])
         left = x[k - 1] if k else low
         best = minimize_scalar(lambda t: float(f(np.array([t]))[0]), bounds=(left, x[k + 1]),
-                               method="bounded", options={"xatol": 1e-12 * (x[k + 1] - left)})  # fmt: skip
+                               method="bounded",
+                               options={"xatol": 1e-12 * (x[k + 1] - left)})  # fmt: skip
         lowest = min(float(y[k]), float(best.fun))
         # the same argument on ever finer grids between them, until f is flat to rounding
         for _ in range(_BRANCH_REFINE):
@@ -133,21 +134,17 @@ def branches(spec: MonteCarloSpec) -> tuple[_Branch, _Branch]:
             values = f(grid)
             j = int(np.argmin(values))
             lowest = min(lowest, float(values[j]))
-            before, after = values[:j] > values[j], values[j + 1 :] > values[j]
-            sides = (float(grid[np.flatnonzero(before)[-1]]) if before.any() else falling,
-                     float(grid[j + 1 + np.flatnonzero(after)[0]]) if after.any() else rising)  # fmt: skip
-            if sides == (falling, rising):
+            before = np.flatnonzero(values[:j] > values[j])
+            after = j + 1 + np.flatnonzero(values[j + 1 :] > values[j])
+            bracket = (float(grid[before[-1]]) if before.size else falling,
+                       float(grid[after[0]]) if after.size else rising)  # fmt: skip
+            if bracket == (falling, rising):
                 break
-            falling, rising = sides
+            falling, rising = bracket
         m = min(lowest, 0.0) * (1 + _MIN_MARGIN)
         fa = float(f(np.array([falling]))[0]) if falling > low else 0.0
         result.append(_Branch(low, falling, rising, fa, float(f(np.array([rising]))[0]), m))
     return result[0], result[1]
-
-
-def _ranks(zs: np.ndarray, x) -> np.ndarray:
-    """How many of the sorted heights ``zs`` lie at or below each ``x`` (m)."""
-    return np.searchsorted(zs, x, "right")
 
 
 class _Group(NamedTuple):
@@ -184,7 +181,8 @@ class _Curve:
     """The points of a humid pad's curve evaluated so far: separations ``x`` (ascending, m),
     net load ``net`` (N), and the ``sums`` (N) its bounds need (:meth:`bounds`): for each
     group of summits (one branch each) the contact load, and what the summits between the
-    branch's lowest edge and its ``falling`` point add to it; last the caps' attraction. ``cuts`` (m) are where a summit crosses an edge of its branch."""
+    branch's lowest edge and its ``falling`` point add to it; last the caps' attraction.
+    ``cuts`` (m) are where a summit crosses an edge of its branch."""
 
     def __init__(self, setup, groups, z, d_turn, cuts, lower=False):
         self.setup, self.groups, self.z, self.d_turn, self.cuts = setup, groups, z, d_turn, cuts
@@ -223,17 +221,18 @@ class _Curve:
         lies between m and top = max(f(a), f(r)) on [a, r]. Its lowest value over the gap:
         f(δ2) (at x_k) if δ2 <= a, f(δ1) (at x_k+1) if δ1 > r, else at least m, which is
         at most f(δ1) − (top − m) where a < δ1 <= r: so the lower bound needs the sums about
-        a only (a curve asked for ``lower`` bounds only leaves the sums about r out, and
-        has no upper bounds: None). Its highest:
-        f(δ1) (at x_k+1) if δ2 <= a, f(δ2) (at x_k) if δ1 > r; if δ1 <= a < δ2 <= r at most
-        f(δ1) + top − m; if a < δ1 <= r < δ2 at most f(δ2) + (top − f(r))⁺; if it spans
-        [a, r] at most f(δ1) + f(δ2) + top − 2m (all three at least m); inside (a, r] top.
-        The sums over each class are the kernel's sums at x_k or x_k+1 over the summits
-        above or below d + a or d + r, where d is that end (``sums``); the counts come from
-        the sorted heights. The caps attract more the closer (each summit's van der Waals
-        and meniscus force rise with δ: :mod:`mcsim.physics.laws.attraction`), so they lie
-        between their sums at the two ends; the open gaps' term between the mean of its ends
-        ∓ the spline's steepest slope times half the gap (:func:`_open_gap_table`).
+        a only (a curve asked for ``lower`` bounds only has no upper bounds: None). Its
+        highest: f(δ1) (at x_k+1) if δ2 <= a, f(δ2) (at x_k) if δ1 > r; if δ1 <= a < δ2 <= r
+        at most f(δ1) + top − m; if a < δ1 <= r < δ2 at most f(δ2) + (top − f(r))⁺; if it
+        spans [a, r] at most f(δ1) + f(δ2) + top − 2m (all three at least m); inside (a, r]
+        top. The sums over each class are the kernel's sums at x_k or x_k+1 over the
+        summits above or below d + a, where d is that end (``sums``); those above d + r are
+        at most the sum above d + a less m for each summit in between, which
+        :func:`branches` makes a rounding narrow; the counts come from the sorted heights.
+        The caps attract more the closer (each summit's van der Waals and meniscus force
+        rise with δ: :mod:`mcsim.physics.laws.attraction`), so they lie between their sums
+        at the two ends; the open gaps' term between the mean of its ends ∓ the spline's
+        steepest slope times half the gap (:func:`_open_gap_table`).
         Compiled: :func:`mcsim.engine.padgaps.environment_bounds` and
         :func:`~mcsim.engine.padgaps.branch_bounds`.
         """
@@ -241,8 +240,9 @@ class _Curve:
 
         x, s, setup = self.x, self.sums, self.setup
         upper, lower = np.empty(x.size - 1), np.empty(x.size - 1)
-        padgaps.environment_bounds(x, s[:, -1], self.gaps, setup.sigma, setup.table.lo,
-                                   setup.table.hi, setup.area * setup.table.slope, upper, lower)  # fmt: skip
+        table = setup.table
+        padgaps.environment_bounds(x, s[:, -1], self.gaps, setup.sigma, table.lo, table.hi,
+                                   setup.area * table.slope, upper, lower)  # fmt: skip
         for j, g in enumerate(self.groups):
             b = g.branch
             padgaps.branch_bounds(x, s[:, 2 * j], s[:, 2 * j + 1], g.z, b.falling, b.rising, b.m,
@@ -251,12 +251,15 @@ class _Curve:
 
     def split(self, gaps, ends=(), force=None, sides=2):
         """New points splitting each gap ``gaps`` (indices; or the range ``ends``): at up to
-        :data:`PARTS` − 1 of the cuts inside it, just on either side (:data:`~mcsim.engine.padload.EDGE`); with
-        none, evenly into :data:`EVEN` parts, or, where the net load crosses ``force``
-        (N) between the gap's ends, on a ladder: at x ± 0.45·XTOL σ·r^k about where the
-        straight line between its ends crosses it, r (within :data:`LADDER`) from how fast
-        the load changes against how much its parts do, so that the gaps of the ladder can
-        be bounded away from the force. Compiled: :func:`mcsim.engine.padgaps.split_points`."""
+        :data:`PARTS` − 1 of the cuts inside it, just on either side
+        (:data:`~mcsim.engine.padload.EDGE`; ``sides`` = 1: just below, enough for the
+        retraction, whose load jumps up where a summit breaks off, and for its bounds, which
+        hold for any points); with none, evenly into :data:`EVEN` parts, or, where the net
+        load crosses ``force`` (N) between the gap's ends, on a ladder: at x ± 0.45·XTOL
+        σ·r^k about where the straight line between its ends crosses it, r (within
+        :data:`LADDER`) from how fast the load changes against how much its parts do, so
+        that the gaps of the ladder can be bounded away from the force. Compiled:
+        :func:`mcsim.engine.padgaps.split_points`."""
         from mcsim.engine import padgaps
 
         side, tol = EDGE * self.setup.sigma, XTOL * self.setup.sigma
@@ -297,16 +300,16 @@ def _cuts(z: np.ndarray, low: float, high: float, in_delta) -> np.ndarray:
 
 
 def humid_turn(spec, z, force, bottom, top, reaches):
-    """:func:`~mcsim.engine.padcurves.force_turn` in humid air: the largest d in [bottom, top] (m) whose net load
-    ``reaches`` the force, and the load there (N).
+    """:func:`~mcsim.engine.padcurves.force_turn` in humid air: the largest d in [bottom, top]
+    (m) whose net load ``reaches`` the force, and the load there (N).
 
     Branch and bound: evaluate points, and split every gap above the highest point that
     reaches whose upper bound (:meth:`_Curve.bounds`) still reaches, at the approach's cuts
     while it holds some (jump-in, reach, breakpoints: the caps' forces are continuous), then
     evenly, or on a ladder about the crossing (:meth:`_Curve.split`), down to
-    :data:`~mcsim.engine.padload.XTOL`. Every d above the returned point lies in a gap whose bound stays below
-    the force, or in one narrower than XTOL (tests/engine/test_padcurves.py checks both
-    against a dense evaluation).
+    :data:`~mcsim.engine.padload.XTOL`. Every d above the returned point lies in a gap whose
+    bound stays below the force, or in one narrower than XTOL (tests/engine/test_padcurves.py
+    checks both against a dense evaluation).
     """
     setup = _setup(spec)
     e = setup.edges
@@ -361,14 +364,17 @@ def bracket_floors(curve: _Curve, lo, hi) -> np.ndarray:
 
 def humid_pull_off(spec, z, d_turn, top):
     """The curve of a humid pad's retraction (a :class:`_Curve`, for :func:`bracket_floors`),
-    the intervals of it that may hold its pull-off: their points and values as :func:`~mcsim.engine.padload._points` gives them and the lower bound of their values (N), and
-    the lowest value met (N) and where (m).
+    the intervals of it that may hold its pull-off: their points and values as
+    :func:`~mcsim.engine.padload._points` gives them and the lower bound of their values
+    (N), and the lowest value met (N) and where (m).
 
     Branch and bound on the retraction's cuts (break-off, reach, breakpoints for a summit in
     contact at the turn; reach, breakpoints for one that is not): evaluate points, drop
     every gap whose lower bound (:meth:`_Curve.bounds`) lies above the lowest value met,
-    split the others at their cuts, until none is left; the intervals left between the
-    cuts are then sampled and zoomed on as on the dry path (:func:`~mcsim.engine.padcurves.pull_off`).
+    split the others just below their cuts, until none is left; the intervals left between
+    the cuts are then sampled and zoomed on as on the dry path
+    (:func:`~mcsim.engine.padcurves.pull_off`), a zoomed bracket dropped once its own bound
+    (:func:`bracket_floors`) lies above the lowest value met.
     """
     setup = _setup(spec)
     curve = _retraction(spec, z, d_turn, top)

@@ -76,13 +76,12 @@ def split_points(
 ):  # pragma: no cover
     """The points that split each gap [``a``, ``b``] (m), as
     :meth:`~mcsim.engine.padbounds._Curve.split` describes: at up to ``parts`` − 1 of the
-    sorted ``cuts`` (m) more than 2·``side`` (m) inside it, evenly by rank, ``side`` below each
-    (``sides`` = 1) or on either side of each (2); with
-    none, where the net load (``fa``, ``fb`` at its ends, N) crosses ``force`` (N; NaN: no
-    force), on a ladder about where a straight line crosses it, its ratio from how fast
-    the load changes against how much its parts do (``change``, N), between the bounds
-    ``ladder``, its first step :data:`RUNG` times the tolerance ``tol`` (m); else evenly into ``even``
-    parts."""
+    sorted ``cuts`` (m) more than 2·``side`` (m) inside it, evenly by rank, ``side`` below
+    each (``sides`` = 1) or on either side of each (2); with none, where the net load
+    (``fa``, ``fb`` at its ends, N) crosses ``force`` (N; NaN: no force), on a ladder about
+    where a straight line crosses it, its ratio from how fast the load changes against how
+    much its parts do (``change``, N), within ``ladder``, its first step :data:`RUNG` times
+    the tolerance ``tol`` (m); else evenly into ``even`` parts."""
     n_gaps = a.size
     first = np.searchsorted(cuts, a + 2 * side, side="right")
     count = np.searchsorted(cuts, b - side, side="left") - first
