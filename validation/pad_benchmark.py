@@ -5,9 +5,9 @@ control (``padcurves.force_turn``), its exact pull-off (``pull_off``) and its wo
 separation (``pad_work``). Cases, on the same summits (smooth surface, jkr, silicon, 30 µm²,
 a preload of 1 MPa): dry, and humid (A = 1.6e-19 J, D0 = 0.2 nm, RH 0.7: every summit within
 the caps' band edge u_c = D0 + 1/(2πRη) of the flat acts, not only those that touch). Each is
-timed with the compiled kernel (``kernels.block_sums``) and with the NumPy reference
-(``kernels.block_sums_numpy``, the straightforward baseline) in the same run; peak memory is
-the process's maximum resident set. The report also splits the kernel's time per pad into
+timed with the compiled kernel (``kernels.block_sums``, ``kernels.prepared``) and with the
+NumPy reference (``kernels.block_sums_numpy``, the straightforward baseline) in the same
+run; peak memory is the process's maximum resident set. The report also splits the kernel's time per pad into
 its turn, pull-off and work, and counts the (summit, separation) pairs each sum evaluates per
 pad (the contact law's and the caps'; in a pass outside the timing): a humid pad turns
 deeper, so more summits touch and the contact law's pairs grow about as their square.
@@ -16,7 +16,9 @@ Issue 30 asks a humid pad to cost at most 1.5× a dry one. Criteria (PASS/FAIL l
 timing ones INFO under ``--quick``): the humid pad's pull-off and work equal with both
 evaluations (1e-9 relative, the kernel's rounding); peak RSS below 1 GB; humid/dry ≤ 1.5
 (timing). An INFO line gives what the environment itself costs: the pull-off and work of
-the dry pads turned where the humid ones turn (as many summits touching).
+the dry pads turned where the humid ones turn (as many summits touching); an INFO table the
+same ratio for jkr, dmt and maugis-dugdale on the smooth and intermediate surfaces (not with
+``--quick``).
 Run: ``python validation/pad_benchmark.py`` (10 pads a case) or ``--quick`` (3).
 """
 
@@ -130,6 +132,27 @@ def pairs(spec, pads):
     return {name: n / pads for name, n in count.items()}
 
 
+#: The other law sets and surfaces of the INFO table (:func:`other_cases`).
+CASES = [(law, surface) for law in ("jkr", "dmt", "maugis-dugdale")
+         for surface in ("smooth", "intermediate")]  # fmt: skip
+
+
+def other_cases(pads, seed):
+    """Markdown rows: dry and humid (RH 0.7) ms a pad and their ratio for each of
+    :data:`CASES`, the kernel (INFO: the target is the benchmark's own case)."""
+    rows = []
+    for law, surface in CASES:
+        ms = {}
+        for name, env in (("dry", None), ("humid", HUMID)):
+            spec = MonteCarloSpec(SURFACES[surface], MATERIALS["silicon"], H, AREA, pads + 1,
+                                  seed, law, cycle=True, environment=env)  # fmt: skip
+            ms[name] = timed(spec, pads, False)[0] * 1e3
+        rows.append(f"| {law} | {surface} | {ms['dry']:.1f} | {ms['humid']:.1f} | "
+                    f"{ms['humid'] / ms['dry']:.2f} |")  # fmt: skip
+    return ["| law set | surface | dry (ms/pad) | humid RH 0.7 (ms/pad) | humid/dry |",
+            "|---|---|---|---|---|", *rows]  # fmt: skip
+
+
 def main() -> None:
     p = parser(__doc__.splitlines()[0])
     args = p.parse_args()
@@ -162,6 +185,9 @@ def main() -> None:
     lines += [f"pull-off and work at the humid pads' turns: dry {deep['dry'] * 1e3:.1f} ms, humid "
               f"{deep['humid'] * 1e3:.1f} ms a pad, {deep['humid'] / deep['dry']:.3g}x (INFO: the "
               "environment's own cost as deep in contact)", ""]  # fmt: skip
+    if not args.quick:
+        lines += ["Other law sets and surfaces (INFO, the kernel, the same preload and area):", "",
+                  *other_cases(pads, args.seed), ""]  # fmt: skip
     diff = float(np.max(np.abs(kernel - numpy_) / np.abs(numpy_)))
     checks.at_most("humid pads, kernel against NumPy: largest relative difference", diff, 1e-9)
     checks.at_most("peak RSS (GB)", peak, 1.0)
