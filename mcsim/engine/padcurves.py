@@ -90,6 +90,7 @@ def pull_off(spec: MonteCarloSpec, z: np.ndarray, d_turn: float) -> tuple[float,
         floor = floor[rows]
         lo, hi, floor = lo[floor <= force], hi[floor <= force], floor[floor <= force]
     frac = np.linspace(0.0, 1.0, ZOOM + 2)[None, :]
+    check = floor is not None  # bound the brackets again (until a check drops none)
     while lo.size and np.max(hi - lo) > XTOL * sigma:
         x = lo[:, None] + (hi - lo)[:, None] * frac
         v = pad_load(spec, z, x.ravel(), d_turn).reshape(x.shape)
@@ -98,8 +99,10 @@ def pull_off(spec: MonteCarloSpec, z: np.ndarray, d_turn: float) -> tuple[float,
         lo, hi = x[i, k - 1], x[i, k + 1]
         if v.min() < force:
             force, at = float(v.min()), float(x.flat[np.argmin(v)])
-        if floor is not None and lo.size > 1:  # the bound of each bracket, now narrower
+        if check and lo.size > 1:  # the bound of each bracket, now narrower
             floor = padbounds.bracket_floors(curve, lo, hi)
+            check = bool(np.any(floor > force))
+        if floor is not None:
             lo, hi, floor = lo[floor <= force], hi[floor <= force], floor[floor <= force]
     return (-force, at) if force < 0 else (0.0, math.nan)
 
