@@ -205,6 +205,19 @@ def test_the_branches_bracket_their_minimum_and_jkr_gives_johnsons_forces(law):
         assert retract.m == pytest.approx(-pc, rel=2e-6) and retract.m < -pc
 
 
+def _curve(setup, z, d_turn):
+    """An empty humid curve of the summits ``z``: on approach (``d_turn`` None), or retracting
+    after ``d_turn`` with the summits in contact then on the retraction branch and the others
+    on the approach branch."""
+    if d_turn is None:
+        return padbounds._Curve(setup, (padbounds._Group(np.sort(z), setup.branches[0]),), z,
+                                None, np.empty(0))  # fmt: skip
+    held = z - d_turn > setup.edges.jump_in
+    groups = (padbounds._Group(np.sort(z[held]), setup.branches[1]),
+              padbounds._Group(np.sort(z[~held]), setup.branches[0]))  # fmt: skip
+    return padbounds._Curve(setup, groups, z, d_turn, np.empty(0))
+
+
 @pytest.mark.parametrize("law", PAD_LAWS)
 @pytest.mark.parametrize("surface", ["smooth", "intermediate"])
 def test_the_bounds_of_a_humid_curve_hold_every_value_between_its_points(law, surface):
@@ -220,18 +233,10 @@ def test_the_bounds_of_a_humid_curve_hold_every_value_between_its_points(law, su
     for r in range(2):
         z = padload.patch_heights(spec, r)
         d_t = padcurves.force_turn(spec, z, 1e6 * spec.area)[0]
-        e = setup.edges
         for retract in (False, True):
             low = d_t if retract else d_t - sigma
             x = np.sort(np.concatenate([low + rng.uniform(0, 2, 12) ** 2 * sigma, [low]]))
-            if retract:
-                held = z - d_t > e.jump_in
-                groups = [padbounds._Group(np.sort(z[held]), setup.branches[1]),
-                          padbounds._Group(np.sort(z[~held]), setup.branches[0])]  # fmt: skip
-                curve = padbounds._Curve(setup, tuple(groups), z, d_t, np.empty(0))
-            else:
-                group = padbounds._Group(np.sort(z), setup.branches[0])
-                curve = padbounds._Curve(setup, (group,), z, None, np.empty(0))
+            curve = _curve(setup, z, d_t if retract else None)
             curve.add(x)
             upper, lower = curve.bounds()
             inside = x[:-1, None] + np.diff(x)[:, None] * np.linspace(0, 1, 300)[None, :]
@@ -253,21 +258,14 @@ def test_the_bounds_of_a_narrow_gap_close_in_on_the_curve(law, surface):
     # between its falling and rising points, and the open gaps' slope times the width).
     spec = humid(law, rh=0.7, surface=surface)
     setup = padbounds._setup(spec)
-    sigma, e = spec.surface.sigma, setup.edges
+    sigma = spec.surface.sigma
     rng = np.random.default_rng(11)
     z = padload.patch_heights(spec, 0)
     d_t = padcurves.force_turn(spec, z, 1e6 * spec.area)[0]
     for retract in (False, True):
         x = d_t + rng.uniform(-0.5 if not retract else 0.0, 2.0, 200) * sigma
         x = np.sort(np.concatenate([x, x + 1e-9 * sigma]))
-        if retract:
-            held = z - d_t > e.jump_in
-            groups = [padbounds._Group(np.sort(z[held]), setup.branches[1]),
-                      padbounds._Group(np.sort(z[~held]), setup.branches[0])]  # fmt: skip
-            curve = padbounds._Curve(setup, tuple(groups), z, d_t, np.empty(0))
-        else:
-            group = padbounds._Group(np.sort(z), setup.branches[0])
-            curve = padbounds._Curve(setup, (group,), z, None, np.empty(0))
+        curve = _curve(setup, z, d_t if retract else None)
         curve.add(x)
         upper, lower = curve.bounds()
         narrow = np.diff(curve.x) < 2e-9 * sigma
