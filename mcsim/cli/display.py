@@ -181,8 +181,8 @@ def log_notes(quiet: bool):
 
 def environment_notes(surface, environment, varied=(), material=None) -> list[str]:
     """The environment's inputs, the heights it uses (given or estimated), why no liquid
-    condenses, if none does, and with ``material`` where its w and the Hamaker constant
-    disagree (:func:`mcsim.physics.surfaceenvironment.interface_warnings`): one line each (empty
+    condenses, if none does, and with ``material`` how its w is shared with the van der Waals
+    attraction (:func:`mcsim.physics.surfaceenvironment.interface_notes`): one line each (empty
     without an environment). The inputs in ``varied`` (a sweep's ``--vary`` names) are said to
     be varied, not given their base value; at RH = 0 there is no Kelvin radius."""
     if environment is None:
@@ -216,7 +216,7 @@ def environment_notes(surface, environment, varied=(), material=None) -> list[st
     if not env.is_dry and not env.has_capillary:
         lines.append(env.no_condensation_reason)
     if material is not None and not {"hamaker", "cutoff", "gamma"} & set(varied):
-        from mcsim.physics.surfaceenvironment import interface_warnings
+        from mcsim.physics.surfaceenvironment import interface_notes
 
-        lines += [f"warning: {w}" for w in interface_warnings(surface, material, env)]
+        lines += [f"note: {w}" for w in interface_notes(surface, material, env)]
     return lines

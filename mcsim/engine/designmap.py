@@ -49,6 +49,7 @@ from mcsim.model.params import Surface
 from mcsim.physics.adhesion import NODES
 from mcsim.physics.environment import Environment
 from mcsim.physics.gapheights import nayak_heights
+from mcsim.physics.surfaceenvironment import contact_adhesion
 
 # The entry point, and the statuses of its points.
 __all__ = ["NO_REST", "OK", "REFERENCE", "jkr_summaries"]
@@ -135,14 +136,16 @@ def jkr_summaries(sigma, R, eta, E_star, K, gamma, h, turn=None, environment=Non
     sigma, R, eta, E_star, K, gamma = np.broadcast_arrays(
         *(np.atleast_1d(np.asarray(x, dtype=float)) for x in (sigma, R, eta, E_star, K, gamma))
     )
+    if isinstance(environment, Environment):
+        environment = [environment] * sigma.size
+    if environment is not None:  # one interface: the contact law carries w less van der Waals
+        gamma = np.array([contact_adhesion(g, e) for g, e in zip(gamma, environment)])
     params = np.empty((sigma.size, 7))
     for i in range(sigma.size):
         c = reduced_constants(R[i], E_star[i], gamma[i])
         params[i] = (c["delta_c"], c["jkr_kappa"], c["jkr_t_c"], c["jkr_hertz"],
                      c["jkr_adhesion"], c["jkr_area_unit"], eta[i])  # fmt: skip
     if environment is not None:
-        if isinstance(environment, Environment):
-            environment = [environment] * sigma.size
         if rq is None or summit_offset is None:
             rq, summit_offset, _ = zip(*map(nayak_heights, sigma, R, eta))
         rq, summit_offset = (np.broadcast_to(np.asarray(x, dtype=float), sigma.shape)

@@ -56,7 +56,12 @@ from mcsim.physics.analytic import gw_curves
 from mcsim.physics.environment import Environment, as_environment
 from mcsim.physics.gapheights import gap_heights
 from mcsim.physics.laws import LawSet, get_law_set
-from mcsim.physics.surfaceenvironment import band_edge, environment_curves, environment_works
+from mcsim.physics.surfaceenvironment import (
+    band_edge,
+    contact_law,
+    environment_curves,
+    environment_works,
+)
 from mcsim.physics.validity import work_warnings
 
 #: Johnson–Greenwood (1997) map at low load: DMT below this Maugis λ.
@@ -392,7 +397,7 @@ def adhesion_summary(
     environment = as_environment(environment)
     from scipy import optimize
 
-    laws = get_law_set(law)
+    laws = contact_law(get_law_set(law), environment)  # one interface: w less van der Waals
     if "load" not in laws.names:
         raise ParameterError(
             f"law set {laws.name!r} has no net load (the seed's Eq. 4 term is not a tensile "

@@ -44,7 +44,7 @@ from mcsim.model.params import Material, Surface, check_range, check_separations
 from mcsim.model.presets import as_material, as_surface
 from mcsim.physics.environment import Environment, as_environment
 from mcsim.physics.laws import Edges, LawSet, get_law_set
-from mcsim.physics.surfaceenvironment import environment_curves
+from mcsim.physics.surfaceenvironment import contact_law, environment_curves
 from mcsim.physics.validity import area_warnings
 
 #: Quantities of a GW curve, in output order, with their meaning.
@@ -296,7 +296,7 @@ def gw_curves(
     """
     surface, material = as_surface(surface), as_material(material)
     environment = as_environment(environment)
-    laws = get_law_set(law)
+    laws = contact_law(get_law_set(law), environment)  # one interface: w less van der Waals
     h = check_separations(h)
     turn = _check_turn(laws, branch, h, turn)
     if surface.radius_by_height is not None:

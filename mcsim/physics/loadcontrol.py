@@ -40,6 +40,7 @@ from mcsim.physics.adhesion import _bottom, _top
 from mcsim.physics.analytic import AnalyticCurves, gw_curves
 from mcsim.physics.environment import Environment, as_environment
 from mcsim.physics.laws import LawSet, get_law_set
+from mcsim.physics.surfaceenvironment import contact_law
 
 #: Points of the approach grid that brackets each root.
 GRID = 801
@@ -199,7 +200,7 @@ def load_control(
     """
     surface, material = as_surface(surface), as_material(material)
     environment = as_environment(environment)
-    laws = get_law_set(law)
+    laws = contact_law(get_law_set(law), environment)  # one interface: w less van der Waals
     quantity = balanced_quantity(laws, environment is not None)
     if isinstance(pressure, str):
         pressure = parse_values(pressure, "pressure", "pressure", limit=MAX_PRESSURES)

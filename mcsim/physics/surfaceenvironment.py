@@ -8,7 +8,7 @@ owns the local gaps D0 ≤ u < u_c near it (per-summit laws,
 :mod:`mcsim.physics.laws.attraction`, appended to the law set by :func:`with_environment`),
 and the **open gaps** between the caps own u ≥ u_c (:func:`open_gap_pressures`: the local laws
 with the cutoff u_c, :func:`band_edge`). :func:`environment_curves` and
-:func:`environment_works` give both, expected over the surface; :func:`interface_warnings`
+:func:`environment_works` give both, expected over the surface; :func:`interface_notes`
 says where the inputs do not describe one interface.
 """
 
@@ -19,6 +19,7 @@ import math
 
 import numpy as np
 
+from mcsim.model.errors import ParameterError
 from mcsim.physics.environment import (
     Environment,
     capillary_pressure,
@@ -80,9 +81,74 @@ SUMMIT_OUTPUTS = {
 }  # fmt: skip
 
 
+def vdw_share(w: float, env: Environment | None) -> float:
+    """The van der Waals part w_vdW of the interface's work of adhesion w, J/m².
+
+    w_vdW = A/(12π D0²), the energy per unit area of two flats at the cutoff gap D0
+    (Israelachvili, *Intermolecular and Surface Forces*, 3rd ed., Eq. 13.11): the caps carry
+    it as a sphere–flat pull of up to 2πR·w_vdW (Derjaguin), the open gaps as the flat–flat
+    pressure. The contact law then carries w − w_vdW (:func:`contact_law`). With w = 0 (a
+    contact law without adhesion) the van der Waals attraction is the interface's whole
+    adhesion. 0 without van der Waals.
+
+    Parameters
+    ----------
+    w : float
+        The interface's work of adhesion (the material's w), J/m².
+    env : Environment or None
+
+    Raises
+    ------
+    ParameterError
+        w_vdW > w > 0: one interface's van der Waals part cannot exceed its work of adhesion.
+    """
+    if env is None or not env.has_vdw:
+        return 0.0
+    share = env.hamaker / (12 * math.pi * env.cutoff**2)
+    if 0 < w < share:
+        least = math.sqrt(env.hamaker / (12 * math.pi * w))
+        raise ParameterError(
+            f"the van der Waals part of the interface's adhesion, A/(12 pi D0^2) = {share:.4g} "
+            f"J/m^2 (A = {env.hamaker:.4g} J, D0 = cutoff = {env.cutoff * 1e9:.4g} nm), exceeds "
+            f"its work of adhesion w = {w:.4g} J/m^2: one interface has one adhesion; give "
+            f"w >= {share:.4g} J/m^2, a smaller hamaker or cutoff >= {least * 1e9:.4g} nm"
+        )
+    return share
+
+
+def contact_adhesion(w: float, env: Environment | None) -> float:
+    """The work of adhesion the contact law carries, J/m²: w − :func:`vdw_share` (0 for w = 0)."""
+    share = vdw_share(w, env)
+    return w - share if w > 0 else 0.0
+
+
+def contact_law(law: LawSet, env: Environment | None) -> LawSet:
+    """Law set ``law`` carrying the interface's adhesion less its van der Waals share.
+
+    Its parameters take the work of adhesion :func:`contact_adhesion` (``gamma``, and every
+    constant the law set derives from it), so that with the environment's van der Waals
+    attraction the interface's adhesion is counted once. ``law`` itself (the same object)
+    without van der Waals, for the seed (its net load is P − vdw − capillary: Eq. 4's
+    adhesion term F is not in it, and its F, T and μ stay the paper's Eqs. 4–8), and a law
+    set already so made.
+    """
+    if env is None or not env.has_vdw or "load" not in law.names:
+        return law
+    if getattr(law.constants, "interface", None) is not None:
+        return law
+
+    def constants(s, m) -> dict:
+        contact = dataclasses.replace(m, gamma=contact_adhesion(m.gamma, env))
+        return {**law.constants(s, contact), "gamma": contact.gamma}
+
+    constants.interface = env
+    return dataclasses.replace(law, constants=constants)
+
+
 def with_environment(law: LawSet, env: Environment | None) -> LawSet:
     """Law set ``law`` with the environment's per-summit outputs ``vdw`` and ``capillary``
-    (N, > 0 attractive; the active ones) appended, acting down to δ = −u_c.
+    (N, > 0 attractive; the active ones) appended, acting down to δ = −u_c, its own
+    adhesion less the van der Waals share (:func:`contact_law`).
 
     The outputs are the summits' caps (:mod:`mcsim.physics.laws.attraction`); the open gaps
     between them are :func:`open_gap_pressures`, which are not per summit. Their parameters
@@ -93,6 +159,7 @@ def with_environment(law: LawSet, env: Environment | None) -> LawSet:
     if env is None or not env.active:
         return law
     terms = active_terms(env)
+    contact = contact_law(law, env)
 
     def edges(params) -> Edges:
         # Down to the band edge whichever terms act: the summits drawn, hence a pad's, are
@@ -103,8 +170,9 @@ def with_environment(law: LawSet, env: Environment | None) -> LawSet:
                      tuple(sorted({*base.breakpoints, *cuts})))  # fmt: skip
 
     def constants(s, m) -> dict:
-        return {**law.constants(s, m), **summit_parameters(s, env)}
+        return {**contact.constants(s, m), **summit_parameters(s, env)}
 
+    constants.interface = env
     outputs = (*law.outputs, *(SUMMIT_OUTPUTS[t] for t in terms))
     return dataclasses.replace(law, outputs=outputs, edges=edges, constants=constants)
 
@@ -203,24 +271,29 @@ def _split(caps: dict, gaps: dict, env: Environment, shape) -> dict[str, np.ndar
 def environment_curves(h, surface, env: Environment) -> dict[str, np.ndarray]:
     """The environment's attraction per nominal area over a GW separation grid, Pa.
 
-    The summits' caps (:mod:`mcsim.physics.laws.attraction`, expected over the summit
-    heights) plus the open gaps between them (:func:`open_gap_pressures`), nothing counted
-    twice (docs/physics.md, section 'The environment: summits and open gaps').
+        The summits' caps (:mod:`mcsim.physics.laws.attraction`, expected over the summit
+        heights) plus the open gaps between them (:func:`open_gap_pressures`), nothing counted
+        twice (docs/physics.md, section 'The environment: summits and open gaps').
 
-    Parameters
-    ----------
-    h : array_like
-        Dimensionless separations d/σ (d from the mean summit plane).
-    surface : Surface
-        Summits (σ, R, η, heights) and, for the open gaps, the heights about the mean plane
-        (:func:`mcsim.physics.gapheights.gap_heights`).
-    env : Environment
+    **One interface, one law** (:func:`vdw_share`, :func:`contact_law`): the solids' van der Waals
+    attraction is part of their interface's work of adhesion w, not an addition to it. Its share
+    w_vdW = A/(12π D0²) (the flat–flat van der Waals energy at contact) acts through the caps and
+    the open gaps, and the contact law carries the rest, w − w_vdW (the short-range part), so a
+    touching summit's adhesion sums to w once.
+        Parameters
+        ----------
+        h : array_like
+            Dimensionless separations d/σ (d from the mean summit plane).
+        surface : Surface
+            Summits (σ, R, η, heights) and, for the open gaps, the heights about the mean plane
+            (:func:`mcsim.physics.gapheights.gap_heights`).
+        env : Environment
 
-    Returns
-    -------
-    dict
-        ``"vdw"``, ``"capillary"`` (totals), and their parts ``"vdw_caps"``, ``"vdw_gaps"``,
-        ``"capillary_caps"``, ``"capillary_gaps"``; Pa, > 0 attractive, zeros where off.
+        Returns
+        -------
+        dict
+            ``"vdw"``, ``"capillary"`` (totals), and their parts ``"vdw_caps"``, ``"vdw_gaps"``,
+            ``"capillary_caps"``, ``"capillary_gaps"``; Pa, > 0 attractive, zeros where off.
     """
     caps = _summit_expectation(h, surface, env, work=False)
     return _split(caps, open_gap_pressures(h, surface, env), env, np.shape(h))
@@ -234,24 +307,24 @@ def environment_works(h_t, surface, env: Environment) -> dict[str, np.ndarray]:
     return _split(caps, open_gap_works(h_t, surface, env), env, np.shape(h_t))
 
 
-def interface_warnings(surface, material, env: Environment | None) -> list[str]:
-    """Where the inputs do not describe one interface (text lines).
+def interface_notes(surface, material, env: Environment | None) -> list[str]:
+    """How the interface's adhesion is shared (text lines; empty without van der Waals).
 
-    * the contact law's work of adhesion w and the open gaps' A/(12π D0²) differ by more
-      than 2× (both are van der Waals for one interface): w is used inside the contacts,
-      A and D0 across the open gaps;
+    One line: the van der Waals share A/(12π D0²) of the work of adhesion w, which the caps
+    and the open gaps carry, and the rest, which the contact law carries
+    (:func:`vdw_share`); with w = 0, that the van der Waals attraction is the interface's
+    whole adhesion. Inputs whose share exceeds w are refused by :func:`vdw_share`.
     """
-    if env is None:
+    if env is None or not env.has_vdw:
         return []
-    out = []
-    if env.has_vdw and material.gamma > 0:
-        w_vdw = env.hamaker / (12 * math.pi * env.cutoff**2)
-        ratio = material.gamma / w_vdw
-        if not 0.5 <= ratio <= 2:
-            out.append(
-                f"the contact law's w = {material.gamma:.3g} J/m^2 and A/(12 pi D0^2) = "
-                f"{w_vdw:.3g} J/m^2 (A = {env.hamaker:.3g} J, D0 = {env.cutoff * 1e9:.3g} nm) "
-                f"differ by {max(ratio, 1 / ratio):.3g}x: w is used inside the contacts, A and D0 "
-                "across the open gaps; for one interface make them agree"
-            )
-    return out
+    share = vdw_share(material.gamma, env)
+    if material.gamma == 0:
+        return [
+            f"w = 0: the van der Waals attraction, A/(12 pi D0^2) = {share:.3g} J/m^2 at "
+            "contact, is the interface's whole adhesion (the contact law carries none)"
+        ]
+    return [
+        f"one interface: of w = {material.gamma:.3g} J/m^2 the van der Waals part "
+        f"A/(12 pi D0^2) = {share:.3g} J/m^2 acts on the summits' caps and across the open "
+        f"gaps, and the contact law carries the rest, {material.gamma - share:.3g} J/m^2"
+    ]

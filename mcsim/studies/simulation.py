@@ -30,7 +30,7 @@ from mcsim.model.units import parse_quantity
 from mcsim.physics.adhesion import regime_warnings
 from mcsim.physics.environment import Environment, as_environment
 from mcsim.physics.laws import LAW_SETS, get_law_set
-from mcsim.physics.surfaceenvironment import interface_warnings
+from mcsim.physics.surfaceenvironment import interface_notes
 from mcsim.store import runfile
 from mcsim.store.claim import Claim, claim_output
 from mcsim.store.results import Run, assemble
@@ -280,8 +280,10 @@ def _run(stack, spec: MonteCarloSpec, *, workers, scheduler, chunk_size,
          keep_heights, progress, resume, checkpoint, checkpoint_every) -> Run:  # fmt: skip
     """The sums of ``spec`` (continuing ``resume``): contacts, and the environment's caps."""
     notes = regime_warnings(spec.surface, spec.material, spec.law)
-    for warning in notes + interface_warnings(spec.surface, spec.material, spec.environment):
+    for warning in notes:
         log.info("warning: %s", warning)  # once the inputs are accepted: no error follows
+    for note in interface_notes(spec.surface, spec.material, spec.environment):
+        log.info("note: %s", note)
     n_workers = default_workers() if workers is None else workers
     summits, pairs, seconds = estimate(spec, n_workers)
     if seconds > ESTIMATE_ABOVE:

@@ -39,6 +39,7 @@ from mcsim.physics.adhesion import RegimeWarning, adhesion_summary
 from mcsim.physics.analytic import gw_curves
 from mcsim.physics.environment import Environment
 from mcsim.physics.gapheights import gap_heights
+from mcsim.physics.surfaceenvironment import vdw_share
 from mcsim.studies.sweeps import DEFAULT_H
 
 SMOOTH, SILICON = SURFACES["smooth"], MATERIALS["silicon"]
@@ -64,7 +65,8 @@ CURVES = ("load", "area", "vdw", "capillary")
 
 def random_cases(n: int, seed: int):
     """``n`` (surface, material, environment): σ log-uniform 0.3–6 nm, R 0.5–5 µm, w
-    0.05–1 J/m², E 60–300 GPa; A 0.3–3e-19 J or none, RH 0–0.95 or 0, θ 0–80°, D0 0.12–0.3 nm."""
+    0.05–1 J/m² above the van der Waals share A/(12πD0²) (one interface: w includes it), E
+    60–300 GPa; A 0.3–3e-19 J or none, RH 0–0.95 or 0, θ 0–80°, D0 0.12–0.3 nm."""
     rng = np.random.default_rng(seed)
     out = []
     for _ in range(n):
@@ -76,6 +78,7 @@ def random_cases(n: int, seed: int):
         rh = rng.uniform(0.05, 0.95) if rng.uniform() < 0.75 else 0.0
         env = Environment(hamaker=hamaker, rh=rh, contact_angle=rng.uniform(0, math.radians(80)),
                           cutoff=rng.uniform(0.12e-9, 0.3e-9))  # fmt: skip
+        material = dataclasses.replace(material, gamma=material.gamma + vdw_share(0.0, env))
         out.append((surface, material, env))
     return out
 
@@ -213,6 +216,7 @@ def test_a_point_gives_the_same_bits_alone_and_in_a_batch(batch):
 def test_one_environment_for_every_point_and_nayak_heights_by_default():
     s, m, _ = zip(*random_cases(3, seed=9))
     env = Environment(hamaker=1.6e-19, rh=0.5)
+    m = [dataclasses.replace(x, gamma=x.gamma + vdw_share(0.0, env)) for x in m]  # w >= share
     short = jkr_summaries([x.sigma for x in s], [x.R for x in s], [x.eta for x in s],
                           [x.E_star for x in m], [x.K for x in m], [x.gamma for x in m], H,
                           environment=env)  # fmt: skip

@@ -16,6 +16,7 @@ from mcsim.model.presets import MATERIALS, SURFACES
 from mcsim.physics.environment import Environment
 from mcsim.physics.gapheights import gap_heights
 from mcsim.physics.loadcontrol import load_control
+from mcsim.physics.surfaceenvironment import contact_adhesion
 
 # Surfaces nobody tuned the code to: one with rq and summit_offset given, one estimated.
 GIVEN = Surface(sigma=2.3e-9, R=0.9e-6, eta=23e12, rq=3.1e-9, summit_offset=2.2e-9, name="given")
@@ -97,7 +98,9 @@ def test_seed_keeps_its_columns_and_adds_the_net_load():
 
 def test_contact_law_load_is_net_of_the_attraction_and_mu_uses_it():
     material = dataclasses.replace(MATERIAL, tau=50e6)
-    dry = gw_curves(GIVEN, material, H, "dmt")
+    # one interface: the contact law carries w less the van der Waals share
+    contact = dataclasses.replace(material, gamma=contact_adhesion(material.gamma, ENV))
+    dry = gw_curves(GIVEN, contact, H, "dmt")
     wet = gw_curves(GIVEN, material, H, "dmt", environment=ENV)
     np.testing.assert_array_equal(wet.load, dry.load - wet.vdw - wet.capillary)
     np.testing.assert_array_equal(wet.friction, dry.friction)  # friction from the contacts

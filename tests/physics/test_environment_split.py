@@ -33,7 +33,6 @@ from mcsim.physics.surfaceenvironment import (
     band_edge,
     environment_curves,
     environment_works,
-    interface_warnings,
     open_gap_pressures,
     summit_parameters,
     with_environment,
@@ -191,16 +190,7 @@ def test_the_law_set_with_an_environment_appends_the_caps_and_reaches_down_to_th
     )
 
 
-# -- inputs that describe one interface -------------------------------------------------------
-
-
-def test_a_contact_law_and_a_hamaker_constant_that_disagree_more_than_twofold_are_said():
-    surface, silicon = SURFACES["smooth"], MATERIALS["silicon"]  # w = 0.5 J/m²
-    notes = interface_warnings(surface, silicon, HUMID)  # A/(12π D0²) = 0.106 J/m²
-    assert len(notes) == 1 and "4.71x" in notes[0] and "w is used inside the contacts" in notes[0]
-    agree = Environment(hamaker=12 * math.pi * D0**2 * 0.3, cutoff=D0)  # 0.3 J/m²: within 2×
-    assert interface_warnings(surface, silicon, agree) == []
-    assert interface_warnings(surface, silicon, None) == []
+# -- inputs that describe one interface: tests/physics/test_one_interface.py ------------------
 
 
 @pytest.mark.parametrize(
