@@ -132,7 +132,7 @@ FIGURES = {
         data=(
             ("sweep", "--surface", "smooth", "--law", "jkr", "--hamaker", "1.6e-19J", "--vary",
              "rh=0,0.3,0.4,0.5,0.6,0.7,0.8,0.9", "--preload", "0", "--pads", "40", "--area",
-             "30um^2", "--restoring-force", "800uN", "--seed", "1", "--out", "{work}/humid.h5",
+             "30um^2", "--restoring-force", "450uN", "--seed", "1", "--out", "{work}/humid.h5",
              "--quiet"),
         ),
         plot=(("plot", "{work}/humid.h5", "--out", "{work}/stiction_humid.png", "--quiet"),),

@@ -10,7 +10,9 @@ threshold humidity the adhesion stays at its dry value, above it jumps and rises
 
 Inputs (a combined rms Rq of 3, 5 and 8 nm, as their samples): GW summits with
 σ_s = 0.88 Rq, R = 0.5 µm, η = 15 µm⁻², the summit offset y_s of the Nayak estimate,
-silicon with w = 0.1 J/m² and the jkr law set, A = 1.6e-19 J, D0 = 0.2 nm, water at 25 °C,
+silicon with w = 0.1 J/m² and the jkr law set, A = 1.6e-19 J, D0 = 0.21 nm (one interface:
+its van der Waals share A/(12πD0²) = 0.096 J/m² lies within w, and the contact law carries
+the remaining 0.004 J/m²; docs/physics.md, 'One interface, one law'), water at 25 °C,
 θ = 0. Pads of 100 µm² (a few hundred summits within the caps' reach) under no preload
 (``--preload 0``: each pad turns where its own net load first turns compressive), the same
 summits at every RH (common random numbers). Γ is the mean over the pads of each pad's work
@@ -55,7 +57,7 @@ from mcsim.studies.pads import clopper_pearson
 
 RQ = (3e-9, 5e-9, 8e-9)
 R, ETA, AREA = 0.5e-6, 15e12, 100e-12
-HAMAKER, CUTOFF = 1.6e-19, 0.2e-9
+HAMAKER, CUTOFF = 1.6e-19, 0.21e-9
 MATERIAL = dataclasses.replace(MATERIALS["silicon"], gamma=0.1)
 RH = (0.0, 0.2, 0.3, 0.35, 0.4, 0.5, 0.6, 0.7, 0.8, 0.85, 0.9, 0.95)
 RH_QUICK = (0.0, 0.3, 0.6, 0.8, 0.9, 0.95)

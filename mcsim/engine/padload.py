@@ -29,6 +29,7 @@ from mcsim.model.errors import ParameterError
 from mcsim.physics.laws import Edges, LawSet, get_law_set
 from mcsim.physics.surfaceenvironment import (
     active_terms,
+    contact_law,
     open_gap_pressures,
     open_gap_works,
     with_environment,
@@ -306,8 +307,10 @@ def _band(spec: MonteCarloSpec, z: np.ndarray) -> np.ndarray:
 
 @functools.lru_cache(maxsize=16)
 def _contact_parts(spec: MonteCarloSpec) -> tuple[_Part, ...]:
-    """The contact law alone, with its arguments and edges, for each band of heights."""
-    return _per_band(spec, get_law_set(spec.law))
+    """The contact law alone (its adhesion less the environment's van der Waals share,
+    :func:`~mcsim.physics.surfaceenvironment.contact_law`), with its arguments and edges, for
+    each band of heights."""
+    return _per_band(spec, contact_law(get_law_set(spec.law), spec.environment))
 
 
 @functools.lru_cache(maxsize=16)

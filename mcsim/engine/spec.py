@@ -17,7 +17,7 @@ from mcsim.model.errors import ParameterError
 from mcsim.model.params import Material, Surface, check_range, check_separations
 from mcsim.physics.environment import Environment
 from mcsim.physics.laws import BRANCHES, Edges, LawSet, get_law_set
-from mcsim.physics.surfaceenvironment import with_environment
+from mcsim.physics.surfaceenvironment import vdw_share, with_environment
 
 COUNT_MODES = ("poisson", "fixed")
 
@@ -105,6 +105,7 @@ class MonteCarloSpec:
             raise ParameterError(f"environment = {self.environment!r} must be an Environment")
         if self.environment is not None and not self.environment.active:
             object.__setattr__(self, "environment", None)
+        vdw_share(self.material.gamma, self.environment)  # one interface: refused if above w
         if self.environment is None:  # fields only the environment reads: not the run's inputs
             bare = dataclasses.replace(self.surface, rq=None, summit_offset=None, map_heights=None)
             object.__setattr__(self, "surface", bare)

@@ -44,9 +44,14 @@ def stiction_figure(sweep):
 
 
 def _title(sweep) -> str:
+    import json
+
     a = sweep.attrs
     force = a.get("restoring_force")  # absent where varied
-    text = f"{a['pads']} pads of {a['area'] * 1e12:.4g} µm²" + (
+    name = json.loads(a["surface"]).get("name") if isinstance(a.get("surface"), str) else None
+    law = f"law {a['law']}" if "law" in a else ""
+    text = ", ".join(x for x in (name and f"surface {name}", law) if x)
+    text = (text + "\n" if text else "") + f"{a['pads']} pads of {a['area'] * 1e12:.4g} µm²" + (
         "" if force is None else f", restoring force {force * 1e6:.4g} µN")  # fmt: skip
     if "preload" in a:
         text += f", preload {a['preload'] / 1e6:.4g} MPa (force control)"
@@ -96,7 +101,8 @@ def _line(sweep, dim: str):
     ax.set_xlabel(axis_label(sweep, dim))
     ax.set_ylabel("probability that a pad sticks, p_stick")
     ax.set_title(_title(sweep), fontsize="medium")
-    ax.legend(fontsize="small")
+    # below the axes: inside, it covers the bars at the floor (the dry points of a humid sweep)
+    fig.legend(*ax.get_legend_handles_labels(), loc="outside lower center", fontsize="small")
     return fig
 
 

@@ -396,7 +396,7 @@ def test_humid_p_stick_table(tmp_path):
     args = quoted(
         r"mcsim (sweep --surface smooth --law jkr --hamaker 1\.6e-19J --vary "
         r"rh=0,0\.3,0\.4,0\.5,0\.6,0\.7,0\.8,0\.9 \\ --preload 0 --pads 40 --area 30um\^2 "
-        r"--restoring-force 800uN --seed 1) --out humid"
+        r"--restoring-force 450uN --seed 1) --out humid"
     )
     mcsim(*args[0].replace("\\ ", "").split(), "--out", str(tmp_path / "humid.h5"), "--quiet")
     with xr.open_dataset(tmp_path / "humid.h5", engine="h5netcdf") as ds:
