@@ -100,6 +100,13 @@ def test_out_of_sample_the_shipped_scan_is_off_by_more_and_ingest_warns(calibrat
         assert f"leave-one-out {loo}" in text and f"{ext} at p/E* = 3e-2" in text, doc
     text = " ".join((ROOT / "docs" / "contact.md").read_text().split())
     assert f"rms {c.loo_rms * 100:.1f} %" in text
+    text = " ".join((ROOT / "validation" / "README.md").read_text().split())  # radius_height's
+    errors = ", ".join(f"{e:+.3f}".replace("-", "−") for e in c.loo_error)
+    assert f"load left out are {errors}, worst **{loo}**" in text
+    assert (
+        f"**{c.in_sample_worst * 100:.1f} %** in sample, **{loo}** leave-one-out, {ext} at 3e-2"
+        in text
+    )
 
 
 def test_with_one_radius_one_scale_is_off_by_more_than_ten_percent_and_says_so(one_radius):
