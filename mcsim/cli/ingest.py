@@ -95,7 +95,9 @@ def add_parser(sub) -> None:
                    "at p/E* = 1e-4 .. 1e-2, so that GW's real contact area follows the exact one, "
                    "on top of a radius by height (--radius-by-height, on with it); recorded in the "
                    "surface file and used by every command that reads it (the mean gap is not "
-                   "calibrated)")  # fmt: skip
+                   "calibrated); its error out of sample (each load left out of the fit in turn, "
+                   "and at p/E* = 3e-2 above the range) is printed, recorded and warned about "
+                   "above 10 %%")  # fmt: skip
     p.add_argument("--radius-by-height", action=argparse.BooleanOptionalAction, default=None,
                    help="give each bin of summit heights its own summit radius, fitted to the "
                    "summits' curvatures (taller summits are sharper; maps only; default: with "

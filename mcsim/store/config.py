@@ -92,10 +92,17 @@ _GAP_KEYS = {
 }
 _HEIGHTS_KEYS = {"file", "edges", "counts", "densities", "unit"}
 #: Keys of ``[surface.calibration]`` (:mod:`mcsim.studies.calibration`): ``radius_scale`` is
-#: applied, the rest record how it was fitted.
+#: applied, the rest record how it was fitted: at the fitted loads (``in_sample_*``), leaving
+#: each load out in turn (``loo_*``) and at one load above them (``extrapolated_*``).
+#: ``worst_error`` and ``rms_error`` are the in-sample errors of files written before the
+#: out-of-sample ones were recorded (still read).
 _CALIBRATION_KEYS = {"radius_scale", "material", "E_star", "pixel_size", "periodic", "load",
                      "exact_area_fraction", "gw_area_fraction", "uncalibrated_area_fraction",
-                     "exact_mean_gap_nm", "gw_mean_gap_nm", "worst_error", "rms_error"}  # fmt: skip
+                     "exact_mean_gap_nm", "gw_mean_gap_nm", "in_sample_worst_error",
+                     "in_sample_rms_error", "loo_radius_scale", "loo_error", "loo_worst_error",
+                     "loo_rms_error", "extrapolated_load", "extrapolated_exact_area_fraction",
+                     "extrapolated_gw_area_fraction", "extrapolated_error", "worst_error",
+                     "rms_error"}  # fmt: skip
 _MATERIAL_KEYS = {
     "E1": ("pressure", "Young's modulus of solid 1, e.g. '160 GPa'"),
     "E2": ("pressure", "Young's modulus of solid 2, e.g. '160 GPa'"),
@@ -470,6 +477,21 @@ def environment_in_file(spec: str | Path) -> dict[str, Any]:
             raise UnitError(f"{where}: {key} = {value!r} has no unit (a bare number in a file is "
                             f"refused); write it with its unit, {meaning}")  # fmt: skip
     environment_from_values(table, where)
+    return dict(table)
+
+
+def calibration_in_surface_file(spec: str | Path) -> dict[str, Any] | None:
+    """The ``[surface.calibration]`` table of a surface TOML file, as written; None without one.
+
+    Checked as :func:`load_surface` checks it (known keys, ``radius_scale`` > 0).
+    """
+    path = Path(spec)
+    if path.suffix != ".toml" or str(spec) in SURFACES:
+        return None
+    table = _table(_read_toml(path), "surface", path).get("calibration")
+    if table is None:
+        return None
+    _radius_scale(table, f"{path} [surface]")
     return dict(table)
 
 

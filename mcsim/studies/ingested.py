@@ -415,8 +415,21 @@ class IngestResult:
             f"uncalibrated_area_fraction = {numbers(c.uncalibrated_area)}",
             f"exact_mean_gap_nm = {numbers(c.exact_gap * 1e9)}",
             f"gw_mean_gap_nm = {numbers(c.gw_gap * 1e9)}  # not calibrated",
-            f"worst_error = {c.worst:.6g}  # largest |A_GW/A_exact - 1| after calibration",
-            f"rms_error = {c.rms:.6g}",
+            f"in_sample_worst_error = {c.in_sample_worst:.6g}  # largest |A_GW/A_exact - 1| "
+            "at these loads",
+            f"in_sample_rms_error = {c.in_sample_rms:.6g}",
+            "# Out of sample: each load left out of the fit in turn (the scale fitted to the",
+            "# others, GW's error A_GW/A_exact - 1 at the load left out), and one load above",
+            "# the fitted range (exact and calibrated GW's area, the error). The warning judges",
+            "# these.",
+            f"loo_radius_scale = {numbers(c.loo_scale)}",
+            f"loo_error = {numbers(c.loo_error)}",
+            f"loo_worst_error = {c.loo_worst:.6g}",
+            f"loo_rms_error = {c.loo_rms:.6g}",
+            f"extrapolated_load = {c.extrapolated_load:.6g}  # p/E*",
+            f"extrapolated_exact_area_fraction = {c.extrapolated_exact_area:.6g}",
+            f"extrapolated_gw_area_fraction = {c.extrapolated_gw_area:.6g}",
+            f"extrapolated_error = {c.extrapolated_error:.6g}",
         ]
 
 
