@@ -17,9 +17,12 @@ OPTIONS = {"law": "jkr", "pads": 8, "seed": 1, "area": "30um^2", "restoring_forc
 @pytest.mark.filterwarnings("ignore::mcsim.physics.adhesion.RegimeWarning")
 def test_a_1d_pads_sweep_draws_p_stick_with_its_interval_and_the_model_on_a_log_axis():
     result = sweep(SURFACES["smooth"], MATERIALS["silicon"], {"sigma": "1.5nm,2.5nm"}, **OPTIONS)
-    ax = stiction_figure(result).axes[0]
+    fig = stiction_figure(result)
+    ax = fig.axes[0]
     assert ax.get_yscale() == "log" and "p_stick" in ax.get_ylabel() and "(nm)" in ax.get_xlabel()
-    labels = [t.get_text() for t in ax.get_legend().get_texts()]
+    # one legend below the axes (inside it covered the bars at the floor)
+    assert ax.get_legend() is None and len(fig.legends) == 1
+    labels = [t.get_text() for t in fig.legends[0].get_texts()]
     assert any("Clopper-Pearson" in t for t in labels) and any("model" in t for t in labels)
 
 

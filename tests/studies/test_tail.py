@@ -230,7 +230,7 @@ def test_cli_sweep_tail_stores_the_method_its_effective_sample_size_and_draws_th
     assert "p_stick by importance sampling at 2 of 2 points" in err
     # p_stick_model (~0.06) lies outside the intervals here: one warning line says so
     assert sum("p_stick_model lies outside" in line for line in err.splitlines()) == 1
-    labels = [t.get_text() for t in stiction_figure(result).axes[0].get_legend().get_texts()]
+    labels = [t.get_text() for t in stiction_figure(result).legends[0].get_texts()]
     assert any("importance sampling" in t for t in labels), labels
 
 
