@@ -36,10 +36,10 @@ mean pressure on a periodic map), the tension beyond what the wall can hold on p
 contact, and |p| on the padding. A solution is ``converged`` when it is below ``tol``.
 
 **Continuation** (:func:`follow`, :func:`cycle`): each position is warm-started from the
-previous solution. A step that lands on another branch dissipates energy: along one branch
-the energy per area e obeys de/dd = −p̄, so the step's dissipation D = e₀ − e₁ −
-½(p̄₀ + p̄₁)(d₁ − d₀) is of order Δd³ there (the trapezoid's error), and a **jump** is a step
-whose D exceeds ``jump_tol`` times ½|Δp̄ Δd|.
+previous solution. A step that lands on another branch changes the mean pressure by much
+more than the previous step predicts, and dissipates energy: along one branch the energy
+per area e obeys de/dd = −p̄, so D = e₀ − e₁ − ½(p̄₀ + p̄₁)(d₁ − d₀) > 0 measures what a
+jump lost; bisection of d confirms and locates it (:func:`cycle`).
 
 Everything is SI: heights, gaps, positions and pixel sizes in m, E* and pressures in Pa,
 energies per area in J/m².
@@ -73,8 +73,11 @@ TOL = 1e-5
 MAX_ITER = 5000
 #: A pixel is in contact when its gap is below this fraction of the law's range.
 CONTACT_GAP = 1e-9
-#: A step is a jump when it dissipates more than this fraction of ½|Δp̄ Δd| (module docstring).
-JUMP_TOL = 0.1
+#: A step is a candidate jump when its pressure change departs from the predicted one by this
+#: factor (:func:`cycle`).
+JUMP_TOL = 3.0
+#: Bisections that confirm a candidate jump and locate it (:func:`cycle`).
+REFINE = 4
 #: Smallest range allowed, relative to the pixel size.
 MIN_RANGE_PER_PIXEL = 1e-3
 _MEMORY = 10  # L-BFGS-B's number of correction pairs
@@ -294,6 +297,14 @@ def check_inputs(heights, pixel_size, E_star: float, law: Interaction) -> np.nda
     return z
 
 
+def _unit_stiffness(shape: tuple[int, int], pixel_size) -> np.ndarray:
+    """|q|/2, 1/m: the periodic stiffness p̃/ũ for E* = 1 Pa, zero at q = 0 (whose mode, the
+    mean displacement, is not a variable)."""
+    response = bem.periodic_response(shape, pixel_size, 1.0)
+    with np.errstate(divide="ignore"):
+        return np.where(response > 0, 1.0 / response, 0.0)
+
+
 class _Problem:
     """One map, modulus and law in the solver's units: lengths per range, pressures per
     largest traction, energies per w and pixel."""
@@ -307,7 +318,7 @@ class _Problem:
         scale = E_star * self.length**2 / law.w  # stiffness per unit: (Pa/m) · range / traction
         if periodic:
             self.grid = z.shape
-            stiffness = 1.0 / bem.periodic_response(z.shape, (dx, dy), 1.0)
+            stiffness = _unit_stiffness(z.shape, (dx, dy))
         else:
             self.grid = (2 * z.shape[0], 2 * z.shape[1])
             stiffness = 1.0 / bem.padded_response(z.shape, (dx, dy), 1.0).real
@@ -539,34 +550,41 @@ def follow(
         yield solution
 
 
-def jumps(steps: Iterable[AdhesiveSolution], branch: str, jump_tol: float = JUMP_TOL) -> list[Jump]:
-    """The steps of one branch that dissipate energy: the warm start landed on another branch.
+def _candidate(steps: list[AdhesiveSolution], jump_tol: float) -> bool:
+    """Whether the last step may have left its branch (:func:`cycle`)."""
+    p = [s.mean_pressure for s in steps[-3:]]
+    d = [s.position for s in steps[-3:]]
+    dissipated = steps[-2].energy - steps[-1].energy - 0.5 * (p[-1] + p[-2]) * (d[-1] - d[-2])
+    if dissipated <= 0 or p[-1] == p[-2]:
+        return False
+    if len(p) < 3 or d[-2] == d[-3]:
+        return True  # no previous step to predict from: bisection decides
+    slope = (p[-2] - p[-3]) / (d[-2] - d[-3])
+    departure = abs(p[-1] - p[-2] - slope * (d[-1] - d[-2]))
+    spread = max(s.mean_pressure for s in steps) - min(s.mean_pressure for s in steps)
+    return departure > jump_tol * max(abs(p[-2] - p[-3]), 0.01 * spread)
 
-    Parameters
-    ----------
-    steps : iterable of AdhesiveSolution
-        Consecutive solutions of one continuation.
-    branch : str
-        Its name, recorded in each :class:`Jump`.
-    jump_tol : float
-        Threshold on the dissipation D relative to ½|Δp̄ Δd| (module docstring).
 
-    Returns
-    -------
-    list of Jump
-    """
-    found, previous = [], None
-    for s in steps:
-        if previous is not None:
-            step = s.position - previous.position
-            work = 0.5 * (s.mean_pressure + previous.mean_pressure) * step
-            dissipated = previous.energy - work - s.energy
-            scale = 0.5 * abs((s.mean_pressure - previous.mean_pressure) * step)
-            if dissipated > jump_tol * scale and dissipated > 0:
-                found.append(Jump(branch, previous.position, s.position, previous.mean_pressure,
-                                  s.mean_pressure, dissipated))  # fmt: skip
-        previous = s
-    return found
+def _confirm(problem, before, after, u_before, tol, max_iter, branch, refine) -> Jump | None:
+    """Bisect a candidate step ``refine`` times from the state before it: a jump keeps its
+    change of mean pressure as the interval shrinks, a steep stretch of one branch loses it
+    (by half or more over ``refine`` ≥ 4 halvings, even at a vertical tangent, where it
+    shrinks as the square root of the interval)."""
+    lo, hi, u_lo = before, after, u_before
+    for _ in range(refine):
+        mid, u_mid = problem.solve(0.5 * (lo.position + hi.position), u_lo, tol, max_iter, False)
+        if abs(mid.mean_pressure - lo.mean_pressure) >= abs(hi.mean_pressure - mid.mean_pressure):
+            hi = mid
+        else:
+            lo, u_lo = mid, u_mid
+    change = abs(hi.mean_pressure - lo.mean_pressure)
+    if change <= 0.5 * abs(after.mean_pressure - before.mean_pressure):
+        return None
+    step = after.position - before.position
+    dissipated = (
+        before.energy - after.energy - 0.5 * (after.mean_pressure + before.mean_pressure) * step
+    )
+    return Jump(branch, lo.position, hi.position, lo.mean_pressure, hi.mean_pressure, dissipated)
 
 
 def _tensile_work(steps: tuple[AdhesiveSolution, ...]) -> float:
@@ -586,6 +604,7 @@ def cycle(
     tol: float = TOL,
     max_iter: int = MAX_ITER,
     jump_tol: float = JUMP_TOL,
+    refine: int = REFINE,
     strict: bool = True,
 ) -> AdhesiveCycle:
     """An approach of the flat through ``positions`` (descending) and the retraction back.
@@ -598,7 +617,17 @@ def cycle(
         Heights d of the flat on approach, m, strictly descending; the retraction visits
         them in reverse, warm-started from the end of the approach.
     jump_tol : float
-        As for :func:`jumps`.
+        A step is a candidate jump when its change of mean pressure departs from the one the
+        previous step predicts (linear extrapolation in d) by more than ``jump_tol`` times
+        the larger of that step's change and 1 % of the pressures' spread so far, and it
+        dissipates energy, D = e₀ − e₁ − ½(p̄₀ + p̄₁)(d₁ − d₀) > 0 (de/dd = −p̄ along one
+        branch).
+    refine : int
+        Bisections of a candidate step, from the state before it: it is a jump when the
+        final interval keeps more than half of the step's change of mean pressure. The
+        recorded positions are that interval's ends. A discrete map also dissipates a
+        little wherever its contact line crosses pixels (lattice trapping, of order
+        w·√(|φ''|Δx/E*)² per area swept); these tests keep such steps out.
     strict : bool
         Raise :class:`ConvergenceError` when a step does not converge; otherwise return the
         cycle with ``converged=False`` and NaN for its summary numbers.
@@ -617,15 +646,19 @@ def cycle(
         raise ParameterError("`positions` must be at least two strictly descending heights, m")
     _check_solver(tol, max_iter)
     problem = _Problem(heights, pixel_size, E_star, law, periodic)
-    branches, u = [], None
-    for path in (d, d[::-1]):
-        steps = []
+    branches, found, u = [], [], None
+    for name, path in (("approach", d), ("retraction", d[::-1])):
+        steps: list[AdhesiveSolution] = []
         for position in path:
+            u_before = u
             solution, u = problem.solve(float(position), u, tol, max_iter, keep=False)
             steps.append(solution)
+            if len(steps) >= 2 and _candidate(steps, jump_tol):
+                jump = _confirm(problem, steps[-2], solution, u_before, tol, max_iter, name, refine)
+                if jump is not None:
+                    found.append(jump)
         branches.append(tuple(steps))
     approach, retraction = branches
-    found = jumps(approach, "approach", jump_tol) + jumps(retraction, "retraction", jump_tol)
     failed = tuple(s.position for s in approach + retraction if not s.converged)
     if failed and strict:
         raise ConvergenceError(
