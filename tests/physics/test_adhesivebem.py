@@ -169,7 +169,7 @@ def test_cycle_jumps_in_on_approach_and_out_higher_on_retraction(sphere_cycle):
     jump_in = next(j for j in c.jumps if j.branch == "approach")
     retract = [j for j in c.jumps if j.branch == "retraction"]
     jump_out = retract[-1]
-    assert jump_in.pressure_before == 0 and jump_in.pressure_after * force < -1  # pulled in
+    assert abs(jump_in.pressure_before * force) < 1e-9 and jump_in.pressure_after * force < -1
     assert jump_out.pressure_before * force < -0.5 and abs(jump_out.pressure_after * force) < 1e-3
     assert all(abs(j.pressure_after - j.pressure_before) * force < 0.16 for j in retract[:-1])
     assert jump_out.position_after > jump_in.position_after
@@ -299,7 +299,8 @@ def test_wavy_surface_follows_johnson_on_retraction():
         return p_star * math.sin(psi) ** 2 - math.sqrt(2 * E_STAR * w * math.tan(psi) / wavelength)
 
     c = adhesivebem.cycle(z, dx, E_STAR, law, np.linspace(1.4 * h, 0.6 * h, 13), periodic=True)
-    assert c.jumps and c.jumps[0].branch == "approach" and c.jumps[0].pressure_before == 0
+    jump_in = c.jumps[0]  # from no contact (no pressure, to rounding) into contact
+    assert jump_in.branch == "approach" and abs(jump_in.pressure_before) < 1e-12 * p_star
     assert all(j.pressure_after < 0 for j in c.jumps)  # no jump-out before 1.4h
     for s in c.retraction[1:]:
         a = s.contact_fraction * wavelength / 2
