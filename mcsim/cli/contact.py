@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 
-from mcsim.cli.display import announce, print_rows
+from mcsim.cli.display import announce, print_lines, print_rows
 from mcsim.cli.options import FORMATS, add_environment, environment_of, parse_values
 
 #: Unit of each printed column.
@@ -18,6 +18,130 @@ UNITS = {
 }  # fmt: skip
 
 
+#: Unit of each printed column of ``--adhesion``.
+ADHESION_UNITS = {
+    "branch": "approach or retract", "position": "m (flat above the mean plane)",
+    "mean_gap": "m (exact)", "pressure": "Pa (mean; compressive positive)",
+    "area_fraction": "1 (A_r/A_n, exact)", "attractive_fraction": "1 (within the range)",
+    "patches": "1 (count)", "iterations": "1 (count)",
+}  # fmt: skip
+
+
+def run_adhesion(args) -> int:
+    """``mcsim contact MAP --adhesion``: the exact adhesive cycle beside GW's adhesion."""
+    import dataclasses
+    import json
+    from pathlib import Path
+
+    from mcsim.model.errors import ParameterError
+    from mcsim.model.units import parse_quantity
+    from mcsim.store.config import load_material
+    from mcsim.store.outputs import check_output
+    from mcsim.studies.adhesivecontact import adhesive_contact
+    from mcsim.studies.simulation import cli_command
+
+    if environment_of(args) is not None:
+        raise ParameterError("--adhesion with an environment (--hamaker, --rh, ...) is not "
+                             "available yet: the interaction law is the interface's adhesion")  # fmt: skip
+    for path in (args.out, args.plot):  # refused before any work
+        if path is not None:
+            check_output(path, inputs=[args.file], overwrite=args.overwrite)
+    material = load_material(args.material)
+    pressure = parse_values(args.pressure, "pressure", "--pressure")
+    if len(pressure) != 1:
+        raise ParameterError(f"--pressure = {args.pressure!r}: with --adhesion give one pressure, "
+                             "the non-adhesive load of the deepest position")  # fmt: skip
+    quantity = {
+        "w": None if args.w is None else parse_quantity(args.w, "energy_per_area", "--w"),
+        "range_": None if args.range is None else parse_quantity(args.range, "length", "--range"),
+        "pixel_size": None if args.pixel_size is None
+        else parse_quantity(args.pixel_size, "length", "--pixel-size"),
+    }  # fmt: skip
+    result = adhesive_contact(
+        args.file, material, pressure[0], law=args.interaction, steps=args.steps,
+        unit=args.unit, channel=args.channel, level=args.level, periodic=args.periodic,
+        keep_fields=bool(args.out), progress=not args.quiet, **quantity,
+        **({} if args.tol is None else {"tol": args.tol}),
+    )  # fmt: skip
+    table = result.columns()
+    rows = [{c: (v[i].item() if hasattr(v[i], "item") else v[i]) for c, v in table.items()}
+            for i in range(table["position"].size)]  # fmt: skip
+    summary = result.summary()
+    law = result.interaction
+    if args.format == "json":
+        print(json.dumps({
+            "source": str(result.source), "dx_m": result.dx, "dy_m": result.dy,
+            "periodic": result.periodic, "periodic_reason": result.periodic_reason,
+            "E_star_Pa": result.E_star, "interaction": result.law_name, "w_J_m2": law.w,
+            "range_m": law.range, "units": {c: ADHESION_UNITS[c] for c in table},
+            "summary": _json_ready(summary), "stickiness": _json_ready(dataclasses.asdict(result.stickiness)),
+            "warnings": result.warnings(), "rows": rows,
+        }, indent=1, allow_nan=False))  # fmt: skip
+    else:
+        header = [
+            f"{Path(args.file).name}: {result.shape[1]} x {result.shape[0]} pixels of "
+            f"{result.dx * 1e9:.4g} x {result.dy * 1e9:.4g} nm, levelling {result.level}; "
+            f"{'periodic' if result.periodic else 'not periodic (zero-padded)'}: "
+            f"{result.periodic_reason}",
+            f"E* = {result.E_star / 1e9:.4g} GPa; exact adhesive contact: FFT boundary "
+            f"elements, {result.law_name} law, w = {law.w:.4g} J/m^2, range {law.range * 1e9:.4g} "
+            f"nm; approach to the position where the non-adhesive contact carries "
+            f"{result.pressure:.4g} Pa, then retraction",
+        ]
+        print_rows(rows, list(table), args.format, header)
+        if args.format == "csv":  # standard output stays one CSV table
+            print_lines(_summary_lines(result, summary))
+        else:
+            print("\n".join(_summary_lines(result, summary)))
+    print_lines([f"warning: {w}" for w in result.warnings()])
+    if args.out:
+        announce(result.write(args.out, command=cli_command(), overwrite=args.overwrite),
+                 quiet=args.quiet)  # fmt: skip
+    if args.plot:
+        from mcsim.figures.contact import adhesion_figure
+        from mcsim.figures.style import save
+
+        announce(save(adhesion_figure(result), args.plot, overwrite=args.overwrite,
+                      inputs=[args.file]), quiet=args.quiet)  # fmt: skip
+    return 0
+
+
+def _json_ready(value):
+    """NaN as None, recursively (JSON has no NaN)."""
+    if isinstance(value, dict):
+        return {k: _json_ready(v) for k, v in value.items()}
+    if isinstance(value, list | tuple):
+        return [_json_ready(v) for v in value]
+    if isinstance(value, float) and value != value:
+        return None
+    return value
+
+
+def _summary_lines(result, summary: dict) -> list[str]:
+    """The cycle's numbers, GW's beside them with ratios, and the stickiness diagnostics."""
+    c, s = result.cycle, result.stickiness
+    lines = [
+        f"exact: pull-off {summary['pull_off']:.4g} Pa, work of separation "
+        f"{summary['work_of_separation']:.4g} J/m^2, hysteresis {summary['hysteresis']:.4g} J/m^2, "
+        f"largest approach pressure {summary['max_pressure']:.4g} Pa; "
+        f"{len(c.jumps)} jump(s)"
+        + "".join(f"; {j.branch} {j.position_before * 1e9:.4g} -> {j.position_after * 1e9:.4g} nm"
+                  for j in c.jumps),
+        "GW on the same map, pressed to the same largest pressure (law, pull-off Pa, ratio to "
+        "exact, work of separation J/m^2, ratio):",
+    ]  # fmt: skip
+    for law, g in summary["gw"].items():
+        lines.append(f"  {law}: {g['pull_off']:.4g} Pa ({g['pull_off_ratio']:.3g}x), "
+                     f"{g['work_of_separation']:.4g} J/m^2 ({g['work_ratio']:.3g}x)")  # fmt: skip
+    lines.append(
+        f"stickiness: Pastewka-Robbins {s.pr_parameter:.3g} ({'sticky' if s.sticky_pr else 'not sticky'}"
+        f" below 1; range/g0 = {s.range_over_gap:.3g}), Persson-Tosatti U_el/(w A) = "
+        f"{s.energy_ratio:.3g} ({'sticky' if s.sticky_pt else 'not sticky'} below 1), "
+        f"Tabor (Muser) {s.tabor:.3g}, mesh {s.mesh:.3g} (< 0.5)"
+    )  # fmt: skip
+    return lines
+
+
 def run(args) -> int:
     import json
     from pathlib import Path
@@ -28,6 +152,8 @@ def run(args) -> int:
     from mcsim.studies.contact import contact_map
     from mcsim.studies.simulation import cli_command
 
+    if args.adhesion:
+        return run_adhesion(args)
     for path in (args.out, args.plot):  # refused before any work
         if path is not None:
             check_output(path, inputs=[args.file], overwrite=args.overwrite)
@@ -88,6 +214,12 @@ def run(args) -> int:
     return 0
 
 
+def _steps(text: str) -> int:
+    if not text.isdigit() or int(text) < 2:
+        raise argparse.ArgumentTypeError(f"--steps = {text!r} must be a whole number >= 2")
+    return int(text)
+
+
 def add_parser(sub) -> None:
     p = sub.add_parser(
         "contact", help="exact elastic contact of a height map, beside GW",
@@ -132,6 +264,23 @@ def add_parser(sub) -> None:
         help="plot the contact map and A_r/A_n against p/E*, exact and GW",
     )
     p.add_argument("--overwrite", action="store_true", help="replace existing --out/--plot files")
+    a = p.add_argument_group(
+        "adhesive contact (--adhesion)",
+        "the exact adhesive approach and retraction under displacement control (FFT boundary "
+        "elements, a gap-dependent interaction law against a hard wall), beside GW's pull-off and "
+        "work of separation for jkr, dmt and maugis-dugdale on the same map; --pressure then gives "
+        "one pressure: the non-adhesive load of the deepest position",
+    )  # fmt: skip
+    a.add_argument("--adhesion", action="store_true", help="solve the adhesive cycle")
+    a.add_argument("--interaction", choices=("exponential", "maugis-dugdale"),
+                   default="exponential", help="the interaction law (default: exponential)")  # fmt: skip
+    a.add_argument(
+        "--w", metavar="W", help="work of adhesion, e.g. 0.1J/m^2 (default: the material's)"
+    )
+    a.add_argument("--range", metavar="L",
+                   help="the law's range, e.g. 1nm (default: the material's z0)")  # fmt: skip
+    a.add_argument("--steps", type=_steps, default=30,
+                   help="positions of the flat on approach, revisited on retraction (default 30)")  # fmt: skip
     p.add_argument("--quiet", action="store_true", help="no progress bar, no 'wrote FILE' line")
     add_environment(p)
     # the map is the surface: no --surface file holds an [environment] table here

@@ -45,3 +45,71 @@ def contact_figure(result):
     right.legend(fontsize="small")
     fig.suptitle(f"{result.source.name}: exact elastic contact and GW", fontsize="medium")
     return fig
+
+
+def _pressure_scale(values) -> tuple[float, str]:
+    """A pressure unit that shows ``values`` (Pa) in plain numbers: (factor, unit)."""
+    largest = float(np.nanmax(np.abs(values))) if np.size(values) else 1.0
+    for factor, unit in ((1e9, "GPa"), (1e6, "MPa"), (1e3, "kPa")):
+        if largest >= 10 * factor:
+            return factor, unit
+    return 1.0, "Pa"
+
+
+def adhesion_figure(result):
+    """The exact adhesive loop of a map, its jumps, and GW's pull-offs beside it.
+
+    Parameters
+    ----------
+    result : AdhesiveContactResult
+        From :func:`mcsim.studies.adhesivecontact.adhesive_contact`.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        Left: mean pressure against the flat's height above the map's mean plane (nm),
+        approach and retraction, each jump as a dotted step, the exact pull-off marked.
+        Right: the tensile end of the retraction, magnified, with GW's pull-off pressure of each
+        adhesive law set as a horizontal line (pressed to the same largest pressure).
+    """
+    from matplotlib.figure import Figure
+
+    from mcsim.figures.style import _COLOURS
+
+    cycle = result.cycle
+    fig = Figure(figsize=(10, 4.4), layout="constrained")
+    left, right = fig.subplots(1, 2)
+    approach = np.array([(s.position, s.mean_pressure) for s in cycle.approach])
+    retract = np.array([(s.position, s.mean_pressure) for s in cycle.retraction])
+    summary = result.summary()
+    for ax, values in ((left, np.concatenate([approach[:, 1], retract[:, 1]])),
+                       (right, [summary["pull_off"], *(g.pull_off for g in result.gw)])):  # fmt: skip
+        factor, unit = _pressure_scale(values)
+        ax.plot(approach[:, 0] * 1e9, approach[:, 1] / factor, "v-", ms=3, color=_COLOURS[0],
+                label="exact, approach")  # fmt: skip
+        ax.plot(retract[:, 0] * 1e9, retract[:, 1] / factor, "^-", ms=3, color=_COLOURS[1],
+                label="exact, retraction")  # fmt: skip
+        for j in cycle.jumps:
+            ax.plot([j.position_before * 1e9, j.position_after * 1e9],
+                    [j.pressure_before / factor, j.pressure_after / factor], ":", color="0.3")  # fmt: skip
+        ax.axhline(0.0, color="0.6", lw=0.8)
+        ax.set_xlabel("Flat above the mean plane $d$ (nm)")
+        ax.set_ylabel(f"Mean pressure $\\bar p$ ({unit}; compressive > 0)")
+        if ax is right:
+            if summary["pull_off"] > 0:
+                i = int(np.argmin(retract[:, 1]))
+                ax.plot(retract[i, 0] * 1e9, retract[i, 1] / factor, "o", mfc="none", ms=10,
+                        color="k", label=f"exact pull-off {summary['pull_off'] / factor:.3g} {unit}")  # fmt: skip
+            for k, g in enumerate(result.gw):
+                ax.axhline(-g.pull_off / factor, ls="--", color=_COLOURS[2 + k],
+                           label=f"GW {g.law}: {g.pull_off / factor:.3g} {unit}")  # fmt: skip
+            low = min(-summary["pull_off"], *(-g.pull_off for g in result.gw))
+            ax.set_ylim(1.3 * low / factor if low < 0 else -1.0, max(-0.5 * low / factor, 1e-12))
+    left.legend(fontsize="small", loc="upper right")
+    right.legend(fontsize="small", loc="lower right")
+    right.set_title("tensile end, with GW's pull-off", fontsize="medium")
+    law = result.interaction
+    fig.suptitle(f"{result.source.name}: exact adhesive contact ({result.law_name}, w = "
+                 f"{law.w:.3g} J/m², range {law.range * 1e9:.3g} nm; {result.dx * 1e9:.3g} nm "
+                 f"pixels) and GW", fontsize="medium")  # fmt: skip
+    return fig

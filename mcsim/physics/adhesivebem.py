@@ -52,8 +52,8 @@ from __future__ import annotations
 
 import math
 import warnings
-from collections.abc import Iterable, Iterator
-from dataclasses import dataclass
+from collections.abc import Callable, Iterable, Iterator
+from dataclasses import dataclass, replace
 
 import numpy as np
 from scipy import fft
@@ -636,6 +636,7 @@ def cycle(
     jump_tol: float = JUMP_TOL,
     refine: int = REFINE,
     strict: bool = True,
+    on_step: Callable[[str, AdhesiveSolution], None] | None = None,
 ) -> AdhesiveCycle:
     """An approach of the flat through ``positions`` (descending) and the retraction back.
 
@@ -658,6 +659,11 @@ def cycle(
         recorded positions are that interval's ends. A discrete map also dissipates a
         little wherever its contact line crosses pixels (lattice trapping, of order
         w·√(|φ''|Δx/E*)² per area swept); these tests keep such steps out.
+    on_step : callable, optional
+        Called after each step's solve as ``on_step(branch, solution)``, ``branch``
+        ``"approach"`` or ``"retraction"``, the solution with its fields (gap, pressure,
+        displacement): for a progress bar, or to keep fields or a warm start without this
+        function holding every step's.
     strict : bool
         Raise :class:`ConvergenceError` when a step does not converge; otherwise return the
         cycle with ``converged=False`` and NaN for its summary numbers.
@@ -681,7 +687,12 @@ def cycle(
         steps: list[AdhesiveSolution] = []
         for position in path:
             u_before = u
-            solution, u = problem.solve(float(position), u, tol, max_iter, keep=False)
+            solution, u = problem.solve(float(position), u, tol, max_iter,
+                                        keep=on_step is not None)  # fmt: skip
+            if on_step is not None:  # with its fields, then without them
+                on_step(name, solution)
+                solution = replace(solution, gap_field=None, pressure_field=None,
+                                   displacement_field=None)  # fmt: skip
             steps.append(solution)
             if len(steps) >= 2 and _candidate(steps, jump_tol):
                 jump = _confirm(problem, steps[-2], solution, u_before, tol, max_iter, name, refine)
