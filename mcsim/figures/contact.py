@@ -69,8 +69,9 @@ def adhesion_figure(result):
     matplotlib.figure.Figure
         Left: mean pressure against the flat's height above the map's mean plane (nm),
         approach and retraction, each jump as a dotted step, the exact pull-off marked.
-        Right: the tensile end of the retraction, magnified, with GW's pull-off pressure of each
-        adhesive law set as a horizontal line (pressed to the same largest pressure).
+        Right: the tensile end of the retraction, magnified, with GW's mean retraction curve of
+        each adhesive law set (pressed to the same largest pressure; its flat's height above
+        the mean plane is σh plus the summits' offset).
     """
     from matplotlib.figure import Figure
 
@@ -97,14 +98,19 @@ def adhesion_figure(result):
         ax.set_ylabel(f"Mean pressure $\\bar p$ ({unit}; compressive > 0)")
         if ax is right:
             if summary["pull_off"] > 0:
-                i = int(np.argmin(retract[:, 1]))
-                ax.plot(retract[i, 0] * 1e9, retract[i, 1] / factor, "o", mfc="none", ms=10,
-                        color="k", label=f"exact pull-off {summary['pull_off'] / factor:.3g} {unit}")  # fmt: skip
+                ax.plot(result.pull_off_position * 1e9, -summary["pull_off"] / factor, "o",
+                        mfc="none", ms=10, color="k",
+                        label=f"exact pull-off {summary['pull_off'] / factor:.3g} {unit}")  # fmt: skip
             for k, g in enumerate(result.gw):
-                ax.axhline(-g.pull_off / factor, ls="--", color=_COLOURS[2 + k],
-                           label=f"GW {g.law}: {g.pull_off / factor:.3g} {unit}")  # fmt: skip
+                ax.plot(g.position * 1e9, g.pressure / factor, "--", color=_COLOURS[2 + k],
+                        label=f"GW {g.law} (retraction), pull-off {g.pull_off / factor:.3g} {unit}")  # fmt: skip
+            pulling = retract[retract[:, 1] < -0.01 * summary["pull_off"], 0]
+            if pulling.size:  # where the exact loop pulls by more than 1 % of its pull-off
+                margin = 0.3 * (pulling.max() - pulling.min())
+                ax.set_xlim((pulling.min() - margin) * 1e9, (pulling.max() + margin) * 1e9)
             low = min(-summary["pull_off"], *(-g.pull_off for g in result.gw))
-            ax.set_ylim(1.3 * low / factor if low < 0 else -1.0, max(-0.5 * low / factor, 1e-12))
+            # room below the curves for the legend
+            ax.set_ylim(2.2 * low / factor if low < 0 else -1.0, max(-0.5 * low / factor, 1e-12))
     left.legend(fontsize="small", loc="upper right")
     right.legend(fontsize="small", loc="lower right")
     right.set_title("tensile end, with GW's pull-off", fontsize="medium")

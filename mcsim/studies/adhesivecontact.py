@@ -95,12 +95,18 @@ class GWAdhesion:
         The tensile part of its mean retraction load integrated from the turn outward,
         −∫ min(p, 0) dd, J/m²: the exact cycle's definition (not the adhesion summary's
         signed work, which also gives back the elastic energy of the preload).
+    position, pressure : ndarray
+        Its mean retraction curve: the flat's height above the map's mean plane (σh plus
+        the summits' offset above that plane, m) and the mean pressure (Pa, compressive
+        positive), from the turn to where no summit pulls.
     """
 
     law: str
     turn: float
     pull_off: float
     work_of_separation: float
+    position: np.ndarray = field(repr=False, default_factory=lambda: np.empty(0))
+    pressure: np.ndarray = field(repr=False, default_factory=lambda: np.empty(0))
 
 
 @dataclass(frozen=True)
@@ -298,8 +304,10 @@ def gw_adhesion(surface: Surface, material: Material, law: Interaction, pressure
     for name in GW_LAWS:
         turn = preload_turn(surface, gw_material, max(pressure, 0.0), name)
         s = adhesion_summary(surface, gw_material, name, turn=turn)
-        work = tensile_work(surface, gw_material, name, turn)
-        out.append(GWAdhesion(name, float(turn), float(s.pull_off_pressure), work))
+        work, h, load = tensile_work(surface, gw_material, name, turn)
+        offset = surface.summit_offset or 0.0
+        out.append(GWAdhesion(name, float(turn), float(s.pull_off_pressure), work,
+                              surface.sigma * h + offset, load * gw_material.K))  # fmt: skip
     return tuple(out)
 
 
@@ -307,9 +315,10 @@ def gw_adhesion(surface: Surface, material: Material, law: Interaction, pressure
 WORK_PANELS, WORK_NODES = 400, 8
 
 
-def tensile_work(surface: Surface, material: Material, law: str, turn: float) -> float:
+def tensile_work(surface: Surface, material: Material, law: str, turn: float):
     """−∫ min(p̄, 0) dd of GW's mean retraction load from ``turn`` (h = d/σ) to where no
-    summit feels the law, J/m² (dmt's tail: 50 z0 beyond the highest summit)."""
+    summit feels the law, J/m² (dmt's tail: 50 z0 beyond the highest summit); with the
+    separations h and the loads over A_n K it was integrated on."""
     from mcsim.physics.analytic import gw_curves
     from mcsim.physics.laws import get_law_set
 
@@ -324,7 +333,7 @@ def tensile_work(surface: Surface, material: Material, law: str, turn: float) ->
     h = ((cuts[:-1, None] + cuts[1:, None]) / 2 + half * x).ravel()
     load = gw_curves(surface, material, h, law, branch="retract", turn=turn).load
     scale = material.K * surface.sigma  # load·K is force per nominal area; dd = σ dh
-    return float(-scale * np.sum((half * w).ravel() * np.minimum(load, 0.0)))
+    return float(-scale * np.sum((half * w).ravel() * np.minimum(load, 0.0))), h, load
 
 
 def _refined_pull_off(cycle, start, z, pixels, E_star, law, periodic, tol, max_iter):
