@@ -128,6 +128,21 @@ FIGURES = {
         made="stiction_sweep.png",
         slow=True,
     ),
+    "adhesion_loop.png": Figure(
+        data=(
+            ("contact", "examples/scan.npy", "--unit", "m", "--pixel-size", "10nm", "--adhesion",
+             "--w", "0.1J/m^2", "--range", "1nm", "--pressure", "100MPa", "--quiet", "--format",
+             "csv", "> {work}/adhesion.csv"),
+        ),
+        plot=(
+            ("contact", "examples/scan.npy", "--unit", "m", "--pixel-size", "10nm", "--adhesion",
+             "--w", "0.1J/m^2", "--range", "1nm", "--pressure", "100MPa", "--quiet",
+             "--plot", "{work}/adhesion_loop.png", "> /dev/null"),
+        ),
+        inputs=("adhesion.csv",),
+        made="adhesion_loop.png",
+        slow=True,
+    ),
     "stiction_humid.png": Figure(
         data=(
             ("sweep", "--surface", "smooth", "--law", "jkr", "--hamaker", "1.6e-19J", "--vary",

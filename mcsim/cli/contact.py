@@ -31,14 +31,12 @@ def run_adhesion(args) -> int:
     """``mcsim contact MAP --adhesion``: the exact adhesive cycle beside GW's adhesion."""
     import dataclasses
     import json
-    from pathlib import Path
 
     from mcsim.model.errors import ParameterError
     from mcsim.model.units import parse_quantity
     from mcsim.store.config import load_material
     from mcsim.store.outputs import check_output
     from mcsim.studies.adhesivecontact import adhesive_contact
-    from mcsim.studies.simulation import cli_command
 
     if environment_of(args) is not None:
         raise ParameterError("--adhesion with an environment (--hamaker, --rh, ...) is not "
@@ -79,10 +77,7 @@ def run_adhesion(args) -> int:
         }, indent=1, allow_nan=False))  # fmt: skip
     else:
         header = [
-            f"{Path(args.file).name}: {result.shape[1]} x {result.shape[0]} pixels of "
-            f"{result.dx * 1e9:.4g} x {result.dy * 1e9:.4g} nm, levelling {result.level}; "
-            f"{'periodic' if result.periodic else 'not periodic (zero-padded)'}: "
-            f"{result.periodic_reason}",
+            _geometry(args, result),
             f"E* = {result.E_star / 1e9:.4g} GPa; exact adhesive contact: FFT boundary "
             f"elements, {result.law_name} law, w = {law.w:.4g} J/m^2, range {law.range * 1e9:.4g} "
             f"nm; approach to the position where the non-adhesive contact carries "
@@ -94,16 +89,34 @@ def run_adhesion(args) -> int:
         else:
             print("\n".join(_summary_lines(result, summary)))
     print_lines([f"warning: {w}" for w in result.warnings()])
+    from mcsim.figures.contact import adhesion_figure
+
+    return _write(args, result, adhesion_figure)
+
+
+def _write(args, result, figure) -> int:
+    """The ``--out`` file and the ``--plot`` figure (``figure(result)``) of a contact result."""
+    from mcsim.studies.simulation import cli_command
+
     if args.out:
         announce(result.write(args.out, command=cli_command(), overwrite=args.overwrite),
                  quiet=args.quiet)  # fmt: skip
     if args.plot:
-        from mcsim.figures.contact import adhesion_figure
         from mcsim.figures.style import save
 
-        announce(save(adhesion_figure(result), args.plot, overwrite=args.overwrite,
-                      inputs=[args.file]), quiet=args.quiet)  # fmt: skip
+        announce(save(figure(result), args.plot, overwrite=args.overwrite, inputs=[args.file]),
+                 quiet=args.quiet)  # fmt: skip
     return 0
+
+
+def _geometry(args, result) -> str:
+    """The map's first header line: its pixels, levelling and periodicity, and why."""
+    from pathlib import Path
+
+    return (f"{Path(args.file).name}: {result.shape[1]} x {result.shape[0]} pixels of "
+            f"{result.dx * 1e9:.4g} x {result.dy * 1e9:.4g} nm, levelling {result.level}; "
+            f"{'periodic' if result.periodic else 'not periodic (zero-padded)'}: "
+            f"{result.periodic_reason}")  # fmt: skip
 
 
 def _json_ready(value):
@@ -144,13 +157,11 @@ def _summary_lines(result, summary: dict) -> list[str]:
 
 def run(args) -> int:
     import json
-    from pathlib import Path
 
     from mcsim.model.units import parse_quantity
     from mcsim.store.config import load_material
     from mcsim.store.outputs import check_output
     from mcsim.studies.contact import contact_map
-    from mcsim.studies.simulation import cli_command
 
     if args.adhesion:
         return run_adhesion(args)
@@ -172,10 +183,7 @@ def run(args) -> int:
     table = result.columns()
     rows = [{c: (int(v[i]) if v.dtype.kind == "i" else float(v[i])) for c, v in table.items()}
             for i in range(result.pressure.size)]  # fmt: skip
-    geometry = (f"{Path(args.file).name}: {result.shape[1]} x {result.shape[0]} pixels of "
-                f"{result.dx * 1e9:.4g} x {result.dy * 1e9:.4g} nm, levelling {result.level}; "
-                f"{'periodic' if result.periodic else 'not periodic (zero-padded)'}: "
-                f"{result.periodic_reason}")  # fmt: skip
+    geometry = _geometry(args, result)
     if args.format == "json":
         environment_json = (None if environment is None else
                             {k: v for k, v in vars(environment).items()})  # fmt: skip
@@ -202,16 +210,9 @@ def run(args) -> int:
                 "(DMT on the exact solve): external_pressure is what must be applied"
             )
         print_rows(rows, list(table), args.format, header)
-    if args.out:
-        announce(result.write(args.out, command=cli_command(), overwrite=args.overwrite),
-                 quiet=args.quiet)  # fmt: skip
-    if args.plot:
-        from mcsim.figures.contact import contact_figure
-        from mcsim.figures.style import save
+    from mcsim.figures.contact import contact_figure
 
-        announce(save(contact_figure(result), args.plot, overwrite=args.overwrite,
-                      inputs=[args.file]), quiet=args.quiet)  # fmt: skip
-    return 0
+    return _write(args, result, contact_figure)
 
 
 def _steps(text: str) -> int:

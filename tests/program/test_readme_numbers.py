@@ -472,3 +472,28 @@ def test_every_file_the_readme_names_exists():
                            README.read_text()))  # fmt: skip
     missing = sorted(p for p in named if not (README.parent / p).exists())
     assert named and not missing, f"README.md names files that do not exist: {missing}"
+
+
+@pytest.mark.slow
+def test_adhesive_contact_of_the_shipped_scan():
+    # "Is GW's adhesion right on my map?": the README's command as JSON (about 10 s of CPU)
+    (args,) = quoted(
+        r"mcsim (contact examples/scan\.npy --unit m --pixel-size 10nm --adhesion --w "
+        r"0\.1J/m\^2 --range 1nm \\ --pressure 100MPa) --plot"
+    )
+    data = json.loads(mcsim(*args.replace("\\ ", "").split(), "--format", "json", "--quiet"))
+    s, gw, sticky = data["summary"], data["summary"]["gw"], data["stickiness"]
+    check_rounded(r"the exact pull-off is (\S+) kPa and the work of separation (\S+) mJ/m²",
+                  s["pull_off"] / 1e3, s["work_of_separation"] * 1e3)  # fmt: skip
+    ratios = [gw[law]["pull_off_ratio"] for law in ("jkr", "dmt", "maugis-dugdale")]
+    check_rounded(r"GW gives (\S+)× that pull-off with jkr, (\S+)× with dmt and (\S+)× with "
+                  r"maugis-dugdale: no law set is within 20 %", *ratios)  # fmt: skip
+    assert all(abs(r - 1) > 0.2 for r in ratios)
+    check_rounded(
+        r"the Pastewka–Robbins parameter is (\S+) \(above 1: not sticky", sticky["pr_parameter"]
+    )
+    assert sticky["pr_parameter"] > 1
+    check_rounded(r"its validity Δr/g0 = (\S+) \(below 0\.1: valid\), and the mesh criterion (\S+) "
+                  r"\(below 0\.5", sticky["range_over_gap"], sticky["mesh"])  # fmt: skip
+    assert sticky["range_over_gap"] < 0.1 and sticky["mesh"] < 0.5
+    assert len(data["rows"]) == 60  # 30 steps, approach and retraction
