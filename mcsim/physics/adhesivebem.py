@@ -580,12 +580,13 @@ def follow(
         yield solution
 
 
-def _candidate(steps: list[AdhesiveSolution], jump_tol: float) -> bool:
-    """Whether the last step may have left its branch (:func:`cycle`)."""
+def _candidate(steps: list[AdhesiveSolution], jump_tol: float, resolution: float) -> bool:
+    """Whether the last step may have left its branch (:func:`cycle`); changes of mean
+    pressure below ``resolution`` (Pa, the solver's tolerance on a pixel) are not jumps."""
     p = [s.mean_pressure for s in steps[-3:]]
     d = [s.position for s in steps[-3:]]
     dissipated = steps[-2].energy - steps[-1].energy - 0.5 * (p[-1] + p[-2]) * (d[-1] - d[-2])
-    if dissipated <= 0 or p[-1] == p[-2]:
+    if dissipated <= 0 or abs(p[-1] - p[-2]) <= resolution:
         return False
     if len(p) < 3 or d[-2] == d[-3]:
         return True  # no previous step to predict from: bisection decides
@@ -649,8 +650,8 @@ def cycle(
     jump_tol : float
         A step is a candidate jump when its change of mean pressure departs from the one the
         previous step predicts (linear extrapolation in d) by more than ``jump_tol`` times
-        the larger of that step's change and 1 % of the pressures' spread so far, and it
-        dissipates energy, D = e₀ − e₁ − ½(p̄₀ + p̄₁)(d₁ − d₀) > 0 (de/dd = −p̄ along one
+        the larger of that step's change and 1 % of the pressures' spread so far, exceeds
+        ``tol`` times w/range (the pressure the solve resolves), and it dissipates energy, D = e₀ − e₁ − ½(p̄₀ + p̄₁)(d₁ − d₀) > 0 (de/dd = −p̄ along one
         branch).
     refine : int
         Bisections of a candidate step, from the state before it: it is a jump when the
@@ -683,7 +684,7 @@ def cycle(
             u_before = u
             solution, u = problem.solve(float(position), u, tol, max_iter, keep=False)
             steps.append(solution)
-            if len(steps) >= 2 and _candidate(steps, jump_tol):
+            if len(steps) >= 2 and _candidate(steps, jump_tol, tol * law.max_traction):
                 jump = _confirm(problem, steps[-2], solution, u_before, tol, max_iter, name, refine)
                 if jump is not None:
                     found.append(jump)
