@@ -362,12 +362,9 @@ class _Problem:
         return fft.irfft2(fft.rfft2(u, workers=-1) * self.stiffness, s=self.grid, workers=-1)
 
     def law_terms(self, g: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """φ/w and dφ/dg · range/w of dimensionless gaps."""
-        if isinstance(self.law, MaugisDugdale):
-            inside = g < 1.0
-            return -np.where(inside, 1.0 - g, 0.0), inside.astype(float)
-        e = np.exp(-g)
-        return -e, e
+        """φ/w and dφ/dg · range/w of dimensionless gaps, from the law's own functions."""
+        gap = g * self.length
+        return self.law.energy(gap) / self.law.w, self.law.pressure(gap) / -self.traction
 
     def start(self, d: float, initial: np.ndarray | None) -> np.ndarray:
         """Feasible starting variables: ``initial`` (m) or the undeformed surface."""

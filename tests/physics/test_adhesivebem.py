@@ -203,6 +203,20 @@ def test_non_convergence_is_flagged_never_silent():
     assert math.isnan(c.pull_off) and math.isnan(c.work_of_separation)
 
 
+@pytest.mark.parametrize("kind", [MaugisDugdale, Exponential])
+def test_law_energy_starts_at_minus_w_and_its_traction_is_minus_its_slope(kind):
+    # φ(0) = −w, φ → 0 far apart, and pressure = −dφ/dg (central differences of 1e-6 of the
+    # range, away from the Dugdale kink at g = range; to 1e-6 relative).
+    law = kind(0.1, 1e-9)
+    assert law.energy(0.0) == pytest.approx(-0.1)
+    assert abs(law.energy(50e-9)) < 1e-20
+    g = np.array([0.1, 0.5, 0.9, 1.5, 3.0]) * 1e-9
+    h = 1e-6 * law.range
+    slope = (law.energy(g + h) - law.energy(g - h)) / (2 * h)
+    np.testing.assert_allclose(law.pressure(g), -slope, rtol=1e-6, atol=1e-6 * law.max_traction)
+    assert np.all(law.pressure(g) <= 0)  # tensile
+
+
 @pytest.mark.parametrize(
     ("kwargs", "match"),
     [
