@@ -362,12 +362,9 @@ class _Problem:
         return fft.irfft2(fft.rfft2(u, workers=-1) * self.stiffness, s=self.grid, workers=-1)
 
     def law_terms(self, g: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """φ/w and dφ/dg · range/w of dimensionless gaps."""
-        if isinstance(self.law, MaugisDugdale):
-            inside = g < 1.0
-            return -np.where(inside, 1.0 - g, 0.0), inside.astype(float)
-        e = np.exp(-g)
-        return -e, e
+        """φ/w and dφ/dg · range/w of dimensionless gaps, from the law's own functions."""
+        gap = g * self.length
+        return self.law.energy(gap) / self.law.w, self.law.pressure(gap) / -self.traction
 
     def start(self, d: float, initial: np.ndarray | None) -> np.ndarray:
         """Feasible starting variables: ``initial`` (m) or the undeformed surface."""
@@ -580,12 +577,13 @@ def follow(
         yield solution
 
 
-def _candidate(steps: list[AdhesiveSolution], jump_tol: float) -> bool:
-    """Whether the last step may have left its branch (:func:`cycle`)."""
+def _candidate(steps: list[AdhesiveSolution], jump_tol: float, resolution: float) -> bool:
+    """Whether the last step may have left its branch (:func:`cycle`); changes of mean
+    pressure below ``resolution`` (Pa, the solver's tolerance on a pixel) are not jumps."""
     p = [s.mean_pressure for s in steps[-3:]]
     d = [s.position for s in steps[-3:]]
     dissipated = steps[-2].energy - steps[-1].energy - 0.5 * (p[-1] + p[-2]) * (d[-1] - d[-2])
-    if dissipated <= 0 or p[-1] == p[-2]:
+    if dissipated <= 0 or abs(p[-1] - p[-2]) <= resolution:
         return False
     if len(p) < 3 or d[-2] == d[-3]:
         return True  # no previous step to predict from: bisection decides
@@ -650,8 +648,8 @@ def cycle(
     jump_tol : float
         A step is a candidate jump when its change of mean pressure departs from the one the
         previous step predicts (linear extrapolation in d) by more than ``jump_tol`` times
-        the larger of that step's change and 1 % of the pressures' spread so far, and it
-        dissipates energy, D = e₀ − e₁ − ½(p̄₀ + p̄₁)(d₁ − d₀) > 0 (de/dd = −p̄ along one
+        the larger of that step's change and 1 % of the pressures' spread so far, exceeds
+        ``tol`` times w/range (the pressure the solve resolves), and it dissipates energy, D = e₀ − e₁ − ½(p̄₀ + p̄₁)(d₁ − d₀) > 0 (de/dd = −p̄ along one
         branch).
     refine : int
         Bisections of a candidate step, from the state before it: it is a jump when the
@@ -694,7 +692,7 @@ def cycle(
                 solution = replace(solution, gap_field=None, pressure_field=None,
                                    displacement_field=None)  # fmt: skip
             steps.append(solution)
-            if len(steps) >= 2 and _candidate(steps, jump_tol):
+            if len(steps) >= 2 and _candidate(steps, jump_tol, tol * law.max_traction):
                 jump = _confirm(problem, steps[-2], solution, u_before, tol, max_iter, name, refine)
                 if jump is not None:
                     found.append(jump)
