@@ -61,12 +61,12 @@ from scipy import fft
 from mcsim.model.errors import ParameterError
 from mcsim.physics import bem
 from mcsim.physics.interactions import (
-    MESH_LIMIT,
     Exponential,
     Interaction,
     MaugisDugdale,
     mesh_parameter,
 )
+from mcsim.physics.stickiness import MESH_LIMIT
 
 #: Default tolerance: largest force imbalance relative to the largest traction w/range.
 TOL = 1e-5
@@ -237,7 +237,7 @@ def check_inputs(heights, pixel_size, E_star: float, law: Interaction) -> np.nda
     -----
     UserWarning
         When the mesh parameter (:func:`mcsim.physics.interactions.mesh_parameter`) exceeds
-        :data:`mcsim.physics.interactions.MESH_LIMIT`: the pixels do not resolve the law.
+        :data:`mcsim.physics.stickiness.MESH_LIMIT`: the pixels do not resolve the law.
     """
     z = np.asarray(heights, dtype=float)
     if z.ndim != 2 or min(z.shape) < 2:

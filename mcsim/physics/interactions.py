@@ -25,9 +25,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from mcsim.model.errors import ParameterError
-
-#: Largest mesh parameter √(|φ''| Δx / E*) that resolves a law (Wang, Zhou & Müser 2021).
-MESH_LIMIT = 0.5
+from mcsim.physics import stickiness
 
 
 def _positive(name: str, value: float, unit: str) -> float:
@@ -158,7 +156,8 @@ Interaction = MaugisDugdale | Exponential
 
 
 def mesh_parameter(law: Interaction, pixel_size: float, E_star: float) -> float:
-    """√(|φ''|max Δx / E*): below :data:`MESH_LIMIT` the pixel resolves the law.
+    """√(|φ''|max Δx / E*) of a law (:func:`mcsim.physics.stickiness.mesh_parameter`): below
+    :data:`mcsim.physics.stickiness.MESH_LIMIT` the pixel resolves the law.
 
     Wang, Zhou & Müser, Lubricants 9, 17 (2021): the discretised adhesive contact converges
     to the continuum when the interaction's stiffness per pixel, |φ''| Δx, is small against
@@ -178,4 +177,4 @@ def mesh_parameter(law: Interaction, pixel_size: float, E_star: float) -> float:
     float
         The mesh parameter, dimensionless.
     """
-    return math.sqrt(law.max_curvature * float(pixel_size) / float(E_star))
+    return float(stickiness.mesh_parameter(law.max_curvature, pixel_size, E_star))
