@@ -147,8 +147,12 @@ def add_parser(sub) -> None:
     p.add_argument("--synthesize", type=int, metavar="N",
                    help="also write N periodic pads synthesised from the map's radial PSD (maps "
                    "only; at the map's pixel size; HDF5, --pads-out)")  # fmt: skip
-    p.add_argument("--pad-pixels", type=int, metavar="M",
-                   help=f"pixels along each side of a --synthesize pad, >= 8 (default {PAD_PIXELS})")
+    p.add_argument(
+        "--pad-pixels",
+        type=int,
+        metavar="M",
+        help=f"pixels along each side of a --synthesize pad, >= 8 (default {PAD_PIXELS})",
+    )
     p.add_argument("--pads-out", help="pads file of --synthesize (default: <out stem>-pads.h5)")
     p.add_argument("--seed", type=int, help="root seed of --synthesize (default: fresh, recorded)")
     p.add_argument("--quiet", action="store_true", help="no 'wrote FILE' line")

@@ -140,12 +140,18 @@ def check_pads(n, pixels, seed=None, path=None) -> None:
     from mcsim.studies.ingest import _is_histogram_file
 
     if path is not None and _is_histogram_file(Path(path)):
-        raise ParameterError(f"`path` = {str(path)!r}: a histogram has no spectrum; give a height map")
-    fields = (("n", n, 1), ("pixels", pixels, MIN_SIDE)) + (() if seed is None else (("seed", seed, 0),))
+        raise ParameterError(
+            f"`path` = {str(path)!r}: a histogram has no spectrum; give a height map"
+        )
+    fields = (("n", n, 1), ("pixels", pixels, MIN_SIDE)) + (
+        () if seed is None else (("seed", seed, 0),)
+    )
     for name, value, low in fields:
         if not (isinstance(value, int | np.integer) and not isinstance(value, bool)
                 and value >= low):  # fmt: skip
-            raise ParameterError(f"`{name}` = {value!r} is out of range (allowed: an integer >= {low})")
+            raise ParameterError(
+                f"`{name}` = {value!r} is out of range (allowed: an integer >= {low})"
+            )
 
 
 def synthesize_pads(

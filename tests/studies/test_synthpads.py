@@ -86,7 +86,7 @@ def test_bad_counts_sizes_and_seeds_are_refused_naming_the_field(n, pixels, seed
 
 
 def test_a_histogram_has_no_spectrum():
-    with pytest.raises(ParameterError, match="`path`.*histogram"):
+    with pytest.raises(ParameterError, match=r"`path`.*histogram"):
         synthesize_pads(EXAMPLES / "hist.csv", 2, 16, 1)
 
 
