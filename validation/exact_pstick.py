@@ -142,7 +142,7 @@ def gw_pads(surface, law: str, area: float, pads: int, seed: int) -> np.ndarray:
 def main() -> None:
     args = parser(__doc__.splitlines()[0]).parse_args()
     args.out.mkdir(parents=True, exist_ok=True)
-    n, pixels, n_gw, n_refined = (10, 16, 40, REFINED) if args.quick else (300, 32, 400, REFINED)
+    n, pixels, n_gw = (10, 16, 40) if args.quick else (300, 32, 400)
     pad_seed, *gw_seeds = child_seeds(args.seed, 1 + len(GW_LAWS))
     silicon = MATERIALS["silicon"]
     E_star = silicon.E_star
@@ -169,7 +169,7 @@ def main() -> None:
         if bad:
             failed.append(f"pad {i} ({bad} solves)")
     t_exact = time.perf_counter() - t0
-    refined = [exact_pad(z, E_star, law, FINE / 2)[0] for z in pads[:n_refined]]
+    refined = [exact_pad(z, E_star, law, FINE / 2)[0] for z in pads[:REFINED]]
     step_change = max(abs(r / f - 1) if f > 0 else abs(r) for r, f in zip(refined, force))
     t0 = time.perf_counter()
     gw = {name: gw_pads(surface, name, area, n_gw, s) for name, s in zip(GW_LAWS, gw_seeds)}
@@ -181,7 +181,7 @@ def main() -> None:
     sticking = np.count_nonzero(ok_force > 0) / max(ok_force.size, 1)
     checks.at_least("fraction of exact pads with a pull-off > 0", sticking, 0.9)
     checks.at_most("largest change of a pull-off with the steps halved (first "
-                   f"{n_refined} pads)", step_change, STEP_TOLERANCE)  # fmt: skip
+                   f"{REFINED} pads)", step_change, STEP_TOLERANCE)  # fmt: skip
     for name, f in gw.items():
         checks.holds(f"GW {name}: pull-offs finite, some pad sticks",
                      bool(np.all(np.isfinite(f)) and np.any(f > 0)),
@@ -198,7 +198,7 @@ def main() -> None:
              f"(R x {ingested.calibration.radius_scale:.3g}, eta {surface.eta * 1e-12:.4g} um^-2, "
              f"{round(surface.eta * area)} summits a pad), z0 = {RANGE / H0_PER_Z0 * 1e9:.4g} nm",
              f"time: setup (ingest --calibrate, synthesis) {t_setup:.1f} s; exact pads "
-             f"{t_exact:.1f} s ({t_exact / n:.2f} s a pad) + {n_refined} refined; GW "
+             f"{t_exact:.1f} s ({t_exact / n:.2f} s a pad) + {REFINED} refined; GW "
              f"{t_gw:.1f} s", "",
              "pull-off force, uN | mean | 10 % | 50 % | 90 %", "|---|---|---|---|---|"]  # fmt: skip
     for name, f in [("exact", ok_force), *gw.items()]:
