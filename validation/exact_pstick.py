@@ -75,6 +75,7 @@ from mcsim.studies.ingest import ingest_file
 from mcsim.studies.pads import clopper_pearson
 from mcsim.studies.simulation import simulate
 from mcsim.studies.synthpads import read_pads, synthesize_pads
+from mcsim.topography.summits import summit_heights
 
 MAP = Path(__file__).resolve().parents[1] / "examples" / "scan.npy"
 PIXEL = 10e-9
@@ -164,6 +165,8 @@ def main() -> None:
 
     t0 = time.perf_counter()
     force, p_max, failed = np.empty(n), np.empty(n), []
+    summits = np.array([summit_heights(z, periodic=True).size for z in pads])
+    rms = pads.std(axis=(1, 2))
     for i, z in enumerate(pads):
         force[i], p_max[i], bad = exact_pad(z, E_star, law)
         if bad:
@@ -229,6 +232,12 @@ def main() -> None:
         if gap > 0:
             lines.append(f"FINDING: {name} disagrees: at F_r = {x * uN:.4g} uN its interval lies "
                          f"{gap:.3f} (in p) from the exact one")  # fmt: skip
+    corr = [float(np.corrcoef(x, force)[0, 1]) if np.all(np.isfinite(force)) else math.nan
+            for x in (summits, rms)]  # fmt: skip
+    lines += [f"INFO: exact pads: summits (8-neighbour maxima) {summits.mean():.3g} a pad, "
+              f"variance {summits.var(ddof=1):.3g} (GW: {round(surface.eta * area)} each, "
+              f"count fixed); pad rms {rms.mean() * 1e9:.3g} nm, CV {rms.std() / rms.mean():.2g}; "
+              f"corr(pull-off, summits) {corr[0]:.2f}, corr(pull-off, rms) {corr[1]:.2f}"]  # fmt: skip
     lines += ["caveats: the pads lack the map's wavelengths longer than a pad; GW is calibrated "
               "on non-adhesive contact areas only (not adhesion, not the mean gap)", ""]  # fmt: skip
     lines += checks.summary()
