@@ -185,8 +185,12 @@ class AdhesiveCycle:
     approach_work : float
         −∫ min(p̄, 0) dd over the approach, J/m² (NaN unless converged).
     hysteresis : float
-        Energy per area dissipated over the cycle, ∫ (p̄_approach − p̄_retraction) dd over
-        the common positions, J/m² (NaN unless converged).
+        ``work_of_separation − approach_work``, J/m² (NaN unless converged).
+    loop_work : float
+        ∮ p̄ dd = ∫ (p̄_approach − p̄_retraction) dd over the positions (trapezoids), J/m²:
+        the energy the cycle dissipates when the steps resolve the curves (NaN unless
+        converged). With steps coarse against the law's range it mixes the compressive
+        parts' discretisation errors into it and can even come out negative.
     converged : bool
         Every step converged.
     failed : tuple of float
@@ -200,6 +204,7 @@ class AdhesiveCycle:
     work_of_separation: float
     approach_work: float
     hysteresis: float
+    loop_work: float
     converged: bool
     failed: tuple[float, ...]
 
@@ -694,11 +699,12 @@ def cycle(
     p_app = np.array([s.mean_pressure for s in approach[::-1]])
     p_ret = np.array([s.mean_pressure for s in retraction])
     loop = float(np.sum(0.5 * ((p_app - p_ret)[1:] + (p_app - p_ret)[:-1]) * np.diff(d[::-1])))
+    separation, gained = _tensile_work(retraction), _tensile_work(approach)
     ok = not failed
     return AdhesiveCycle(
         approach=approach, retraction=retraction, jumps=tuple(found),
         pull_off=float(p_ret.min()) if ok else nan,
-        work_of_separation=_tensile_work(retraction) if ok else nan,
-        approach_work=_tensile_work(approach) if ok else nan,
-        hysteresis=loop if ok else nan, converged=ok, failed=failed,
+        work_of_separation=separation if ok else nan, approach_work=gained if ok else nan,
+        hysteresis=separation - gained if ok else nan, loop_work=loop if ok else nan,
+        converged=ok, failed=failed,
     )  # fmt: skip

@@ -60,9 +60,16 @@ def sphere_half():
     return retraction(0.5, 64, 2.2)
 
 
-# pull-off measured (this grid, tol 1e-4, steps of 0.1 in Δ): λ = 0.1: −0.03 %, λ = 0.5:
-# +0.74 %. The Dugdale zone spans 24 and 14 pixels; the bound is 2 %.
-@pytest.mark.parametrize(("lam", "n", "half"), [(0.1, 64, 4.5), (0.5, 64, 2.2)])
+# Pull-off measured (these grids, tol 1e-4, steps of 0.1 in Δ): λ = 0.1: −0.03 %, λ = 0.5:
+# +0.74 %, λ = 1: +1.80 %; the bound is 2 %. Grids: the Dugdale zone at pull-off (outer
+# radius C, width C − A in units of A0) must lie inside the map and span many pixels:
+# λ = 0.1: C = 3.5, width 3.3 = 24 pixels of 0.14 A0 (64² over ±4.5 A0); λ = 0.5: C = 1.63,
+# width 0.96 = 14 pixels of 0.069 A0 (64² over ±2.2 A0); λ = 1: C = 1.33, width 0.43 = 14
+# pixels of 0.031 A0 (128² over ±2 A0). The discrete zone traps the crack (each pixel it
+# releases snaps off), which makes the pull-off too tensile, roughly in proportion to the
+# pixel: at λ = 1, +4.1 % on 64² over ±2 A0 (dx = 0.0625 A0). At λ = 2 and 5 the zone is
+# 0.15 and 0.029 A0 wide and 2 % needs finer grids than a test affords (see the grid test).
+@pytest.mark.parametrize(("lam", "n", "half"), [(0.1, 64, 4.5), (0.5, 64, 2.2), (1.0, 128, 2.0)])
 def test_md_sphere_pull_off_within_two_percent_of_maugis(lam, n, half):
     _, loads, steps = retraction(lam, n, half)
     assert all(s.converged for s in steps)
@@ -70,21 +77,10 @@ def test_md_sphere_pull_off_within_two_percent_of_maugis(lam, n, half):
                                err_msg=f"pull-off at lambda = {lam}")  # fmt: skip
 
 
-@pytest.mark.slow
-def test_md_sphere_pull_off_at_lambda_one_within_two_percent():
-    # λ = 1 on 128² pixels over ±2 A0 (dx = 0.031 A0; zone width 0.43 A0 = 14 pixels, mesh
-    # parameter 0.18): measured +1.8 %. The discrete Dugdale zone traps the crack (each
-    # pixel it releases snaps off), which makes the pull-off too tensile by ~60 dx/A0 %
-    # (measured: 5.9 % at dx = 0.094 A0, 3.4 % at 0.047, 1.8 % at 0.031).
-    _, loads, steps = retraction(1.0, 128, 2.0)
-    assert all(s.converged for s in steps)
-    np.testing.assert_allclose(loads.min(), md.pull_off(1.0)[0], rtol=0.02)
-
-
 def test_md_sphere_load_follows_maugis_contact_branch(sphere_half):
     # λ = 0.5, retraction in contact (Δ = 0.5 … −0.3): P̄(Δ) against Maugis' branch. Measured:
-    # within 0.02 of πwR at each point; bound 0.05 πwR (3 % of the pull-off), the pixel
-    # rings of contact and zone (a pixel is 0.07 A0) moving P̄ by a few hundredths.
+    # 0.0003–0.0204 πwR above it (largest at Δ = 0.2); bound 0.05 πwR (3 % of the pull-off),
+    # the pixel rings of contact and zone (a pixel is 0.07 A0) moving P̄ by a few hundredths.
     deltas, loads, _ = sphere_half
     for delta, load in zip(deltas, loads, strict=True):
         if delta >= -0.3:
@@ -98,16 +94,16 @@ def test_padding_carries_no_pressure(sphere_half):
     assert max(s.padding_residual for s in steps) <= 1e-4
 
 
-@pytest.mark.slow
 def test_pull_off_error_shrinks_with_the_grid():
-    # λ = 2 over ±1.6 A0 (Dugdale zone width 0.15 A0): measured +9.3 % on 64² (dx = 0.05 A0),
-    # +5.7 % on 128² (0.025 A0), +2.9 % on 256² (0.0125 A0, 113 s: not run here). The
-    # error is the lattice trapping of a zone of 3, 6, 12 pixels; it falls roughly as dx.
+    # λ = 2 over ±1.6 A0 (Dugdale zone width 0.15 A0): measured +13.4 % on 64² (dx = 0.05 A0,
+    # mesh parameter 0.46), +5.7 % on 128² (0.025 A0, 0.32), +2.9 % on 256² (0.0125 A0, 0.23;
+    # 63 s, not run here); λ = 5 on 128² over ±1.4 A0: +27 %. The error is the lattice
+    # trapping of a zone of 3, 6, 12 pixels; it falls roughly as dx (ratio 0.43, then 0.50).
     errors = []
     for n in (64, 128):
         _, loads, _ = retraction(2.0, n, 1.6)
         errors.append(loads.min() / md.pull_off(2.0)[0] - 1)
-    assert 0 < errors[1] < 0.75 * errors[0], errors
+    assert 0 < errors[1] < 0.6 * errors[0], errors
 
 
 def test_mean_pressure_is_minus_the_derivative_of_the_energy():
@@ -159,11 +155,11 @@ def sphere_cycle():
 def test_cycle_jumps_in_on_approach_and_out_higher_on_retraction(sphere_cycle):
     # Maugis (λ = 1): jump-in where the apex gap reaches δc (Δ = −h̄0 = −0.637), jump-out near
     # the turning point Δ_b = −0.99 (displacement control), so the flat leaves higher than it
-    # arrived. Measured after 4 bisections: jump-in at Δ = −0.634, jump-out at −1.04 (the
+    # arrived. Measured after 4 bisections: jump-in at Δ = −0.634, jump-out at −1.034 (the
     # discrete zone holds on a little longer, as for the pull-off). Bound: 0.1 (a step). On
-    # this coarse grid (dx = 0.083 A0) the retraction also snaps once by 0.06 πwR where the
-    # crack crosses a ring of pixels (at Δ = −0.75): a jump of the discrete system, smaller
-    # than a tenth of the pull-off.
+    # this coarse grid (dx = 0.083 A0) the retraction also snaps twice, by 0.068 and 0.026
+    # πwR (at Δ = −0.60 and −0.76), where the crack crosses a ring of pixels: jumps of the
+    # discrete system, bounded here by a tenth of the pull-off.
     c, apex, side = sphere_cycle
     force = side**2 / FORCE_UNIT  # mean pressure to P̄
     jump_in = next(j for j in c.jumps if j.branch == "approach")
@@ -180,18 +176,17 @@ def test_cycle_jumps_in_on_approach_and_out_higher_on_retraction(sphere_cycle):
 
 
 def test_cycle_hysteresis_and_work_of_separation(sphere_cycle):
-    # The loop dissipates (hysteresis > 0); the work of separation is the tensile area under
-    # the retraction, more than on approach, and the closed loop's work equals the energy
-    # the steps dissipated (e returns to its start: both ends are out of contact).
+    # The work of separation is the tensile area under the retraction; it exceeds the
+    # approach's (hysteresis > 0). The closed loop's work ∮ p̄ dd is positive (energy lost in
+    # the jumps) and equals the loss in energy the trapezoids leave between the steps, since
+    # the energy returns to its start (both ends out of contact): checked to 1e-9 w.
     c, _, _ = sphere_cycle
-    assert c.converged and c.hysteresis > 0
+    assert c.converged and c.hysteresis > 0 and c.loop_work > 0
     d = np.array([s.position for s in c.retraction])
-    p = np.array([s.mean_pressure for s in c.retraction])
-    tensile = -np.minimum(p, 0)
-    assert c.work_of_separation == pytest.approx(
-        np.sum(0.5 * (tensile[1:] + tensile[:-1]) * np.diff(d))
-    )
-    assert c.work_of_separation > c.approach_work
+    tensile = -np.minimum([s.mean_pressure for s in c.retraction], 0)
+    trapezoids = np.sum(0.5 * (tensile[1:] + tensile[:-1]) * np.diff(d))
+    assert c.work_of_separation == pytest.approx(trapezoids)
+    assert c.hysteresis == pytest.approx(c.work_of_separation - c.approach_work)
     assert c.retraction[-1].energy == pytest.approx(c.approach[0].energy, abs=1e-9 * W)
 
 
