@@ -203,7 +203,7 @@ def main() -> None:
              f"time: setup (ingest --calibrate, synthesis) {t_setup:.1f} s; exact pads "
              f"{t_exact:.1f} s ({t_exact / n:.2f} s a pad) + {REFINED} refined; GW "
              f"{t_gw:.1f} s", "",
-             "pull-off force, uN | mean | 10 % | 50 % | 90 %", "|---|---|---|---|---|"]  # fmt: skip
+             "| pull-off force, uN | mean | 10 % | 50 % | 90 % |", "|---|---|---|---|---|"]  # fmt: skip
     for name, f in [("exact", ok_force), *gw.items()]:
         q = np.quantile(f, (0.1, 0.5, 0.9)) * uN if f.size else [np.nan] * 3
         lines.append(f"| {name} | {np.mean(f) * uN:.4g} | " + " | ".join(f"{x:.4g}" for x in q)
