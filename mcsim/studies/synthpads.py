@@ -35,7 +35,7 @@ import numpy as np
 
 from mcsim._version import __version__
 from mcsim.model.errors import ParameterError
-from mcsim.topography.synthesis import MIN_SIDE, RadialPSD, radial_psd, synthesize
+from mcsim.topography.synthesis import MIN_SIDE, RadialPSD, radial_psd, synthesize, wavevectors
 
 #: HDF5 layout version of a pads file.
 SCHEMA = 1
@@ -75,8 +75,6 @@ class SynthesizedPads:
     def mean_square(self) -> tuple[float, float]:
         """(expected mean square of a pad, the map's), m²: Σ_q C(|q|)/A over the pad's modes,
         and over the map's (:meth:`RadialPSD.mean_square`)."""
-        from mcsim.topography.synthesis import wavevectors
-
         q = wavevectors(self.heights.shape[1:], self.pixel_size)
         area = self.heights[0].size * self.pixel_size**2
         return float(np.sum(self.psd(q[q > 0])) / area), self.psd.mean_square()
