@@ -9,6 +9,9 @@ from mcsim.cli.display import announce
 from mcsim.cli.options import parse_h
 from mcsim.model.errors import ParameterError
 
+#: Default pixels along a side of a ``--synthesize`` pad.
+PAD_PIXELS = 32
+
 
 def run(args) -> int:
     from mcsim.model.units import parse_quantity
@@ -21,6 +24,7 @@ def run(args) -> int:
         return None if value is None else parse_quantity(value, "length", option)
 
     out = Path(args.out) if args.out else Path(f"{Path(args.file).stem}.toml")
+    pads_out = _pads_options(args, out)
     extra = IngestResult.companion_paths(out)
     figures = [extra["histogram_figure"]] + ([extra["comparison_figure"]] if args.plot else [])
     for path in [
@@ -28,6 +32,7 @@ def run(args) -> int:
         extra["histogram"],
         extra["map_histogram"],
         *figures,
+        *([pads_out] if pads_out else []),
     ]:  # all refused before any work or writing
         check_output(path, inputs=[args.file], overwrite=args.overwrite)
     material = None
@@ -57,10 +62,44 @@ def run(args) -> int:
         s = result.surface
         fig = comparison_figure(s, result.gaussian_surface, material, parse_h("4:-1:51"))
         save(fig, figures[1], overwrite=args.overwrite, inputs=[args.file])
+    if pads_out:
+        from mcsim.studies.synthpads import synthesize_pads
+
+        pads = synthesize_pads(args.file, args.synthesize, args.pad_pixels, args.seed,
+                               unit=args.unit, pixel_size=length(args.pixel_size, "--pixel-size"),
+                               channel=args.channel, periodic=args.periodic)  # fmt: skip
+        rms_pad, rms_map = (x**0.5 * 1e9 for x in pads.mean_square)
+        print(f"pads       {args.synthesize} periodic pads of {args.pad_pixels} x {args.pad_pixels} "
+              f"pixels from the map's radial PSD, seed {pads.seed}: expected rms {rms_pad:.4g} nm "
+              f"(the map's {rms_map:.4g} nm; a pad lacks the wavelengths longer than its side)")  # fmt: skip
+        written = [*written, pads.write(pads_out, overwrite=args.overwrite, command=cli_command())]
     for path in [*written, *figures]:
         announce(path, quiet=args.quiet)
     print(f"next: mcsim analytic --surface {out} --h=4:-1:11")
     return 0
+
+
+def _pads_options(args, out: Path) -> Path | None:
+    """The pads file of ``--synthesize`` (default ``<out stem>-pads.h5``), its options checked
+    before any work; None without ``--synthesize``."""
+    if args.synthesize is None:
+        for option, value in (("--pad-pixels", args.pad_pixels), ("--pads-out", args.pads_out),
+                              ("--seed", args.seed)):  # fmt: skip
+            if value is not None:
+                raise ParameterError(f"{option}: used only with --synthesize N; add it")
+        return None
+    from mcsim.studies.synthpads import check_pads
+
+    if args.pad_pixels is None:
+        args.pad_pixels = PAD_PIXELS
+    try:
+        check_pads(args.synthesize, args.pad_pixels, args.seed, args.file)
+    except ParameterError as err:
+        option = {"`n`": "--synthesize", "`pixels`": "--pad-pixels", "`seed`": "--seed",
+                  "`path`": "--synthesize"}  # fmt: skip
+        name = str(err).split(" = ")[0]
+        raise ParameterError(f"{option.get(name, name)}: {err}") from None
+    return Path(args.pads_out) if args.pads_out else out.with_name(f"{out.stem}-pads.h5")
 
 
 def add_parser(sub) -> None:
@@ -105,5 +144,16 @@ def add_parser(sub) -> None:
     p.add_argument("--material", default="silicon",
                    help="material of the --plot curves and of the --calibrate solves (its E*): preset "
                    "or FILE.toml (default: silicon)")  # fmt: skip
+    p.add_argument("--synthesize", type=int, metavar="N",
+                   help="also write N periodic pads synthesised from the map's radial PSD (maps "
+                   "only; at the map's pixel size; HDF5, --pads-out)")  # fmt: skip
+    p.add_argument(
+        "--pad-pixels",
+        type=int,
+        metavar="M",
+        help=f"pixels along each side of a --synthesize pad, >= 8 (default {PAD_PIXELS})",
+    )
+    p.add_argument("--pads-out", help="pads file of --synthesize (default: <out stem>-pads.h5)")
+    p.add_argument("--seed", type=int, help="root seed of --synthesize (default: fresh, recorded)")
     p.add_argument("--quiet", action="store_true", help="no 'wrote FILE' line")
     p.set_defaults(func=run)

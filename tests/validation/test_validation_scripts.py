@@ -19,6 +19,7 @@ SCRIPTS = (
     "adhesion_table",
     "convergence",
     "environment",
+    "exact_pstick",
     "finite_patch",
     "fuller_tabor",
     "gw_moments",
