@@ -68,7 +68,8 @@ def sphere_half():
 # pixels of 0.031 A0 (128² over ±2 A0). The discrete zone traps the crack (each pixel it
 # releases snaps off), which makes the pull-off too tensile, roughly in proportion to the
 # pixel: at λ = 1, +4.1 % on 64² over ±2 A0 (dx = 0.0625 A0). At λ = 2 and 5 the zone is
-# 0.15 and 0.029 A0 wide and 2 % needs finer grids than a test affords (see the grid test).
+# 0.15 and 0.029 A0 wide and 2 % needs finer grids than a test affords (λ = 2: 512², 586 s,
+# +1.41 %; see the grid test).
 @pytest.mark.parametrize(("lam", "n", "half"), [(0.1, 64, 4.5), (0.5, 64, 2.2), (1.0, 128, 2.0)])
 def test_md_sphere_pull_off_within_two_percent_of_maugis(lam, n, half):
     _, loads, steps = retraction(lam, n, half)
@@ -97,8 +98,9 @@ def test_padding_carries_no_pressure(sphere_half):
 def test_pull_off_error_shrinks_with_the_grid():
     # λ = 2 over ±1.6 A0 (Dugdale zone width 0.15 A0): measured +13.4 % on 64² (dx = 0.05 A0,
     # mesh parameter 0.46), +5.7 % on 128² (0.025 A0, 0.32), +2.9 % on 256² (0.0125 A0, 0.23;
-    # 63 s, not run here); λ = 5 on 128² over ±1.4 A0: +27 %. The error is the lattice
-    # trapping of a zone of 3, 6, 12 pixels; it falls roughly as dx (ratio 0.43, then 0.50).
+    # 63 s, not run here), +1.41 % on 512² (0.0063 A0, 0.16; 586 s); λ = 5 over ±1.4 A0:
+    # +27 % on 128², +15.5 % on 256² (113 s). The error is the lattice trapping of a zone of
+    # 3, 6, 12, 24 pixels; it falls roughly as dx (ratios 0.43, 0.50, 0.49).
     errors = []
     for n in (64, 128):
         _, loads, _ = retraction(2.0, n, 1.6)
