@@ -69,7 +69,8 @@ from reporting import Checks, child_seeds, parser, write_summary
 
 from mcsim.model.presets import MATERIALS
 from mcsim.physics import adhesivebem, bem
-from mcsim.physics.interactions import MESH_LIMIT, Exponential, mesh_parameter
+from mcsim.physics.interactions import Exponential, mesh_parameter
+from mcsim.physics.stickiness import MESH_LIMIT
 from mcsim.store.config import load_surface
 from mcsim.studies.ingest import ingest_file
 from mcsim.studies.pads import clopper_pearson
