@@ -170,6 +170,17 @@ class AdhesiveContactResult:
     stickiness: Stickiness
     fields: dict | None = field(default=None, repr=False)
 
+    def __repr__(self) -> str:
+        """A few lines, as in a notebook: the map, the law, the exact and GW's pull-offs."""
+        law, s = self.interaction, self.summary()
+        gw = ", ".join(f"{g.law} {g.pull_off:.3g} Pa ({s['gw'][g.law]['pull_off_ratio']:.3g}x)"
+                       for g in self.gw)  # fmt: skip
+        return (f"AdhesiveContactResult({self.source.name}: {self.shape[1]} x {self.shape[0]} "
+                f"pixels of {self.dx * 1e9:.4g} nm, {self.law_name} law w = {law.w:.4g} J/m^2, "
+                f"range {law.range * 1e9:.4g} nm; {len(self.cycle.approach)} steps to "
+                f"{self.max_pressure:.4g} Pa; exact pull-off {self.pull_off:.4g} Pa, work of "
+                f"separation {s['work_of_separation']:.4g} J/m^2; GW: {gw})")  # fmt: skip
+
     @property
     def law_name(self) -> str:
         """The interaction's name (``exponential`` or ``maugis-dugdale``)."""

@@ -164,3 +164,8 @@ def test_the_result_carries_the_maps_stickiness_and_its_warnings(result, scan):
     assert result.warnings()[: len(expected.warnings())] == expected.warnings()
     coarse = stickiness(z - z.mean(), 2e-8, SILICON.E_star, 0.05, 5e-11, periodic=True)
     assert any("does not resolve" in w for w in coarse.warnings())
+
+
+def test_the_result_shows_itself_in_a_few_lines_as_in_a_notebook(result):
+    text = repr(result)
+    assert len(text) < 600 and "exact pull-off" in text and all(law in text for law in GW_LAWS)
