@@ -23,8 +23,8 @@ pressed on its mean curve to the largest mean pressure of the exact approach (lo
 and retracted; its pull-off is the most tensile mean load of the retraction
 (:func:`gw_pull_off`). The one parameter fitted per law set is an **effective work of
 adhesion** w_GW = c·w, c the factor: the minimax fit over the preloads of
-|ln(P_GW(c·w)/P_exact)| (the same root-of-max-plus-min fit as the radius scale,
-:func:`mcsim.studies.calibration._minimax_scale`; each law set's pull-off grows with w). The
+|ln(P_GW(c·w)/P_exact)| (the root of max plus min of the log errors, as for the radius scale; each law set's
+pull-off grows with w). The
 factor, not the range, because it is the one parameter every law set has (jkr has no range)
 and it moves the pull-off of each in proportion (JKR's and DMT's are ∝ w per summit); a range
 fitted instead would compare dmt and maugis-dugdale on one parameter and jkr on none.
@@ -68,7 +68,7 @@ from mcsim.studies.adhesivecontact import (
     _refined_pull_off,
     positions,
 )
-from mcsim.studies.calibration import _minimax_scale, _short
+from mcsim.studies.calibration import _short
 
 #: Preloads p/E* of the fit: the decades of the area calibration's loads.
 PRELOADS = np.logspace(-4, -2, 3)
@@ -81,7 +81,15 @@ STEPS = 16
 #: Default range of the exponential law without a z0 in the material, m.
 DEFAULT_RANGE = 1e-9
 #: Points of GW's mean curves on which the turn and the pull-off are bracketed.
-GRID = 600
+GRID = 300
+#: Points between the bracketing neighbours of :data:`GRID` in :func:`gw_pull_off`.
+FINE = 100
+
+#: Tolerance of the fitted ln c: 1e-4 relative in c, far below the errors judged (20 %),
+#: and each GW evaluation costs about a second.
+XTOL = 1e-4
+#: Range searched for ln c (c from 1/100 to 100).
+LOG_FACTOR_BOUND = math.log(100.0)
 
 #: Keys of ``[surface.adhesion_calibration]`` (:meth:`AdhesionCalibration.toml_lines`).
 FILE_KEYS = ("law", "factor", "interaction", "w", "range", "material", "E_star", "pixel_size",
@@ -356,17 +364,23 @@ def _top(surface: Surface, material: Material, law: str) -> float:
     return highest - reach / surface.sigma
 
 
-def gw_pull_off(surface: Surface, material: Material, law: str, pressure: float) -> float:
-    """GW's pull-off, Pa (tensile magnitude, 0 if never tensile), for the law set ``law`` with
-    the material's w (``gamma``) and z0, pressed on its mean curve to ``pressure`` (Pa).
+def _fine(lo: float, hi: float) -> np.ndarray:
+    return np.linspace(lo, hi, FINE)
+
+
+def gw_pull_off(surface: Surface, material: Material, law: str, pressures) -> np.ndarray:
+    """GW's pull-off at each preload, Pa (tensile magnitude, 0 if never tensile), for the law
+    set ``law`` with the material's w (``gamma``) and z0, pressed on its mean curve to each of
+    ``pressures`` (Pa) and retracted.
 
     The turn: from the top down, the first separation on the approach branch whose mean load
-    reaches ``pressure`` (load control), bracketed on 4 :data:`GRID` points and found by
-    Brent's method. The pull-off: the most tensile mean load of the retraction from that turn,
-    bracketed on :data:`GRID` points and refined by bounded minimisation.
+    reaches the preload (load control), bracketed on :data:`GRID` points from the top to 6 σ
+    below the lowest summit, then on :data:`FINE` points between the bracket, then linear
+    between those. The pull-off: the most tensile mean load of the retraction from that turn,
+    on :data:`GRID` points and again on :data:`FINE` points between the neighbours of the
+    most tensile one (the spacing then ~1e-3 σ; the minimum may sit on a kink, where a jump
+    ends, so no smooth refinement).
     """
-    from scipy import optimize
-
     from mcsim.physics.analytic import gw_curves
 
     def load(h, branch, turn=None):
@@ -378,23 +392,57 @@ def gw_pull_off(surface: Surface, material: Material, law: str, pressure: float)
     top = _top(surface, material, law)
     heights = surface.heights
     bottom = (float(heights.edges[0]) if hasattr(heights, "edges") else -8.0) - 6.0
-    h = np.linspace(top, bottom, 4 * GRID)  # downward, to 6 sigma below the lowest summit
-    above = load(h, "approach") >= pressure
-    if not above.any():
-        raise ParameterError(f"law {law}: GW's approach never carries {pressure:g} Pa above 6 "
-                             "sigma below its lowest summit")  # fmt: skip
-    i = int(np.argmax(above))
-    turn = (h[0] if i == 0 else optimize.brentq(lambda x: load(x, "approach")[0] - pressure,
-                                                  h[i], h[i - 1], xtol=1e-12))  # fmt: skip
-    grid = np.linspace(turn, max(top, turn + 1e-6), GRID)
-    values = load(grid, "retract", turn)
-    k = int(np.argmin(values))
-    if values[k] >= 0:
-        return 0.0
-    lo, hi = grid[max(k - 1, 0)], grid[min(k + 1, grid.size - 1)]
-    best = optimize.minimize_scalar(lambda x: load(x, "retract", turn)[0], bounds=(lo, hi),
-                                    method="bounded", options={"xatol": 1e-10})  # fmt: skip
-    return -min(float(values[k]), float(best.fun))
+    h = np.linspace(top, bottom, GRID)  # downward, to 6 sigma below the lowest summit
+    approach = load(h, "approach")
+    out = []
+    for pressure in np.atleast_1d(pressures):
+        above = approach >= pressure
+        if not above.any():
+            raise ParameterError(f"law {law}: GW's approach never carries {pressure:g} Pa above "
+                                 "6 sigma below its lowest summit")  # fmt: skip
+        i = int(np.argmax(above))
+        turn = h[0]
+        if i > 0:
+            fine = _fine(h[i - 1], h[i])
+            f = load(fine, "approach") - pressure
+            j = max(int(np.argmax(f >= 0)), 1)
+            turn = fine[j - 1] + (fine[j] - fine[j - 1]) * f[j - 1] / (f[j - 1] - f[j])
+        grid = np.linspace(turn, max(top, turn + 1e-6), GRID)
+        values = load(grid, "retract", turn)
+        k = int(np.argmin(values))
+        if values[k] < 0:
+            fine = _fine(grid[max(k - 1, 0)], grid[min(k + 1, grid.size - 1)])
+            values = np.append(values, load(fine, "retract", turn))
+        out.append(max(-float(values.min()), 0.0))
+    return np.array(out)
+
+
+def _minimax(errors, keep: np.ndarray, start: float) -> float:
+    """ln c of the minimax fit over the preloads ``keep``: the root of g = max e + min e.
+
+    ``errors(x)`` gives e_k = ln(P_GW/P_exact) at every preload for c = e^x; each grows with x
+    (more w, more pull-off), so max |e_k| is smallest where g, growing with x, crosses zero
+    (as :func:`mcsim.studies.calibration._minimax_scale`). The pull-off grows about as c^a
+    with a between 1/2 and 1, so from ``start`` the root lies within −2 g: bracketed there
+    (widened by doubling if not) and found by Brent's method to :data:`XTOL`.
+    """
+    from scipy import optimize
+
+    def g(x: float) -> float:
+        e = errors(x)[keep]
+        return float(e.max() + e.min())
+
+    g0 = g(start)
+    if abs(g0) <= XTOL:
+        return start
+    step = -2 * g0
+    while True:
+        b = min(max(start + step, -LOG_FACTOR_BOUND), LOG_FACTOR_BOUND)
+        if (g(b) > 0) != (g0 > 0):
+            return optimize.brentq(g, min(start, b), max(start, b), xtol=XTOL)
+        if abs(b) == LOG_FACTOR_BOUND:
+            return b
+        step *= 2
 
 
 def _fit(gw, exact: np.ndarray, n: int) -> tuple[float, np.ndarray, np.ndarray]:
@@ -408,9 +456,8 @@ def _fit(gw, exact: np.ndarray, n: int) -> tuple[float, np.ndarray, np.ndarray]:
 
     everyone = np.ones(n, dtype=bool)
     start = -float(np.mean(errors(0.0)))  # pull-off about ∝ w: one step to near the root
-    x = _minimax_scale(errors, everyone, start)
-    loo_x = np.array([_minimax_scale(errors, everyone & (np.arange(n) != k), x)
-                      for k in range(n)])  # fmt: skip
+    x = _minimax(errors, everyone, start)
+    loo_x = np.array([_minimax(errors, everyone & (np.arange(n) != k), x) for k in range(n)])
     loo_error = np.expm1([errors(float(xk))[k] for k, xk in enumerate(loo_x)])
     return x, loo_x, loo_error
 
@@ -489,7 +536,7 @@ def calibrate_adhesion(
 
         def gw(x: float, name=name) -> np.ndarray:
             m = dataclasses.replace(material, gamma=math.exp(x) * w, z0=range_ / H0_PER_Z0)
-            return np.array([gw_pull_off(surface, m, name, p) for p in reached])
+            return gw_pull_off(surface, m, name, reached)
 
         x, loo_x, loo_error = _fit(gw, exact, n)
         pulls = gw(x)
