@@ -295,6 +295,7 @@ def surface_from_table(
             table.pop("map_heights", "gaussian"), f"{where}: map_heights", base_dir, units_required
         )
         scale = _radius_scale(table.pop("calibration", None), where)
+        _adhesion_calibration(table.pop("adhesion_calibration", None), where)
         bands = _radius_by_height(table.pop("radius_by_height", None), where)
         optional = ("rq", "summit_offset") if heights is None else ("sigma", "rq", "summit_offset")
         values = _quantities(table, _SURFACE_KEYS | _GAP_KEYS, where, optional=optional, **strict)
@@ -341,6 +342,25 @@ def _radius_scale(table: Any, where: str) -> float:
         raise ParameterError(f"{where}: calibration: radius_scale = {scale!r} is out of range "
                              "(allowed: a number > 0)")  # fmt: skip
     return float(scale)
+
+
+def _adhesion_calibration(table: Any, where: str) -> None:
+    """Check a ``[surface.adhesion_calibration]`` table: a record (not applied), known keys,
+    a law set of ``laws`` and a ``factor`` > 0."""
+    if table is None:
+        return
+    from mcsim.studies.adhesioncalibration import FILE_KEYS
+
+    if not isinstance(table, dict):
+        raise ParameterError(f"{where}: adhesion_calibration must be a table, got {table!r}")
+    unknown = set(table) - set(FILE_KEYS)
+    if unknown:
+        raise ParameterError(f"{where}: adhesion_calibration: unknown key(s) "
+                             f"{', '.join(sorted(unknown))} (allowed: {', '.join(FILE_KEYS)})")  # fmt: skip
+    factor = table.get("factor")
+    if not (_is_number(factor) and 0 < factor < float("inf")):
+        raise ParameterError(f"{where}: adhesion_calibration: factor = {factor!r} is out of range "
+                             "(allowed: a number > 0)")  # fmt: skip
 
 
 def material_from_table(
@@ -492,6 +512,19 @@ def calibration_in_surface_file(spec: str | Path) -> dict[str, Any] | None:
     if table is None:
         return None
     _radius_scale(table, f"{path} [surface]")
+    return dict(table)
+
+
+def adhesion_calibration_in_surface_file(spec: str | Path) -> dict[str, Any] | None:
+    """The ``[surface.adhesion_calibration]`` table of a surface TOML file, as written; None
+    without one. Checked as :func:`load_surface` checks it."""
+    path = Path(spec)
+    if path.suffix != ".toml" or str(spec) in SURFACES:
+        return None
+    table = _table(_read_toml(path), "surface", path).get("adhesion_calibration")
+    if table is None:
+        return None
+    _adhesion_calibration(table, f"{path} [surface]")
     return dict(table)
 
 

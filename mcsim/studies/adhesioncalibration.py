@@ -293,13 +293,16 @@ class AdhesionCalibration:
             raise ParameterError(f"{path}: [surface.adhesion_calibration] has no "
                                  f"{', '.join(missing)}")  # fmt: skip
         fits = tuple(
-            LawFit(law=law, factor=float(t["factors"][i]),
-                   gw_pull_off=np.asarray(t["gw_pull_off_kPa"][i], dtype=float) * 1e3,
-                   in_sample_worst=float(t["in_sample_worst_error"][i]),
-                   loo_factor=np.asarray(t["loo_factor"][i], dtype=float),
-                   loo_error=np.asarray(t["loo_error"][i], dtype=float),
-                   extrapolated_gw_pull_off=float(t["extrapolated_gw_pull_off_kPa"][i]) * 1e3,
-                   extrapolated_error=float(t["extrapolated_error"][i]))  # fmt: skip
+            LawFit(
+                law=law,
+                factor=float(t["factors"][i]),
+                gw_pull_off=np.asarray(t["gw_pull_off_kPa"][i], dtype=float) * 1e3,
+                in_sample_worst=float(t["in_sample_worst_error"][i]),
+                loo_factor=np.asarray(t["loo_factor"][i], dtype=float),
+                loo_error=np.asarray(t["loo_error"][i], dtype=float),
+                extrapolated_gw_pull_off=float(t["extrapolated_gw_pull_off_kPa"][i]) * 1e3,
+                extrapolated_error=float(t["extrapolated_error"][i]),
+            )  # fmt: skip
             for i, law in enumerate(t["laws"])
         )
         fits = tuple(dataclasses.replace(f, factor=float(t["factor"])) if f.law == t["law"]
@@ -321,7 +324,9 @@ def check_inputs(w: float, range_: float | None) -> None:
         if value is None and name == "range":
             continue
         if not (isinstance(value, int | float) and math.isfinite(value) and value > 0):
-            raise ParameterError(f"{name} = {value!r} {unit} is out of range (allowed: a number > 0)")
+            raise ParameterError(
+                f"{name} = {value!r} {unit} is out of range (allowed: a number > 0)"
+            )
 
 
 def exact_pull_off(z, pixels, E_star: float, law: Exponential, pressure: float, *,
