@@ -103,6 +103,14 @@ _CALIBRATION_KEYS = {"radius_scale", "material", "E_star", "pixel_size", "period
                      "loo_rms_error", "extrapolated_load", "extrapolated_exact_area_fraction",
                      "extrapolated_gw_area_fraction", "extrapolated_error", "worst_error",
                      "rms_error"}  # fmt: skip
+#: Keys of ``[surface.adhesion_calibration]`` (:mod:`mcsim.studies.adhesioncalibration`): a
+#: record of GW's pull-off fitted to exact adhesive cycles, not applied.
+ADHESION_CALIBRATION_KEYS = ("law", "factor", "interaction", "w", "range", "material", "E_star",
+                             "pixel_size", "periodic", "steps", "preload", "exact_pull_off_kPa",
+                             "laws", "gw_pull_off_kPa", "factors", "in_sample_worst_error",
+                             "loo_factor", "loo_error", "loo_worst_error", "extrapolated_preload",
+                             "extrapolated_exact_pull_off_kPa", "extrapolated_gw_pull_off_kPa",
+                             "extrapolated_error")  # fmt: skip
 _MATERIAL_KEYS = {
     "E1": ("pressure", "Young's modulus of solid 1, e.g. '160 GPa'"),
     "E2": ("pressure", "Young's modulus of solid 2, e.g. '160 GPa'"),
@@ -349,14 +357,12 @@ def _adhesion_calibration(table: Any, where: str) -> None:
     a law set of ``laws`` and a ``factor`` > 0."""
     if table is None:
         return
-    from mcsim.studies.adhesioncalibration import FILE_KEYS
-
     if not isinstance(table, dict):
         raise ParameterError(f"{where}: adhesion_calibration must be a table, got {table!r}")
-    unknown = set(table) - set(FILE_KEYS)
+    unknown = set(table) - set(ADHESION_CALIBRATION_KEYS)
     if unknown:
         raise ParameterError(f"{where}: adhesion_calibration: unknown key(s) "
-                             f"{', '.join(sorted(unknown))} (allowed: {', '.join(FILE_KEYS)})")  # fmt: skip
+                             f"{', '.join(sorted(unknown))} (allowed: {', '.join(ADHESION_CALIBRATION_KEYS)})")  # fmt: skip
     factor = table.get("factor")
     if not (_is_number(factor) and 0 < factor < float("inf")):
         raise ParameterError(f"{where}: adhesion_calibration: factor = {factor!r} is out of range "

@@ -29,7 +29,9 @@ factor, not the range, because it is the one parameter every law set has (jkr ha
 and it moves the pull-off of each in proportion (JKR's and DMT's are ∝ w per summit); a range
 fitted instead would compare dmt and maugis-dugdale on one parameter and jkr on none.
 
-The law set chosen is the one whose fitted worst error in sample is smallest.
+The law set chosen is the one whose fitted worst error in sample is smallest (ties within
+1e-3, the fit's resolution, go to the smaller out-of-sample error, then to the order jkr, dmt,
+maugis-dugdale).
 
 Out of sample
 -------------
@@ -61,6 +63,7 @@ from mcsim.model.errors import ParameterError
 from mcsim.model.params import Material, Surface
 from mcsim.physics import adhesivebem, bem
 from mcsim.physics.interactions import Exponential
+from mcsim.store.config import ADHESION_CALIBRATION_KEYS
 from mcsim.studies.adhesivecontact import (
     GW_LAWS,
     H0_PER_Z0,
@@ -92,11 +95,7 @@ XTOL = 1e-4
 LOG_FACTOR_BOUND = math.log(100.0)
 
 #: Keys of ``[surface.adhesion_calibration]`` (:meth:`AdhesionCalibration.toml_lines`).
-FILE_KEYS = ("law", "factor", "interaction", "w", "range", "material", "E_star", "pixel_size",
-             "periodic", "steps", "preload", "exact_pull_off_kPa", "laws", "gw_pull_off_kPa",
-             "factors", "in_sample_worst_error", "loo_factor", "loo_error", "loo_worst_error",
-             "extrapolated_preload", "extrapolated_exact_pull_off_kPa",
-             "extrapolated_gw_pull_off_kPa", "extrapolated_error")  # fmt: skip
+FILE_KEYS = ADHESION_CALIBRATION_KEYS
 
 
 @dataclass(frozen=True)
@@ -302,7 +301,7 @@ class AdhesionCalibration:
                 loo_error=np.asarray(t["loo_error"][i], dtype=float),
                 extrapolated_gw_pull_off=float(t["extrapolated_gw_pull_off_kPa"][i]) * 1e3,
                 extrapolated_error=float(t["extrapolated_error"][i]),
-            )  # fmt: skip
+            )
             for i, law in enumerate(t["laws"])
         )
         fits = tuple(dataclasses.replace(f, factor=float(t["factor"])) if f.law == t["law"]
@@ -551,7 +550,9 @@ def calibrate_adhesion(
                            loo_factor=np.exp(loo_x), loo_error=loo_error,
                            extrapolated_gw_pull_off=float(pulls[-1]),
                            extrapolated_error=float(relative[-1])))  # fmt: skip
-    best = min(fits, key=lambda f: f.in_sample_worst)
+    # ties below the fit's resolution (XTOL, the grids: 1e-3) go to the smaller error out of
+    # sample, then to the order of GW_LAWS
+    best = min(fits, key=lambda f: (round(f.in_sample_worst, 3), round(f.out_of_sample_worst, 3)))
     return AdhesionCalibration(
         law=best.law, w=float(w), range=float(range_), material=material.name,
         E_star=material.E_star, preload=preloads.copy(), exact_pull_off=exact[:n],
