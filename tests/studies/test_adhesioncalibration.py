@@ -56,7 +56,8 @@ def fitted(small):
 def test_every_law_set_is_fitted_and_the_smallest_in_sample_error_is_chosen(fitted):
     c = fitted[2]
     assert tuple(f.law for f in c.fits) == GW_LAWS
-    assert c.best.in_sample_worst == min(f.in_sample_worst for f in c.fits)
+    # ties within 1e-3 (the fit's resolution) go to the smaller out-of-sample error
+    assert round(c.best.in_sample_worst, 3) == min(round(f.in_sample_worst, 3) for f in c.fits)
     assert np.all(c.exact_pull_off > 0)
 
 
