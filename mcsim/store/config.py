@@ -103,6 +103,14 @@ _CALIBRATION_KEYS = {"radius_scale", "material", "E_star", "pixel_size", "period
                      "loo_rms_error", "extrapolated_load", "extrapolated_exact_area_fraction",
                      "extrapolated_gw_area_fraction", "extrapolated_error", "worst_error",
                      "rms_error"}  # fmt: skip
+#: Keys of ``[surface.adhesion_calibration]`` (:mod:`mcsim.studies.adhesioncalibration`): a
+#: record of GW's pull-off fitted to exact adhesive cycles, not applied.
+ADHESION_CALIBRATION_KEYS = ("law", "factor", "interaction", "w", "range", "material", "E_star",
+                             "pixel_size", "periodic", "steps", "preload", "exact_pull_off_kPa",
+                             "laws", "gw_pull_off_kPa", "factors", "in_sample_worst_error",
+                             "loo_factor", "loo_error", "loo_worst_error", "extrapolated_preload",
+                             "extrapolated_exact_pull_off_kPa", "extrapolated_gw_pull_off_kPa",
+                             "extrapolated_error")  # fmt: skip
 _MATERIAL_KEYS = {
     "E1": ("pressure", "Young's modulus of solid 1, e.g. '160 GPa'"),
     "E2": ("pressure", "Young's modulus of solid 2, e.g. '160 GPa'"),
@@ -295,6 +303,7 @@ def surface_from_table(
             table.pop("map_heights", "gaussian"), f"{where}: map_heights", base_dir, units_required
         )
         scale = _radius_scale(table.pop("calibration", None), where)
+        _adhesion_calibration(table.pop("adhesion_calibration", None), where)
         bands = _radius_by_height(table.pop("radius_by_height", None), where)
         optional = ("rq", "summit_offset") if heights is None else ("sigma", "rq", "summit_offset")
         values = _quantities(table, _SURFACE_KEYS | _GAP_KEYS, where, optional=optional, **strict)
@@ -341,6 +350,23 @@ def _radius_scale(table: Any, where: str) -> float:
         raise ParameterError(f"{where}: calibration: radius_scale = {scale!r} is out of range "
                              "(allowed: a number > 0)")  # fmt: skip
     return float(scale)
+
+
+def _adhesion_calibration(table: Any, where: str) -> None:
+    """Check a ``[surface.adhesion_calibration]`` table: a record (not applied), known keys,
+    a law set of ``laws`` and a ``factor`` > 0."""
+    if table is None:
+        return
+    if not isinstance(table, dict):
+        raise ParameterError(f"{where}: adhesion_calibration must be a table, got {table!r}")
+    unknown = set(table) - set(ADHESION_CALIBRATION_KEYS)
+    if unknown:
+        raise ParameterError(f"{where}: adhesion_calibration: unknown key(s) "
+                             f"{', '.join(sorted(unknown))} (allowed: {', '.join(ADHESION_CALIBRATION_KEYS)})")  # fmt: skip
+    factor = table.get("factor")
+    if not (_is_number(factor) and 0 < factor < float("inf")):
+        raise ParameterError(f"{where}: adhesion_calibration: factor = {factor!r} is out of range "
+                             "(allowed: a number > 0)")  # fmt: skip
 
 
 def material_from_table(
@@ -492,6 +518,19 @@ def calibration_in_surface_file(spec: str | Path) -> dict[str, Any] | None:
     if table is None:
         return None
     _radius_scale(table, f"{path} [surface]")
+    return dict(table)
+
+
+def adhesion_calibration_in_surface_file(spec: str | Path) -> dict[str, Any] | None:
+    """The ``[surface.adhesion_calibration]`` table of a surface TOML file, as written; None
+    without one. Checked as :func:`load_surface` checks it."""
+    path = Path(spec)
+    if path.suffix != ".toml" or str(spec) in SURFACES:
+        return None
+    table = _table(_read_toml(path), "surface", path).get("adhesion_calibration")
+    if table is None:
+        return None
+    _adhesion_calibration(table, f"{path} [surface]")
     return dict(table)
 
 

@@ -154,6 +154,8 @@ def ingest_file(
     periodic: bool | None = None,
     calibrate: Material | None = None,
     radius_by_height: bool | None = None,
+    adhesion_w: float | None = None,
+    adhesion_range: float | None = None,
 ) -> IngestResult:
     """Read a height map or a height histogram and derive a GW surface from it.
 
@@ -192,6 +194,12 @@ def ingest_file(
         the summits' curvatures against their heights
         (:func:`mcsim.topography.summits.radius_by_height`): taller summits are sharper.
         None (default): with ``calibrate`` only. Maps with ``heights="summits"`` only.
+    adhesion_w : float, optional
+        With ``calibrate``: also calibrate GW's pull-off on exact adhesive cycles of the map
+        with this work of adhesion, J/m², > 0
+        (:func:`mcsim.studies.adhesioncalibration.calibrate_adhesion`); recorded, not applied.
+    adhesion_range : float, optional
+        The exponential law's range, m, > 0 (default the material's z0, else 1 nm).
 
     Returns
     -------
@@ -210,6 +218,12 @@ def ingest_file(
     if level is not None:
         _check_choice("level", level, tuple(LEVELS))
     _check_choice("heights", heights, HEIGHTS)
+    if adhesion_w is not None or adhesion_range is not None:
+        from mcsim.studies.adhesioncalibration import check_inputs
+
+        if calibrate is None or adhesion_w is None:
+            raise ParameterError("w: the adhesion calibration needs --calibrate and --w")
+        check_inputs(adhesion_w, adhesion_range)
     path = Path(path)
     if not path.exists():
         raise ReaderError(f"{path}: no such file")
@@ -298,6 +312,16 @@ def ingest_file(
 
         calibration = fit(path, calibrate, unit=unit, pixel_size=pixel_size, channel=channel,
                           level=level, periodic=periodic, surface=surface)  # fmt: skip
+    adhesion = None
+    if adhesion_w is not None:
+        from mcsim.studies.adhesioncalibration import calibrate_adhesion
+
+        try:
+            adhesion = calibrate_adhesion(levelled, (hmap.dx, hmap.dy), calibrate,
+                                          calibration.apply(surface), w=adhesion_w,
+                                          range_=adhesion_range, periodic=periodic)  # fmt: skip
+        except MCSimError as err:
+            raise type(err)(f"{path}: adhesion calibration: {err}") from None
     return IngestResult(
         source=path,
         format=_FORMAT_NAMES.get(path.suffix.lower(), "text matrix"),
@@ -327,6 +351,7 @@ def ingest_file(
         periodic=periodic,
         periodic_reason=periodic_reason,
         calibration=calibration,
+        adhesion_calibration=adhesion,
     )
 
 

@@ -23,6 +23,7 @@ from mcsim.topography.empirical import Empirical
 from mcsim.topography.summits import TopographyResult
 
 if TYPE_CHECKING:
+    from mcsim.studies.adhesioncalibration import AdhesionCalibration
     from mcsim.studies.calibration import Calibration
 
 #: Levelling choices: name → degree of the subtracted polynomial (``none``: the mean only).
@@ -136,6 +137,10 @@ class IngestResult:
         GW's summit-radius scale fitted to exact solves (:mod:`mcsim.studies.calibration`),
         written to the surface file's ``[surface.calibration]`` table; ``surface`` keeps the
         measured radius.
+    adhesion_calibration : AdhesionCalibration or None
+        GW's pull-off calibrated on exact adhesive cycles of the map
+        (:mod:`mcsim.studies.adhesioncalibration`), written to the surface file's
+        ``[surface.adhesion_calibration]`` table; recorded, not applied.
     """
 
     source: Path
@@ -162,6 +167,7 @@ class IngestResult:
     periodic: bool = False
     periodic_reason: str = ""
     calibration: Calibration | None = None
+    adhesion_calibration: AdhesionCalibration | None = None
 
     @property
     def distribution(self) -> Empirical:
@@ -213,6 +219,9 @@ class IngestResult:
         if self.calibration is not None:
             lines += self.calibration.lines()
             lines += [f"warning    {w}" for w in self.calibration.warnings()]
+        if self.adhesion_calibration is not None:
+            lines += self.adhesion_calibration.lines()
+            lines += [f"warning    {w}" for w in self.adhesion_calibration.warnings()]
         lines += [f"warning    {w}" for w in self.warnings]
         if s.rq is not None:
             lines.append(
@@ -360,6 +369,7 @@ class IngestResult:
             ),
             *self._radius_toml(),
             *self._calibration_toml(),
+            *(self.adhesion_calibration.toml_lines() if self.adhesion_calibration else []),
             "",
             "[surface.heights]",
             f"file = {json.dumps(csv_name)}",
