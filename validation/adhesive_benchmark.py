@@ -4,7 +4,7 @@ A periodic self-affine Gaussian map (Hurst exponent 0.8, 256 x 256 pixels over 1
 height 5 nm, seeded; ``--quick``: 64 x 64 and 8 positions) meets a rigid flat with
 E* = 100 GPa and w = 0.1 J/m², first under the exponential law of range 1 nm, then under
 the Maugis–Dugdale law of the same w and range
-(:func:`mcsim.physics.adhesivebem.cycle`). The flat approaches through 30 mean gaps, from
+(:func:`mcsim.physics.adhesivecycle.cycle`). The flat approaches through 30 mean gaps, from
 3 ranges above the highest summit down to the mean gap of the non-adhesive contact at
 350 MPa (``mcsim contact``'s largest load, :func:`mcsim.physics.bem.solve_contact`), then
 retracts through the same positions. The same map scaled to an rms of 1 nm (where a public
@@ -32,7 +32,7 @@ import numpy as np
 from contact_benchmark import self_affine_map
 from reporting import Checks, parser, write_summary
 
-from mcsim.physics import adhesivebem, bem
+from mcsim.physics import adhesivebem, adhesivecycle, bem
 from mcsim.physics.interactions import Exponential, MaugisDugdale, mesh_parameter
 
 E_STAR = 1e11  # Pa
@@ -83,7 +83,7 @@ def main() -> None:
         d = positions(z, dx, steps, TOP * rms / 5e-9)  # the same contact fraction
         law = kind(W, RANGE)
         c, seconds, peak = measured(
-            lambda z=z, d=d, law=law: adhesivebem.cycle(
+            lambda z=z, d=d, law=law: adhesivecycle.cycle(
                 z, dx, E_STAR, law, d, periodic=True, strict=False
             )
         )
@@ -102,7 +102,7 @@ def main() -> None:
             checks.at_most(f"{name}: cycle time (s)", seconds, TIME_TARGET, timing=True)
             half = d[::2] if steps > 2 else d
             _, _, half_peak = measured(
-                lambda half=half, z=z, law=law: adhesivebem.cycle(
+                lambda half=half, z=z, law=law: adhesivecycle.cycle(
                     z, dx, E_STAR, law, half, periodic=True, strict=False
                 )
             )

@@ -61,7 +61,7 @@ import numpy as np
 
 from mcsim.model.errors import ParameterError
 from mcsim.model.params import Material, Surface
-from mcsim.physics import adhesivebem, bem
+from mcsim.physics import adhesivebem, adhesivecycle, bem
 from mcsim.physics.interactions import Exponential
 from mcsim.store.config import ADHESION_CALIBRATION_KEYS
 from mcsim.studies.adhesivecontact import (
@@ -348,9 +348,9 @@ def exact_pull_off(z, pixels, E_star: float, law: Exponential, pressure: float, 
             below[0] = solution.displacement_field
 
     try:
-        cycle = adhesivebem.cycle(z, pixels, E_star, law, heights, periodic=periodic, tol=tol,
+        cycle = adhesivecycle.cycle(z, pixels, E_star, law, heights, periodic=periodic, tol=tol,
                                   max_iter=max_iter, on_step=on_step)  # fmt: skip
-    except adhesivebem.ConvergenceError as err:
+    except adhesivecycle.ConvergenceError as err:
         raise ParameterError(f"{err}; no answer is given for it") from None
     pull_off, _ = _refined_pull_off(cycle, below[1][1], z, pixels, E_star, law, periodic, tol,
                                     max_iter)  # fmt: skip

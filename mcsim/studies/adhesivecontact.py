@@ -50,8 +50,8 @@ import numpy as np
 
 from mcsim.model.errors import ParameterError
 from mcsim.model.params import Material, Surface
-from mcsim.physics import adhesivebem, bem
-from mcsim.physics.adhesivebem import AdhesiveCycle
+from mcsim.physics import adhesivebem, adhesivecycle, bem
+from mcsim.physics.adhesivecycle import AdhesiveCycle
 from mcsim.physics.interactions import Exponential, Interaction, MaugisDugdale
 from mcsim.physics.stickiness import Stickiness, stickiness
 from mcsim.studies.ingest import _is_histogram_file, decide_periodic, default_level, ingest_file
@@ -134,7 +134,7 @@ class AdhesiveContactResult:
     pressure : float
         The non-adhesive pressure that set the deepest position, Pa.
     cycle : AdhesiveCycle
-        The exact approach and retraction (:func:`mcsim.physics.adhesivebem.cycle`).
+        The exact approach and retraction (:func:`mcsim.physics.adhesivecycle.cycle`).
     pull_off : float
         The most tensile mean pressure of the retraction, located between its steps (module
         docstring), Pa (> 0: tensile magnitude; 0 if never tensile).
@@ -504,9 +504,9 @@ def adhesive_contact(
             bar.update()
 
     try:
-        result = adhesivebem.cycle(z, pixels, material.E_star, law_, heights, periodic=periodic,
+        result = adhesivecycle.cycle(z, pixels, material.E_star, law_, heights, periodic=periodic,
                                    tol=tol, max_iter=max_iter, on_step=on_step)  # fmt: skip
-    except adhesivebem.ConvergenceError as err:
+    except adhesivecycle.ConvergenceError as err:
         raise ParameterError(f"{path}: {err}; no answer is given for it") from None
     finally:
         if bar is not None:

@@ -9,7 +9,7 @@ import pytest
 from scipy.optimize import brentq
 
 from mcsim.model.errors import ParameterError
-from mcsim.physics import adhesivebem, bem
+from mcsim.physics import adhesivebem, adhesivecycle, bem
 from mcsim.physics.interactions import Exponential, MaugisDugdale, mesh_parameter
 from mcsim.physics.laws import maugis_dugdale as md
 
@@ -150,7 +150,7 @@ def sphere_cycle():
     """λ = 1 on 48² pixels over ±2 A0: approach from the jump-in region to Δ = 0.6 and back."""
     z, dx, law, apex, side = md_sphere(1.0, 48, 2.0)
     deltas = np.arange(-1.4, 0.61, 0.1)
-    return adhesivebem.cycle(z, dx, E_STAR, law, apex - deltas * DELTA_UNIT, periodic=False,
+    return adhesivecycle.cycle(z, dx, E_STAR, law, apex - deltas * DELTA_UNIT, periodic=False,
                              tol=1e-4), apex, side  # fmt: skip
 
 
@@ -198,9 +198,9 @@ def test_non_convergence_is_flagged_never_silent():
                               max_iter=1)  # fmt: skip
     assert not s.converged and s.residual > adhesivebem.TOL
     positions = apex - np.array([-0.5, 0.5]) * DELTA_UNIT
-    with pytest.raises(adhesivebem.ConvergenceError, match="did not converge"):
-        adhesivebem.cycle(z, dx, E_STAR, law, positions, periodic=False, max_iter=1)
-    c = adhesivebem.cycle(z, dx, E_STAR, law, positions, periodic=False, max_iter=1, strict=False)
+    with pytest.raises(adhesivecycle.ConvergenceError, match="did not converge"):
+        adhesivecycle.cycle(z, dx, E_STAR, law, positions, periodic=False, max_iter=1)
+    c = adhesivecycle.cycle(z, dx, E_STAR, law, positions, periodic=False, max_iter=1, strict=False)
     assert not c.converged and c.failed
     assert math.isnan(c.pull_off) and math.isnan(c.work_of_separation)
 
@@ -267,7 +267,7 @@ def test_bad_modulus_position_and_tolerance_are_refused():
     with pytest.raises(
         ParameterError, match="`positions` must be at least two strictly descending"
     ):
-        adhesivebem.cycle(z, 1e-8, 1e11, law, [1e-9, 2e-9], periodic=True)
+        adhesivecycle.cycle(z, 1e-8, 1e11, law, [1e-9, 2e-9], periodic=True)
 
 
 def test_unresolved_law_warns_with_the_mesh_criterion():
@@ -313,7 +313,7 @@ def test_wavy_surface_follows_johnson_within_the_lattice_band():
         psi = math.pi * a / wavelength
         return p_star * math.sin(psi) ** 2 - math.sqrt(2 * E_STAR * w * math.tan(psi) / wavelength)
 
-    c = adhesivebem.cycle(z, dx, E_STAR, law, np.linspace(1.8 * h, 0.6 * h, 19), periodic=True)
+    c = adhesivecycle.cycle(z, dx, E_STAR, law, np.linspace(1.8 * h, 0.6 * h, 19), periodic=True)
     assert c.converged
     jump_in, jump_out = c.jumps[0], c.jumps[-1]
     assert jump_in.branch == "approach" and abs(jump_in.pressure_before) < 1e-12 * p_star
