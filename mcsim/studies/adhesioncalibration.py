@@ -61,17 +61,11 @@ import numpy as np
 
 from mcsim.model.errors import ParameterError
 from mcsim.model.params import Material, Surface
-from mcsim.physics import adhesivebem, adhesivecycle, bem
+from mcsim.physics import adhesivebem
 from mcsim.physics.interactions import Exponential
 from mcsim.store.config import ADHESION_CALIBRATION_KEYS
-from mcsim.studies.adhesivecontact import (
-    GW_LAWS,
-    H0_PER_Z0,
-    _flat_height,
-    _refined_pull_off,
-    positions,
-)
-from mcsim.studies.calibration import _short
+from mcsim.studies.adhesivecontact import GW_LAWS, H0_PER_Z0, exact_cycle
+from mcsim.studies.calibration import short
 
 #: Preloads p/E* of the fit: the decades of the area calibration's loads.
 PRELOADS = np.logspace(-4, -2, 3)
@@ -205,7 +199,7 @@ class AdhesionCalibration:
         ratios = ", ".join(f"{r:.3g}" for r in b.gw_pull_off / self.exact_pull_off)
         return [f"calibrated GW's pull-off ({b.law}, w x {b.factor:.3g}) is off the exact one out "
                 f"of sample by up to {b.out_of_sample_worst:.1%}, above {TARGET:.0%} (leave-one-out "
-                f"worst {b.loo_worst:.1%}; at p/E* = {_short(self.extrapolated_preload)} "
+                f"worst {b.loo_worst:.1%}; at p/E* = {short(self.extrapolated_preload)} "
                 f"{b.extrapolated_error:+.1%}; in sample {b.in_sample_worst:.1%}, ratios {ratios} at "
                 f"p/E* = {', '.join(f'{x:.3g}' for x in self.preload)}): {which}; one work-of-"
                 "adhesion factor cannot follow how the exact pull-off changes with preload on "
@@ -217,10 +211,10 @@ class AdhesionCalibration:
         return [
             f"calibrate adhesion: law {b.law}, w x {b.factor:.3g}; pull-off error in sample "
             f"{b.in_sample_worst * 100:.1f} %, leave-one-out {b.loo_worst * 100:.1f} %, at p/E* = "
-            f"{_short(self.extrapolated_preload)} {b.extrapolated_error * 100:+.1f} %",
+            f"{short(self.extrapolated_preload)} {b.extrapolated_error * 100:+.1f} %",
             f"calibrate adhesion:   exact cycles (exponential, w = {self.w:.4g} J/m^2, range "
             f"{self.range * 1e9:.4g} nm, {self.steps} steps) at p/E* = "
-            f"{', '.join(f'{x:.3g}' for x in self.preload)}, {_short(self.extrapolated_preload)}: "
+            f"{', '.join(f'{x:.3g}' for x in self.preload)}, {short(self.extrapolated_preload)}: "
             "pull-off " + ", ".join(f"{p / 1e3:.4g}" for p in self.exact_pull_off)
             + f", {self.extrapolated_exact_pull_off / 1e3:.4g} kPa",
             *(f.line() for f in self.fits),
@@ -334,26 +328,8 @@ def exact_pull_off(z, pixels, E_star: float, law: Exponential, pressure: float, 
     """The exact adhesive cycle of heights ``z`` (m, about their mean) to the depth where the
     non-adhesive contact carries ``pressure`` (Pa): its refined pull-off (Pa, tensile
     magnitude) and the largest mean pressure of its approach (Pa)."""
-    deepest = bem.solve_contact(z, pixels, E_star, pressure, periodic=periodic)
-    if not deepest.converged:
-        raise ParameterError(f"pressure {pressure:g} Pa: the non-adhesive solve that sets the "
-                             "deepest position did not converge")  # fmt: skip
-    heights = positions(z, law, _flat_height(deepest, z, pixels, E_star, periodic), steps)
-    below: list = [None, None]
-
-    def on_step(branch, solution):
-        if branch == "retraction":
-            if below[1] is None or solution.mean_pressure < below[1][0]:
-                below[1] = (solution.mean_pressure, below[0])
-            below[0] = solution.displacement_field
-
-    try:
-        cycle = adhesivecycle.cycle(z, pixels, E_star, law, heights, periodic=periodic, tol=tol,
-                                  max_iter=max_iter, on_step=on_step)  # fmt: skip
-    except adhesivecycle.ConvergenceError as err:
-        raise ParameterError(f"{err}; no answer is given for it") from None
-    pull_off, _ = _refined_pull_off(cycle, below[1][1], z, pixels, E_star, law, periodic, tol,
-                                    max_iter)  # fmt: skip
+    cycle, pull_off, _ = exact_cycle(z, pixels, E_star, law, pressure, periodic=periodic,
+                                     steps=steps, tol=tol, max_iter=max_iter)  # fmt: skip
     return pull_off, max(s.mean_pressure for s in cycle.approach)
 
 

@@ -392,6 +392,50 @@ def positions(z: np.ndarray, law: Interaction, deepest: float, steps: int) -> np
     return np.concatenate([tail[:-1], np.linspace(near, deepest, steps - TAIL)])
 
 
+def exact_cycle(z, pixels, E_star: float, law: Interaction, pressure: float, *,
+                periodic: bool, steps: int = STEPS, tol: float = adhesivebem.TOL,
+                max_iter: int = adhesivebem.MAX_ITER, on_step=None):  # fmt: skip
+    """The exact adhesive cycle of heights ``z`` (m, about their mean) down to where the
+    non-adhesive contact carries ``pressure`` (Pa) and back (module docstring).
+
+    Returns
+    -------
+    cycle : AdhesiveCycle
+    pull_off : float
+        The most tensile retraction pressure located between the steps, Pa (> 0; 0 if none).
+    position : float
+        Where, m (NaN if never tensile).
+
+    Raises
+    ------
+    ParameterError
+        A solve, of the cycle or of the pull-off's refinement, that did not converge.
+    """
+    deepest = bem.solve_contact(z, pixels, E_star, pressure, periodic=periodic)
+    if not deepest.converged:
+        raise ParameterError(f"pressure {pressure:g} Pa: the non-adhesive solve that sets the "
+                             "deepest position did not converge")  # fmt: skip
+    heights = positions(z, law, _flat_height(deepest, z, pixels, E_star, periodic), steps)
+    below: list = [None, None]  # on retraction: the displacement below the most tensile step
+
+    def track(branch, solution):
+        if branch == "retraction":
+            if below[1] is None or solution.mean_pressure < below[1][0]:
+                below[1] = (solution.mean_pressure, below[0])
+            below[0] = solution.displacement_field
+        if on_step is not None:
+            on_step(branch, solution)
+
+    try:
+        cycle = adhesivecycle.cycle(z, pixels, E_star, law, heights, periodic=periodic, tol=tol,
+                                    max_iter=max_iter, on_step=track)  # fmt: skip
+    except adhesivecycle.ConvergenceError as err:
+        raise ParameterError(f"{err}; no answer is given for it") from None
+    pull_off, where = _refined_pull_off(cycle, below[1][1], z, pixels, E_star, law, periodic,
+                                        tol, max_iter)  # fmt: skip
+    return cycle, pull_off, where
+
+
 def adhesive_contact(
     path: str | Path,
     material: Material,
@@ -476,11 +520,6 @@ def adhesive_contact(
     diagnostics = stickiness(z, hmap.dx, material.E_star, law_.w, law_.range, periodic)
     ingested = ingest_file(path, unit=unit, pixel_size=pixel_size, level=level, channel=channel,
                            periodic=periodic)  # fmt: skip
-    deepest = bem.solve_contact(z, pixels, material.E_star, p, periodic=periodic)
-    if not deepest.converged:
-        raise ParameterError(f"pressure {p:g} Pa: the non-adhesive solve that sets the deepest "
-                             "position did not converge")  # fmt: skip
-    heights = positions(z, law_, _flat_height(deepest, z, pixels, material.E_star, periodic), steps)
     kept: dict[str, list] = {"gap": [], "pressure": []}
     bar = None
     if progress:
@@ -490,13 +529,7 @@ def adhesive_contact(
 
         bar = tqdm(total=2 * steps, unit=" steps", file=sys.stderr, leave=False)
 
-    below: list = [None, None]  # on retraction: the displacement below the most tensile step
-
     def on_step(branch, solution):
-        if branch == "retraction":
-            if below[1] is None or solution.mean_pressure < below[1][0]:
-                below[1] = (solution.mean_pressure, below[0])
-            below[0] = solution.displacement_field
         if keep_fields:
             kept["gap"].append(solution.gap_field.astype(np.float32))
             kept["pressure"].append(solution.pressure_field.astype(np.float32))
@@ -504,15 +537,14 @@ def adhesive_contact(
             bar.update()
 
     try:
-        result = adhesivecycle.cycle(z, pixels, material.E_star, law_, heights, periodic=periodic,
-                                   tol=tol, max_iter=max_iter, on_step=on_step)  # fmt: skip
-    except adhesivecycle.ConvergenceError as err:
-        raise ParameterError(f"{path}: {err}; no answer is given for it") from None
+        result, pull_off, where = exact_cycle(z, pixels, material.E_star, law_, p,
+                                              periodic=periodic, steps=steps, tol=tol,
+                                              max_iter=max_iter, on_step=on_step)  # fmt: skip
+    except ParameterError as err:
+        raise ParameterError(f"{path}: {err}") from None
     finally:
         if bar is not None:
             bar.close()
-    pull_off, where = _refined_pull_off(result, below[1][1], z, pixels, material.E_star, law_,
-                                        periodic, tol, max_iter)  # fmt: skip
     gw = gw_adhesion(
         ingested.surface, material, law_, max(s.mean_pressure for s in result.approach)
     )

@@ -198,11 +198,11 @@ class Calibration:
         if worst <= TARGET:
             return []
         which = ("leave-one-out over the fitted loads" if self.loo_worst >= abs(self.extrapolated_error)
-                 else f"at p/E* = {_short(self.extrapolated_load)}, outside the fitted range")  # fmt: skip
+                 else f"at p/E* = {short(self.extrapolated_load)}, outside the fitted range")  # fmt: skip
         ratios = ", ".join(f"{r:.3g}" for r in self.gw_area / self.exact_area)
         return [f"calibrated GW's area is off the exact one out of sample by up to {worst:.1%} "
                 f"({which}), above {TARGET:.0%} (leave-one-out worst {self.loo_worst:.1%}; at "
-                f"p/E* = {_short(self.extrapolated_load)} {self.extrapolated_error:+.1%}; in sample "
+                f"p/E* = {short(self.extrapolated_load)} {self.extrapolated_error:+.1%}; in sample "
                 f"{self.in_sample_worst:.1%}, ratios {ratios} at p/E* = "
                 f"{', '.join(f'{x:.3g}' for x in self.load)}): one radius scale cannot follow how "
                 "the exact area grows with load on this map (with one radius for every summit, try "
@@ -221,7 +221,7 @@ class Calibration:
             f"calibrate  in sample (at the fitted loads): worst area error "
             f"{self.in_sample_worst:.1%}, rms {self.in_sample_rms:.1%}",
             f"calibrate  out of sample: leave-one-out worst {self.loo_worst * 100:.1f} %, rms "
-            f"{self.loo_rms * 100:.1f} %; at p/E* = {_short(self.extrapolated_load)} (outside the "
+            f"{self.loo_rms * 100:.1f} %; at p/E* = {short(self.extrapolated_load)} (outside the "
             f"fitted range): {self.extrapolated_error * 100:+.1f} %",
             "calibrate  the mean gap is NOT calibrated: exact "
             + ", ".join(f"{g * 1e9:.4g}" for g in self.exact_gap) + " nm; GW calibrated "
@@ -229,7 +229,7 @@ class Calibration:
         ]  # fmt: skip
 
 
-def _short(x: float) -> str:
+def short(x: float) -> str:
     """``x`` in e-notation with one digit and no padded exponent: 0.03 -> ``3e-2``."""
     mantissa, exponent = f"{x:.0e}".split("e")
     return f"{mantissa}e{int(exponent)}"
