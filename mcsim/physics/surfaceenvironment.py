@@ -8,8 +8,14 @@ owns the local gaps D0 ≤ u < u_c near it (per-summit laws,
 :mod:`mcsim.physics.laws.attraction`, appended to the law set by :func:`with_environment`),
 and the **open gaps** between the caps own u ≥ u_c (:func:`open_gap_pressures`: the local laws
 with the cutoff u_c, :func:`band_edge`). :func:`environment_curves` and
-:func:`environment_works` give both, expected over the surface; :func:`interface_notes`
-says where the inputs do not describe one interface.
+:func:`environment_works` give both, expected over the surface.
+
+**One interface, one law** (:func:`vdw_share`, :func:`contact_law`): the solids' van der Waals
+attraction is part of their interface's work of adhesion w, not an addition to it. Its share
+w_vdW = A/(12π D0²) (the flat–flat van der Waals energy at contact) acts through the caps and
+the open gaps, and the contact law carries the rest, w − w_vdW (the short-range part), so a
+touching summit's adhesion sums to w once (docs/physics.md); :func:`interface_notes` says how
+w is shared.
 """
 
 from __future__ import annotations
@@ -141,7 +147,7 @@ def contact_law(law: LawSet, env: Environment | None) -> LawSet:
         contact = dataclasses.replace(m, gamma=contact_adhesion(m.gamma, env))
         return {**law.constants(s, contact), "gamma": contact.gamma}
 
-    constants.interface = env
+    constants.interface = env  # marks the split as made (a law set is frozen; its parts are not)
     return dataclasses.replace(law, constants=constants)
 
 
@@ -271,29 +277,24 @@ def _split(caps: dict, gaps: dict, env: Environment, shape) -> dict[str, np.ndar
 def environment_curves(h, surface, env: Environment) -> dict[str, np.ndarray]:
     """The environment's attraction per nominal area over a GW separation grid, Pa.
 
-        The summits' caps (:mod:`mcsim.physics.laws.attraction`, expected over the summit
-        heights) plus the open gaps between them (:func:`open_gap_pressures`), nothing counted
-        twice (docs/physics.md, section 'The environment: summits and open gaps').
+    The summits' caps (:mod:`mcsim.physics.laws.attraction`, expected over the summit
+    heights) plus the open gaps between them (:func:`open_gap_pressures`), nothing counted
+    twice (docs/physics.md, section 'The environment: summits and open gaps').
 
-    **One interface, one law** (:func:`vdw_share`, :func:`contact_law`): the solids' van der Waals
-    attraction is part of their interface's work of adhesion w, not an addition to it. Its share
-    w_vdW = A/(12π D0²) (the flat–flat van der Waals energy at contact) acts through the caps and
-    the open gaps, and the contact law carries the rest, w − w_vdW (the short-range part), so a
-    touching summit's adhesion sums to w once.
-        Parameters
-        ----------
-        h : array_like
-            Dimensionless separations d/σ (d from the mean summit plane).
-        surface : Surface
-            Summits (σ, R, η, heights) and, for the open gaps, the heights about the mean plane
-            (:func:`mcsim.physics.gapheights.gap_heights`).
-        env : Environment
+    Parameters
+    ----------
+    h : array_like
+        Dimensionless separations d/σ (d from the mean summit plane).
+    surface : Surface
+        Summits (σ, R, η, heights) and, for the open gaps, the heights about the mean plane
+        (:func:`mcsim.physics.gapheights.gap_heights`).
+    env : Environment
 
-        Returns
-        -------
-        dict
-            ``"vdw"``, ``"capillary"`` (totals), and their parts ``"vdw_caps"``, ``"vdw_gaps"``,
-            ``"capillary_caps"``, ``"capillary_gaps"``; Pa, > 0 attractive, zeros where off.
+    Returns
+    -------
+    dict
+        ``"vdw"``, ``"capillary"`` (totals), and their parts ``"vdw_caps"``, ``"vdw_gaps"``,
+        ``"capillary_caps"``, ``"capillary_gaps"``; Pa, > 0 attractive, zeros where off.
     """
     caps = _summit_expectation(h, surface, env, work=False)
     return _split(caps, open_gap_pressures(h, surface, env), env, np.shape(h))
