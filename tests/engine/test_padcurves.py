@@ -322,6 +322,8 @@ def test_a_humid_turn_on_a_narrow_peak_just_before_a_jump_in_is_not_stepped_over
     e = padload.contact_edges(spec)
     found = 0
     for r in range(spec.realizations):  # the pads have such peaks to test on
+        if found >= 2:
+            break
         z = padload.patch_heights(spec, r)
         d_t = padcurves.force_turn(spec, z, 1e6 * spec.area)[0]
         for c in np.sort(z - e.jump_in)[::-1]:
