@@ -25,11 +25,9 @@ Outputs ``adhesive_benchmark.txt``.
 from __future__ import annotations
 
 import os
-import time
-import tracemalloc
 
 import numpy as np
-from contact_benchmark import self_affine_map
+from contact_benchmark import measured, self_affine_map
 from reporting import Checks, parser, write_summary
 
 from mcsim.physics import adhesivebem, adhesivecycle, bem
@@ -48,17 +46,6 @@ def positions(z: np.ndarray, dx: float, steps: int, top: float) -> np.ndarray:
     at ``top`` (Pa), m, descending."""
     lowest = bem.solve_contact(z, dx, E_STAR, top, periodic=True).mean_gap
     return np.linspace(float((z - z.mean()).max()) + 3 * RANGE, lowest, steps)
-
-
-def measured(run):
-    """(result, seconds, tracemalloc peak in MB) of ``run()``."""
-    tracemalloc.start()
-    start = time.perf_counter()
-    result = run()
-    seconds = time.perf_counter() - start
-    peak = tracemalloc.get_traced_memory()[1] / 1e6
-    tracemalloc.stop()
-    return result, seconds, peak
 
 
 def main() -> None:

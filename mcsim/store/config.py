@@ -511,26 +511,25 @@ def calibration_in_surface_file(spec: str | Path) -> dict[str, Any] | None:
 
     Checked as :func:`load_surface` checks it (known keys, ``radius_scale`` > 0).
     """
-    path = Path(spec)
-    if path.suffix != ".toml" or str(spec) in SURFACES:
-        return None
-    table = _table(_read_toml(path), "surface", path).get("calibration")
-    if table is None:
-        return None
-    _radius_scale(table, f"{path} [surface]")
-    return dict(table)
+    return _surface_table(spec, "calibration", _radius_scale)
 
 
 def adhesion_calibration_in_surface_file(spec: str | Path) -> dict[str, Any] | None:
     """The ``[surface.adhesion_calibration]`` table of a surface TOML file, as written; None
     without one. Checked as :func:`load_surface` checks it."""
+    return _surface_table(spec, "adhesion_calibration", _adhesion_calibration)
+
+
+def _surface_table(spec: str | Path, key: str, check) -> dict[str, Any] | None:
+    """The ``[surface.<key>]`` table of a surface TOML file, checked by ``check``; None for a
+    preset, another kind of file, or a file without it."""
     path = Path(spec)
     if path.suffix != ".toml" or str(spec) in SURFACES:
         return None
-    table = _table(_read_toml(path), "surface", path).get("adhesion_calibration")
+    table = _table(_read_toml(path), "surface", path).get(key)
     if table is None:
         return None
-    _adhesion_calibration(table, f"{path} [surface]")
+    check(table, f"{path} [surface]")
     return dict(table)
 
 
