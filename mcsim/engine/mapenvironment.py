@@ -9,32 +9,19 @@ dry kernel, these are plain numba functions that the interpreter also runs:
 
 * **the attraction** at a separation h, as
   :func:`mcsim.physics.surfaceenvironment.environment_curves` (docs/physics.md, section 'The
-  environment: summits and open gaps'), each term the summits' caps plus the open gaps
-  between them (:func:`_attractions`). The caps, over the summit heights s ~ N(0, 1) with
-  tip gap g = σ(h − s): the capillary part η 2πR (γ_L/r_K) E[(g_k − max(g, D0))⁺],
-  g_k = min(g_K, u_c), in closed form (:func:`_depth`, the partial means F_1 of
-  :func:`mcsim.physics.environment._gaussian_condensate`, here φ(x) − x Q(x) with Q by
-  ``math.erfc`` where the reference uses erfcx: the difference loses ~x²ε relative, 1e-13
-  at x = 20, only where F_1(x) < e^-200 of its value at 0, nothing at the curves' scale:
-  measured 3e-15 of it, 3e-14 pointwise on the test's curves); the van der
-  Waals part η (AR/6) {(D0⁻² − u_c⁻²) P(g < D0) + E[g⁻² − u_c⁻²; D0 <= g < u_c]}, the
-  expectation of the per-summit law (:func:`mcsim.physics.laws.attraction.vdw_summit`)
-  with a positive integrand (no cancellation). The open gaps, over the heights about the
-  mean plane (D = hσ + y_s, g = D − z, z ~ N(0, Rq²)): (γ_L/r_K) P(u_c <= g < g_K) in
-  closed form, and (A/6π) E[g⁻³; g >= u_c]. Both moments by one rule
-  (:func:`_gap_moments`): :data:`VDW_PANELS` panels of :data:`VDW_NODES` Gauss–Legendre
-  nodes in u, τ = t + c/ρ = ln(1 + eᵘ) (c the lower end, ρ the Gaussian's width): the
-  reference's map ξ = τ + ln τ has the same two regimes (geometric at the pole, uniform
-  beyond) and strip of analyticity, but its inverse is Wright's ω; softplus costs one exp
-  and one log1p a node. Consecutive separations within :data:`VDW_SPREAD` in
-  a = (D − c)/ρ of each other (the points of one panel of the pull-off grid, of the
-  turn's scan, of the curves) share one rule over the union of their windows
+  environment covers the surface once'): the whole surface's, over its heights about the
+  mean plane (D = hσ + y_s, g = D − z, z ~ N(0, Rq²)), which the summits' caps and the open
+  gaps share (:func:`_attractions`): (γ_L/r_K) P(D0 <= g < g_K) in closed form, and
+  (A/6π) E[g⁻³; g >= D0] (:func:`_gap_moments`): :data:`VDW_PANELS` panels of
+  :data:`VDW_NODES` Gauss–Legendre nodes in u, τ = t + c/ρ = ln(1 + eᵘ) (c the lower end,
+  ρ the Gaussian's width): the reference's map ξ = τ + ln τ has the same two regimes
+  (geometric at the pole, uniform beyond) and strip of analyticity, but its inverse is
+  Wright's ω; softplus costs one exp and one log1p a node. Consecutive separations within
+  :data:`VDW_SPREAD` in a = (D − c)/ρ of each other (the points of one panel of the pull-off
+  grid, of the turn's scan, of the curves) share one rule over the union of their windows
   (:func:`_moments`): one exponential per node and point. The 96 nodes agree with the
-  reference's 144 to 7e-14 relative at worst for the open gaps, alone or shared, for
-  Rq/D0 = 1–1000 and a from −30 to 30 (both ~1e-14 from the integral); the caps' bounded
-  moment agrees with 30-digit mpmath to 5e-15 relative for σ/D0 = 1–1000,
-  (u_c − D0)/σ = 0.05–100 and a from −30 to 30 (where the Gaussian window misses
-  [D0, u_c], below e^-60 of its peak, it is 0: 7e-38 D0⁻² at most);
+  reference's 144 to 7e-14 relative at worst, alone or shared, for Rq/D0 = 1–1000 and a
+  from −30 to 30 (both ~1e-14 from the integral);
 * **the contact load**: the dry kernel's GW integrals (:func:`mcsim.engine.mapkernel.gw_load`)
   with :data:`S_NODES_NET` nodes instead of 32: the attraction pulls the turn deep, and
   below h ≈ −4 the 32-node rule, whose one panel in u then holds the Gaussian's whole
@@ -200,59 +187,28 @@ def _between(lo, hi):
 
 
 @numba.njit(**OPTIONS)
-def _partial_mean(x):
-    """F_1(x) = E[(X − x)⁺] = φ(x) − x Q(x) for a standard normal X and x >= 0 (as
-    :func:`mcsim.physics.environment._partial_mean`, there with erfcx; module docstring)."""
-    return math.exp(-0.5 * x * x) / _SQRT_2PI - x * _upper(x)
-
-
-@numba.njit(**OPTIONS)
-def _depth(a, b):
-    """F_1(b) − F_1(a) = E[(x − b)⁺ − (x − a)⁺] for a standard normal x and b <= a, with
-    F_1 at non-negative arguments only (F_1(y) = max(−y, 0) + F_1(|y|)), as
-    :func:`mcsim.physics.environment._gaussian_condensate`."""
-    if a <= 0.0:
-        return a - b + _partial_mean(-b) - _partial_mean(-a)
-    return max(-b, 0.0) + _partial_mean(abs(b)) - _partial_mean(a)
-
-
-@numba.njit(**OPTIONS)
 def _attractions(h, n, sigma, p, vdw, capillary):
     """Van der Waals and capillary pressures (Pa) at the first ``n`` separations ``h``, into
     ``vdw`` and ``capillary``, as :func:`mcsim.physics.surfaceenvironment.environment_curves`, each
-    term 0 where its coefficient in ``p`` is 0 (module docstring):
-
-    * the summits' caps (g = σ(h − s), s standard normal; m = clip(g, D0, u_c)):
-      η(AR/6) E[m⁻² − u_c⁻²] = η(AR/6) {(D0⁻² − u_c⁻²) P(g < D0) + E[g⁻² − u_c⁻²; D0 <= g < u_c]}
-      and η 2πR (γ_L/r_K) E[(g_k − max(g, D0))⁺], g_k = min(g_K, u_c);
-    * the open gaps (D = hσ + y_s, g = D − z, z ~ N(0, Rq²)): (A/6π) E[g⁻³; g >= u_c] and
-      (γ_L/r_K) P(u_c <= g < g_K).
+    term 0 where its coefficient in ``p`` is 0 (module docstring): the whole surface's, over
+    its heights about the mean plane (D = hσ + y_s, g = D − z, z ~ N(0, Rq²)),
+    (A/6π) E[g⁻³; g >= D0] and (γ_L/r_K) P(D0 <= g < g_K).
     """
-    rq, cutoff, band = p[P_RQ], p[P_CUTOFF], p[P_BAND]
-    eta, R = p[6], p[P_RADIUS]
+    rq, cutoff = p[P_RQ], p[P_CUTOFF]
     a = np.empty(n)
-    caps = np.empty(n)
     for k in range(n):
         capillary[k] = 0.0
-        if p[P_LAPLACE] != 0.0:
-            if p[P_GAP] > band:  # the open gaps: (γ_L/r_K) P(u_c <= g < g_K)
-                D = h[k] * sigma + p[P_OFFSET]
-                capillary[k] = _between((D - p[P_GAP]) / rq, (D - band) / rq)
-            # the caps: E[(g_k − max(g, D0))⁺] = σ E[(s − b)⁺ − (s − a)⁺], s = h − g/σ
-            depth = sigma * _depth(h[k] - cutoff / sigma, h[k] - p[P_CAP_GAP] / sigma)
-            capillary[k] = p[P_LAPLACE] * (capillary[k] + 2.0 * math.pi * R * eta * depth)
+        if p[P_LAPLACE] != 0.0 and p[P_GAP] > cutoff:
+            D = h[k] * sigma + p[P_OFFSET]
+            capillary[k] = p[P_LAPLACE] * _between((D - p[P_GAP]) / rq, (D - cutoff) / rq)
     if p[P_VDW] == 0.0:
         vdw[:n] = 0.0
         return
-    for k in range(n):  # the open gaps: E[g⁻³; g >= u_c], a = (D − u_c)/Rq
-        a[k] = (h[k] * sigma + p[P_OFFSET] - band) / rq
-    _moments(a, n, band / rq, rq, 3, math.inf, vdw)
-    for k in range(n):  # the caps: E[g⁻² − u_c⁻²; D0 <= g < u_c], a = (σh − D0)/σ
-        a[k] = h[k] - cutoff / sigma
-    _moments(a, n, cutoff / sigma, sigma, 2, (band - cutoff) / sigma, caps)
-    pressed = 1.0 / (cutoff * cutoff) - 1.0 / (band * band)
-    for k in range(n):  # η A R/6 = (A/6π) πRη
-        vdw[k] = p[P_VDW] * (vdw[k] + math.pi * R * eta * (pressed * _upper(a[k]) + caps[k]))
+    for k in range(n):  # E[g⁻³; g >= D0], a = (D − D0)/Rq
+        a[k] = (h[k] * sigma + p[P_OFFSET] - cutoff) / rq
+    _moments(a, n, cutoff / rq, rq, 3, math.inf, vdw)
+    for k in range(n):
+        vdw[k] *= p[P_VDW]
 
 
 @numba.njit(**OPTIONS)

@@ -1,14 +1,18 @@
 """The environment over a GW surface: each summit's cap, and the open gaps between the caps.
 
-See docs/physics.md, section 'The environment: summits and open gaps'.
+See docs/physics.md, sections 'The environment: summits and open gaps' and 'The environment
+covers the surface once'.
 
-The local laws of :mod:`mcsim.physics.environment` (the proximity model over a height
-distribution) applied in two parts that never count one area twice: each GW summit's **cap**
-owns the local gaps D0 ≤ u < u_c near it (per-summit laws,
-:mod:`mcsim.physics.laws.attraction`, appended to the law set by :func:`with_environment`),
-and the **open gaps** between the caps own u ≥ u_c (:func:`open_gap_pressures`: the local laws
-with the cutoff u_c, :func:`band_edge`). :func:`environment_curves` and
-:func:`environment_works` give both, expected over the surface.
+The whole surface's attraction is the proximity model of :mod:`mcsim.physics.environment`
+over the surface's own heights about its mean plane (:func:`proximity_pressures`: every
+local gap g ≥ D0 once, the rest contact). It is shared in two parts: each GW summit's
+**cap** owns the local gaps D0 ≤ u < u_c near it (per-summit laws,
+:mod:`mcsim.physics.laws.attraction`, appended to the law set by :func:`with_environment`,
+:func:`band_edge`), and the **open gaps** carry the rest, the whole surface's attraction less
+the caps' expectation over the summit heights (:func:`open_gap_pressures`). On average over
+the summits the two cover the surface's own gaps exactly once at every separation; a pad's
+caps carry its summits' fluctuations about that average. :func:`environment_curves` and
+:func:`environment_works` give both.
 
 **One interface, one law** (:func:`vdw_share`, :func:`contact_law`): the solids' van der Waals
 attraction is part of their interface's work of adhesion w, not an addition to it. Its share
@@ -216,21 +220,20 @@ def _summit_expectation(h, surface, env: Environment, work: bool) -> dict[str, n
     return {"vdw": out[0], "capillary": out[1]}
 
 
-def _gaps(h, surface, env: Environment):
-    """Mean-plane gaps D = hσ + y_s (m), the heights about the mean plane, and u_c (m)."""
+def _gaps(h, surface):
+    """Mean-plane gaps D = hσ + y_s (m) and the heights about the mean plane."""
     gap = gap_heights(surface)
-    D = np.asarray(h, dtype=float) * surface.sigma + gap.summit_offset
-    # the caps own on average the local gaps below D0 + ⟨1/(2πR_iη)⟩: the mean curvature's
-    return D, gap.heights, band_edge(surface.mean_curvature_radius, surface.eta, env)
+    return np.asarray(h, dtype=float) * surface.sigma + gap.summit_offset, gap.heights
 
 
-def open_gap_pressures(h, surface, env: Environment) -> dict[str, np.ndarray]:
-    """Attraction across the open gaps between the summits' caps, Pa (> 0 attractive).
+def proximity_pressures(h, surface, env: Environment) -> dict[str, np.ndarray]:
+    """The environment's attraction over the whole surface, Pa (> 0 attractive): the
+    proximity model over the surface's own heights about its mean plane, every local gap
+    g = D − z ≥ D0 once (:func:`vdw_pressure`, :func:`capillary_pressure` with the cutoff D0).
 
-    The proximity model over the surface's heights about its mean plane restricted to local
-    gaps u ≥ u_c (:func:`band_edge`): :func:`vdw_pressure` and :func:`capillary_pressure` with
-    the cutoff u_c, (A/6π) E[g⁻³; g ≥ u_c] and (γ_L/r_K) P(u_c ≤ g < g_K). Nothing is charged
-    for the area nearer the flat: the caps own it.
+    This is the expected attraction of the summits' caps and the open gaps together
+    (:func:`environment_curves`): its areas are those of the surface itself (docs/physics.md,
+    section 'The environment covers the surface once').
 
     Parameters
     ----------
@@ -244,49 +247,91 @@ def open_gap_pressures(h, surface, env: Environment) -> dict[str, np.ndarray]:
     dict
         ``"vdw"``, ``"capillary"``, Pa (zeros where off).
     """
-    D, heights, u_c = _gaps(h, surface, env)
+    D, heights = _gaps(h, surface)
     zero = np.zeros(np.shape(D))
-    args = u_c, env.surface_tension, env.kelvin_radius, env.contact_angle
+    args = env.cutoff, env.surface_tension, env.kelvin_radius, env.contact_angle
     return {
-        "vdw": vdw_pressure(D, heights, env.hamaker, u_c) if env.has_vdw else zero,
+        "vdw": vdw_pressure(D, heights, env.hamaker, env.cutoff) if env.has_vdw else zero,
         "capillary": capillary_pressure(D, heights, *args) if env.has_capillary else zero,
     }
 
 
-def open_gap_works(h_t, surface, env: Environment) -> dict[str, np.ndarray]:
-    """Works of :func:`open_gap_pressures` from ``h_t`` (= d_t/σ) outward, J/m²:
-    :func:`vdw_work` and :func:`capillary_work` with the cutoff u_c."""
-    D, heights, u_c = _gaps(h_t, surface, env)
+def proximity_works(h_t, surface, env: Environment) -> dict[str, np.ndarray]:
+    """Works of :func:`proximity_pressures` from ``h_t`` (= d_t/σ) outward, J/m²:
+    :func:`vdw_work` and :func:`capillary_work` with the cutoff D0."""
+    D, heights = _gaps(h_t, surface)
     zero = np.zeros(np.shape(D))
-    args = u_c, env.surface_tension, env.kelvin_radius, env.contact_angle
+    args = env.cutoff, env.surface_tension, env.kelvin_radius, env.contact_angle
     return {
-        "vdw": vdw_work(D, heights, env.hamaker, u_c) if env.has_vdw else zero,
+        "vdw": vdw_work(D, heights, env.hamaker, env.cutoff) if env.has_vdw else zero,
         "capillary": capillary_work(D, heights, *args) if env.has_capillary else zero,
     }
 
 
-def _split(caps: dict, gaps: dict, env: Environment, shape) -> dict[str, np.ndarray]:
+def _rest(whole: dict, caps: dict, env: Environment) -> dict[str, np.ndarray]:
+    """``whole`` less the caps' expectation, term by term (the caps' zero where off)."""
+    terms = active_terms(env)
+    return {t: whole[t] - (caps[t].reshape(np.shape(whole[t])) if t in terms else 0.0)
+            for t in ("vdw", "capillary")}  # fmt: skip
+
+
+def open_gap_pressures(h, surface, env: Environment) -> dict[str, np.ndarray]:
+    """Attraction of the surface outside the summits' caps, Pa (> 0 attractive).
+
+    The whole surface's attraction (:func:`proximity_pressures`) less the caps' expectation
+    over the summit heights: the caps (:mod:`mcsim.physics.laws.attraction`, per summit)
+    then carry their own fluctuations, and caps plus open gaps cover the surface's own gaps
+    exactly once at every separation, on average over the summits. Where the caps' rigid
+    paraboloids claim more of some gap than the surface has (deep in contact), this rest is
+    negative: it takes back what the caps over-count (docs/physics.md).
+
+    Parameters
+    ----------
+    h : array_like
+        Separations d/σ from the mean summit plane.
+    surface : Surface
+    env : Environment
+
+    Returns
+    -------
+    dict
+        ``"vdw"``, ``"capillary"``, Pa (zeros where off).
+    """
+    caps = _summit_expectation(h, surface, env, work=False)
+    return _rest(proximity_pressures(h, surface, env), caps, env)
+
+
+def open_gap_works(h_t, surface, env: Environment) -> dict[str, np.ndarray]:
+    """Works of :func:`open_gap_pressures` from ``h_t`` (= d_t/σ) outward, J/m²: the whole
+    surface's (:func:`proximity_works`) less the caps' expected works."""
+    caps = _summit_expectation(h_t, surface, env, work=True)
+    return _rest(proximity_works(h_t, surface, env), caps, env)
+
+
+def _split(whole: dict, caps: dict, env: Environment, shape) -> dict[str, np.ndarray]:
     out = {}
     for term in ("vdw", "capillary"):
         on = term in active_terms(env)
         cap = caps[term].reshape(shape) if on else np.zeros(shape)
-        out |= {term: cap + gaps[term], f"{term}_caps": cap, f"{term}_gaps": gaps[term]}
+        out |= {term: whole[term], f"{term}_caps": cap, f"{term}_gaps": whole[term] - cap}
     return out
 
 
 def environment_curves(h, surface, env: Environment) -> dict[str, np.ndarray]:
     """The environment's attraction per nominal area over a GW separation grid, Pa.
 
-    The summits' caps (:mod:`mcsim.physics.laws.attraction`, expected over the summit
-    heights) plus the open gaps between them (:func:`open_gap_pressures`), nothing counted
-    twice (docs/physics.md, section 'The environment: summits and open gaps').
+    The whole surface's (:func:`proximity_pressures`: the proximity model over the
+    surface's own heights, each local gap once), shared between the summits' caps
+    (:mod:`mcsim.physics.laws.attraction`, expected over the summit heights) and the open
+    gaps, the rest (:func:`open_gap_pressures`; docs/physics.md, section 'The environment
+    covers the surface once').
 
     Parameters
     ----------
     h : array_like
         Dimensionless separations d/σ (d from the mean summit plane).
     surface : Surface
-        Summits (σ, R, η, heights) and, for the open gaps, the heights about the mean plane
+        Summits (σ, R, η, heights) and the heights about the mean plane
         (:func:`mcsim.physics.gapheights.gap_heights`).
     env : Environment
 
@@ -297,7 +342,7 @@ def environment_curves(h, surface, env: Environment) -> dict[str, np.ndarray]:
         ``"capillary_caps"``, ``"capillary_gaps"``; Pa, > 0 attractive, zeros where off.
     """
     caps = _summit_expectation(h, surface, env, work=False)
-    return _split(caps, open_gap_pressures(h, surface, env), env, np.shape(h))
+    return _split(proximity_pressures(h, surface, env), caps, env, np.shape(h))
 
 
 def environment_works(h_t, surface, env: Environment) -> dict[str, np.ndarray]:
@@ -305,7 +350,7 @@ def environment_works(h_t, surface, env: Environment) -> dict[str, np.ndarray]:
     away, J/m² (same keys): each the integral of its own pressure over d (the attractions
     have no history)."""
     caps = _summit_expectation(h_t, surface, env, work=True)
-    return _split(caps, open_gap_works(h_t, surface, env), env, np.shape(h_t))
+    return _split(proximity_works(h_t, surface, env), caps, env, np.shape(h_t))
 
 
 def interface_notes(surface, material, env: Environment | None) -> list[str]:

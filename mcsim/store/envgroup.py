@@ -1,12 +1,12 @@
 """The environment's part of a run file: the ``/environment`` group.
 
 Written only for a run with an environment: the Environment's inputs with their units,
-the band edge of the summits' caps, the heights about the mean plane used by the open gaps
-(rq, summit offset and their source), and the open gaps' pressures per row. The summits'
+the band edge of the summits' caps, the heights about the mean plane (rq, summit offset and
+their source), and the open gaps' pressures per row (the whole surface's less the caps'). The summits'
 caps are outputs of the run's law set (``vdw``, ``capillary``), stored with the other sums.
 Files without it are exactly as before (:mod:`mcsim.store.runfile`). A file written with
 the cell model of mcsim 0.2 (``cell_model`` attribute) is refused: its sums mean another
-model.
+model; so is one of an earlier model (its ``model`` attribute differs from :data:`MODEL`).
 """
 
 from __future__ import annotations
@@ -28,9 +28,9 @@ _ENVIRONMENT_UNITS = {"hamaker": "J", "cutoff": "m", "rh": "1", "contact_angle":
                       "temperature": "K", "surface_tension": "J/m^2", "molar_volume": "m^3/mol"}  # fmt: skip
 
 #: The model of the environment, as recorded in run files.
-MODEL = ("summits' caps (per-summit van der Waals and menisci, local gaps below band_edge) "
-         "plus the open gaps between them (proximity model over the heights about the mean "
-         "plane, local gaps from band_edge)")  # fmt: skip
+MODEL = ("the proximity model over the heights about the mean plane, each local gap once, "
+         "shared between the summits' caps (per-summit van der Waals and menisci, local gaps "
+         "below band_edge) and the open gaps (the rest: the whole less the caps' expectation)")  # fmt: skip
 
 
 def write_environment(f, spec, part) -> None:
@@ -68,6 +68,10 @@ def read_environment(path: Path, f, surface):
     if "model" not in a:
         raise RunFileError(f"{path}: this run's environment was sampled over cells (mcsim 0.2's "
                            "model, which counted the area near contact twice); run it again")  # fmt: skip
+    if str(a["model"]) != MODEL:
+        raise RunFileError(f"{path}: this run's environment follows an earlier model of mcsim "
+                           f"({a['model']}), whose open gaps did not cover the surface once; "
+                           "run it again")  # fmt: skip
     values = {k: float(a[k]) for k in _ENVIRONMENT_UNITS}
     values["hamaker"] = None if np.isnan(values["hamaker"]) else values["hamaker"]
     try:

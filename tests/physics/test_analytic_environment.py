@@ -1,6 +1,6 @@
 """gw_curves and load control with an environment (issues 22, 30): the vdw and capillary
-columns against an independent quadrature of the summits' caps and the open gaps, the net load, and no environment
-leaving every curve as it was."""
+columns against an independent quadrature of the proximity model over the surface's own
+heights, the net load, and no environment leaving every curve as it was."""
 
 import dataclasses
 import math
@@ -15,7 +15,7 @@ from mcsim.model.params import Material, Surface
 from mcsim.model.presets import MATERIALS, SURFACES
 from mcsim.physics.environment import Environment
 from mcsim.physics.gapheights import gap_heights
-from mcsim.physics.loadcontrol import load_control
+from mcsim.physics.loadcontrol import XTOL, load_control
 from mcsim.physics.surfaceenvironment import contact_adhesion
 
 # Surfaces nobody tuned the code to: one with rq and summit_offset given, one estimated.
@@ -28,49 +28,26 @@ H = np.array([2.7, 1.1, 0.3, -0.6])
 
 def quad_pressures(h, surface, env):
     """p_vdW and p_cap (Pa) at h = d/σ by scipy quad, written out from docs/physics.md
-    (section 'The environment: summits and open gaps'): the summits' caps over the Gaussian
-    summit heights s (tip gap g = σ(h − s); band edge u_c = D0 + 1/(2πRη); the cap's
-    condensation gap min(g_K, u_c)), plus the open gaps over the Gaussian heights z about the
-    mean plane (gap D − z >= u_c, D = hσ + y_s)."""
-    sigma, R, eta, D0 = surface.sigma, surface.R, surface.eta, env.cutoff
-    u_c = D0 + 1 / (2 * math.pi * R * eta)
-    r_k = env.kelvin_radius
+    (section 'The environment covers the surface once'): the proximity model over the
+    Gaussian heights z about the mean plane, every local gap D − z >= D0 once
+    (D = hσ + y_s), which the summits' caps and the open gaps share."""
+    D0, r_k = env.cutoff, env.kelvin_radius
     g_k = 2 * r_k * math.cos(env.contact_angle)
-    laplace, gk_cap = env.surface_tension / r_k, min(g_k, u_c)
-
-    def clip(g, hi):
-        return min(max(g, D0), hi)
-
-    def phi(x):
-        return math.exp(-0.5 * x * x) / math.sqrt(2 * math.pi)
-
-    def cap_vdw(s):
-        return env.hamaker * R / 6 * (clip(sigma * (h - s), u_c) ** -2 - u_c**-2) * phi(s)
-
-    def cap_meniscus(s):
-        return 2 * math.pi * R * laplace * (gk_cap - clip(sigma * (h - s), gk_cap)) * phi(s)
-
-    # the integrands have kinks where the tip gap is D0, g_K or u_c
-    kinks = sorted({h - u_c / sigma, h - gk_cap / sigma, h - D0 / sigma})
-    quad = dict(epsabs=0, epsrel=1e-12, limit=400)
-    vdw = eta * integrate.quad(cap_vdw, kinks[0], 40, points=kinks, **quad)[0]
-    cap = eta * integrate.quad(cap_meniscus, kinks[0], 40, points=kinks, **quad)[0]
     gap = gap_heights(surface)
-    D, rq = h * sigma + gap.summit_offset, gap.rq
+    D, rq = h * surface.sigma + gap.summit_offset, gap.rq
 
     def density(z):
-        return phi(z / rq) / rq
+        return math.exp(-0.5 * (z / rq) ** 2) / (math.sqrt(2 * math.pi) * rq)
 
-    top = D - u_c  # z below it: an open gap between the caps
-    vdw += env.hamaker / (6 * math.pi) * integrate.quad(
+    quad = dict(epsabs=0, epsrel=1e-12, limit=400)
+    top = D - D0  # z below it: an open gap
+    vdw = env.hamaker / (6 * math.pi) * integrate.quad(
         lambda z: (D - z) ** -3 * density(z), -12 * rq, top, **quad)[0]  # fmt: skip
-    if g_k > u_c:
-        cap += laplace * integrate.quad(density, D - g_k, top, **quad)[0]
+    cap = env.surface_tension / r_k * integrate.quad(density, D - g_k, top, **quad)[0]
     return vdw, cap
 
 
-#: So humid that the condensation gap (33 nm) passes the caps' band edge: menisci in the
-#: open gaps too.
+#: So humid that the condensation gap (33 nm) passes the caps' band edge.
 FLOODED = dataclasses.replace(ENV, rh=0.97)
 
 
@@ -132,7 +109,12 @@ def test_load_control_balances_the_net_load():
     result = load_control(GIVEN, MATERIAL, pressure, "dmt", environment=ENV)
     assert result.quantity == "load"
     again = gw_curves(GIVEN, MATERIAL, result.h, "dmt", environment=ENV)
-    np.testing.assert_allclose(again.load * MATERIAL.K, pressure, rtol=LOAD_CONTROL_RTOL)
+    # h is solved to XTOL: the load is met to XTOL times its slope (the net load is a small
+    # difference of large attractive and repulsive terms at the lowest target)
+    step = gw_curves(GIVEN, MATERIAL, result.h + 1e-6, "dmt", environment=ENV)
+    slope = np.abs(step.load - again.load) / 1e-6 * MATERIAL.K
+    np.testing.assert_array_less(np.abs(again.load * MATERIAL.K - pressure),
+                                 LOAD_CONTROL_RTOL * pressure + 2 * XTOL * slope)  # fmt: skip
     seed = load_control(GIVEN, MATERIAL, pressure, "seed", environment=ENV)
     assert seed.quantity == "load"
     np.testing.assert_allclose(seed.curves.load * MATERIAL.K, pressure, rtol=LOAD_CONTROL_RTOL)

@@ -25,7 +25,7 @@ from mcsim.physics.environment import (
     vdw_work,
 )
 from mcsim.physics.gapheights import nayak_heights
-from mcsim.physics.surfaceenvironment import band_edge, environment_curves, environment_works
+from mcsim.physics.surfaceenvironment import environment_curves, environment_works
 from mcsim.topography.empirical import Empirical
 
 A = 1.6e-19  # J, silicon across air
@@ -320,18 +320,17 @@ def test_default_environment_is_inactive():
     assert not env.active and env.cutoff == DEFAULT_CUTOFF
 
 
-def test_the_open_gaps_measure_the_gap_from_the_mean_plane():
-    """The GW separation d is from the mean summit plane, y_s above the mean plane: the open
-    gaps' attraction is the proximity model at D = hσ + y_s with the caps' band edge as its
-    cutoff."""
+def test_the_attraction_measures_the_gap_from_the_mean_plane():
+    """The GW separation d is from the mean summit plane, y_s above the mean plane: the
+    whole surface's attraction is the proximity model at D = hσ + y_s with the cutoff D0,
+    which the caps and the open gaps share."""
     surface = dataclasses.replace(SURFACES["smooth"], rq=1.55e-9, summit_offset=1.59e-9)
     env = Environment(hamaker=A, cutoff=D0, rh=0.7)
     h = np.array([-0.5, 0.0, 2.0])
     curves = environment_curves(h, surface, env)
     D = h * surface.sigma + 1.59e-9
-    u_c = band_edge(surface.R, surface.eta, env)
-    np.testing.assert_array_equal(curves["vdw_gaps"], vdw_pressure(D, 1.55e-9, A, u_c))
-    np.testing.assert_array_equal(curves["vdw"], curves["vdw_caps"] + curves["vdw_gaps"])
+    np.testing.assert_array_equal(curves["vdw"], vdw_pressure(D, 1.55e-9, A, D0))
+    np.testing.assert_array_equal(curves["vdw_gaps"], curves["vdw"] - curves["vdw_caps"])
 
 
 # -- validation messages ---------------------------------------------------------------------

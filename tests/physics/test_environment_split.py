@@ -1,11 +1,11 @@
 """The environment acts where the summits are: each summit's cap, and the open gaps between.
 
-Specification (docs/physics.md, section 'The environment: summits and open gaps'): a summit's
-cap owns the local gaps D0 <= u < u_c, the open gaps between the caps own u >= u_c over the
-surface's heights; gaps below D0 are contact and charged nothing. Checked here: the
-sphere–flat limits of one summit, −dW/dd = F for every part, the flat limits of the open
-gaps, and that no area is counted twice (nor lost) against an independent integral over the
-area each part owns.
+Specification (docs/physics.md, sections 'The environment: summits and open gaps' and 'The
+environment covers the surface once'): the whole surface's attraction is the proximity model
+over its own heights, each local gap u >= D0 once (gaps below D0 are contact and charged
+nothing); a summit's cap owns the local gaps D0 <= u < u_c of its paraboloid, the open gaps
+the rest. Checked here: the sphere–flat limits of one summit, −dW/dd = F for every part, the
+flat limits, and the areas against independent integrals over the surface's own heights.
 """
 
 from __future__ import annotations
@@ -33,7 +33,6 @@ from mcsim.physics.surfaceenvironment import (
     band_edge,
     environment_curves,
     environment_works,
-    open_gap_pressures,
     summit_parameters,
     with_environment,
 )
@@ -112,60 +111,96 @@ def test_every_part_of_the_attraction_is_minus_the_slope_of_its_work(name, part)
                                atol=1e-9 * np.max(np.abs(pressure)) + 1e-9)  # fmt: skip
 
 
-def test_the_open_gaps_of_a_flat_pair_are_the_flat_flat_laws():
+def test_a_flat_pair_attracts_with_the_flat_flat_laws():
     flat = dataclasses.replace(SURFACES["smooth"], rq=1e-12, summit_offset=0.0)
     # heights of rms 1 pm: E[(D − z)⁻³] = D⁻³ (1 + 6 Rq²/D² + ...), 6e-6 at D = 1 nm
     u_c = band_edge(flat.R, flat.eta, HUMID)
-    sigma = flat.sigma
-    for gap in (u_c * 1.01, 2 * u_c, 30e-9):
-        p = open_gap_pressures(np.float64(gap / sigma), flat, HUMID)
+    for gap in (0.5 * u_c, u_c * 1.01, 2 * u_c, 30e-9):
+        p = environment_curves(np.float64(gap / flat.sigma), flat, HUMID)
         assert p["vdw"] == pytest.approx(A / (6 * math.pi * gap**3), rel=1e-5)
         inside = HUMID.condensation_gap > gap  # every gap here lies ≫ 1 pm from g_K
         assert p["capillary"] == pytest.approx(HUMID.laplace_pressure * inside, rel=1e-12)
-    # nearer than u_c the flat is the caps' alone: nothing charged to the open gaps
-    p = open_gap_pressures(np.float64(0.5 * u_c / sigma), flat, HUMID)
-    assert p["vdw"] == 0 and p["capillary"] == 0
 
 
-def owned_area_integral(h, surface, env, kernel):
-    """∫ kernel(u) ρ(u) du over open local gaps u >= D0, with ρ the area per nominal area that
-    each part owns at local gap u, computed here independently of the package:
-    caps (u < u_c): η 2πR P(summit gap <= u) = η 2πR Q(h − u/σ);
-    open gaps (u >= u_c): the surface's height density at z = D − u (Gaussian, rms Rq)."""
+def surface_integral(h, surface, kernel, lo, hi=None):
+    """∫ kernel(u) f(u) du over local gaps lo <= u < hi, f the density of the surface's own
+    gaps u = D − z (z its Gaussian heights about the mean plane, rms Rq), independently of
+    the package: the area of the surface at each local gap, each once."""
     from scipy import stats
 
-    sigma, gap = surface.sigma, gap_heights(surface)
-    u_c = band_edge(surface.R, surface.eta, env)
-    D = h * sigma + gap.summit_offset
+    gap = gap_heights(surface)
+    D = h * surface.sigma + gap.summit_offset
+    hi = max(D, lo) + 40 * gap.rq if hi is None else hi
+
+    def density(u):
+        return stats.norm.pdf((D - u) / gap.rq) / gap.rq * kernel(u)
+
+    inner = [D] if lo < D < hi else None
+    return integrate.quad(density, lo, hi, points=inner, epsabs=0, epsrel=1e-12, limit=400)[0]
+
+
+def caps_integral(h, surface, env, kernel):
+    """∫ kernel(u) c(u) du over D0 <= u < u_c, c(u) = η 2πR P(summit gap <= u) =
+    η 2πR Q(h − u/σ) the area the summits' caps own at local gap u (independently)."""
+    from scipy import stats
+
+    sigma, u_c = surface.sigma, band_edge(surface.R, surface.eta, env)
 
     def caps(u):
         return surface.eta * 2 * math.pi * surface.R * stats.norm.sf(h - u / sigma) * kernel(u)
 
-    def gaps(u):
-        return stats.norm.pdf((D - u) / gap.rq) / gap.rq * kernel(u)
-
     steps = env.cutoff * (u_c / env.cutoff) ** np.linspace(0, 1, 17)
-    cap_part = sum(integrate.quad(caps, a, b, epsabs=0, epsrel=1e-12, limit=200)[0]
-                   for a, b in itertools.pairwise(steps))  # fmt: skip
-    top = max(D, u_c) + 40 * gap.rq
-    gap_part = integrate.quad(gaps, u_c, top, points=[D] if u_c < D < top else None, epsabs=0,
-                              epsrel=1e-12, limit=400)[0]  # fmt: skip
-    return cap_part + gap_part
+    return sum(integrate.quad(caps, a, b, epsabs=0, epsrel=1e-12, limit=200)[0]
+               for a, b in itertools.pairwise(steps))  # fmt: skip
 
 
 @pytest.mark.parametrize("name", ["smooth", "super-smooth", "intermediate"])
 @pytest.mark.parametrize("h", [-1.0, 0.5, 2.5])
-def test_no_area_is_counted_twice_nor_lost(name, h):
-    """Each term is its local law integrated once over the area each part owns: the menisci
-    (γ_L/r_K on D0 <= u < g_K) and van der Waals (A/(6πu³)). Charging the open gaps from D0
-    instead of u_c (the area nearer the flat counted by caps and gaps both) fails this."""
+def test_the_environment_covers_the_surface_once(name, h):
+    """Each term is its local law integrated once over the surface's own gaps: the menisci
+    (γ_L/r_K on D0 <= u < g_K) and van der Waals (A/(6πu³) on u >= D0). The caps own their
+    summits' paraboloids, the open gaps the rest; the caps' part is checked on its own."""
     surface, env = SURFACES[name], HUMID
-    g_k = env.condensation_gap
     got = environment_curves(np.float64(h), surface, env)
-    wetted = owned_area_integral(h, surface, env, lambda u: (u < g_k) * 1.0)
+    wetted = surface_integral(h, surface, lambda u: 1.0, D0, env.condensation_gap)
     assert got["capillary"] == pytest.approx(env.laplace_pressure * wetted, rel=1e-8)
-    vdw = owned_area_integral(h, surface, env, lambda u: A / (6 * math.pi * u**3))
+    vdw = surface_integral(h, surface, lambda u: A / (6 * math.pi * u**3), D0)
     assert got["vdw"] == pytest.approx(vdw, rel=1e-8)
+    caps = caps_integral(h, surface, env, lambda u: A / (6 * math.pi * u**3))
+    assert got["vdw_caps"] == pytest.approx(caps, rel=1e-8)
+    assert got["vdw_caps"] + got["vdw_gaps"] == pytest.approx(got["vdw"], rel=1e-14)
+
+
+@pytest.mark.parametrize("name", ["smooth", "intermediate", "rough"])
+def test_the_areas_of_contact_and_of_every_gap_band_partition_the_surface(name):
+    """With g_K swept, the wetted area at each separation is the surface's own area at local
+    gaps D0 <= u < g_K; with contact (u < D0) that is all of the surface at g_K → ∞."""
+    from scipy import stats
+
+    surface = SURFACES[name]
+    gap = gap_heights(surface)
+    for h in (-1.0, 0.0, 1.0, 2.5):
+        D = h * surface.sigma + gap.summit_offset
+        contact = stats.norm.sf((D - D0) / gap.rq)
+        for rh in (0.5, 0.9, 0.99, 0.9999999):
+            env = Environment(cutoff=D0, rh=rh)
+            wetted = environment_curves(np.float64(h), surface, env)["capillary"]
+            wetted = wetted / env.laplace_pressure
+            below = stats.norm.sf((D - env.condensation_gap) / gap.rq)
+            assert contact + wetted == pytest.approx(below, rel=1e-12, abs=1e-15)
+        # at RH 1 − 1e-7, g_K ≈ 10 mm: every gap is wetted or in contact
+        assert contact + wetted == pytest.approx(1, rel=1e-12)
+
+
+@pytest.mark.parametrize("name", ["smooth", "intermediate", "rough", "super-smooth"])
+@pytest.mark.parametrize("rh", [0.5, 0.9, 0.99])
+def test_the_capillary_work_never_exceeds_two_gamma_cos_theta(name, rh):
+    env = Environment(rh=rh, contact_angle=math.radians(20))
+    works = environment_works(np.linspace(-4.0, 6.0, 41), SURFACES[name], env)["capillary"]
+    ceiling = 2 * env.surface_tension * math.cos(env.contact_angle)
+    assert works.max() <= ceiling
+    assert works.max() <= env.laplace_pressure * (env.condensation_gap - env.cutoff) * (
+        1 + 1e-12)  # fmt: skip
 
 
 def test_the_caps_own_at_most_their_summits_share_of_the_area():
