@@ -182,7 +182,10 @@ def log_notes(quiet: bool):
 def environment_notes(surface, environment, varied=(), material=None) -> list[str]:
     """The environment's inputs, the heights it uses (given or estimated), why no liquid
     condenses, if none does, and with ``material`` how its w is shared with the van der Waals
-    attraction (:func:`mcsim.physics.surfaceenvironment.interface_notes`): one line each (empty
+    attraction (:func:`mcsim.physics.surfaceenvironment.interface_notes`), and where the model
+    leaves its ground (:func:`~mcsim.physics.surfaceenvironment.environment_warnings`, not
+    for a sweep that varies what they depend on; these last with ``material`` only, which a
+    Monte Carlo run logs itself): one line each (empty
     without an environment). The inputs in ``varied`` (a sweep's ``--vary`` names) are said to
     be varied, not given their base value; at RH = 0 there is no Kelvin radius."""
     if environment is None:
@@ -215,8 +218,18 @@ def environment_notes(surface, environment, varied=(), material=None) -> list[st
         )
     if not env.is_dry and not env.has_capillary:
         lines.append(env.no_condensation_reason)
-    if material is not None and not {"hamaker", "cutoff", "gamma"} & set(varied):
-        from mcsim.physics.surfaceenvironment import interface_notes
+    if material is None:  # a run's own log says the rest (mcsim.studies.simulation)
+        return lines
+    from mcsim.physics.surfaceenvironment import (
+        EQUILIBRIUM_NOTE,
+        environment_warnings,
+        interface_notes,
+    )
 
+    if not {"hamaker", "cutoff", "gamma"} & set(varied):
         lines += [f"note: {w}" for w in interface_notes(surface, material, env)]
+    if not {"rh", "temperature", "contact_angle", "cutoff"} & set(varied):
+        lines += [f"warning: {w}" for w in environment_warnings(surface, env)]
+    if env.has_capillary or "rh" in varied:
+        lines.append(f"note: {EQUILIBRIUM_NOTE}")
     return lines

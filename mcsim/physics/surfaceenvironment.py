@@ -374,3 +374,45 @@ def interface_notes(surface, material, env: Environment | None) -> list[str]:
         f"A/(12 pi D0^2) = {share:.3g} J/m^2 acts on the summits' caps and across the open "
         f"gaps, and the contact law carries the rest, {material.gamma - share:.3g} J/m^2"
     ]
+
+
+def environment_warnings(surface, env: Environment | None) -> list[str]:
+    """Where the environment's model leaves its ground on ``surface`` (text lines; empty
+    without an environment; docs/physics.md, section 'The environment covers the surface
+    once'):
+
+    * the caps reach deeper than the summits' spread, u_c − D0 = 1/(2πRη) > 3σ: one summit's
+      paraboloid then claims gaps its neighbours' heights also own, and the open gaps take
+      back the excess (a mean-field correction: a pad's caps overstate its fluctuations);
+    * menisci wider than a cap, g_K > u_c: neighbouring summits' menisci merge into one film
+      over the open gaps (the caps carry theirs up to u_c, the open gaps the rest).
+
+    With condensation, :data:`EQUILIBRIUM_NOTE` goes beside them as a note.
+    """
+    if env is None or not env.active:
+        return []
+    out = []
+    for part in surface.components():
+        depth = 1 / (2 * math.pi * part.R * part.eta)
+        if depth > 3 * surface.sigma:
+            out.append(
+                f"the summits' caps reach u_c - D0 = 1/(2 pi R eta) = {depth * 1e9:.3g} nm below "
+                f"their tips, deeper than 3 sigma = {3 * surface.sigma * 1e9:.3g} nm of the summit "
+                "heights: neighbouring caps claim the same gaps and the open gaps take back the "
+                "excess (the mean is the surface's own; a pad's fluctuations are overstated)"
+            )
+            break
+    if env.has_capillary:
+        u_c = band_edge(surface.R, surface.eta, env)
+        if env.condensation_gap > u_c:
+            out.append(
+                f"menisci merge: the condensation gap g_K = {env.condensation_gap * 1e9:.3g} nm "
+                f"exceeds a summit's cap, u_c = {u_c * 1e9:.3g} nm; the water is one film over "
+                "the open gaps, carried by the surface's own gaps rather than by summits"
+            )
+    return out
+
+
+#: The note beside every result with condensation (:func:`environment_warnings`).
+EQUILIBRIUM_NOTE = ("menisci are in equilibrium with the vapour throughout (a slow separation); "
+                    "a fast pull-off conserves their volume and pulls less (not modelled)")  # fmt: skip

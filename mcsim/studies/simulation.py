@@ -30,7 +30,11 @@ from mcsim.model.units import parse_quantity
 from mcsim.physics.adhesion import regime_warnings
 from mcsim.physics.environment import Environment, as_environment
 from mcsim.physics.laws import LAW_SETS, get_law_set
-from mcsim.physics.surfaceenvironment import interface_notes
+from mcsim.physics.surfaceenvironment import (
+    EQUILIBRIUM_NOTE,
+    environment_warnings,
+    interface_notes,
+)
 from mcsim.store import runfile
 from mcsim.store.claim import Claim, claim_output
 from mcsim.store.results import Run, assemble
@@ -284,6 +288,10 @@ def _run(stack, spec: MonteCarloSpec, *, workers, scheduler, chunk_size,
         log.info("warning: %s", warning)  # once the inputs are accepted: no error follows
     for note in interface_notes(spec.surface, spec.material, spec.environment):
         log.info("note: %s", note)
+    for warning in environment_warnings(spec.surface, spec.environment):
+        log.info("warning: %s", warning)
+    if spec.environment is not None and spec.environment.has_capillary:
+        log.info("note: %s", EQUILIBRIUM_NOTE)
     n_workers = default_workers() if workers is None else workers
     summits, pairs, seconds = estimate(spec, n_workers)
     if seconds > ESTIMATE_ABOVE:

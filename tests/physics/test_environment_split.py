@@ -32,6 +32,7 @@ from mcsim.physics.laws.attraction import (
 from mcsim.physics.surfaceenvironment import (
     band_edge,
     environment_curves,
+    environment_warnings,
     environment_works,
     summit_parameters,
     with_environment,
@@ -239,3 +240,20 @@ def test_no_continuum_meniscus_below_a_kelvin_radius_of_half_a_nanometre(rh, men
         assert "Kelvin radius" in env.no_condensation_reason
         curves = environment_curves(np.array([0.0, 1.0]), SURFACES["smooth"], env)
         assert np.all(curves["capillary"] == 0)
+
+
+# -- where the model leaves its ground -----------------------------------------------------
+
+
+def test_warnings_name_caps_deeper_than_the_summits_and_merged_menisci():
+    smooth = SURFACES["smooth"]  # 1/(2πRη) = 5.5 nm > 3σ = 4.2 nm
+    dry = environment_warnings(smooth, Environment(hamaker=A, cutoff=D0))
+    assert len(dry) == 1 and "deeper than 3 sigma" in dry[0]
+    shallow = dataclasses.replace(smooth, sigma=3e-9)  # 3σ = 9 nm > 5.5 nm
+    assert environment_warnings(shallow, Environment(hamaker=A, cutoff=D0)) == []
+    u_c = band_edge(shallow.R, shallow.eta, HUMID)
+    assert HUMID.condensation_gap > u_c  # RH 0.9: g_K = 9.9 nm
+    (merged,) = environment_warnings(shallow, HUMID)
+    assert "menisci merge" in merged and f"{u_c * 1e9:.3g} nm" in merged
+    assert environment_warnings(shallow, Environment(cutoff=D0, rh=0.5)) == []
+    assert environment_warnings(smooth, None) == [] == environment_warnings(smooth, Environment())
