@@ -22,6 +22,7 @@ _LAZY = {
     "Material": "model.params",
     "Surface": "model.params",
     "RadiusByHeight": "model.params",
+    "combine": "model.counterface",
     "combine_surfaces": "model.params",
     "plasticity_index": "model.params",
     "surface_energy_parameter": "model.params",

@@ -43,7 +43,7 @@ def run_adhesion(args) -> int:
                              "available yet: the interaction law is the interface's adhesion")  # fmt: skip
     for path in (args.out, args.plot):  # refused before any work
         if path is not None:
-            check_output(path, inputs=[args.file], overwrite=args.overwrite)
+            check_output(path, inputs=[args.file, *_counter(args)], overwrite=args.overwrite)
     material = load_material(args.material)
     pressure = parse_values(args.pressure, "pressure", "--pressure")
     if len(pressure) != 1:
@@ -57,6 +57,7 @@ def run_adhesion(args) -> int:
     }  # fmt: skip
     result = adhesive_contact(
         args.file, material, pressure[0], law=args.interaction, steps=args.steps,
+        counter=args.counter_surface,
         unit=args.unit, channel=args.channel, level=args.level, periodic=args.periodic,
         keep_fields=bool(args.out), progress=not args.quiet, **quantity,
         **({} if args.tol is None else {"tol": args.tol}),
@@ -73,7 +74,7 @@ def run_adhesion(args) -> int:
             "E_star_Pa": result.E_star, "interaction": result.law_name, "w_J_m2": law.w,
             "range_m": law.range, "units": {c: ADHESION_UNITS[c] for c in table},
             "summary": _json_ready(summary), "stickiness": _json_ready(dataclasses.asdict(result.stickiness)),
-            "warnings": result.warnings(), "rows": rows,
+            "warnings": result.warnings(), **_facing_json(result), "rows": rows,
         }, indent=1, allow_nan=False))  # fmt: skip
     else:
         header = [
@@ -104,16 +105,29 @@ def _write(args, result, figure) -> int:
     if args.plot:
         from mcsim.figures.style import save
 
-        announce(save(figure(result), args.plot, overwrite=args.overwrite, inputs=[args.file]),
+        announce(save(figure(result), args.plot, overwrite=args.overwrite, inputs=[args.file, *_counter(args)]),
                  quiet=args.quiet)  # fmt: skip
     return 0
 
 
+def _counter(args) -> list:
+    """The counter-surface's map as an input file (none without one)."""
+    return [] if args.counter_surface is None else [args.counter_surface]
+
+
+def _facing_json(result) -> dict:
+    """The counter-surface's map and the measured correlation, for JSON (none without one)."""
+    f = result.facing
+    return {} if f is None else {"counter_surface": str(f.source), "correlation": f.correlation}
+
+
 def _geometry(args, result) -> str:
-    """The map's first header line: its pixels, levelling and periodicity, and why."""
+    """The map's first header line: its pixels, levelling and periodicity, and why (and the
+    counter-surface facing it)."""
     from pathlib import Path
 
-    return (f"{Path(args.file).name}: {result.shape[1]} x {result.shape[0]} pixels of "
+    facing = "" if result.facing is None else f"counter-surface {result.facing.line()}; "
+    return (f"{facing}{Path(args.file).name}: {result.shape[1]} x {result.shape[0]} pixels of "
             f"{result.dx * 1e9:.4g} x {result.dy * 1e9:.4g} nm, levelling {result.level}; "
             f"{'periodic' if result.periodic else 'not periodic (zero-padded)'}: "
             f"{result.periodic_reason}")  # fmt: skip
@@ -167,7 +181,7 @@ def run(args) -> int:
         return run_adhesion(args)
     for path in (args.out, args.plot):  # refused before any work
         if path is not None:
-            check_output(path, inputs=[args.file], overwrite=args.overwrite)
+            check_output(path, inputs=[args.file, *_counter(args)], overwrite=args.overwrite)
     material = load_material(args.material)
     environment = environment_of(args)
     pixel = (
@@ -178,7 +192,7 @@ def run(args) -> int:
     result = contact_map(
         args.file, material, parse_values(args.pressure, "pressure", "--pressure"), unit=args.unit, pixel_size=pixel, channel=args.channel,
         level=args.level, periodic=args.periodic, **({} if args.tol is None else {"tol": args.tol}), keep_fields=bool(args.out or args.plot),
-        progress=not args.quiet, environment=environment,
+        progress=not args.quiet, environment=environment, counter=args.counter_surface,
     )  # fmt: skip
     table = result.columns()
     rows = [{c: (int(v[i]) if v.dtype.kind == "i" else float(v[i])) for c, v in table.items()}
@@ -190,7 +204,7 @@ def run(args) -> int:
         print(json.dumps({"source": str(result.source), "dx_m": result.dx, "dy_m": result.dy,
                           "environment": environment_json,
                           "periodic": result.periodic, "periodic_reason": result.periodic_reason,
-                          "E_star_Pa": result.E_star, "tol": result.tol,
+                          "E_star_Pa": result.E_star, "tol": result.tol, **_facing_json(result),
                           "units": {c: UNITS[c] for c in table}, "rows": rows}, indent=1))  # fmt: skip
     else:
         s = result.surface
@@ -241,6 +255,12 @@ def add_parser(sub) -> None:
     )
     p.add_argument("--unit", help="height unit if the file stores none (e.g. nm)")
     p.add_argument("--pixel-size", help="pixel size if the file stores none (e.g. 10nm)")
+    p.add_argument("--counter-surface", metavar="MAP2",
+                   help="a counter-surface's height map, measured face up, of the same size and "
+                   "pixel size (read with the same --unit, --pixel-size, --channel): turned over "
+                   "to face FILE (columns reversed, heights negated), the map solved, and GW's, "
+                   "is their gap's topography, FILE - turned-over MAP2; the correlation of the "
+                   "two maps' heights is printed")  # fmt: skip
     p.add_argument("--level", choices=("none", "plane", "poly2", "poly3", "poly4", "poly5"),
                    help="levelling before the solve (default: plane, or none on a periodic map; none "
                    "removes the mean only)")  # fmt: skip

@@ -125,6 +125,21 @@ def announce(path, detail: str = "", *, quiet: bool = False) -> None:
         print(f"mcsim: wrote {path}" + (f" ({detail})" if detail else ""), file=sys.stderr)
 
 
+def counterface_notes(surface, counter, correlation: float, combined) -> list[str]:
+    """One note on a rough counter-surface: the two surfaces, ρ and the gap's surface run
+    (none with a flat counter-surface)."""
+    if counter is None:
+        return []
+
+    def gw(s) -> str:
+        return f"sigma = {s.sigma * 1e9:.4g} nm, R = {s.R * 1e6:.4g} um, eta = {s.eta * 1e-12:.4g} um^-2"
+
+    return [f"note: counter-surface {counter.name or '(file)'} ({gw(counter)}) facing surface "
+            f"{surface.name or '(file)'} ({gw(surface)}), correlation {correlation:g}: the gap's "
+            f"surface {combined.name} has {gw(combined)}, rq = {combined.rq * 1e9:.4g} nm "
+            "(spectral moments combined; docs/physics.md, section 'Two rough surfaces')"]  # fmt: skip
+
+
 def print_lines(lines: list[str]) -> None:
     for line in lines:
         print(f"mcsim: {line}", file=sys.stderr)

@@ -23,8 +23,15 @@ def run(args) -> int:
     def length(value, option):
         return None if value is None else parse_quantity(value, "length", option)
 
-    out = Path(args.out) if args.out else Path(f"{Path(args.file).stem}.toml")
+    default = Path(args.file).stem
+    if args.counter_surface is not None:
+        default = f"{default}-on-{Path(args.counter_surface).stem}"
+        if args.synthesize is not None:
+            raise ParameterError("--synthesize: pads from the map file's spectrum, not the gap's: "
+                                 "not with --counter-surface")  # fmt: skip
+    out = Path(args.out) if args.out else Path(f"{default}.toml")
     pads_out = _pads_options(args, out)
+    inputs = [args.file, *([args.counter_surface] if args.counter_surface else [])]
     extra = IngestResult.companion_paths(out)
     figures = [extra["histogram_figure"]] + ([extra["comparison_figure"]] if args.plot else [])
     for path in [
@@ -34,7 +41,7 @@ def run(args) -> int:
         *figures,
         *([pads_out] if pads_out else []),
     ]:  # all refused before any work or writing
-        check_output(path, inputs=[args.file], overwrite=args.overwrite)
+        check_output(path, inputs=inputs, overwrite=args.overwrite)
     if (args.w is not None or args.range is not None) and not args.calibrate:
         raise ParameterError("--w: used only with --calibrate (the adhesion calibration); add it")
     if args.range is not None and args.w is None:
@@ -53,7 +60,7 @@ def run(args) -> int:
         channel=args.channel, periodic=args.periodic,
         calibrate=material if args.calibrate else None, radius_by_height=args.radius_by_height,
         adhesion_w=None if args.w is None else parse_quantity(args.w, "energy_per_area", "--w"),
-        adhesion_range=length(args.range, "--range"),
+        adhesion_range=length(args.range, "--range"), counter=args.counter_surface,
     )  # fmt: skip
     for line in result.summary_lines():
         print(line)
@@ -61,13 +68,15 @@ def run(args) -> int:
     from mcsim.figures.style import save
     from mcsim.figures.topography import comparison_figure, histogram_figure
 
-    title = f"{result.heights_from}: {Path(args.file).name}"
+    title = f"{result.heights_from}: {Path(args.file).name}" + (
+        f" facing {Path(args.counter_surface).name}" if args.counter_surface else ""
+    )
     save(histogram_figure(result.distribution, result.surface.sigma, title=title), figures[0],
-         overwrite=args.overwrite, inputs=[args.file])  # fmt: skip
+         overwrite=args.overwrite, inputs=inputs)  # fmt: skip
     if args.plot:
         s = result.surface
         fig = comparison_figure(s, result.gaussian_surface, material, parse_h("4:-1:51"))
-        save(fig, figures[1], overwrite=args.overwrite, inputs=[args.file])
+        save(fig, figures[1], overwrite=args.overwrite, inputs=inputs)
     if pads_out:
         from mcsim.studies.synthpads import synthesize_pads
 
@@ -118,7 +127,14 @@ def add_parser(sub) -> None:
                    "height channel); an unknown name lists the file's channels")  # fmt: skip
     p.add_argument("--unit", help="height unit if the file stores none (e.g. nm)")
     p.add_argument("--pixel-size", help="pixel size if the file stores none (e.g. 10nm)")
-    p.add_argument("--out", help="surface file (default: <file stem>.toml here)")
+    p.add_argument("--counter-surface", metavar="MAP2",
+                   help="a counter-surface's height map, measured face up, of the same size and "
+                   "pixel size: turned over to face FILE (columns reversed, heights negated), the "
+                   "surface written is their gap's topography, FILE - turned-over MAP2, and the "
+                   "correlation of the two maps' heights is measured and printed (maps only; not "
+                   "with --calibrate or --synthesize)")  # fmt: skip
+    p.add_argument("--out", help="surface file (default: <file stem>.toml here, "
+                   "<file stem>-on-<MAP2 stem>.toml with --counter-surface)")  # fmt: skip
     p.add_argument("--overwrite", action="store_true", help="replace existing output files")
     p.add_argument("--route", choices=("direct", "spectral"), default="direct",
                    help="summit statistics written as sigma, R, eta (default: direct)")  # fmt: skip

@@ -50,17 +50,69 @@ def parse_h(spec: str) -> list[float]:
     return values
 
 
-def inputs_of(args):
-    from mcsim.store.config import load_material, load_surface, material_in_surface_file
+def inputs_of(args, parts: bool = False):
+    """The surface (the gap's, with a counter-surface: :func:`surfaces_of`) and the material;
+    with ``parts`` also the keywords that give simulate() and sweep() the parts of the gap's
+    surface, so that their files record them (``{}`` with a flat counter-surface)."""
+    from mcsim.cli.display import counterface_notes, print_lines
+    from mcsim.model.counterface import combine
+
+    surface, counter, correlation, material = surfaces_of(args)
+    combined = combine(surface, counter, correlation)
+    if not getattr(args, "quiet", False):
+        print_lines(counterface_notes(surface, counter, correlation, combined))
+    if not parts:
+        return combined, material
+    given = {} if counter is None else {"surface": surface, "counter_surface": counter,
+                                         "correlation": correlation}  # fmt: skip
+    return combined, material, given
+
+
+def surfaces_of(args):
+    """The surface as given, its counter-surface (None: flat), their correlation and the
+    material, from ``--surface``, ``--counter-surface``, ``--correlation`` and ``--material``
+    (and the surface file's ``[counter_surface]`` and ``[material]`` tables, which the options
+    override; a ``--counter-surface`` drops the file's correlation with its counter-surface)."""
+    from mcsim.model.counterface import check_correlation
+    from mcsim.model.errors import MCSimError
+    from mcsim.store.config import (
+        counter_surface_in_file,
+        load_counter_surface,
+        load_material,
+        load_surface,
+        material_in_surface_file,
+    )
 
     surface = load_surface(args.surface)
+    counter, correlation = counter_surface_in_file(args.surface)
+    if args.counter_surface is not None:
+        try:
+            counter, correlation = load_counter_surface(args.counter_surface), None
+        except MCSimError as err:
+            raise type(err)(f"--counter-surface: {err}") from None
+    if args.correlation is not None:
+        correlation = check_correlation(_number(args.correlation, "--correlation"), "--correlation")
+        if counter is None and correlation != 0:
+            raise ParameterError(f"--correlation = {correlation:g} needs a rough counter-surface "
+                                 "(--counter-surface, or the surface file's [counter_surface]); "
+                                 "a flat one has no heights to correlate with")  # fmt: skip
     if args.material is not None:
         material = load_material(args.material)
     else:
         from mcsim.model.presets import MATERIALS
 
         material = material_in_surface_file(args.surface) or MATERIALS["silicon"]
-    return surface, material
+    return surface, counter, 0.0 if correlation is None else correlation, material
+
+
+def _number(text: str, option: str) -> float:
+    """A plain number written on the command line (``nan`` and ``inf`` read, to be refused by
+    the range check that follows)."""
+    try:
+        return float(text)
+    except ValueError:
+        raise ParameterError(f"{option} = {text!r} is not a number (allowed: a number in [-1, 1], "
+                             "e.g. 0.3)") from None  # fmt: skip
 
 
 def parse_turn(text: str | None) -> float | None:
@@ -195,6 +247,15 @@ def add_inputs(p: argparse.ArgumentParser, separations: bool = True, law: str = 
         "--material",
         help="preset (silicon) or FILE.toml; default: the surface file's [material], else silicon",
     )
+    p.add_argument("--counter-surface", metavar="SURFACE",
+                   help="a rough surface facing --surface: preset or FILE.toml (Gaussian heights, "
+                        "one radius); the gap's surface combines both through their spectral "
+                        "moments (docs/physics.md, section 'Two rough surfaces'); default: the surface "
+                        "file's [counter_surface], else flat")  # fmt: skip
+    p.add_argument("--correlation", metavar="RHO",
+                   help="correlation of the two surfaces' heights, in [-1, 1] (> 0: the counter-"
+                        "surface partly replicates the surface); default: the surface file's, "
+                        "else 0")  # fmt: skip
     why = {
         "seed": "the paper's Eqs. 2, 4, 6 as written, whose curves this command reproduces",
         "auto": "the seed law set has no net load and so no pull-off",

@@ -40,6 +40,11 @@ def run(args) -> int:
     print(f"seed entropy  {spec.entropy}")
     for line in describe_inputs(spec.surface, spec.material):
         print(f"input         {line}")
+    if "counter_surface" in a:  # simulate --counter-surface: the parts of the surface run
+        given, counter = json.loads(a["surface_as_given"]), json.loads(a["counter_surface"])
+        print(f"counter       the surface run is the gap's: {given['name'] or '(file)'} (sigma = "
+              f"{given['sigma'] * 1e9:.4g} nm) facing {counter['name'] or '(file)'} (sigma = "
+              f"{counter['sigma'] * 1e9:.4g} nm), correlation {float(a['correlation']):g}")  # fmt: skip
     print(f"law set       {spec.law}" + (f" (cycle: approach, then retraction from h = {spec.turn:g})"
                                           if spec.cycle else ""))  # fmt: skip
     for warning in regime_warnings(spec.surface, spec.material, spec.law):

@@ -45,7 +45,8 @@ def run(args) -> int:
         from mcsim.store.files import checkpoint_path, file_path
         from mcsim.studies.simulation import cli_command, simulate
 
-        surface, material = inputs_of(args)
+        surface, material, pair = inputs_of(args, parts=True)
+        given = pair.pop("surface", surface)  # with a counter-surface: the parts, recorded
         environment = environment_of(args)
         if not args.quiet:
             print_lines(environment_notes(surface, environment))
@@ -67,7 +68,7 @@ def run(args) -> int:
         t0 = time.perf_counter()
         try:
             run = simulate(
-                surface, material, h, args.area, realizations=args.realizations, seed=args.seed, law=law,
+                given, material, h, args.area, **pair, realizations=args.realizations, seed=args.seed, law=law,
                 count=args.count, cycle=args.cycle, preload=args.preload, device=args.device, workers=args.workers, scheduler=args.scheduler or args.dask,
                 chunk_size=args.chunk_size, keep_heights=args.keep_heights, out=out, overwrite=args.overwrite,
                 resume=args.resume, checkpoint_every=args.checkpoint_every, progress=show_progress,

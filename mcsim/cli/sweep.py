@@ -45,7 +45,8 @@ def run(args) -> int:
             raise ParameterError("--realizations and --device apply to the Monte Carlo runs only (add --mc)")  # fmt: skip
         if not (args.mc or args.pads) and (args.area is not None or args.seed is not None):
             raise ParameterError("--area and --seed apply to the Monte Carlo runs and pads only (add --mc or --pads N)")  # fmt: skip
-        surface, material = inputs_of(args)
+        surface, material, pair = inputs_of(args, parts=True)
+        given = pair.pop("surface", surface)  # with a counter-surface: the parts, recorded
         environment = environment_of(args)
         if not args.quiet:
             print_lines(environment_notes(surface, environment, varied=vary, material=material))
@@ -53,7 +54,7 @@ def run(args) -> int:
         before = file_state(out)
         try:
             result = sweep(
-                surface, material, vary, law=args.law, h=parse_h(args.h), turn=parse_turn(args.turn),
+                given, material, vary, **pair, law=args.law, h=parse_h(args.h), turn=parse_turn(args.turn),
                 environment=environment, mc=args.mc, pads=args.pads, restoring_force=args.restoring_force, preload=args.preload, tail=True if args.tail else None, area=args.area, realizations=args.realizations or 1, seed=args.seed, device=args.device,
                 workers=args.workers, scheduler=args.scheduler or args.dask, out=out,
                 overwrite=args.overwrite, resume=args.resume, checkpoint_every=args.checkpoint_every,

@@ -11,8 +11,9 @@ or estimated from the summits by Nayak's (1971) and McCool's (1986) relations.
 
 from __future__ import annotations
 
-import math
 from typing import NamedTuple
+
+from mcsim.model.counterface import spectral_moments, summits_of
 
 
 class NayakEstimate(NamedTuple):
@@ -36,7 +37,8 @@ class NayakEstimate(NamedTuple):
 def nayak_heights(sigma, R, eta) -> NayakEstimate:
     """Rq and summit offset of a Gaussian surface from its summits' σ_s, R and η.
 
-    Nayak (1971) and McCool (1986) relations inverted (docs/physics.md, section 'The environment'):
+    Nayak (1971) and McCool (1986) relations inverted (docs/physics.md, section 'The environment';
+    :func:`mcsim.model.counterface.spectral_moments` and :func:`~mcsim.model.counterface.summits_of`):
     m4 = π(0.375/R)², m2 = m4/(6π√3 η), m0 = σ_s² + 0.8968 m2²/m4, α = m0 m4/m2²,
     Rq = √m0, y_s = 4√(m0/(πα)). Rough at the low α (2.5–4.9) of the paper's surfaces.
 
@@ -53,11 +55,8 @@ def nayak_heights(sigma, R, eta) -> NayakEstimate:
     -------
     NayakEstimate
     """
-    m4 = math.pi * (0.375 / R) ** 2
-    m2 = m4 / (6 * math.pi * math.sqrt(3) * eta)
-    m0 = sigma**2 + 0.8968 * m2**2 / m4
-    alpha = m0 * m4 / m2**2
-    return NayakEstimate(math.sqrt(m0), 4 * math.sqrt(m0 / (math.pi * alpha)), alpha)
+    summits = summits_of(*spectral_moments(sigma, R, eta))
+    return NayakEstimate(summits.rq, summits.summit_offset, summits.alpha)
 
 
 class GapHeights(NamedTuple):

@@ -29,6 +29,24 @@
     liquid_surface_tension = "72 mJ/m^2"   # default water
     molar_volume = "18 cm^3/mol"           # default water
 
+A second rough surface facing this one (default: a flat one) and the correlation ρ of the
+two surfaces' heights, in [-1, 1] (default 0), combined into the gap's surface by
+:func:`mcsim.model.counterface.combine` (docs/physics.md, section 'Two rough surfaces'); the
+command-line options ``--counter-surface`` and ``--correlation`` override them
+(:func:`counter_surface_in_file`):
+
+.. code-block:: toml
+
+    [counter_surface]         # the keys of [surface] (Gaussian heights, one radius) ...
+    sigma = "1.0 nm"
+    R = "2.4 um"
+    eta = "17 um^-2"
+    correlation = 0.3         # optional: rho in [-1, 1], default 0 (independent)
+
+    [counter_surface]         # ... or a preset or another surface file (relative to this one)
+    surface = "polished-polysilicon"
+    correlation = 0.3
+
 The summit-height distribution is Gaussian unless ``heights`` names a measured
 histogram: a text file (read by :mod:`mcsim.topography.readers.histogram`, its path relative
 to the TOML file's folder), or a table with the file or the bins inline:
@@ -75,6 +93,7 @@ import tomllib
 from pathlib import Path
 from typing import Any
 
+from mcsim.model.counterface import FLAT, check_correlation
 from mcsim.model.errors import MCSimError, ParameterError, UnitError
 from mcsim.model.params import Material, RadiusByHeight, Surface, combine_surfaces
 from mcsim.model.presets import MATERIALS, SURFACES
@@ -425,6 +444,45 @@ def load_surface(spec: str | Path, *, including: tuple[Path, ...] = ()) -> Surfa
         including=(*including, path.resolve()),
         units_required=True,
     )
+
+
+def load_counter_surface(spec: str | Path) -> Surface | None:
+    """A counter-surface as :func:`load_surface` reads a surface, or None for ``"flat"`` (the
+    default: no counter-surface, :data:`mcsim.model.counterface.FLAT`)."""
+    if str(spec) == FLAT:
+        return None
+    return load_surface(spec)
+
+
+def counter_surface_in_file(spec: str | Path) -> tuple[Surface | None, float | None]:
+    """The ``[counter_surface]`` table of a surface TOML file: the counter-surface (None for
+    ``surface = "flat"``) and the correlation as written (None if not given; checked to lie in
+    [-1, 1]); ``(None, None)`` for a preset or a file without it (module docstring)."""
+    path = Path(spec)
+    if path.suffix != ".toml" or str(spec) in SURFACES:
+        return None, None
+    data = _read_toml(path)
+    if "counter_surface" not in data:
+        return None, None
+    table, where = dict(_table(data, "counter_surface", path)), f"{path} [counter_surface]"
+    correlation = table.pop("correlation", None)
+    if correlation is not None:
+        correlation = check_correlation(correlation, f"{where}: correlation")
+    if "surface" not in table:
+        surface = surface_from_table(table, where, base_dir=path.parent, units_required=True)
+        return surface, correlation
+    other = table.pop("surface")
+    if table:
+        raise ParameterError(f"{where}: give either surface = (a preset or file) or the keys of "
+                             f"a surface, not both (found {', '.join(sorted(table))})")  # fmt: skip
+    if not isinstance(other, str):
+        raise ParameterError(
+            f"{where}: surface must be a preset name or a .toml file, got {other!r}"
+        )
+    try:
+        return load_counter_surface(_relative_to(other, path.parent)), correlation
+    except MCSimError as err:
+        raise type(err)(f"{where}: surface: {err}") from None
 
 
 def _closest(spec: str | Path, names) -> str:

@@ -9,6 +9,9 @@ files store too.
                       radius R); units (JSON)
     /input/material   attrs: E1, E2 [Pa], nu1, nu2, gamma [J/m^2], H [Pa], name, z0 [m],
                       tau [Pa] (NaN: not given; absent in older files); units (JSON)
+
+With a rough counter-surface /input/surface is the gap's surface that was run, and three root
+attributes record its parts (:func:`counterface_attrs`).
 """
 
 from __future__ import annotations
@@ -48,6 +51,20 @@ def radius_to_dict(radius: RadiusByHeight) -> dict:
     """A radius by height as run and sweep files store it (as JSON): ``{"edges": [s...],
     "factors": [...]}`` (edges in s = z/σ, factors of R)."""
     return {"edges": list(radius.edges), "factors": list(radius.factors)}
+
+
+def counterface_attrs(surface: Surface, counter: Surface, correlation: float) -> dict:
+    """Root attributes that record the parts of a gap's surface
+    (:func:`mcsim.model.counterface.combine`), in run and sweep files: ``surface_as_given``
+    and ``counter_surface`` (JSON objects: sigma, R, eta, name, units) and ``correlation`` (ρ).
+    ``/input/surface`` (a sweep file's ``surface``) holds their combination, which was run."""
+
+    def plain(s: Surface) -> str:
+        return json.dumps({"sigma": s.sigma, "R": s.R, "eta": s.eta, "name": s.name,
+                           "units": {"sigma": "m", "R": "m", "eta": "m^-2"}})  # fmt: skip
+
+    return {"surface_as_given": plain(surface), "counter_surface": plain(counter),
+            "correlation": float(correlation)}  # fmt: skip
 
 
 def heights_from_dict(data: dict):

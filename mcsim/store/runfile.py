@@ -15,7 +15,10 @@ the axes ``(h)`` of an approach, or ``(branch, h)`` of a cycle (``--cycle``: the
                            (d/σ of the closest approach; cycle only),
                            block_size, complete, checksum; load_control (JSON: the
                            nominal pressures, Pa, the separations balance: simulate
-                           --pressure/--load only)
+                           --pressure/--load only); with a rough counter-surface
+                           (simulate --counter-surface): surface_as_given,
+                           counter_surface (JSON: sigma [m], R [m], eta [m^-2], name,
+                           units) and correlation (rho), the parts of /input/surface
     /input/surface         attrs: sigma [m], R [m], eta [m^-2], name, heights (JSON);
                            radius_by_height (JSON: band edges in s, factors of R; absent:
                            one radius R)

@@ -54,9 +54,14 @@ from mcsim.physics import adhesivebem, adhesivecycle, bem
 from mcsim.physics.adhesivecycle import AdhesiveCycle
 from mcsim.physics.interactions import Exponential, Interaction, MaugisDugdale
 from mcsim.physics.stickiness import Stickiness, stickiness
-from mcsim.studies.ingest import _is_histogram_file, decide_periodic, default_level, ingest_file
-from mcsim.studies.ingested import LEVELS
-from mcsim.topography.readers import read_height_map
+from mcsim.studies.ingest import (
+    _is_histogram_file,
+    decide_periodic,
+    default_level,
+    ingest_file,
+    read_map,
+)
+from mcsim.studies.ingested import LEVELS, FacingMap
 from mcsim.topography.summits import level as level_heights
 
 #: Interaction laws by name (``--interaction``).
@@ -149,6 +154,8 @@ class AdhesiveContactResult:
     fields : dict or None
         ``"gap"``, ``"pressure"`` (m, Pa), each (steps, rows, columns) float32, approach then
         retraction; only when kept.
+    facing : FacingMap or None
+        A counter-surface's map facing this one, turned over: the map solved is their gap.
     """
 
     source: Path
@@ -169,6 +176,7 @@ class AdhesiveContactResult:
     surface: Surface
     stickiness: Stickiness
     fields: dict | None = field(default=None, repr=False)
+    facing: FacingMap | None = None
 
     def __repr__(self) -> str:
         """A few lines, as in a notebook: the map, the law, the exact and GW's pull-offs."""
@@ -276,6 +284,9 @@ class AdhesiveContactResult:
                 "interaction": self.law_name, "w": law.w, "range": law.range,
                 "summary": json.dumps(self.summary()),
             })  # fmt: skip
+            if self.facing is not None:
+                f.attrs.update({"counter_surface": str(self.facing.source),
+                                "correlation": self.facing.correlation})  # fmt: skip
             columns = self.columns()
             f.create_dataset("branch", data=columns["branch"].astype("S8"))
             for name, (unit, long_name) in units.items():
@@ -454,6 +465,7 @@ def adhesive_contact(
     max_iter: int = adhesivebem.MAX_ITER,
     keep_fields: bool = False,
     progress: bool = False,
+    counter: str | Path | None = None,
 ) -> AdhesiveContactResult:
     """The exact adhesive approach and retraction of a map, GW's adhesion beside it.
 
@@ -483,6 +495,8 @@ def adhesive_contact(
         Keep the gap and pressure fields of every step (float32; memory grows with the steps).
     progress : bool
         A progress bar over the steps.
+    counter : path-like, optional
+        A counter-surface's height map, as for :func:`mcsim.studies.contact.contact_map`.
 
     Returns
     -------
@@ -506,7 +520,7 @@ def adhesive_contact(
     law_ = interaction(law, w, range_)
     if _is_histogram_file(Path(path)):
         raise ParameterError(f"{path}: a height histogram has no map to press: give a height map")
-    hmap = read_height_map(path, unit=unit, pixel_size=pixel_size, channel=channel)
+    hmap = read_map(path, unit=unit, pixel_size=pixel_size, channel=channel, counter=counter)
     periodic, reason = decide_periodic(hmap.heights, periodic)
     level = default_level(periodic) if level is None else level
     z = level_heights(hmap.heights, LEVELS[level])
@@ -519,7 +533,7 @@ def adhesive_contact(
     adhesivebem.check_inputs(z, pixels, material.E_star, law_)
     diagnostics = stickiness(z, hmap.dx, material.E_star, law_.w, law_.range, periodic)
     ingested = ingest_file(path, unit=unit, pixel_size=pixel_size, level=level, channel=channel,
-                           periodic=periodic)  # fmt: skip
+                           periodic=periodic, counter=counter)  # fmt: skip
     kept: dict[str, list] = {"gap": [], "pressure": []}
     bar = None
     if progress:
@@ -555,4 +569,5 @@ def adhesive_contact(
         pull_off_position=where, gw=gw, surface=ingested.surface,
         stickiness=diagnostics,
         fields={k: np.stack(v) for k, v in kept.items()} if keep_fields else None,
+        facing=ingested.facing,
     )  # fmt: skip

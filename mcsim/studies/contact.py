@@ -68,9 +68,14 @@ from mcsim.model.params import Material, Surface
 from mcsim.physics import bem
 from mcsim.physics.environment import Environment, as_environment
 from mcsim.physics.loadcontrol import hertz_area_fraction, load_control
-from mcsim.studies.ingest import _is_histogram_file, decide_periodic, default_level, ingest_file
-from mcsim.studies.ingested import LEVELS
-from mcsim.topography.readers import read_height_map
+from mcsim.studies.ingest import (
+    _is_histogram_file,
+    decide_periodic,
+    default_level,
+    ingest_file,
+    read_map,
+)
+from mcsim.studies.ingested import LEVELS, FacingMap
 from mcsim.topography.summits import level as level_heights
 
 #: Maps of more pixels than this show a progress bar over the loads.
@@ -167,6 +172,8 @@ class ContactResult:
     vdw_pressure, capillary_pressure : ndarray or None
         Its van der Waals and capillary attraction per nominal area at each load, Pa
         (> 0 attractive; :func:`gap_attraction`); None without an environment.
+    facing : FacingMap or None
+        A counter-surface's map facing this one, turned over: the map solved is their gap.
     """
 
     source: Path
@@ -194,6 +201,7 @@ class ContactResult:
     environment: Environment | None = None
     vdw_pressure: np.ndarray | None = None
     capillary_pressure: np.ndarray | None = None
+    facing: FacingMap | None = None
 
     def columns(self) -> dict[str, np.ndarray]:
         """The per-pressure numbers, SI (pressure Pa, gaps m), pixel size beside them."""
@@ -212,7 +220,8 @@ class ContactResult:
 
         Datasets carry CF ``units`` and ``long_name``; the fields are compressed
         (:func:`mcsim.store.files.storage`). Root attributes: schema version, mcsim version,
-        creation time, command line, source, pixel size, periodicity, E*, tolerance.
+        creation time, command line, source, pixel size, periodicity, E*, tolerance; with a
+        counter-surface its map (``counter_surface``) and the measured ``correlation``.
         """
         import dataclasses
         import datetime as dt
@@ -242,6 +251,9 @@ class ContactResult:
                             "level": self.level, "dx": self.dx, "dy": self.dy,
                             "periodic": self.periodic, "periodic_reason": self.periodic_reason,
                             "E_star": self.E_star, "tol": self.tol})  # fmt: skip
+            if self.facing is not None:
+                f.attrs.update({"counter_surface": str(self.facing.source),
+                                "correlation": self.facing.correlation})  # fmt: skip
             columns = self.columns()
             if self.environment is not None:
                 f.attrs.update({f"environment_{k}": (math.nan if v is None else v)
@@ -282,6 +294,7 @@ def contact_map(
     keep_fields: bool = False,
     progress: bool = False,
     environment: Environment | None = None,
+    counter: str | Path | None = None,
 ) -> ContactResult:
     """Exact elastic contact of a measured map against a flat, with GW's on the same map.
 
@@ -310,6 +323,10 @@ def contact_map(
         Van der Waals and capillary attraction summed over each load's gap field
         (:func:`gap_attraction`; a mapping as :func:`~mcsim.physics.environment.as_environment`
         reads it); None: none.
+    counter : path-like, optional
+        A counter-surface's height map, measured face up, of the same size and pixel size:
+        the map solved (and GW's) is the gap's topography, map − turned-over counter
+        (:func:`mcsim.studies.ingest.read_map`; docs/physics.md, section 'Two rough surfaces').
 
     Returns
     -------
@@ -330,11 +347,11 @@ def contact_map(
                              f"{material.E_star:g} Pa, where small-strain elasticity holds)")  # fmt: skip
     if _is_histogram_file(Path(path)):
         raise ParameterError(f"{path}: a height histogram has no map to press: give a height map")
-    hmap = read_height_map(path, unit=unit, pixel_size=pixel_size, channel=channel)
+    hmap = read_map(path, unit=unit, pixel_size=pixel_size, channel=channel, counter=counter)
     periodic, reason = decide_periodic(hmap.heights, periodic)
     level = default_level(periodic) if level is None else level
     ingested = ingest_file(path, unit=unit, pixel_size=pixel_size, level=level, channel=channel,
-                           periodic=periodic)  # fmt: skip
+                           periodic=periodic, counter=counter)  # fmt: skip
     z = level_heights(hmap.heights, LEVELS[level])
     if not np.all(np.isfinite(z)):
         raise ParameterError(
@@ -372,4 +389,5 @@ def contact_map(
         gap_fields=np.stack(gaps) if keep_fields else None, environment=environment,
         vdw_pressure=None if environment is None else np.array([a[0] for a in attraction]),
         capillary_pressure=None if environment is None else np.array([a[1] for a in attraction]),
+        facing=ingested.facing,
     )  # fmt: skip

@@ -47,6 +47,7 @@ sampled*; the pixel size is written next to them everywhere.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import os
 import re
@@ -57,12 +58,15 @@ import numpy as np
 
 from mcsim.model.errors import MCSimError, ParameterError
 from mcsim.model.params import Material, Surface
-from mcsim.studies.ingested import LEVELS, ROUTES, HeightSummary, IngestResult
+from mcsim.studies.ingested import LEVELS, ROUTES, FacingMap, HeightSummary, IngestResult
 from mcsim.topography.empirical import Empirical
-from mcsim.topography.readers import ReaderError, read_height_map, read_histogram
+from mcsim.topography.readers import HeightMap, ReaderError, read_height_map, read_histogram
 from mcsim.topography.readers import histogram as _histogram_format
 from mcsim.topography.summits import (
     TopographyResult,
+    facing_gap,
+    flipped,
+    height_correlation,
     periodic_edges,
     summit_curvatures,
     summit_heights,
@@ -156,6 +160,7 @@ def ingest_file(
     radius_by_height: bool | None = None,
     adhesion_w: float | None = None,
     adhesion_range: float | None = None,
+    counter: str | Path | None = None,
 ) -> IngestResult:
     """Read a height map or a height histogram and derive a GW surface from it.
 
@@ -200,6 +205,13 @@ def ingest_file(
         (:func:`mcsim.studies.adhesioncalibration.calibrate_adhesion`); recorded, not applied.
     adhesion_range : float, optional
         The exponential law's range, m, > 0 (default the material's z0, else 1 nm).
+    counter : path-like, optional
+        A counter-surface's height map, measured face up, of the same size and pixel size
+        (read with the same ``unit``, ``pixel_size`` and ``channel``): it is turned over to
+        face the map (:func:`~mcsim.topography.summits.flipped`) and the map analysed is the
+        gap's topography, map − flipped counter
+        (:func:`~mcsim.topography.summits.facing_gap`); the correlation of the two levelled
+        maps is measured (``IngestResult.facing``). Maps only; not with ``calibrate``.
 
     Returns
     -------
@@ -229,7 +241,14 @@ def ingest_file(
         raise ReaderError(f"{path}: no such file")
     if not path.is_file():
         raise ReaderError(f"{path}: not a file")
-    name = path.stem if name is None else name
+    if name is None:
+        name = path.stem if counter is None else f"{path.stem}-on-{Path(counter).stem}"
+    if counter is not None and calibrate is not None:
+        raise ParameterError(f"{path}: --calibrate solves the map file itself: not with a "
+                             "counter-surface (ingest the gap without --calibrate)")  # fmt: skip
+    if counter is not None and _is_histogram_file(path):
+        raise ParameterError(f"{path}: a text histogram has no map: a counter-surface combines "
+                             "two height maps")  # fmt: skip
     if _is_histogram_file(path):
         if channel is not None:
             raise ParameterError(
@@ -258,9 +277,18 @@ def ingest_file(
             f"{path}: R and eta come from the map's summits: give them only with a histogram file"
         )
     hmap = read_height_map(path, unit=unit, pixel_size=pixel_size, channel=channel)
+    alone, counter_map = hmap.heights, None
+    if counter is not None:
+        counter_map = read_counter_map(path, counter, hmap, unit=unit, pixel_size=pixel_size,
+                                       channel=channel)  # fmt: skip
+        hmap = dataclasses.replace(hmap, heights=facing_gap(alone, counter_map.heights))
     _check_memory(path, hmap.heights.shape)
     periodic, periodic_reason = decide_periodic(hmap.heights, periodic)
     level = default_level(periodic) if level is None else level
+    facing = None
+    if counter_map is not None:
+        measured = height_correlation(alone, flipped(counter_map.heights), LEVELS[level])
+        facing = FacingMap(Path(counter), *measured)
     try:
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always")
@@ -352,7 +380,62 @@ def ingest_file(
         periodic_reason=periodic_reason,
         calibration=calibration,
         adhesion_calibration=adhesion,
+        facing=facing,
     )
+
+
+def read_map(
+    path: str | Path, *, unit=None, pixel_size=None, channel=None, counter: str | Path | None = None
+) -> HeightMap:
+    """The height map of ``path`` (:func:`~mcsim.topography.readers.read_height_map`), or with a
+    ``counter``-surface's map the gap's topography, map − turned-over counter
+    (:func:`~mcsim.topography.summits.facing_gap`; :func:`read_counter_map` checks it)."""
+    hmap = read_height_map(path, unit=unit, pixel_size=pixel_size, channel=channel)
+    if counter is None:
+        return hmap
+    other = read_counter_map(Path(path), counter, hmap, unit=unit, pixel_size=pixel_size,
+                             channel=channel)  # fmt: skip
+    return dataclasses.replace(hmap, heights=facing_gap(hmap.heights, other.heights))
+
+
+def read_counter_map(
+    path: Path, counter: str | Path, hmap: HeightMap, *, unit=None, pixel_size=None, channel=None
+) -> HeightMap:
+    """A counter-surface's height map for the map ``hmap`` read from ``path``: read as ``hmap``
+    was, refused unless it is a map of the same size and pixel size.
+
+    Raises
+    ------
+    MCSimError
+        Naming the counter-surface and what differs.
+    """
+    from mcsim.model.presets import SURFACES
+
+    counter = Path(counter)
+    where = f"counter-surface {counter}"
+    if str(counter) in SURFACES or counter.suffix == ".toml":
+        raise ParameterError(f"{where}: a Gaussian GW surface does not combine with a measured "
+                             "map (its histogram and radii have no spectral moments to add): "
+                             "give the counter-surface's height map")  # fmt: skip
+    if counter.is_file() and _is_histogram_file(counter):
+        raise ParameterError(f"{where}: a text histogram, not a height map: a counter-surface "
+                             "combines two height maps")  # fmt: skip
+    try:
+        other = read_height_map(counter, unit=unit, pixel_size=pixel_size, channel=channel)
+    except MCSimError as err:
+        raise type(err)(f"{where}: {err}") from None
+    same_pixel = all(math.isclose(a, b, rel_tol=1e-6) for a, b in ((hmap.dx, other.dx),
+                                                                 (hmap.dy, other.dy)))  # fmt: skip
+    if other.heights.shape != hmap.heights.shape or not same_pixel:
+
+        def size(m: HeightMap) -> str:
+            rows, cols = m.heights.shape
+            return f"{cols} x {rows} pixels of {m.dx * 1e9:.6g} x {m.dy * 1e9:.6g} nm"
+
+        raise ParameterError(f"{where}: {size(other)}, {path}: {size(hmap)}: the two maps must "
+                             "have the same size and pixel size to face each other pixel by "
+                             "pixel (crop or resample one)")  # fmt: skip
+    return other
 
 
 def decide_periodic(z, periodic: bool | None) -> tuple[bool, str]:

@@ -84,6 +84,40 @@ class HeightSummary:
 
 
 @dataclass(frozen=True)
+class FacingMap:
+    """A counter-surface's map facing the ingested one (``mcsim ingest --counter-surface``):
+    turned over (columns reversed, heights negated) and subtracted, so that the surface
+    ingested is the gap's topography.
+
+    Attributes
+    ----------
+    source : Path
+        The counter-surface's map file.
+    correlation : float
+        ρ of the two levelled maps' heights in the facing frame
+        (:func:`mcsim.topography.summits.height_correlation`).
+    rms, counter_rms : float
+        Rms of the levelled map and of the turned-over counter map over their common
+        pixels, m: the gap's rq is √(rms² + counter_rms² − 2ρ rms counter_rms).
+    """
+
+    source: Path
+    correlation: float
+    rms: float
+    counter_rms: float
+
+    def line(self) -> str:
+        """One line, for the terminal and the surface file."""
+        gap = (self.rms**2 + self.counter_rms**2
+               - 2 * self.correlation * self.rms * self.counter_rms) ** 0.5  # fmt: skip
+        return (f"{self.source} turned over to face the map (columns reversed, heights negated); "
+                f"the map analysed is their gap, map - turned-over counter; correlation of the "
+                f"levelled heights rho = {self.correlation:.4g}, rms {self.rms * 1e9:.4g} nm and "
+                f"{self.counter_rms * 1e9:.4g} nm: the gap's rms sqrt(rms1^2 + rms2^2 - 2 rho "
+                f"rms1 rms2) = {gap * 1e9:.4g} nm")  # fmt: skip
+
+
+@dataclass(frozen=True)
 class IngestResult:
     """What :func:`ingest_file` read and derived.
 
@@ -141,6 +175,8 @@ class IngestResult:
         GW's pull-off calibrated on exact adhesive cycles of the map
         (:mod:`mcsim.studies.adhesioncalibration`), written to the surface file's
         ``[surface.adhesion_calibration]`` table; recorded, not applied.
+    facing : FacingMap or None
+        A counter-surface's map facing this one: the map analysed is their gap's topography.
     """
 
     source: Path
@@ -168,6 +204,7 @@ class IngestResult:
     periodic_reason: str = ""
     calibration: Calibration | None = None
     adhesion_calibration: AdhesionCalibration | None = None
+    facing: FacingMap | None = None
 
     @property
     def distribution(self) -> Empirical:
@@ -185,6 +222,8 @@ class IngestResult:
         s = self.surface
         lines = [f"read       {self.source} ({self.format}{self._channel()})"]
         lines += [f"reader     {note}" for note in self.reader_notes]
+        if self.facing is not None:
+            lines.append(f"counter    {self.facing.line()}")
         if self.topography is not None:
             rows, cols = self.shape
             lines += [
@@ -304,6 +343,8 @@ class IngestResult:
         ]
         if command:
             lines.append(f"command: {command}")
+        if self.facing is not None:
+            lines.append(f"counter-surface: {self.facing.line()}")
         if self.topography is not None:
             rows, cols = self.shape
             lines += [

@@ -23,6 +23,7 @@ from mcsim._version import __version__
 from mcsim.engine import interrupt
 from mcsim.engine.montecarlo import DEFAULT_CHUNK, default_workers, run_sums
 from mcsim.engine.spec import MonteCarloSpec
+from mcsim.model.counterface import check_correlation, combine
 from mcsim.model.errors import ParameterError
 from mcsim.model.params import Material, Surface, check_range, check_seed, check_separations
 from mcsim.model.presets import as_material, as_surface
@@ -37,6 +38,7 @@ from mcsim.physics.surfaceenvironment import (
 )
 from mcsim.store import runfile
 from mcsim.store.claim import Claim, claim_output
+from mcsim.store.inputgroup import counterface_attrs
 from mcsim.store.results import Run, assemble
 from mcsim.studies.runoptions import check_checkpoint_every, check_workers
 
@@ -123,6 +125,8 @@ def simulate(
     command: str | None = None,
     extra_attrs: dict | None = None,
     environment: Environment | None = None,
+    counter_surface: Surface | str | None = None,
+    correlation: float = 0.0,
 ) -> Run:
     """Simulate ``realizations`` patches of area ``area`` and compare with the GW curves.
 
@@ -203,6 +207,16 @@ def simulate(
         plane from ``surface.rq``/``map_heights`` or the Nayak estimate). A preload is
         then balanced by the net load, and ``preload=0`` is a device resting under its
         own attraction. None: the contact alone, and the file is as before.
+    counter_surface : Surface or str, optional
+        A rough counter-surface facing ``surface`` (or a preset's name); the run is of the
+        gap's surface, :func:`mcsim.model.counterface.combine` of the two with
+        ``correlation`` (stored as ``/input/surface``), and the file records the parts as
+        root attributes ``surface_as_given``, ``counter_surface`` and ``correlation``
+        (:func:`mcsim.store.inputgroup.counterface_attrs`). None or ``"flat"`` (default):
+        a flat counter-surface, and the file is as before.
+    correlation : float
+        ρ, the correlation of the two surfaces' heights, in [-1, 1]; 0 without a
+        counter-surface.
 
     Returns
     -------
@@ -213,7 +227,12 @@ def simulate(
     mcsim.engine.interrupt.Interrupted
         On SIGINT (Ctrl-C) or SIGTERM, once the progress is saved (a ``KeyboardInterrupt``).
     """
-    surface, material = as_surface(surface), as_material(material)
+    given, material = as_surface(surface), as_material(material)
+    correlation = check_correlation(correlation)
+    surface, pair = combine(given, counter_surface, correlation), None
+    if surface is not given:  # a rough counter-surface: its parts recorded
+        pair = (given, as_surface(counter_surface, "counter-surface"), correlation)
+        extra_attrs = {**(extra_attrs or {}), **counterface_attrs(*pair)}
     environment = as_environment(environment)
     area_m2 = parse_quantity(area, "area", "area")
     seed = check_seed(seed)
@@ -244,7 +263,9 @@ def simulate(
                 _inputs(claim.checkpoint.spec, recorded), _inputs(spec, extra_attrs)
             )
         if command is None:
-            command = _api_command(spec, seed=seed, preload=preload, environment=environment)
+            command = _api_command(
+                spec, seed=seed, preload=preload, environment=environment, pair=pair
+            )
         checkpoint = None
         if claim is not None and not keep_heights:
             checkpoint = functools.partial(
@@ -267,10 +288,16 @@ def _recorded_seed(claim: Claim) -> int | None:
     return None if found is None else found.spec.entropy
 
 
-def _api_command(spec: MonteCarloSpec, *, seed, preload, environment) -> str:
-    """The call that makes ``spec``, for the provenance of a run the Python API started."""
+def _api_command(spec: MonteCarloSpec, *, seed, preload, environment, pair=None) -> str:
+    """The call that makes ``spec``, for the provenance of a run the Python API started
+    (``pair``: the surface as given, its counter-surface and their correlation, or None)."""
     s = spec
-    kwargs = {"surface": s.surface.name or s.surface, "material": s.material.name or s.material,
+    parts = {"surface": s.surface.name or s.surface}
+    if pair is not None:
+        given, counter, correlation = pair
+        parts = {"surface": given.name or given, "counter_surface": counter.name or counter,
+                 "correlation": correlation}  # fmt: skip
+    kwargs = {**parts, "material": s.material.name or s.material,
               "h": [float(x) for x in s.h], "area": s.area, "realizations": s.realizations,
               "seed": seed, "law": s.law, "count": s.count,
               **({"cycle": True} if s.cycle else {}),

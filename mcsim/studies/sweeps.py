@@ -49,6 +49,7 @@ import numpy as np
 from mcsim._version import __version__
 from mcsim.engine import interrupt
 from mcsim.engine.montecarlo import FIRST_CHECKPOINT, default_workers, in_order
+from mcsim.model.counterface import check_correlation, combine
 from mcsim.model.errors import ParameterError
 from mcsim.model.params import Material, Surface, check_range, check_seed, check_separations
 from mcsim.model.presets import as_material, as_surface
@@ -110,6 +111,8 @@ def sweep(
     checkpoint_every: float = 60.0,
     progress: bool = False,
     command: str | None = None,
+    counter_surface: Surface | str | None = None,
+    correlation: float = 0.0,
 ) -> Sweep:
     """Analytic curves, adhesion summaries and regime numbers on a grid of inputs.
 
@@ -193,6 +196,16 @@ def sweep(
         A progress bar over the points on stderr.
     command : str, optional
         Provenance string stored in the file (the CLI passes its command line).
+    counter_surface : Surface or str, optional
+        A rough counter-surface facing ``surface`` (or a preset's name): every point is of
+        the gap's surface, :func:`mcsim.model.counterface.combine` of the two with
+        ``correlation``, and the file records the parts (root attributes
+        ``surface_as_given``, ``counter_surface``, ``correlation``). ``sigma``, ``R`` and
+        ``eta`` are then not varied (they are the combination's). None or ``"flat"``
+        (default): a flat counter-surface, and the file is as before.
+    correlation : float
+        ρ, the correlation of the two surfaces' heights, in [-1, 1]; 0 without a
+        counter-surface.
 
     Returns
     -------
@@ -207,9 +220,19 @@ def sweep(
     mcsim.engine.interrupt.Interrupted
         On SIGINT or SIGTERM, once the completed points are saved.
     """
-    surface, material = as_surface(surface), as_material(material)
+    given, material = as_surface(surface), as_material(material)
+    correlation = check_correlation(correlation)
+    surface, pair = combine(given, counter_surface, correlation), {}
+    if surface is not given:  # a rough counter-surface: its parts recorded
+        pair = inputgroup.counterface_attrs(given, as_surface(counter_surface, "counter-surface"),
+                                            correlation)  # fmt: skip
     environment = as_environment(environment)
     names, grid = _check_vary(vary, law, mc or bool(pads), bool(pads))
+    combined = [n for n in names if n in ("sigma", "R", "eta")]
+    if pair and combined:
+        raise ParameterError(f"vary {combined[0]}: with a counter-surface the surface's sigma, R "
+                             "and eta are the combination's, not inputs: vary them in the "
+                             "surfaces and sweep each pair")  # fmt: skip
     restoring_force, preload = _check_pads(pads, restoring_force, preload, turn,
                                            "restoring_force" in names, tail)  # fmt: skip
     checkpoint_every = check_checkpoint_every(checkpoint_every)
@@ -249,7 +272,8 @@ def sweep(
             command = (
                 f"mcsim.sweep(vary={ {n: _shown(v) for n, v in zip(names, grid)} }, law={law!r})"
             )
-        attrs = _attrs(surface, material, environment, law, dims, grid, config, area_m2, command)
+        attrs = _attrs(surface, material, environment, law, dims, grid, config, area_m2, command,
+                       pair)  # fmt: skip
         if claim is not None and claim.finished is not None:
             return already_finished(claim, attrs, seed_given)
         done = np.zeros(shape, dtype=bool)
@@ -401,7 +425,8 @@ def _check_values(surface: Surface, material: Material, environment, names, grid
                 raise ParameterError(f"vary {name}: {err}") from None
 
 
-def _attrs(surface, material, environment, law, dims, grid, config: Config, area, command) -> dict:
+def _attrs(surface, material, environment, law, dims, grid, config: Config, area, command,
+           pair: dict) -> dict:  # fmt: skip
     bands = surface.radius_by_height
     surface_json = json.dumps({"sigma": surface.sigma, "R": surface.R, "eta": surface.eta,
                                "name": surface.name, "heights": inputgroup.heights_to_json(surface),
@@ -430,7 +455,7 @@ def _attrs(surface, material, environment, law, dims, grid, config: Config, area
         attrs |= {"area": math.nan if area is None else area, "area_unit": "m^2",
                   "realizations": config.realizations, "seed_entropy": str(config.entropy),
                   "device": config.device}  # fmt: skip
-    attrs |= _pads_attrs(config, area)
+    attrs |= _pads_attrs(config, area) | pair
     # What must match for a resume: everything but the time and the command line.
     attrs["definition"] = json.dumps({k: (None if isinstance(v, float) and math.isnan(v) else v)
                                       for k, v in attrs.items() if k != "command"}

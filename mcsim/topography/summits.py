@@ -48,9 +48,11 @@ from __future__ import annotations
 import math
 import warnings
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 
+from mcsim.model.counterface import summits_of
 from mcsim.model.errors import ParameterError
 from mcsim.model.params import RadiusByHeight
 
@@ -194,6 +196,68 @@ def level(z, order: int = 1) -> np.ndarray:
     out = np.full_like(z, np.nan)
     out[ok] = z[ok] - basis @ coef
     return out
+
+
+def flipped(counter) -> np.ndarray:
+    """A counter-surface's map, measured face up, turned over about the y axis to face a map:
+    its columns reversed and its heights negated (heights upward in the facing map's frame).
+
+    Parameters
+    ----------
+    counter : array_like
+        Height map as measured (rows along y, columns along x), any unit; NaN kept.
+    """
+    return -np.asarray(counter, dtype=float)[:, ::-1]
+
+
+def facing_gap(z, counter) -> np.ndarray:
+    """The topography of the gap between map ``z`` and a counter-surface facing it,
+    z − :func:`flipped` (counter): the one rough surface that, against a flat, has the same
+    gaps (docs/physics.md, section 'Two rough surfaces'). Same shape and unit; NaN where either is.
+
+    Parameters
+    ----------
+    z, counter : array_like
+        Height maps of the same shape and pixel size, ``counter`` measured face up.
+    """
+    return np.asarray(z, dtype=float) - flipped(counter)
+
+
+class Correlation(NamedTuple):
+    """Two maps' levelled heights compared (:func:`height_correlation`).
+
+    Attributes
+    ----------
+    rho : float
+        Correlation coefficient, in [-1, 1].
+    rms, other_rms : float
+        Rms of each map's levelled heights about their mean over the common pixels, the
+        maps' unit.
+    """
+
+    rho: float
+    rms: float
+    other_rms: float
+
+
+def height_correlation(z, other, order: int = 1) -> Correlation:
+    """Correlation ρ of two maps' heights, each levelled by :func:`level` (``order``), over the
+    pixels finite in both: Σab/√(Σa² Σb²) of the levelled heights a, b about their means (so the
+    rms of a − b is √(rms_a² + rms_b² − 2ρ rms_a rms_b), exactly).
+
+    Parameters
+    ----------
+    z, other : array_like
+        Height maps of the same shape, in one frame (a counter-surface :func:`flipped`).
+    order : int
+        Levelling degree of each map.
+    """
+    a, b = level(z, order), level(other, order)
+    ok = np.isfinite(a) & np.isfinite(b)
+    a, b = a[ok] - a[ok].mean(), b[ok] - b[ok].mean()
+    saa, sbb = float(np.sum(a * a)), float(np.sum(b * b))
+    rho = float(np.sum(a * b)) / math.sqrt(saa * sbb)
+    return Correlation(rho, math.sqrt(saa / a.size), math.sqrt(sbb / b.size))
 
 
 def _warn_saturation(z: np.ndarray, fraction: float) -> None:
@@ -409,7 +473,8 @@ def spectral_summits(moments: SpectralMoments, area: float) -> SummitStatistics:
     """Nayak (1971) / McCool (1986) summit statistics from the spectral moments.
 
     η = m4/(6π√3 m2), R = 0.375 √(π/m4), σ_s = √(1 − 0.8968/α) √m0 and mean summit
-    height 4 √(m0/(πα)) (McCool 1986, Eqs. for the equivalent isotropic surface).
+    height 4 √(m0/(πα)) (McCool 1986, Eqs. for the equivalent isotropic surface;
+    :func:`mcsim.model.counterface.summits_of`).
 
     Parameters
     ----------
@@ -418,14 +483,9 @@ def spectral_summits(moments: SpectralMoments, area: float) -> SummitStatistics:
     area : float
         Area of the map, m², for the expected ``count``.
     """
-    m0, m2, m4, alpha = moments.m0, moments.m2, moments.m4, moments.alpha
-    eta = m4 / (6 * math.pi * math.sqrt(3) * m2)
+    s = summits_of(moments.m0, moments.m2, moments.m4, moments.alpha)
     return SummitStatistics(
-        sigma_s=math.sqrt(max(1 - 0.8968 / alpha, 0.0) * m0),
-        R=0.375 * math.sqrt(math.pi / m4),
-        eta=eta,
-        mean_height=4 * math.sqrt(m0 / (math.pi * alpha)),
-        count=eta * area,
+        sigma_s=s.sigma, R=s.R, eta=s.eta, mean_height=s.summit_offset, count=s.eta * area
     )
 
 

@@ -46,6 +46,7 @@ DOCUMENTED_MODULES = (
     "mcsim/physics/laws/maugis_dugdale.py",
     "mcsim/physics/laws/seed.py",
     "mcsim/engine/statistics.py",
+    "mcsim/model/counterface.py",
     "mcsim/topography/summits.py",
     "mcsim/studies/stiction.py",
 )
