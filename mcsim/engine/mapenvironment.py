@@ -11,8 +11,9 @@ dry kernel, these are plain numba functions that the interpreter also runs:
   :func:`mcsim.physics.surfaceenvironment.environment_curves` (docs/physics.md, section 'The
   environment: summits and open gaps'), each term the summits' caps plus the open gaps
   between them (:func:`_attractions`). The caps, over the summit heights s ~ N(0, 1) with
-  tip gap g = σ(h − s): the capillary part η 2πR (γ_L/r_K) E[(g_k − max(g, D0))⁺],
-  g_k = min(g_K, u_c), in closed form (:func:`_depth`, the partial means F_1 of
+  tip gap g = σ(h − s): the capillary part η 2πR (γ_L/r_K) E[(g_k − max(g, f_c))⁺],
+  g_k = min(g_K, u_c), f_c = min(max(D0, 2t), g_k) (the adsorbed films' wet floor), in
+  closed form (:func:`_depth`, the partial means F_1 of
   :func:`mcsim.physics.environment._gaussian_condensate`, here φ(x) − x Q(x) with Q by
   ``math.erfc`` where the reference uses erfcx: the difference loses ~x²ε relative, 1e-13
   at x = 20, only where F_1(x) < e^-200 of its value at 0, nothing at the curves' scale:
@@ -20,8 +21,8 @@ dry kernel, these are plain numba functions that the interpreter also runs:
   Waals part η (AR/6) {(D0⁻² − u_c⁻²) P(g < D0) + E[g⁻² − u_c⁻²; D0 <= g < u_c]}, the
   expectation of the per-summit law (:func:`mcsim.physics.laws.attraction.vdw_summit`)
   with a positive integrand (no cancellation). The open gaps, over the heights about the
-  mean plane (D = hσ + y_s, g = D − z, z ~ N(0, Rq²)): (γ_L/r_K) P(u_c <= g < g_K) in
-  closed form, and (A/6π) E[g⁻³; g >= u_c]. Both moments by one rule
+  mean plane (D = hσ + y_s, g = D − z, z ~ N(0, Rq²)): (γ_L/r_K) P(max(u_c, f) <= g < g_K)
+  in closed form, and (A/6π) E[g⁻³; g >= u_c]. Both moments by one rule
   (:func:`_gap_moments`): :data:`VDW_PANELS` panels of :data:`VDW_NODES` Gauss–Legendre
   nodes in u, τ = t + c/ρ = ln(1 + eᵘ) (c the lower end, ρ the Gaussian's width): the
   reference's map ξ = τ + ln τ has the same two regimes (geometric at the pole, uniform
@@ -104,9 +105,10 @@ BLOCK = 16
 #: (:func:`environment_params`): A/6π (J; 0: no van der Waals); Rq, D0, the band edge u_c,
 #: y_s (m); the Laplace pressure γ_L/r_K (Pa; 0: no condensation); the condensation gap g_K
 #: and the caps' min(g_K, u_c) (m; g_K 0 and the caps' D0 without condensation); the summit
-#: radius R (m); the top of the pull-off grid above the summits (h); K (Pa).
+#: radius R (m); the top of the pull-off grid above the summits (h); K (Pa); the wet floor
+#: max(D0, 2t) of the adsorbed films t (m; D0 without condensation).
 (P_VDW, P_RQ, P_CUTOFF, P_BAND, P_OFFSET, P_LAPLACE, P_GAP, P_CAP_GAP, P_RADIUS, P_TOP,
- P_K) = range(7, 18)  # fmt: skip
+ P_K, P_FLOOR) = range(7, 19)  # fmt: skip
 
 
 def _vdw_rule() -> tuple[np.ndarray, np.ndarray]:
@@ -224,22 +226,25 @@ def _attractions(h, n, sigma, p, vdw, capillary):
 
     * the summits' caps (g = σ(h − s), s standard normal; m = clip(g, D0, u_c)):
       η(AR/6) E[m⁻² − u_c⁻²] = η(AR/6) {(D0⁻² − u_c⁻²) P(g < D0) + E[g⁻² − u_c⁻²; D0 <= g < u_c]}
-      and η 2πR (γ_L/r_K) E[(g_k − max(g, D0))⁺], g_k = min(g_K, u_c);
+      and η 2πR (γ_L/r_K) E[(g_k − max(g, f_c))⁺], g_k = min(g_K, u_c), f_c = min(f, g_k)
+      (f = max(D0, 2t) the films' wet floor);
     * the open gaps (D = hσ + y_s, g = D − z, z ~ N(0, Rq²)): (A/6π) E[g⁻³; g >= u_c] and
-      (γ_L/r_K) P(u_c <= g < g_K).
+      (γ_L/r_K) P(max(u_c, f) <= g < g_K).
     """
     rq, cutoff, band = p[P_RQ], p[P_CUTOFF], p[P_BAND]
     eta, R = p[6], p[P_RADIUS]
     a = np.empty(n)
     caps = np.empty(n)
+    open_floor = max(band, p[P_FLOOR])  # the open gaps' wet floor
+    cap_floor = min(p[P_FLOOR], p[P_CAP_GAP])  # the caps'
     for k in range(n):
         capillary[k] = 0.0
         if p[P_LAPLACE] != 0.0:
-            if p[P_GAP] > band:  # the open gaps: (γ_L/r_K) P(u_c <= g < g_K)
+            if p[P_GAP] > open_floor:  # the open gaps: (γ_L/r_K) P(max(u_c, f) <= g < g_K)
                 D = h[k] * sigma + p[P_OFFSET]
-                capillary[k] = _between((D - p[P_GAP]) / rq, (D - band) / rq)
-            # the caps: E[(g_k − max(g, D0))⁺] = σ E[(s − b)⁺ − (s − a)⁺], s = h − g/σ
-            depth = sigma * _depth(h[k] - cutoff / sigma, h[k] - p[P_CAP_GAP] / sigma)
+                capillary[k] = _between((D - p[P_GAP]) / rq, (D - open_floor) / rq)
+            # the caps: E[(g_k − max(g, f))⁺] = σ E[(s − b)⁺ − (s − a)⁺], s = h − g/σ
+            depth = sigma * _depth(h[k] - cap_floor / sigma, h[k] - p[P_CAP_GAP] / sigma)
             capillary[k] = p[P_LAPLACE] * (capillary[k] + 2.0 * math.pi * R * eta * depth)
     if p[P_VDW] == 0.0:
         vdw[:n] = 0.0
@@ -393,13 +398,13 @@ def environment_params(environment, surfaces, K) -> np.ndarray:
     K : array_like
         Per point: K = 4E*/3, Pa.
     """
-    rows = np.empty((len(environment), P_K - P_VDW + 1))
+    rows = np.empty((len(environment), P_FLOOR - P_VDW + 1))
     for i, (env, surface) in enumerate(zip(environment, surfaces)):
         caps = summit_parameters(surface, env)
         vdw = env.hamaker / (6 * math.pi) if env.has_vdw else 0.0
         rows[i] = (vdw, surface.rq, env.cutoff, caps["band"], surface.summit_offset,
                    env.laplace_pressure, env.condensation_gap, caps["gap_k"], surface.R,
-                   _environment_top(surface, env), K[i])  # fmt: skip
+                   _environment_top(surface, env), K[i], env.wet_floor)  # fmt: skip
     return rows
 
 

@@ -30,16 +30,21 @@ def quad_pressures(h, surface, env):
     """p_vdW and p_cap (Pa) at h = d/σ by scipy quad, written out from docs/physics.md
     (section 'The environment: summits and open gaps'): the summits' caps over the Gaussian
     summit heights s (tip gap g = σ(h − s); band edge u_c = D0 + 1/(2πRη); the cap's
-    condensation gap min(g_K, u_c)), plus the open gaps over the Gaussian heights z about the
-    mean plane (gap D − z >= u_c, D = hσ + y_s)."""
+    condensation gap min(g_K, u_c) and wet floor min(max(D0, 2t), it), g_K = 2 r_K cos θ + 2t
+    with the adsorbed film t of the isotherm t = 0.84 nm (ln(1/0.3)/ln(1/RH))^(1/n), n from
+    6.5 layers of 0.28 nm at RH 0.9), plus the open gaps over the Gaussian heights z about
+    the mean plane (gap D − z >= u_c, and >= 2t for the menisci; D = hσ + y_s)."""
     sigma, R, eta, D0 = surface.sigma, surface.R, surface.eta, env.cutoff
     u_c = D0 + 1 / (2 * math.pi * R * eta)
     r_k = env.kelvin_radius
-    g_k = 2 * r_k * math.cos(env.contact_angle)
+    n = math.log(math.log(1 / 0.3) / math.log(1 / 0.9)) / math.log(6.5 / 3)
+    t = 0.84e-9 * (math.log(1 / 0.3) / math.log(1 / env.rh)) ** (1 / n)
+    g_k = 2 * r_k * math.cos(env.contact_angle) + 2 * t
     laplace, gk_cap = env.surface_tension / r_k, min(g_k, u_c)
+    floor_cap = min(max(D0, 2 * t), gk_cap)
 
-    def clip(g, hi):
-        return min(max(g, D0), hi)
+    def clip(g, hi, lo=D0):
+        return min(max(g, lo), hi)
 
     def phi(x):
         return math.exp(-0.5 * x * x) / math.sqrt(2 * math.pi)
@@ -48,10 +53,11 @@ def quad_pressures(h, surface, env):
         return env.hamaker * R / 6 * (clip(sigma * (h - s), u_c) ** -2 - u_c**-2) * phi(s)
 
     def cap_meniscus(s):
-        return 2 * math.pi * R * laplace * (gk_cap - clip(sigma * (h - s), gk_cap)) * phi(s)
+        m = clip(sigma * (h - s), gk_cap, floor_cap)
+        return 2 * math.pi * R * laplace * (gk_cap - m) * phi(s)
 
-    # the integrands have kinks where the tip gap is D0, g_K or u_c
-    kinks = sorted({h - u_c / sigma, h - gk_cap / sigma, h - D0 / sigma})
+    # the integrands have kinks where the tip gap is D0, 2t, g_K or u_c
+    kinks = sorted({h - u_c / sigma, h - gk_cap / sigma, h - D0 / sigma, h - floor_cap / sigma})
     quad = dict(epsabs=0, epsrel=1e-12, limit=400)
     vdw = eta * integrate.quad(cap_vdw, kinks[0], 40, points=kinks, **quad)[0]
     cap = eta * integrate.quad(cap_meniscus, kinks[0], 40, points=kinks, **quad)[0]
@@ -64,8 +70,8 @@ def quad_pressures(h, surface, env):
     top = D - u_c  # z below it: an open gap between the caps
     vdw += env.hamaker / (6 * math.pi) * integrate.quad(
         lambda z: (D - z) ** -3 * density(z), -12 * rq, top, **quad)[0]  # fmt: skip
-    if g_k > u_c:
-        cap += laplace * integrate.quad(density, D - g_k, top, **quad)[0]
+    if g_k > max(u_c, 2 * t):
+        cap += laplace * integrate.quad(density, D - g_k, D - max(u_c, 2 * t), **quad)[0]
     return vdw, cap
 
 

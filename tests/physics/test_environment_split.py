@@ -20,7 +20,7 @@ from scipy import integrate
 from tolerances import ROUNDING_FORMULA
 
 from mcsim.model.presets import MATERIALS, SURFACES
-from mcsim.physics.environment import MIN_KELVIN_RADIUS, Environment
+from mcsim.physics.environment import Environment
 from mcsim.physics.gapheights import gap_heights
 from mcsim.physics.laws import get_law_set
 from mcsim.physics.laws.attraction import (
@@ -62,8 +62,10 @@ def test_one_summit_van_der_waals_is_the_sphere_flat_force_without_a_band_edge(g
 
 @pytest.mark.parametrize("g", [D0, 1e-9, 3e-9, 9e-9])
 def test_one_summit_meniscus_is_the_classic_sphere_flat_meniscus(g):
-    env = HUMID  # g_K = 9.92 nm
+    # no film (t = 0): the wet floor is D0 and g_K = 2 r_K cos θ = 9.92 nm
+    env = dataclasses.replace(HUMID, film_thickness=0.0, structured_film=0.0)
     g_k, laplace = env.condensation_gap, env.laplace_pressure
+    assert env.wet_floor == D0
     got = capillary_summit(np.float64(-g), laplace, R, D0, g_k)
     expected = 4 * math.pi * R * GAMMA * math.cos(env.contact_angle) * (1 - g / g_k)
     assert got == pytest.approx(expected, rel=ROUNDING_FORMULA)
@@ -104,12 +106,16 @@ def test_every_part_of_the_attraction_is_minus_the_slope_of_its_work(name, part)
     surface = SURFACES[name]
     h = np.linspace(-1.0, 4.0, 11)
     step = 1e-5
+    works = environment_works(h, surface, HUMID)[part]
     slope = -central(lambda x: environment_works(x, surface, HUMID)[part], h, step)
     pressure = environment_curves(h, surface, HUMID)[part]
     # the works are O(1e-2 J/m²) and the differences cancel to ~1e-16/1e-5 of them:
-    # an absolute bound of 1e-10 of the largest pressure times σ/step covers that rounding
+    # an absolute bound of 1e-10 of the largest pressure times σ/step covers that rounding,
+    # and a few ε of the largest work over the step σ·2e-5 where the work is mostly pressed
+    # area, whose pressure is small (the open gaps of super-smooth, beneath its 2t = 3.6 nm)
+    rounding = 10 * np.finfo(float).eps * np.max(works) / (step * surface.sigma)
     np.testing.assert_allclose(slope / surface.sigma, pressure, rtol=1e-7,
-                               atol=1e-9 * np.max(np.abs(pressure)) + 1e-9)  # fmt: skip
+                               atol=1e-9 * np.max(np.abs(pressure)) + 1e-9 + rounding)  # fmt: skip
 
 
 def test_the_open_gaps_of_a_flat_pair_are_the_flat_flat_laws():
@@ -127,11 +133,12 @@ def test_the_open_gaps_of_a_flat_pair_are_the_flat_flat_laws():
     assert p["vdw"] == 0 and p["capillary"] == 0
 
 
-def owned_area_integral(h, surface, env, kernel):
+def owned_area_integral(h, surface, env, kernel, breaks=()):
     """∫ kernel(u) ρ(u) du over open local gaps u >= D0, with ρ the area per nominal area that
     each part owns at local gap u, computed here independently of the package:
     caps (u < u_c): η 2πR P(summit gap <= u) = η 2πR Q(h − u/σ);
-    open gaps (u >= u_c): the surface's height density at z = D − u (Gaussian, rms Rq)."""
+    open gaps (u >= u_c): the surface's height density at z = D − u (Gaussian, rms Rq).
+    ``breaks``: local gaps where the kernel jumps."""
     from scipy import stats
 
     sigma, gap = surface.sigma, gap_heights(surface)
@@ -145,11 +152,13 @@ def owned_area_integral(h, surface, env, kernel):
         return stats.norm.pdf((D - u) / gap.rq) / gap.rq * kernel(u)
 
     steps = env.cutoff * (u_c / env.cutoff) ** np.linspace(0, 1, 17)
+    steps = np.unique([*steps, *(b for b in breaks if env.cutoff < b < u_c)])
     cap_part = sum(integrate.quad(caps, a, b, epsabs=0, epsrel=1e-12, limit=200)[0]
                    for a, b in itertools.pairwise(steps))  # fmt: skip
     top = max(D, u_c) + 40 * gap.rq
-    gap_part = integrate.quad(gaps, u_c, top, points=[D] if u_c < D < top else None, epsabs=0,
-                              epsrel=1e-12, limit=400)[0]  # fmt: skip
+    points = [u for u in (D, *breaks) if u_c < u < top]
+    gap_part = integrate.quad(gaps, u_c, top, points=points or None, epsabs=0, epsrel=1e-12,
+                              limit=400)[0]  # fmt: skip
     return cap_part + gap_part
 
 
@@ -157,12 +166,14 @@ def owned_area_integral(h, surface, env, kernel):
 @pytest.mark.parametrize("h", [-1.0, 0.5, 2.5])
 def test_no_area_is_counted_twice_nor_lost(name, h):
     """Each term is its local law integrated once over the area each part owns: the menisci
-    (γ_L/r_K on D0 <= u < g_K) and van der Waals (A/(6πu³)). Charging the open gaps from D0
-    instead of u_c (the area nearer the flat counted by caps and gaps both) fails this."""
+    (γ_L/r_K on max(D0, 2t) <= u < g_K, t the adsorbed film) and van der Waals (A/(6πu³)).
+    Charging the open gaps from D0 instead of u_c (the area nearer the flat counted by caps
+    and gaps both) fails this."""
     surface, env = SURFACES[name], HUMID
-    g_k = env.condensation_gap
+    g_k, floor = env.condensation_gap, max(env.cutoff, 2 * env.film)
     got = environment_curves(np.float64(h), surface, env)
-    wetted = owned_area_integral(h, surface, env, lambda u: (u < g_k) * 1.0)
+    wetted = owned_area_integral(h, surface, env, lambda u: (floor <= u < g_k) * 1.0,
+                                 breaks=(floor, g_k))  # fmt: skip
     assert got["capillary"] == pytest.approx(env.laplace_pressure * wetted, rel=1e-8)
     vdw = owned_area_integral(h, surface, env, lambda u: A / (6 * math.pi * u**3))
     assert got["vdw"] == pytest.approx(vdw, rel=1e-8)
@@ -194,13 +205,17 @@ def test_the_law_set_with_an_environment_appends_the_caps_and_reaches_down_to_th
 
 
 @pytest.mark.parametrize(
-    ("rh", "meniscus"), [(0.30, False), (0.34, False), (0.36, True), (0.9, True)]
+    ("rh", "meniscus"), [(0.20, False), (0.30, False), (0.31, True), (0.34, True), (0.9, True)]
 )
-def test_no_continuum_meniscus_below_a_kelvin_radius_of_half_a_nanometre(rh, meniscus):
+def test_no_meniscus_until_the_film_is_thicker_than_its_structured_layers(rh, meniscus):
+    """The Kelvin gate (r_K >= 0.5 nm, RH >= 0.35) gave way to the adsorbed films: bridges form
+    above RH_dry = 0.30, where the film exceeds its ice-like 3 layers (tests/physics/test_films.py)."""
     env = Environment(rh=rh)
-    assert (env.kelvin_radius >= MIN_KELVIN_RADIUS) == meniscus
+    assert (env.film > env.structured_film) == meniscus
     assert env.has_capillary == meniscus
+    curves = environment_curves(np.array([0.0, 1.0]), SURFACES["smooth"], env)
     if not meniscus:
-        assert "Kelvin radius" in env.no_condensation_reason
-        curves = environment_curves(np.array([0.0, 1.0]), SURFACES["smooth"], env)
+        assert "structured film" in env.no_condensation_reason
         assert np.all(curves["capillary"] == 0)
+    else:
+        assert np.all(curves["capillary"] > 0)
