@@ -194,6 +194,25 @@ def log_notes(quiet: bool):
         logger.propagate = propagate
 
 
+def _film_note(env, varied) -> str:
+    """The adsorbed films and the band the bridges pull on (docs/physics.md, 'Water below the
+    Kelvin gate: adsorbed films'): t, its source, the structured film, f and g_K."""
+    source = "given" if env.film_thickness is not None else "isotherm t(RH)"
+    film = f"{env.film * 1e9:.4g} nm ({source})"
+    if "film_thickness" in varied or (env.film_thickness is None and "rh" in varied):
+        film = "per point"
+    structured = ("varied (--vary structured_film)" if "structured_film" in varied
+                  else f"{env.structured_film * 1e9:.4g} nm")  # fmt: skip
+    band = (f"{env.wet_floor * 1e9:.4g} nm <= g < {env.condensation_gap * 1e9:.4g} nm"
+            if env.has_capillary else "none")  # fmt: skip
+    if set(varied) & {"rh", "temperature", "contact_angle", "cutoff", "film_thickness",
+                      "structured_film"}:  # fmt: skip
+        band = "per point"
+    return (f"environment films: adsorbed film t = {film} on each face, structured (ice-like) "
+            f"film {structured} (bridges only where t exceeds it), bridges pull on "
+            f"max(D0, 2t) <= g < g_K = 2 r_K cos(theta) + 2t: {band}")  # fmt: skip
+
+
 def environment_notes(surface, environment, varied=(), material=None) -> list[str]:
     """The environment's inputs, the heights it uses (given or estimated), why no liquid
     condenses, if none does, and with ``material`` how its w is shared with the van der Waals
@@ -231,6 +250,8 @@ def environment_notes(surface, environment, varied=(), material=None) -> list[st
         lines[-1] += (
             ": estimates from sigma, R, eta; give rq and summit_offset to use measured values"
         )
+    if not env.is_dry or "rh" in varied:
+        lines.append(_film_note(env, varied))
     if not env.is_dry and not env.has_capillary:
         lines.append(env.no_condensation_reason)
     if material is None:  # a run's own log says the rest (mcsim.studies.simulation)

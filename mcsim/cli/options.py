@@ -352,6 +352,12 @@ def add_environment(p) -> None:
                    "liquid, > 0 (J/m^2 unless a unit is given: '72 mJ/m^2'; default water, 0.072)")  # fmt: skip
     g.add_argument("--molar-volume", metavar="V_M", help="molar volume of the liquid, > 0 "
                    "(m^3/mol unless a unit is given: '18 cm^3/mol'; default water, 1.80e-5)")  # fmt: skip
+    g.add_argument("--film-thickness", metavar="T", help="adsorbed water film on each face, >= 0 "
+                   "(m unless a unit is given: '1.2 nm'); default: the isotherm t(RH) of water on "
+                   "silicon oxide, 0.84 nm at RH 0.3, 1.82 nm at 0.9 (docs/physics.md)")  # fmt: skip
+    g.add_argument("--structured-film", metavar="T_S", help="thickness of the ice-like first "
+                   "layers of the film, >= 0: liquid bridges form only where the film is at least "
+                   "this thick (m unless a unit is given; default 0.84 nm, 3 layers: from RH 0.3)")  # fmt: skip
 
 
 def environment_of(args):

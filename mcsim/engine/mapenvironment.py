@@ -11,7 +11,8 @@ dry kernel, these are plain numba functions that the interpreter also runs:
   :func:`mcsim.physics.surfaceenvironment.environment_curves` (docs/physics.md, section 'The
   environment covers the surface once'): the whole surface's, over its heights about the
   mean plane (D = hσ + y_s, g = D − z, z ~ N(0, Rq²)), which the summits' caps and the open
-  gaps share (:func:`_attractions`): (γ_L/r_K) P(D0 <= g < g_K) in closed form, and
+  gaps share (:func:`_attractions`): (γ_L/r_K) P(f <= g < g_K) in closed form (f = max(D0, 2t) the
+  adsorbed films' wet floor), and
   (A/6π) E[g⁻³; g >= D0] (:func:`_gap_moments`): :data:`VDW_PANELS` panels of
   :data:`VDW_NODES` Gauss–Legendre nodes in u, τ = t + c/ρ = ln(1 + eᵘ) (c the lower end,
   ρ the Gaussian's width): the reference's map ξ = τ + ln τ has the same two regimes
@@ -91,9 +92,10 @@ BLOCK = 16
 #: (:func:`environment_params`): A/6π (J; 0: no van der Waals); Rq, D0, the band edge u_c,
 #: y_s (m); the Laplace pressure γ_L/r_K (Pa; 0: no condensation); the condensation gap g_K
 #: and the caps' min(g_K, u_c) (m; g_K 0 and the caps' D0 without condensation); the summit
-#: radius R (m); the top of the pull-off grid above the summits (h); K (Pa).
+#: radius R (m); the top of the pull-off grid above the summits (h); K (Pa); the wet floor
+#: max(D0, 2t) of the adsorbed films t (m; D0 without condensation).
 (P_VDW, P_RQ, P_CUTOFF, P_BAND, P_OFFSET, P_LAPLACE, P_GAP, P_CAP_GAP, P_RADIUS, P_TOP,
- P_K) = range(7, 18)  # fmt: skip
+ P_K, P_FLOOR) = range(7, 19)  # fmt: skip
 
 
 def _vdw_rule() -> tuple[np.ndarray, np.ndarray]:
@@ -192,15 +194,16 @@ def _attractions(h, n, sigma, p, vdw, capillary):
     ``vdw`` and ``capillary``, as :func:`mcsim.physics.surfaceenvironment.environment_curves`, each
     term 0 where its coefficient in ``p`` is 0 (module docstring): the whole surface's, over
     its heights about the mean plane (D = hσ + y_s, g = D − z, z ~ N(0, Rq²)),
-    (A/6π) E[g⁻³; g >= D0] and (γ_L/r_K) P(D0 <= g < g_K).
+    (A/6π) E[g⁻³; g >= D0] and (γ_L/r_K) P(f <= g < g_K), f = max(D0, 2t) the
+    films' wet floor.
     """
     rq, cutoff = p[P_RQ], p[P_CUTOFF]
     a = np.empty(n)
     for k in range(n):
         capillary[k] = 0.0
-        if p[P_LAPLACE] != 0.0 and p[P_GAP] > cutoff:
+        if p[P_LAPLACE] != 0.0 and p[P_GAP] > p[P_FLOOR]:
             D = h[k] * sigma + p[P_OFFSET]
-            capillary[k] = p[P_LAPLACE] * _between((D - p[P_GAP]) / rq, (D - cutoff) / rq)
+            capillary[k] = p[P_LAPLACE] * _between((D - p[P_GAP]) / rq, (D - p[P_FLOOR]) / rq)
     if p[P_VDW] == 0.0:
         vdw[:n] = 0.0
         return
@@ -349,13 +352,13 @@ def environment_params(environment, surfaces, K) -> np.ndarray:
     K : array_like
         Per point: K = 4E*/3, Pa.
     """
-    rows = np.empty((len(environment), P_K - P_VDW + 1))
+    rows = np.empty((len(environment), P_FLOOR - P_VDW + 1))
     for i, (env, surface) in enumerate(zip(environment, surfaces)):
         caps = summit_parameters(surface, env)
         vdw = env.hamaker / (6 * math.pi) if env.has_vdw else 0.0
         rows[i] = (vdw, surface.rq, env.cutoff, caps["band"], surface.summit_offset,
                    env.laplace_pressure, env.condensation_gap, caps["gap_k"], surface.R,
-                   _environment_top(surface, env), K[i])  # fmt: skip
+                   _environment_top(surface, env), K[i], env.wet_floor)  # fmt: skip
     return rows
 
 

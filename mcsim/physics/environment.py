@@ -19,9 +19,12 @@ area and positive when attractive:
   Forces*, 3rd ed., Eq. 13.11, p = A/(6π g³)): p_vdW(D) = (A/6π) E[g⁻³; g ≥ D0], and its
   work from D_t outward W_vdW(D_t) = (A/12π) E[max(D_t − z, D0)⁻²];
 * capillary condensation in equilibrium with the vapour: Kelvin radius
-  r_K = γ_L V_m / (R_g T ln(1/RH)) (Kelvin equation, Israelachvili Eq. 17.19); liquid
-  fills the gaps D0 ≤ g < g_K = 2 r_K cos θ and pulls with the Laplace pressure γ_L/r_K:
-  p_cap(D) = (γ_L/r_K) P(D0 ≤ g < g_K), W_cap(D_t) = (γ_L/r_K) E[(g_K − max(D0, D_t − z))⁺].
+  r_K = γ_L V_m / (R_g T ln(1/RH)) (Kelvin equation, Israelachvili Eq. 17.19); each face
+  carries an adsorbed film of thickness t (:mod:`mcsim.physics.films`), liquid bridges the
+  films across the gaps g < g_K = 2 r_K cos θ + 2t and pulls with the Laplace pressure
+  γ_L/r_K where f ≤ g < g_K, above the wet floor f = max(D0, 2t) (below it the two films
+  are pressed into each other and their disjoining pressure balances the pull):
+  p_cap(D) = (γ_L/r_K) P(f ≤ g < g_K), W_cap(D_t) = (γ_L/r_K) E[(g_K − max(f, D_t − z))⁺].
 
 Both works satisfy −dW/dD = p. Gaussian heights: p_cap and W_cap in closed form (normal
 CDFs and densities); the van der Waals moments E[g⁻ⁿ; g ≥ D0] by one fixed composite
@@ -29,7 +32,8 @@ Gauss–Legendre rule, vectorised over every point (see :func:`_gaussian_gap_mom
 Histogram heights: every quantity is an exact integral over each bin.
 
 Not in this model: elastic deformation of the non-contacting surface, correlation between
-the two topographies, menisci that conserve volume, disjoining pressure of adsorbed films.
+the two topographies, menisci that conserve volume, the adsorbed films' own disjoining
+pressure outside the bridges.
 """
 
 from __future__ import annotations
@@ -45,6 +49,7 @@ from scipy import special
 from mcsim.model.errors import ParameterError
 from mcsim.model.params import check_range
 from mcsim.model.units import has_unit, parse_quantity
+from mcsim.physics import films
 
 #: Molar gas constant R_g, J/(mol K) (CODATA 2018, exact).
 GAS_CONSTANT = 8.314462618
@@ -57,12 +62,6 @@ DEFAULT_CUTOFF = 0.165e-9
 #: across vacuum; Israelachvili, Intermolecular and Surface Forces, ch. 13); 1e-16 J is 200× the largest, and keeps every
 #: attraction a finite float.
 MAX_HAMAKER = 1e-16
-
-#: Smallest Kelvin radius at which a continuum meniscus is modelled, m: below it the
-#: meniscus (width ~2 r_K) is two or three water molecules (diameter ≈ 0.28 nm) across and
-#: the vapour forms adsorbed films instead (water at 25 °C: RH below ≈ 0.35). Gate of
-#: :attr:`Environment.has_capillary`; see docs/physics.md, section 'The environment'.
-MIN_KELVIN_RADIUS = 0.5e-9
 
 # Composite Gauss–Legendre rule on [0, 1] for the Gaussian van der Waals moments:
 # _PANELS equal panels of _NODES_PER_PANEL nodes in the mapped variable ξ = τ + ln τ.
@@ -106,6 +105,16 @@ class Environment:
         Surface tension γ_L of the liquid, J/m², > 0 (default water, 0.072).
     molar_volume : float
         Molar volume V_m of the liquid, m³/mol, > 0 (default water, 1.80e-5).
+    film_thickness : float or None
+        Adsorbed film t on each face, m, >= 0; None (default): the isotherm t(RH) of
+        :func:`mcsim.physics.films.film_thickness` (water on silicon oxide). A value replaces
+        t(RH) everywhere, in the condensation gap, the wet floor and the bridges' onset.
+    structured_film : float
+        Thickness t_s of the structured (ice-like) first layers, m, >= 0 (default
+        :data:`mcsim.physics.films.STRUCTURED_FILM`, 0.84 nm): liquid bridges form only
+        where t > t_s, with liquid-like water on top (RH > RH_dry = 0.30 on the isotherm);
+        0: no structured layers, bridges at any RH > 0 (with ``film_thickness`` = 0 the Kelvin
+        band D0 <= g < 2 r_K cos θ, no film).
 
     Raises
     ------
@@ -120,6 +129,8 @@ class Environment:
     temperature: float = 298.15
     surface_tension: float = 0.072
     molar_volume: float = 1.80e-5
+    film_thickness: float | None = None
+    structured_film: float = films.STRUCTURED_FILM
 
     def __post_init__(self) -> None:
         set_ = object.__setattr__
@@ -134,6 +145,10 @@ class Environment:
         set_(self, "temperature", check_range("temperature", self.temperature, "K", low=0))
         for name, unit in (("surface_tension", "J/m^2"), ("molar_volume", "m^3/mol")):
             set_(self, name, check_range(name, getattr(self, name), unit, low=0))
+        for name in ("film_thickness", "structured_film"):
+            if getattr(self, name) is not None:
+                set_(self, name, check_range(name, getattr(self, name), "m", low=0,
+                                             low_open=False))  # fmt: skip
 
     @classmethod
     def from_user(
@@ -146,6 +161,8 @@ class Environment:
         temperature=298.15,
         surface_tension=0.072,
         molar_volume=1.80e-5,
+        film_thickness=None,
+        structured_film=films.STRUCTURED_FILM,
     ) -> Environment:
         """An environment from values as users write them (numbers SI, or strings with units).
 
@@ -153,7 +170,9 @@ class Environment:
         energy (``"1.6e-19 J"``, ``"0.16 aJ"``), ``cutoff`` a length (``"0.2 nm"``),
         ``rh`` a bare fraction, ``contact_angle`` an angle (``"20 deg"``, ``"0.35 rad"``;
         a bare number is in **degrees**), ``temperature`` in K (no °C), ``surface_tension``
-        an energy per area (``"72 mJ/m^2"``), ``molar_volume`` (``"18 cm^3/mol"``).
+        an energy per area (``"72 mJ/m^2"``), ``molar_volume`` (``"18 cm^3/mol"``),
+        ``film_thickness`` (None: the isotherm) and ``structured_film`` lengths
+        (``"0.8 nm"``).
 
         Raises
         ------
@@ -175,7 +194,10 @@ class Environment:
             temperature=parse_quantity(temperature, "temperature", "temperature"),
             surface_tension=parse_quantity(surface_tension, "energy_per_area", "surface_tension"),
             molar_volume=parse_quantity(molar_volume, "molar_volume", "molar_volume"),
-        )
+            film_thickness=None if film_thickness is None
+            else parse_quantity(film_thickness, "length", "film_thickness"),
+            structured_film=parse_quantity(structured_film, "length", "structured_film"),
+        )  # fmt: skip
 
     @property
     def has_vdw(self) -> bool:
@@ -188,8 +210,17 @@ class Environment:
         return self.rh == 0
 
     @property
+    def film(self) -> float:
+        """Adsorbed film t on each face, m: ``film_thickness`` if given, else the isotherm
+        t(RH) (:func:`mcsim.physics.films.film_thickness`; 0 when dry)."""
+        if self.film_thickness is not None:
+            return self.film_thickness
+        return float(films.film_thickness(self.rh))
+
+    @property
     def no_condensation_reason(self) -> str | None:
-        """Why no liquid condenses (dry vapour, non-wetting liquid), or None if it can."""
+        """Why no liquid bridges form (dry vapour, non-wetting liquid, a film no thicker than
+        its structured layers), or None if they can."""
         if self.is_dry:
             return "no capillary condensation: the vapour is dry (rh = 0)"
         if self.contact_angle >= math.pi / 2:
@@ -197,17 +228,20 @@ class Environment:
                 f"no capillary condensation: contact angle {math.degrees(self.contact_angle):g} "
                 "deg >= 90 deg (the liquid does not wet the gaps)"
             )
-        if self.kelvin_radius < MIN_KELVIN_RADIUS:
+        if self.film <= self.structured_film and self.structured_film > 0:
+            onset = (f"; on the isotherm above RH {float(films.film_humidity(self.structured_film)):.3g}"
+                     if self.film_thickness is None else "")  # fmt: skip
             return (
-                f"no capillary meniscus: Kelvin radius {self.kelvin_radius * 1e9:.3g} nm < "
-                f"{MIN_KELVIN_RADIUS * 1e9:g} nm (rh = {self.rh:g}): a meniscus about one water "
-                "molecule wide is not a continuum (an adsorbed film, not modelled)"
+                f"no capillary bridges: adsorbed film t = {self.film * 1e9:.3g} nm <= structured "
+                f"film {self.structured_film * 1e9:.3g} nm (rh = {self.rh:g}): the first, "
+                f"ice-like layers form no liquid bridges{onset}"
             )
         return None
 
     @property
     def has_capillary(self) -> bool:
-        """Whether liquid can condense (RH > 0 and θ < 90°)."""
+        """Whether liquid bridges form (RH > 0, θ < 90° and t > the structured film t_s, or
+        t_s = 0)."""
         return self.no_condensation_reason is None
 
     @property
@@ -223,8 +257,16 @@ class Environment:
 
     @property
     def condensation_gap(self) -> float:
-        """Largest gap filled with liquid g_K = 2 r_K cos θ, m; 0 without condensation."""
-        return 2 * self.kelvin_radius * math.cos(self.contact_angle) if self.has_capillary else 0.0
+        """Largest gap bridged by liquid g_K = 2 r_K cos θ + 2t, m; 0 without condensation."""
+        if not self.has_capillary:
+            return 0.0
+        return 2 * self.kelvin_radius * math.cos(self.contact_angle) + 2 * self.film
+
+    @property
+    def wet_floor(self) -> float:
+        """Smallest gap the bridges pull across, max(D0, 2t), m (the films pressed into each
+        other below it); D0 without condensation."""
+        return max(self.cutoff, 2 * self.film) if self.has_capillary else self.cutoff
 
     @property
     def laplace_pressure(self) -> float:
@@ -460,23 +502,29 @@ def vdw_work(D_t, heights, hamaker, cutoff):
     return hamaker / (12 * math.pi) * _gap_moment(D_t, heights, cutoff, 2)
 
 
-def _capillary(D, heights, cutoff, surface_tension, kelvin_radius, contact_angle, which: int):
-    """Laplace pressure times the filled fraction (0) or the mean filled depth (1)."""
+def _capillary(D, heights, cutoff, surface_tension, kelvin_radius, contact_angle, film,
+               which: int):  # fmt: skip
+    """Laplace pressure times the filled fraction (0) or the mean filled depth (1), over the
+    band max(D0, 2t) <= g < g_K = 2 r_K cos θ + 2t."""
     r_k = np.asarray(kelvin_radius, dtype=float)
-    gap_k = 2 * r_k * np.cos(contact_angle)
-    active = gap_k > cutoff
+    film = np.asarray(film, dtype=float)
+    gap_k = 2 * r_k * np.cos(contact_angle) + 2 * film
+    floor = np.maximum(cutoff, 2 * film)
+    active = gap_k > floor
     r_safe = np.where(active, r_k, 1.0)
-    gap_safe = np.where(active, gap_k, 2 * np.asarray(cutoff, dtype=float))
-    value = _condensate(D, heights, cutoff, gap_safe)[which]
+    gap_safe = np.where(active, gap_k, 2 * floor)
+    value = _condensate(D, heights, floor, gap_safe)[which]
     return np.where(active, surface_tension / r_safe * value, 0.0)
 
 
-def capillary_pressure(D, heights, cutoff, surface_tension, kelvin_radius, contact_angle):
+def capillary_pressure(D, heights, cutoff, surface_tension, kelvin_radius, contact_angle, film=0.0):
     """Capillary attraction of the condensed liquid, Pa (positive: attractive).
 
-    p_cap(D) = (γ_L/r_K) P(D0 <= g < g_K), g_K = 2 r_K cos θ: Laplace pressure on the
-    area whose gap fills by Kelvin condensation (DelRio et al. 2007). Zero
-    where g_K <= D0 (dry, θ >= 90°, or too little vapour to fill any open gap).
+    p_cap(D) = (γ_L/r_K) P(f <= g < g_K), g_K = 2 r_K cos θ + 2t, f = max(D0, 2t): Laplace
+    pressure on the area whose gap is bridged by liquid between the two adsorbed films of
+    thickness t (DelRio et al. 2007 with t = 0), down to the wet floor f, below which the
+    films are pressed into each other. Zero where g_K <= f (dry, θ >= 90°, or too little
+    vapour to fill any open gap).
 
     Parameters
     ----------
@@ -492,27 +540,31 @@ def capillary_pressure(D, heights, cutoff, surface_tension, kelvin_radius, conta
         r_K, m (:func:`kelvin_radius`; 0 when dry).
     contact_angle : array_like
         θ, rad.
+    film : array_like
+        Adsorbed film t on each face, m (:attr:`Environment.film`; default 0: no film, the
+        band D0 <= g < 2 r_K cos θ).
 
     Returns
     -------
     ndarray
         p_cap, Pa, of the broadcast shape of the arguments.
     """
-    return _capillary(D, heights, cutoff, surface_tension, kelvin_radius, contact_angle, 0)
+    return _capillary(D, heights, cutoff, surface_tension, kelvin_radius, contact_angle, film, 0)
 
 
-def capillary_work(D_t, heights, cutoff, surface_tension, kelvin_radius, contact_angle):
+def capillary_work(D_t, heights, cutoff, surface_tension, kelvin_radius, contact_angle, film=0.0):
     """Capillary work of separation from ``D_t`` to infinity, J/m².
 
-    W_cap(D_t) = (γ_L/r_K) E[(g_K − max(D0, D_t − z))⁺]; −dW/dD =
-    :func:`capillary_pressure`. Flat surfaces at contact: 2γ_L cos θ − γ_L D0/r_K, which
-    tends to 2γ_L cos θ as RH → 1 (DelRio et al. 2007's ceiling).
+    W_cap(D_t) = (γ_L/r_K) E[(g_K − max(f, D_t − z))⁺]; −dW/dD =
+    :func:`capillary_pressure`. Flat surfaces at contact:
+    (γ_L/r_K)(g_K − f) = 2γ_L cos θ − γ_L (D0 − 2t)⁺/r_K <= 2γ_L cos θ, the ceiling of
+    DelRio et al. 2007, reached once 2t >= D0 (and as RH → 1).
 
     Parameters
     ----------
     D_t : array_like
         Mean-plane gap at the closest approach, m.
-    heights, cutoff, surface_tension, kelvin_radius, contact_angle
+    heights, cutoff, surface_tension, kelvin_radius, contact_angle, film
         As for :func:`capillary_pressure`.
 
     Returns
@@ -520,4 +572,5 @@ def capillary_work(D_t, heights, cutoff, surface_tension, kelvin_radius, contact
     ndarray
         W_cap, J/m².
     """
-    return _capillary(D_t, heights, cutoff, surface_tension, kelvin_radius, contact_angle, 1)
+    return _capillary(D_t, heights, cutoff, surface_tension, kelvin_radius, contact_angle, film,
+                      1)  # fmt: skip

@@ -63,17 +63,18 @@ def band_edge(R: float, eta: float, env: Environment) -> float:
 def summit_parameters(surface, env: Environment) -> dict[str, float]:
     """Parameters of the per-summit laws of :mod:`mcsim.physics.laws.attraction` (SI):
     ``hamaker`` (0 without van der Waals), ``cutoff`` (D0), ``band`` (u_c), ``laplace``
-    (γ_L/r_K, 0 without condensation) and ``gap_k``, the cap's condensation gap min(g_K, u_c)
-    (D0 without condensation): the rest of the condensate lies in the open gaps."""
+    (γ_L/r_K, 0 without condensation), ``gap_k``, the cap's condensation gap min(g_K, u_c)
+    (D0 without condensation): the rest of the condensate lies in the open gaps, and
+    ``wet_floor``, the cap's wet floor min(max(D0, 2t), its gap_k) (D0 without condensation)."""
     u_c = band_edge(surface.R, surface.eta, env)
+    gap_k = max(min(env.condensation_gap, u_c), env.cutoff) if env.has_capillary else env.cutoff
     return {
         "hamaker": env.hamaker or 0.0,
         "cutoff": env.cutoff,
         "band": u_c,
         "laplace": env.laplace_pressure,
-        "gap_k": max(min(env.condensation_gap, u_c), env.cutoff)
-        if env.has_capillary
-        else env.cutoff,
+        "gap_k": gap_k,
+        "wet_floor": min(env.wet_floor, gap_k),
     }
 
 
@@ -175,7 +176,7 @@ def with_environment(law: LawSet, env: Environment | None) -> LawSet:
         # Down to the band edge whichever terms act: the summits drawn, hence a pad's, are
         # then the same at every humidity and Hamaker constant (common random numbers).
         base = law.edges(params)
-        cuts = {-params["cutoff"], -params["gap_k"], -params["band"]}
+        cuts = {-params["cutoff"], -params["wet_floor"], -params["gap_k"], -params["band"]}
         return Edges(min(base.reach, -params["band"]), base.jump_in, base.break_off,
                      tuple(sorted({*base.breakpoints, *cuts})))  # fmt: skip
 
@@ -202,18 +203,18 @@ def _summit_expectation(h, surface, env: Environment, work: bool) -> dict[str, n
         return {term: np.sum([o[term] for o in out], axis=0) for term in out[0]}
     h = np.atleast_1d(np.asarray(h, dtype=float))
     sigma, p = surface.sigma, summit_parameters(surface, env)
-    R, D0, u_c, g_k = surface.R, p["cutoff"], p["band"], p["gap_k"]
+    R, D0, u_c, g_k, floor = surface.R, p["cutoff"], p["band"], p["gap_k"], p["wet_floor"]
     vdw = attraction.vdw_summit_work if work else attraction.vdw_summit
     cap = attraction.capillary_summit_work if work else attraction.capillary_summit
 
     def integrand(delta, rows):
         d = sigma * delta
-        return np.stack([vdw(d, p["hamaker"], R, D0, u_c), cap(d, p["laplace"], R, D0, g_k)])
+        return np.stack([vdw(d, p["hamaker"], R, D0, u_c), cap(d, p["laplace"], R, floor, g_k)])
 
     # Below δ = −u_c a cap's forces and works are 0; between the edges they are smooth, the
     # van der Waals ones varying as u⁻² over D0 ≤ u < u_c: panels in geometric steps there.
     steps = D0 * (u_c / D0) ** (np.arange(1, _CAP_PANELS) / _CAP_PANELS)
-    columns = [-u_c / sigma, *sorted(-np.array([u_c, g_k, D0, *steps]) / sigma), 0.0]
+    columns = [-u_c / sigma, *sorted(-np.array([u_c, g_k, floor, D0, *steps]) / sigma), 0.0]
     breaks = np.tile(np.asarray(columns), (h.size, 1))
     scale, integral = surface.heights.gw_integrals(integrand, h, breaks)
     out = surface.eta * scale * integral
@@ -249,7 +250,7 @@ def proximity_pressures(h, surface, env: Environment) -> dict[str, np.ndarray]:
     """
     D, heights = _gaps(h, surface)
     zero = np.zeros(np.shape(D))
-    args = env.cutoff, env.surface_tension, env.kelvin_radius, env.contact_angle
+    args = env.cutoff, env.surface_tension, env.kelvin_radius, env.contact_angle, env.film
     return {
         "vdw": vdw_pressure(D, heights, env.hamaker, env.cutoff) if env.has_vdw else zero,
         "capillary": capillary_pressure(D, heights, *args) if env.has_capillary else zero,
@@ -261,7 +262,7 @@ def proximity_works(h_t, surface, env: Environment) -> dict[str, np.ndarray]:
     :func:`vdw_work` and :func:`capillary_work` with the cutoff D0."""
     D, heights = _gaps(h_t, surface)
     zero = np.zeros(np.shape(D))
-    args = env.cutoff, env.surface_tension, env.kelvin_radius, env.contact_angle
+    args = env.cutoff, env.surface_tension, env.kelvin_radius, env.contact_angle, env.film
     return {
         "vdw": vdw_work(D, heights, env.hamaker, env.cutoff) if env.has_vdw else zero,
         "capillary": capillary_work(D, heights, *args) if env.has_capillary else zero,

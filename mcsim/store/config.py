@@ -28,6 +28,8 @@
     temperature = "298.15 K"  # default 298.15 K
     liquid_surface_tension = "72 mJ/m^2"   # default water
     molar_volume = "18 cm^3/mol"           # default water
+    film_thickness = "1.2 nm"  # adsorbed film on each face (default: the isotherm t(RH))
+    structured_film = "0.84 nm"  # ice-like first layers: no bridges below (default 0.84 nm)
 
 A second rough surface facing this one (default: a flat one) and the correlation ρ of the
 two surfaces' heights, in [-1, 1] (default 0), combined into the gap's surface by
@@ -522,6 +524,8 @@ ENVIRONMENT_KEYS = {
     "temperature": ("temperature", "temperature", "temperature, e.g. '298.15 K'"),
     "liquid_surface_tension": ("surface_tension", "energy_per_area", "e.g. '72 mJ/m^2'"),
     "molar_volume": ("molar_volume", "molar_volume", "e.g. '18 cm^3/mol'"),
+    "film_thickness": ("film_thickness", "length", "adsorbed film on each face, e.g. '1.2 nm'"),
+    "structured_film": ("structured_film", "length", "ice-like first layers, e.g. '0.84 nm'"),
 }
 
 

@@ -1,8 +1,9 @@
 """The environment's part of a run file: the ``/environment`` group.
 
-Written only for a run with an environment: the Environment's inputs with their units,
-the band edge of the summits' caps, the heights about the mean plane (rq, summit offset and
-their source), and the open gaps' pressures per row (the whole surface's less the caps'). The summits'
+Written only for a run with an environment: the Environment's inputs with their units
+(its adsorbed films too, and the film used), the band edge of the summits' caps, the
+heights about the mean plane (rq, summit offset and their source), and the open gaps'
+pressures per row (the whole surface's less the caps'). The summits'
 caps are outputs of the run's law set (``vdw``, ``capillary``), stored with the other sums.
 Files without it are exactly as before (:mod:`mcsim.store.runfile`). A file written with
 the cell model of mcsim 0.2 (``cell_model`` attribute) is refused: its sums mean another
@@ -25,12 +26,16 @@ from mcsim.store.sweepvariables import CURVES
 
 #: Fields of the Environment as stored, with their units.
 _ENVIRONMENT_UNITS = {"hamaker": "J", "cutoff": "m", "rh": "1", "contact_angle": "rad",
-                      "temperature": "K", "surface_tension": "J/m^2", "molar_volume": "m^3/mol"}  # fmt: skip
+                      "temperature": "K", "surface_tension": "J/m^2", "molar_volume": "m^3/mol",
+                      "film_thickness": "m", "structured_film": "m"}  # fmt: skip
+#: Fields stored as NaN when None.
+_OPTIONAL = ("hamaker", "film_thickness")
 
 #: The model of the environment, as recorded in run files.
 MODEL = ("the proximity model over the heights about the mean plane, each local gap once, "
          "shared between the summits' caps (per-summit van der Waals and menisci, local gaps "
-         "below band_edge) and the open gaps (the rest: the whole less the caps' expectation)")  # fmt: skip
+         "below band_edge) and the open gaps (the rest: the whole less the caps' expectation); "
+         "menisci bridge adsorbed films (film_thickness, structured_film)")  # fmt: skip
 
 
 def write_environment(f, spec, part) -> None:
@@ -42,14 +47,14 @@ def write_environment(f, spec, part) -> None:
     g.attrs.update(
         {k: np.nan if getattr(env, k) is None else getattr(env, k) for k in _ENVIRONMENT_UNITS}
     )
-    g.attrs.update(kelvin_radius=env.kelvin_radius, rq=gap.rq, summit_offset=gap.summit_offset,
-                   band_edge=band_edge(spec.surface.R, spec.surface.eta, env),
+    g.attrs.update(kelvin_radius=env.kelvin_radius, film=env.film, rq=gap.rq,
+                   summit_offset=gap.summit_offset, band_edge=band_edge(spec.surface.R, spec.surface.eta, env),
                    gap_source=gap.source, model=MODEL,
                    map_heights=json.dumps("gaussian" if isinstance(gap.heights, float)
                                           else gap.heights.to_dict()))  # fmt: skip
     g.attrs["units"] = json.dumps(
         _ENVIRONMENT_UNITS
-        | {"kelvin_radius": "m", "rq": "m", "summit_offset": "m", "band_edge": "m"}
+        | {"kelvin_radius": "m", "film": "m", "rq": "m", "summit_offset": "m", "band_edge": "m"}
     )
     rows = row_dims(spec)
     for t, values in part.open_gaps.items():
@@ -72,8 +77,9 @@ def read_environment(path: Path, f, surface):
         raise RunFileError(f"{path}: this run's environment follows an earlier model of mcsim "
                            f"({a['model']}), whose open gaps did not cover the surface once; "
                            "run it again")  # fmt: skip
-    values = {k: float(a[k]) for k in _ENVIRONMENT_UNITS}
-    values["hamaker"] = None if np.isnan(values["hamaker"]) else values["hamaker"]
+    values = {k: float(a[k]) for k in _ENVIRONMENT_UNITS if k in a}  # dry, before films: defaults
+    for k in _OPTIONAL:
+        values[k] = None if np.isnan(values.get(k, np.nan)) else values[k]
     try:
         env = Environment(**values)
         if str(a["gap_source"]) == "given":

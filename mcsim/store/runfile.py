@@ -43,7 +43,9 @@ the axes ``(h)`` of an approach, or ``(branch, h)`` of a cycle (``--cycle``: the
        are outputs of the law set, stored with the sums above) --
     /environment           attrs: hamaker [J], cutoff [m], rh, contact_angle [rad],
                            temperature [K], surface_tension [J/m^2], molar_volume
-                           [m^3/mol], kelvin_radius [m], band_edge [m], units (JSON),
+                           [m^3/mol], film_thickness [m] (NaN: the isotherm),
+                           structured_film [m], kelvin_radius [m], film (the adsorbed
+                           film used) [m], band_edge [m], units (JSON),
                            rq [m], summit_offset [m], gap_source (given or the Nayak
                            estimate), map_heights (JSON: "gaussian" or the histogram), model
     /environment/open_gaps/<t>  (rows) open gaps' pressure / K, t in vdw, capillary

@@ -32,11 +32,14 @@ INPUTS: dict[str, tuple[str, tuple[str, ...], str]] = {
     "contact_angle": ("angle", ("contact_angle",), "contact angle of the condensing liquid"),
     "cutoff": ("length", ("cutoff",), "cutoff gap D0 of the environment (contact below it)"),
     "temperature": ("temperature", ("temperature",), "temperature of the environment"),
+    "film_thickness": ("length", ("film_thickness",), "adsorbed film on each face (given)"),
+    "structured_film": ("length", ("structured_film",), "ice-like first layers of the film"),
     "restoring_force": ("force", ("restoring_force",), "restoring force pulling each pad off"),
 }
 
 #: Inputs of :data:`INPUTS` that set the environment (:class:`mcsim.physics.environment.Environment`).
-ENVIRONMENT_INPUTS = ("rh", "hamaker", "contact_angle", "cutoff", "temperature")
+ENVIRONMENT_INPUTS = ("rh", "hamaker", "contact_angle", "cutoff", "temperature", "film_thickness",
+                      "structured_film")  # fmt: skip
 
 
 #: Dimension name of each input whose name is taken by an output.

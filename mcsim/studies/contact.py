@@ -41,8 +41,9 @@ area (:func:`gap_attraction`):
 
 * van der Waals: p_vdW = (1/N) Σ A/(6π g³) over the pixels with g ≥ D0 (the flat-flat pressure,
   Israelachvili Eq. 13.11, in the Derjaguin approximation);
-* capillary: p_cap = (γ_L/r_K) × the fraction of pixels with D0 ≤ g < g_K = 2 r_K cos θ (Laplace
-  pressure on the area Kelvin condensation fills);
+* capillary: p_cap = (γ_L/r_K) × the fraction of pixels with f ≤ g < g_K = 2 r_K cos θ + 2t
+  (Laplace pressure on the area the liquid bridges between the adsorbed films t, above the wet
+  floor f = max(D0, 2t): :mod:`mcsim.physics.films`);
 * pixels with g < D0, the contacts among them, belong to the contact and are left out.
 
 The attraction pulls the surfaces together without deforming them (DMT on the exact solve):
@@ -118,20 +119,20 @@ def gap_attraction(gap: np.ndarray, environment: Environment) -> tuple[float, fl
     gap : ndarray
         Gap between the deformed surface and the flat on each pixel, m.
     environment : Environment
-        Its Hamaker constant (J), cutoff D0 (m), Laplace pressure γ_L/r_K (Pa) and
-        condensation gap g_K (m) are used.
+        Its Hamaker constant (J), cutoff D0 (m), Laplace pressure γ_L/r_K (Pa), wet floor
+        f = max(D0, 2t) and condensation gap g_K (m) are used.
 
     Returns
     -------
     (float, float)
-        p_vdW = (1/N) Σ_{g ≥ D0} A/(6π g³) and p_cap = (γ_L/r_K) #{D0 ≤ g < g_K}/N, Pa,
+        p_vdW = (1/N) Σ_{g ≥ D0} A/(6π g³) and p_cap = (γ_L/r_K) #{f ≤ g < g_K}/N, Pa,
         positive when attractive; 0 for a term the environment does not have.
     """
     open_ = gap >= environment.cutoff
     vdw = 0.0
     if environment.has_vdw:
         vdw = environment.hamaker / (6 * np.pi) * float(np.sum(gap[open_] ** -3.0)) / gap.size
-    filled = np.count_nonzero(open_ & (gap < environment.condensation_gap))
+    filled = np.count_nonzero((gap >= environment.wet_floor) & (gap < environment.condensation_gap))
     return vdw, environment.laplace_pressure * filled / gap.size
 
 

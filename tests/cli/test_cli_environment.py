@@ -67,6 +67,30 @@ def test_environment_table_of_a_surface_file_and_options_override_it(capsys, tmp
     assert [r["capillary"] for r in overridden] == [r["capillary"] for r in lower]
 
 
+def test_films_in_a_file_equal_the_options_and_say_their_band(capsys, tmp_path):
+    f, plain = tmp_path / "s.toml", tmp_path / "plain.toml"
+    plain.write_text('[surface]\nsigma = "1.4 nm"\nR = "1.7 um"\neta = "17 um^-2"\n')
+    f.write_text(plain.read_text() + '[environment]\nrh = 0.25\nfilm_thickness = "1.2 nm"\n'
+                 'structured_film = "0.5 nm"\n')  # fmt: skip
+    from_file, err = analytic_csv(capsys, str(f))
+    from_options, _ = analytic_csv(capsys, str(plain), "--rh", "0.25", "--film-thickness",
+                                   "1.2nm", "--structured-film", "0.5 nm")  # fmt: skip
+    assert [r["capillary"] for r in from_file] == [r["capillary"] for r in from_options]
+    assert any(float(r["capillary"]) > 0 for r in from_file)  # below RH_dry, by the given film
+    env = Environment(rh=0.25, film_thickness=1.2e-9, structured_film=0.5e-9)
+    assert ("adsorbed film t = 1.2 nm (given)" in err
+            and f"{env.wet_floor * 1e9:.4g} nm <= g < {env.condensation_gap * 1e9:.4g} nm" in err)  # fmt: skip
+    f.write_text(plain.read_text() + "[environment]\nrh = 0.5\nfilm_thickness = 1e-9\n")
+    code, _, err = run_cli(capsys, "analytic", "--surface", f, H)
+    assert code != 0 and "[environment]: film_thickness = 1e-09 has no unit" in err
+
+
+def test_below_rh_dry_the_note_names_the_film_and_the_structured_layers(capsys):
+    rows, err = analytic_csv(capsys, "smooth", "--rh", "0.25")
+    assert all(float(r["capillary"]) == 0 for r in rows)
+    assert "no capillary bridges: adsorbed film t = 0.803 nm <= structured film 0.84 nm" in err
+
+
 def test_a_file_refuses_a_bare_hamaker_and_unknown_keys(capsys, tmp_path):
     f = tmp_path / "s.toml"
     f.write_text('[surface]\nsigma = "1.4 nm"\nR = "1.7 um"\neta = "17 um^-2"\n'
@@ -90,6 +114,9 @@ def test_a_file_refuses_a_bare_hamaker_and_unknown_keys(capsys, tmp_path):
         ("--contact-angle", "-5", r"--contact-angle: contact_angle = -5.0 deg is out of range"),
         ("--temperature", "25 °C", r"--temperature: temperature: unknown unit '°C' for a temperature"),
         ("--hamaker", "1 nm", r"--hamaker: hamaker: unknown unit 'nm' for an energy"),
+        ("--film-thickness", "-1nm", r"--film-thickness: film_thickness = -1e-09 m is out of range \(allowed: >= 0 m\)"),
+        ("--structured-film", "-2 nm", r"--structured-film: structured_film = -2e-09 m is out of range \(allowed: >= 0 m\)"),
+        ("--film-thickness", "1 J", r"--film-thickness: film_thickness: unknown unit 'J' for a length"),
     ],
 )  # fmt: skip
 def test_bad_values_get_one_line_naming_the_option(capsys, option, value, message):
@@ -112,7 +139,8 @@ def test_every_command_takes_the_environment_options(capsys, command):
     code, out, _ = run_cli(capsys, command, "--help")
     assert code == 0
     for option in ("--hamaker", "--cutoff", "--rh", "--contact-angle", "--temperature",
-                   "--liquid-surface-tension", "--molar-volume"):  # fmt: skip
+                   "--liquid-surface-tension", "--molar-volume", "--film-thickness",
+                   "--structured-film"):  # fmt: skip
         assert option in out, f"{command} {option}"
 
 

@@ -304,11 +304,11 @@ def test_humid_turns_and_pull_offs_are_those_of_a_dense_evaluation_of_the_pads_c
             cuts = (z[:, None] - in_delta[None, :]).ravel()
             cuts = cuts[cuts > d_t]
             side = 2 * padload.EDGE * sigma
-            # up to where the last cap lets go (the open gaps alone act above, and the
-            # pull-off may lie there: the pad's caps have gone, their expectation not yet)
-            top = z.max() - min(spec.edges.reach, spec.edges.break_off, 0.0)
-            d = np.concatenate([np.linspace(d_t, top, 30001), cuts - side,
-                                cuts + side])  # fmt: skip
+            # up to where the summits' caps reach (u_c above the highest; the menisci between
+            # the adsorbed films pull the pad there at RH 0.9), at steps of about 1e-4 h
+            top = z.max() + max(2 * sigma, -spec.edges.reach)
+            grid = np.linspace(d_t, top, int((top - d_t) / sigma * 1e4) + 1)
+            d = np.concatenate([grid, cuts - side, cuts + side])
             tensile = -padload.pad_load(spec, z, d, d_t).min()
             assert tensile <= pull * (1 + 1e-9)
             assert tensile >= pull * (1 - 1e-2)

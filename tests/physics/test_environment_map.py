@@ -57,8 +57,8 @@ def test_the_wetted_area_and_the_van_der_waals_pull_are_the_maps_own(scan, h):
     got = environment_curves(np.float64(h), surface, HUMID)
     g_k = HUMID.condensation_gap
 
-    def wet(g):
-        return ((g >= D0) & (g < g_k)) * 1.0
+    def wet(g):  # menisci between the adsorbed films: wet floor f = max(D0, 2t)
+        return ((g >= HUMID.wet_floor) & (g < g_k)) * 1.0
 
     def vdw(g):
         with np.errstate(divide="ignore"):
@@ -77,13 +77,13 @@ def test_at_rh_near_one_the_map_is_wetted_wherever_its_gap_is_below_g_k(scan):
     for h in (0.0, 2.0):
         D = h * surface.sigma + surface.summit_offset
         wetted = environment_curves(np.float64(h), surface, env)["capillary"] / env.laplace_pressure
-        contact = np.mean(D - z < D0)
+        contact = np.mean(D - z < env.wet_floor)  # in contact or pressed films
         below = np.mean(D - z < env.condensation_gap)
         mass = np.asarray(surface.map_heights.densities) * np.diff(surface.map_heights.edges)
         assert abs(contact + wetted - below) <= 2 * mass.max() + 1e-12
 
 
-def test_the_capillary_work_of_the_map_stays_below_two_gamma(scan):
+def test_the_capillary_work_of_the_map_never_passes_two_gamma(scan):
     surface, _ = scan
     works = environment_works(np.linspace(-4.0, 6.0, 21), surface, HUMID)["capillary"]
-    assert works.max() < 2 * HUMID.surface_tension
+    assert works.max() <= 2 * HUMID.surface_tension * (1 + 1e-12)

@@ -35,6 +35,7 @@ DOCUMENTED_MODULES = (
     "mcsim/physics/adhesion.py",
     "mcsim/physics/analytic.py",
     "mcsim/physics/environment.py",
+    "mcsim/physics/films.py",
     "mcsim/physics/surfaceenvironment.py",
     "mcsim/physics/gapheights.py",
     "mcsim/physics/loadcontrol.py",

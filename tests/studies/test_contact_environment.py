@@ -12,23 +12,30 @@ from mcsim.physics.environment import Environment, capillary_pressure, vdw_press
 from mcsim.studies.contact import contact_map, gap_attraction
 
 SCAN = "examples/scan.npy"  # periodic, 100 x 100 pixels of 10 nm, heights in m
-HUMID = Environment(hamaker=1.6e-19, rh=0.5)  # g_K = 1.51 nm, gamma_L/r_K = 95 MPa
+#: films t = 1.00 nm: the bridges pull on 2t = 2.00 nm <= g < g_K = 2 r_K + 2t = 3.51 nm with
+#: gamma_L/r_K = 95 MPa
+HUMID = Environment(hamaker=1.6e-19, rh=0.5)
 
 
-@pytest.mark.parametrize("g", [0.2e-9, 1.0e-9, 3.0e-9])
-def test_a_uniform_gap_is_the_flat_flat_pressure_and_the_full_laplace_pressure_below_g_k(g):
+@pytest.mark.parametrize(("g", "bridged"), [(0.2e-9, False), (1.0e-9, False), (3.0e-9, True),
+                                            (4.0e-9, False)])  # fmt: skip
+def test_a_uniform_gap_is_the_flat_flat_pressure_and_the_full_laplace_pressure_in_the_band(
+    g, bridged
+):
     vdw, cap = gap_attraction(np.full((8, 8), g), HUMID)
     # Israelachvili Eq. 13.11 on every pixel; the mean of 64 equal terms: ROUNDING_SUM
     assert vdw == pytest.approx(1.6e-19 / (6 * math.pi * g**3), rel=ROUNDING_SUM)
-    assert cap == (HUMID.laplace_pressure if g < HUMID.condensation_gap else 0.0)
+    assert (HUMID.wet_floor <= g < HUMID.condensation_gap) == bridged
+    assert cap == (HUMID.laplace_pressure if bridged else 0.0)
 
 
 def test_contacts_and_gaps_below_the_cutoff_are_left_out():
-    gap = np.array([[0.0, 0.1e-9], [0.5e-9, 2.0e-9]])  # a contact, a gap below D0 = 0.165 nm
+    gap = np.array([[0.0, 0.1e-9], [0.5e-9, 2.5e-9]])  # a contact, a gap below D0 = 0.165 nm
     vdw, cap = gap_attraction(gap, HUMID)
-    expected = 1.6e-19 / (6 * math.pi) * (0.5e-9**-3 + 2.0e-9**-3) / 4
+    expected = 1.6e-19 / (6 * math.pi) * (0.5e-9**-3 + 2.5e-9**-3) / 4
     assert vdw == pytest.approx(expected, rel=ROUNDING_SUM)  # a sum of two terms
-    assert cap == HUMID.laplace_pressure / 4  # only the 0.5 nm gap is filled (g_K = 1.51 nm)
+    # only the 2.5 nm gap is bridged: the 0.5 nm one lies within the films (2t = 2.00 nm)
+    assert cap == HUMID.laplace_pressure / 4
 
 
 def test_no_hamaker_and_a_dry_vapour_attract_nothing():
@@ -44,12 +51,12 @@ def test_pixel_sums_of_gaussian_gaps_are_the_proximity_model_s_integrals():
     vdw, cap = gap_attraction(gap, HUMID)
     open_ = gap >= HUMID.cutoff
     per_pixel_vdw = np.where(open_, 1.6e-19 / (6 * math.pi) * np.where(open_, gap, 1.0) ** -3, 0)
-    filled = open_ & (gap < HUMID.condensation_gap)
+    filled = (gap >= HUMID.wet_floor) & (gap < HUMID.condensation_gap)
     se_vdw = per_pixel_vdw.std() / math.sqrt(n)
     se_cap = HUMID.laplace_pressure * filled.std() / math.sqrt(n)
     expected_vdw = vdw_pressure(D, rq, 1.6e-19, HUMID.cutoff)
     expected_cap = capillary_pressure(D, rq, HUMID.cutoff, HUMID.surface_tension,
-                                      HUMID.kelvin_radius, HUMID.contact_angle)  # fmt: skip
+                                      HUMID.kelvin_radius, HUMID.contact_angle, HUMID.film)  # fmt: skip
     # sample means of independent pixels: |z| < 5 on their standard errors
     assert abs(vdw - expected_vdw) < 5 * se_vdw
     assert abs(cap - expected_cap) < 5 * se_cap

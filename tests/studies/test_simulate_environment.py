@@ -140,6 +140,32 @@ def test_run_file_records_the_environment_and_reads_back(tmp_path):
     assert sum_columns(back.spec.law_set) == sum_columns(run.spec.law_set)
 
 
+def test_run_file_records_the_films_and_refuses_menisci_written_before_them(tmp_path):
+    """The films of docs/physics.md, section 'Water below the Kelvin gate: adsorbed films':
+    stored (film_thickness NaN for the isotherm) and read back; a humid file without them was
+    sampled with the Kelvin gate, whose caps mean another model: refused, saying why."""
+    from mcsim.model.errors import RunFileError
+    from mcsim.store.files import checksum
+
+    given = dataclasses.replace(HUMID, film_thickness=1.2e-9, structured_film=0.5e-9)
+    dry = Environment(hamaker=1.6e-19)
+    for env, name in ((HUMID, "isotherm.h5"), (given, "given.h5"), (dry, "dry.h5")):
+        run = _run(environment=env, out=tmp_path / name)
+        with h5py.File(run.path, "r") as f:
+            a = f["environment"].attrs
+            assert a["film"] == env.film and a["structured_film"] == env.structured_film
+            assert np.isnan(a["film_thickness"]) == (env.film_thickness is None)
+        assert read_run(run.path).spec.environment == env
+    for name in ("isotherm.h5", "dry.h5"):  # as written before the films
+        with h5py.File(tmp_path / name, "r+") as f:
+            for k in ("film_thickness", "structured_film"):
+                del f["environment"].attrs[k]
+            f.attrs["checksum"] = checksum(f)
+    with pytest.raises(RunFileError, match=r"predate the adsorbed films .* run it again"):
+        read_run(tmp_path / "isotherm.h5")
+    assert read_run(tmp_path / "dry.h5").spec.environment == dry  # no menisci: the same model
+
+
 def test_a_measured_map_keeps_its_heights_about_the_mean_plane_in_the_file(tmp_path):
     z = np.random.default_rng(5).exponential(1.0, 50_000)
     shape = Empirical.from_samples(z - z.mean(), bins=40, source="test map")

@@ -1,6 +1,7 @@
 """Sweeps over the environment (issue 22): rh, hamaker, contact_angle, cutoff, temperature
 as varied inputs, the work terms equal to ``adhesion_summary`` point by point."""
 
+import dataclasses
 import json
 import math
 import warnings
@@ -48,6 +49,24 @@ def test_varying_an_environment_input_alone_starts_from_a_dry_default():
     vdw = result.data["work_of_separation_vdw"]
     assert np.all(result.data["work_of_separation_capillary"] == 0)
     assert vdw[1] > vdw[0] > 0
+
+
+def test_a_film_thickness_sweep_bridges_only_films_thicker_than_their_structured_layers():
+    """docs/physics.md, section 'Water below the Kelvin gate: adsorbed films': a given film
+    replaces the isotherm, and no meniscus forms on a film no thicker than 0.84 nm."""
+    env, films = Environment(hamaker=1.6e-19, rh=0.6), "0.5nm,1.5nm"
+    result = sweep(SURFACES["smooth"], MATERIALS["silicon"], {"film_thickness": films},
+                   law=LAW, h=H, environment=env, workers=1)  # fmt: skip
+    assert not result.failed and result.dims["capillary"] == ("film_thickness", "h")
+    capillary = result.data["work_of_separation_capillary"]
+    assert capillary[0] == 0 and capillary[1] > 0
+    thick = parse_values("film_thickness", films)[1]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RegimeWarning)
+        ref = adhesion_summary(SURFACES["smooth"], MATERIALS["silicon"], LAW,
+                               environment=dataclasses.replace(env, film_thickness=thick))  # fmt: skip
+    assert capillary[1] == ref.work_of_separation_capillary
+    assert json.loads(result.attrs["environment"])["units"]["film_thickness"] == "m"
 
 
 def test_a_bare_contact_angle_in_a_spec_is_in_degrees():

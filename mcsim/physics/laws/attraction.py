@@ -17,15 +17,17 @@ positive (N):
   D0 ≤ u < u_c:  F_vdW = (A R/6)(m⁻² − u_c⁻²), m = min(max(g, D0), u_c);
   u_c → ∞ with g ≥ D0 gives the sphere–flat A R/(6 g²) (Israelachvili Eq. 13.11 and
   Table 13.1);
-* the meniscus: liquid condenses where D0 ≤ u < g_K = 2 r_K cos θ (Kelvin), and its
-  Laplace pressure γ_L/r_K acts on that annulus of area 2πR(g_K − max(g, D0))⁺:
-  F_cap = 2πR (γ_L/r_K)(g_K − m)⁺, m = min(max(g, D0), g_K); for D0 ≤ g < g_K this is
-  4πRγ_L cos θ (1 − g/g_K), the classic sphere–flat meniscus (Israelachvili Eq. 17.21)
-  rising to 4πRγ_L cos θ (1 − D0/g_K) at touch, and a pressed summit keeps that value:
-  its wetted annulus surrounds its contact.
+* the meniscus: a liquid bridge joins the adsorbed films (thickness t on each face) where
+  u < g_K = 2 r_K cos θ + 2t (Kelvin), and its Laplace pressure γ_L/r_K acts on the annulus
+  f ≤ u < g_K above the wet floor f = max(D0, 2t) (below it the films are pressed into each
+  other), of area 2πR(g_K − max(g, f))⁺: F_cap = 2πR (γ_L/r_K)(g_K − m)⁺,
+  m = min(max(g, f), g_K); for f ≤ g < g_K this is 4πRγ_L cos θ (g_K − g)/(g_K − 2t), the
+  classic sphere–flat meniscus (Israelachvili Eq. 17.21, t = 0) rising at touch to
+  2πR(γ_L/r_K)(g_K − f) = 4πRγ_L cos θ once 2t ≥ D0, and a pressed summit keeps that
+  value: its wetted annulus surrounds its contact.
 
-Both are continuous in δ, constant for a pressed summit, zero beyond their range
-(u_c, g_K), and −dW/dd = F with the works of :func:`vdw_summit_work` and
+Both are continuous in δ, constant once the tip is below D0 (the meniscus below f), zero
+beyond their range (u_c, g_K), and −dW/dd = F with the works of :func:`vdw_summit_work` and
 :func:`capillary_summit_work`. The functions are written in the law vocabulary
 (:mod:`mcsim.physics.laws`), so the Monte Carlo kernel compiles them like any law.
 """
@@ -53,7 +55,7 @@ def vdw_summit(delta, hamaker, R, cutoff, band):
     return hamaker * R / 6 * (1 / (m * m) - 1 / (band * band))
 
 
-def capillary_summit(delta, laplace, R, cutoff, gap_k):
+def capillary_summit(delta, laplace, R, wet_floor, gap_k):
     """Capillary attraction of one summit's meniscus, N (> 0 attractive).
 
     Parameters
@@ -64,12 +66,13 @@ def capillary_summit(delta, laplace, R, cutoff, gap_k):
         Laplace pressure γ_L/r_K, Pa (0 without condensation).
     R : float
         Summit radius, m.
-    cutoff : float
-        Cutoff gap D0, m.
+    wet_floor : float
+        Wet floor f = max(D0, 2t), m (<= ``gap_k``): the smallest local gap the bridge
+        pulls across.
     gap_k : float
-        Condensation gap g_K = 2 r_K cos θ, m (>= D0; = D0 without condensation).
+        Condensation gap g_K = 2 r_K cos θ + 2t, m (>= f; = f without condensation).
     """
-    m = np.minimum(np.maximum(-delta, cutoff), gap_k)
+    m = np.minimum(np.maximum(-delta, wet_floor), gap_k)
     return 2 * np.pi * R * laplace * (gap_k - m)
 
 
@@ -84,10 +87,10 @@ def vdw_summit_work(delta_t, hamaker, R, cutoff, band):
     return hamaker * R / 6 * (open_part + pressed)
 
 
-def capillary_summit_work(delta_t, laplace, R, cutoff, gap_k):
+def capillary_summit_work(delta_t, laplace, R, wet_floor, gap_k):
     """Work of :func:`capillary_summit` from interference ``delta_t`` to far away, J
-    (NumPy only): πR(γ_L/r_K)[(g_K − m)² + 2(g_K − D0)(D0 − g)⁺]."""
+    (NumPy only): πR(γ_L/r_K)[(g_K − m)² + 2(g_K − f)(f − g)⁺]."""
     g = np.asarray(-delta_t, dtype=float)
-    m = np.minimum(np.maximum(g, cutoff), gap_k)
-    pressed = np.maximum(cutoff - g, 0) * 2 * (gap_k - cutoff)
+    m = np.minimum(np.maximum(g, wet_floor), gap_k)
+    pressed = np.maximum(wet_floor - g, 0) * 2 * (gap_k - wet_floor)
     return np.pi * R * laplace * ((gap_k - m) ** 2 + pressed)
