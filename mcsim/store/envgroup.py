@@ -77,6 +77,9 @@ def read_environment(path: Path, f, surface):
         raise RunFileError(f"{path}: this run's environment follows an earlier model of mcsim "
                            f"({a['model']}), whose open gaps did not cover the surface once; "
                            "run it again")  # fmt: skip
+    if "structured_film" not in a and a["rh"] > 0 and a["contact_angle"] < np.pi / 2:
+        raise RunFileError(f"{path}: this run's menisci predate the adsorbed films (a Kelvin "
+                           "radius of 0.5 nm gated them); run it again")  # fmt: skip
     values = {k: float(a[k]) for k in _ENVIRONMENT_UNITS if k in a}  # dry, before films: defaults
     for k in _OPTIONAL:
         values[k] = None if np.isnan(values.get(k, np.nan)) else values[k]
