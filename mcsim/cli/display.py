@@ -201,8 +201,11 @@ def environment_notes(surface, environment, varied=(), material=None) -> list[st
               else "none (RH = 0: no condensation)")  # fmt: skip
     if {"rh", "temperature"} & set(varied):
         kelvin = "per point (kelvin_radius in the sweep file)"
+    wavelength = ("none (non-retarded)" if env.retardation_wavelength is None
+                  else f"{env.retardation_wavelength * 1e9:.4g} nm")  # fmt: skip
     lines = [f"environment: Hamaker A = {value('hamaker', hamaker)}, cutoff D0 = "
-             f"{value('cutoff', f'{env.cutoff * 1e9:.4g} nm')}, RH = {value('rh', f'{env.rh:.4g}')}, "
+             f"{value('cutoff', f'{env.cutoff * 1e9:.4g} nm')}, retardation wavelength = "
+             f"{value('retardation_wavelength', wavelength)}, RH = {value('rh', f'{env.rh:.4g}')}, "
              f"contact angle = {value('contact_angle', f'{math.degrees(env.contact_angle):.4g} deg')}, "
              f"T = {value('temperature', f'{env.temperature:.5g} K')}, gamma_L = "
              f"{env.surface_tension:.4g} J/m^2, V_m = {env.molar_volume:.4g} m^3/mol, "
@@ -215,7 +218,8 @@ def environment_notes(surface, environment, varied=(), material=None) -> list[st
         )
     if not env.is_dry and not env.has_capillary:
         lines.append(env.no_condensation_reason)
-    if material is not None and not {"hamaker", "cutoff", "gamma"} & set(varied):
+    shared = {"hamaker", "cutoff", "gamma", "retardation_wavelength"}  # set the vdW share
+    if material is not None and not shared & set(varied):
         from mcsim.physics.surfaceenvironment import interface_notes
 
         lines += [f"note: {w}" for w in interface_notes(surface, material, env)]

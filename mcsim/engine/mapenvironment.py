@@ -17,11 +17,14 @@ dry kernel, these are plain numba functions that the interpreter also runs:
   ``math.erfc`` where the reference uses erfcx: the difference loses ~x²ε relative, 1e-13
   at x = 20, only where F_1(x) < e^-200 of its value at 0, nothing at the curves' scale:
   measured 3e-15 of it, 3e-14 pointwise on the test's curves); the van der
-  Waals part η (AR/6) {(D0⁻² − u_c⁻²) P(g < D0) + E[g⁻² − u_c⁻²; D0 <= g < u_c]}, the
-  expectation of the per-summit law (:func:`mcsim.physics.laws.attraction.vdw_summit`)
-  with a positive integrand (no cancellation). The open gaps, over the heights about the
-  mean plane (D = hσ + y_s, g = D − z, z ~ N(0, Rq²)): (γ_L/r_K) P(u_c <= g < g_K) in
-  closed form, and (A/6π) E[g⁻³; g >= u_c]. Both moments by one rule
+  Waals part η (AR/6) {(k(D0) − k(u_c)) P(g < D0) + E[k(g) − k(u_c); D0 <= g < u_c]},
+  k(u) = 1/(u²(1 + b u)) the retarded flats' energy over A/12π (:func:`_kernel`; b = 5.32/λ,
+  Gregory 1981; u⁻² for b = 0), the expectation of the per-summit law
+  (:func:`mcsim.physics.laws.attraction.vdw_summit`) with a positive integrand (no
+  cancellation). The open gaps, over the heights about the mean plane (D = hσ + y_s,
+  g = D − z, z ~ N(0, Rq²)): (γ_L/r_K) P(u_c <= g < g_K) in closed form, and
+  (A/6π) E[k_3(g); g >= u_c], k_3 the retarded flats' pressure over A/6π (g⁻³ for b = 0).
+  Both moments by one rule
   (:func:`_gap_moments`): :data:`VDW_PANELS` panels of :data:`VDW_NODES` Gauss–Legendre
   nodes in u, τ = t + c/ρ = ln(1 + eᵘ) (c the lower end, ρ the Gaussian's width): the
   reference's map ξ = τ + ln τ has the same two regimes (geometric at the pole, uniform
@@ -104,9 +107,12 @@ BLOCK = 16
 #: (:func:`environment_params`): A/6π (J; 0: no van der Waals); Rq, D0, the band edge u_c,
 #: y_s (m); the Laplace pressure γ_L/r_K (Pa; 0: no condensation); the condensation gap g_K
 #: and the caps' min(g_K, u_c) (m; g_K 0 and the caps' D0 without condensation); the summit
-#: radius R (m); the top of the pull-off grid above the summits (h); K (Pa).
+#: radius R (m); the top of the pull-off grid above the summits (h); K (Pa); then
+#: :data:`P_RETARD`.
 (P_VDW, P_RQ, P_CUTOFF, P_BAND, P_OFFSET, P_LAPLACE, P_GAP, P_CAP_GAP, P_RADIUS, P_TOP,
  P_K) = range(7, 18)  # fmt: skip
+#: Column of the van der Waals retardation b = 5.32/λ (m⁻¹; 0: non-retarded), after K.
+P_RETARD = P_K + 1
 
 
 def _vdw_rule() -> tuple[np.ndarray, np.ndarray]:
@@ -121,12 +127,25 @@ VDW_U, VDW_W = _vdw_rule()
 
 
 @numba.njit(**OPTIONS)
-def _gap_moments(a, n, shift, scale, power, t_cap, out):
-    """E[g⁻ⁿ − u⁻ⁿ; c <= g < u] (m⁻ⁿ, n = ``power``, 2 or 3) for g = D − z,
+def _kernel(gap, retard, power):
+    """The retarded flats' energy over A/12π, 1/(g²(1 + b g)) (``power`` 2, m⁻²), or pressure
+    over A/6π, 1/(g³(1 + b g)) + b/(2 g²(1 + b g)²) (``power`` 3, m⁻³), as
+    :func:`mcsim.physics.environment._gap_kernel`; b = ``retard`` (m⁻¹), 0: g⁻ⁿ."""
+    inverse = 1.0 / gap
+    damping = 1.0 / (1.0 + retard * gap)
+    if power == 2:
+        return inverse * inverse * damping
+    return inverse * inverse * damping * (inverse + 0.5 * retard * damping)
+
+
+@numba.njit(**OPTIONS)
+def _gap_moments(a, n, shift, scale, power, t_cap, retard, out):
+    """E[k(g) − k(u); c <= g < u] (m⁻ⁿ, n = ``power``, 2 or 3; k the retarded kernel of
+    :func:`_kernel`, b = ``retard``, g⁻ⁿ for b = 0) for g = D − z,
     z ~ N(0, ρ²) (ρ = ``scale``), at the first ``n`` of a = (D − c)/ρ, into ``out``, all on
     one rule (module docstring); u = c + ρ·``t_cap`` (``t_cap`` = inf: no upper end).
 
-    With t = (g − c)/ρ each is ∫₀^t_cap ((c + ρt)⁻ⁿ − u⁻ⁿ) φ(a − t) dt, over the t range
+    With t = (g − c)/ρ each is ∫₀^t_cap (k(c + ρt) − k(u)) φ(a − t) dt, over the t range
     where φ exceeds e^-VDW_TAIL of its peak for one of the ``a`` (as
     :func:`mcsim.physics.environment._gaussian_gap_moment` for one), on
     :data:`VDW_PANELS` equal Gauss–Legendre panels in u, τ = t + c/ρ = ln(1 + eᵘ)
@@ -149,8 +168,7 @@ def _gap_moments(a, n, shift, scale, power, t_cap, out):
     tau_lo, tau_hi = t_lo + shift, t_hi + shift
     u_lo = tau_lo + math.log(-math.expm1(-tau_lo))  # ln(e^τ − 1), no overflow
     span = tau_hi + math.log(-math.expm1(-tau_hi)) - u_lo
-    edge = 1.0 / (scale * (t_cap + shift))  # 1/u (0 without an upper end)
-    edge = edge * edge if power == 2 else edge * edge * edge
+    edge = 0.0 if t_cap == math.inf else _kernel(scale * (t_cap + shift), retard, power)
     for j in range(VDW_U.size):
         u = u_lo + span * VDW_U[j]
         if u > 0.0:
@@ -161,9 +179,7 @@ def _gap_moments(a, n, shift, scale, power, t_cap, out):
             e = math.exp(u)
             tau = math.log1p(e)
             slope = e / (1.0 + e)
-        inverse = 1.0 / (scale * tau)
-        value = inverse * inverse if power == 2 else inverse * inverse * inverse
-        weight = VDW_W[j] * (value - edge) * slope
+        weight = VDW_W[j] * (_kernel(scale * tau, retard, power) - edge) * slope
         t = tau - shift
         for k in range(n):
             x = a[k] - t
@@ -173,7 +189,7 @@ def _gap_moments(a, n, shift, scale, power, t_cap, out):
 
 
 @numba.njit(**OPTIONS)
-def _moments(a, n, shift, scale, power, t_cap, out):
+def _moments(a, n, shift, scale, power, t_cap, retard, out):
     """:func:`_gap_moments` at the first ``n`` of ``a``, consecutive ones within
     :data:`VDW_SPREAD` of each other on one rule."""
     start = 0
@@ -183,7 +199,8 @@ def _moments(a, n, shift, scale, power, t_cap, out):
         while end < n and max(hi, a[end]) - min(lo, a[end]) <= VDW_SPREAD:
             lo, hi = min(lo, a[end]), max(hi, a[end])
             end += 1
-        _gap_moments(a[start:end], end - start, shift, scale, power, t_cap, out[start:end])
+        _gap_moments(a[start:end], end - start, shift, scale, power, t_cap, retard,
+                     out[start:end])  # fmt: skip
         start = end
 
 
@@ -222,11 +239,12 @@ def _attractions(h, n, sigma, p, vdw, capillary):
     ``vdw`` and ``capillary``, as :func:`mcsim.physics.surfaceenvironment.environment_curves`, each
     term 0 where its coefficient in ``p`` is 0 (module docstring):
 
-    * the summits' caps (g = σ(h − s), s standard normal; m = clip(g, D0, u_c)):
-      η(AR/6) E[m⁻² − u_c⁻²] = η(AR/6) {(D0⁻² − u_c⁻²) P(g < D0) + E[g⁻² − u_c⁻²; D0 <= g < u_c]}
+    * the summits' caps (g = σ(h − s), s standard normal; m = clip(g, D0, u_c); k the
+      retarded kernel of :func:`_kernel`, u⁻² for b = 0):
+      η(AR/6) E[k(m) − k(u_c)] = η(AR/6) {(k(D0) − k(u_c)) P(g < D0) + E[k(g) − k(u_c); D0 <= g < u_c]}
       and η 2πR (γ_L/r_K) E[(g_k − max(g, D0))⁺], g_k = min(g_K, u_c);
-    * the open gaps (D = hσ + y_s, g = D − z, z ~ N(0, Rq²)): (A/6π) E[g⁻³; g >= u_c] and
-      (γ_L/r_K) P(u_c <= g < g_K).
+    * the open gaps (D = hσ + y_s, g = D − z, z ~ N(0, Rq²)): (A/6π) E[k_3(g); g >= u_c]
+      (g⁻³ for b = 0) and (γ_L/r_K) P(u_c <= g < g_K).
     """
     rq, cutoff, band = p[P_RQ], p[P_CUTOFF], p[P_BAND]
     eta, R = p[6], p[P_RADIUS]
@@ -244,13 +262,13 @@ def _attractions(h, n, sigma, p, vdw, capillary):
     if p[P_VDW] == 0.0:
         vdw[:n] = 0.0
         return
-    for k in range(n):  # the open gaps: E[g⁻³; g >= u_c], a = (D − u_c)/Rq
+    for k in range(n):  # the open gaps: E[k_3(g); g >= u_c], a = (D − u_c)/Rq
         a[k] = (h[k] * sigma + p[P_OFFSET] - band) / rq
-    _moments(a, n, band / rq, rq, 3, math.inf, vdw)
-    for k in range(n):  # the caps: E[g⁻² − u_c⁻²; D0 <= g < u_c], a = (σh − D0)/σ
+    _moments(a, n, band / rq, rq, 3, math.inf, p[P_RETARD], vdw)
+    for k in range(n):  # the caps: E[k(g) − k(u_c); D0 <= g < u_c], a = (σh − D0)/σ
         a[k] = h[k] - cutoff / sigma
-    _moments(a, n, cutoff / sigma, sigma, 2, (band - cutoff) / sigma, caps)
-    pressed = 1.0 / (cutoff * cutoff) - 1.0 / (band * band)
+    _moments(a, n, cutoff / sigma, sigma, 2, (band - cutoff) / sigma, p[P_RETARD], caps)
+    pressed = _kernel(cutoff, p[P_RETARD], 2) - _kernel(band, p[P_RETARD], 2)
     for k in range(n):  # η A R/6 = (A/6π) πRη
         vdw[k] = p[P_VDW] * (vdw[k] + math.pi * R * eta * (pressed * _upper(a[k]) + caps[k]))
 
@@ -393,13 +411,13 @@ def environment_params(environment, surfaces, K) -> np.ndarray:
     K : array_like
         Per point: K = 4E*/3, Pa.
     """
-    rows = np.empty((len(environment), P_K - P_VDW + 1))
+    rows = np.empty((len(environment), P_RETARD - P_VDW + 1))
     for i, (env, surface) in enumerate(zip(environment, surfaces)):
         caps = summit_parameters(surface, env)
         vdw = env.hamaker / (6 * math.pi) if env.has_vdw else 0.0
         rows[i] = (vdw, surface.rq, env.cutoff, caps["band"], surface.summit_offset,
                    env.laplace_pressure, env.condensation_gap, caps["gap_k"], surface.R,
-                   _environment_top(surface, env), K[i])  # fmt: skip
+                   _environment_top(surface, env), K[i], env.retardation)  # fmt: skip
     return rows
 
 

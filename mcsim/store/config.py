@@ -28,6 +28,7 @@
     temperature = "298.15 K"  # default 298.15 K
     liquid_surface_tension = "72 mJ/m^2"   # default water
     molar_volume = "18 cm^3/mol"           # default water
+    retardation_wavelength = "100 nm"      # van der Waals retardation (default), or "none"
 
 The summit-height distribution is Gaussian unless ``heights`` names a measured
 histogram: a text file (read by :mod:`mcsim.topography.readers.histogram`, its path relative
@@ -464,7 +465,9 @@ ENVIRONMENT_KEYS = {
     "temperature": ("temperature", "temperature", "temperature, e.g. '298.15 K'"),
     "liquid_surface_tension": ("surface_tension", "energy_per_area", "e.g. '72 mJ/m^2'"),
     "molar_volume": ("molar_volume", "molar_volume", "e.g. '18 cm^3/mol'"),
-}
+    "retardation_wavelength": ("retardation_wavelength", "length",
+                               "van der Waals retardation wavelength, e.g. '100 nm' or 'none'"),
+}  # fmt: skip
 
 
 def environment_from_values(values: dict[str, Any], where: str = "environment"):

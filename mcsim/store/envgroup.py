@@ -25,7 +25,11 @@ from mcsim.store.sweepvariables import CURVES
 
 #: Fields of the Environment as stored, with their units.
 _ENVIRONMENT_UNITS = {"hamaker": "J", "cutoff": "m", "rh": "1", "contact_angle": "rad",
-                      "temperature": "K", "surface_tension": "J/m^2", "molar_volume": "m^3/mol"}  # fmt: skip
+                      "temperature": "K", "surface_tension": "J/m^2", "molar_volume": "m^3/mol",
+                      "retardation_wavelength": "m"}  # fmt: skip
+
+#: Fields stored as NaN when None (no van der Waals; non-retarded).
+_NONE_AS_NAN = ("hamaker", "retardation_wavelength")
 
 #: The model of the environment, as recorded in run files.
 MODEL = ("summits' caps (per-summit van der Waals and menisci, local gaps below band_edge) "
@@ -68,8 +72,11 @@ def read_environment(path: Path, f, surface):
     if "model" not in a:
         raise RunFileError(f"{path}: this run's environment was sampled over cells (mcsim 0.2's "
                            "model, which counted the area near contact twice); run it again")  # fmt: skip
-    values = {k: float(a[k]) for k in _ENVIRONMENT_UNITS}
-    values["hamaker"] = None if np.isnan(values["hamaker"]) else values["hamaker"]
+    values = {k: float(a[k]) for k in _ENVIRONMENT_UNITS if k != "retardation_wavelength"}
+    # a file written before retardation has no wavelength: its sums are non-retarded (NaN)
+    values["retardation_wavelength"] = float(a.get("retardation_wavelength", np.nan))
+    for k in _NONE_AS_NAN:
+        values[k] = None if np.isnan(values[k]) else values[k]
     try:
         env = Environment(**values)
         if str(a["gap_source"]) == "given":

@@ -40,7 +40,9 @@ the axes ``(h)`` of an approach, or ``(branch, h)`` of a cycle (``--cycle``: the
        are outputs of the law set, stored with the sums above) --
     /environment           attrs: hamaker [J], cutoff [m], rh, contact_angle [rad],
                            temperature [K], surface_tension [J/m^2], molar_volume
-                           [m^3/mol], kelvin_radius [m], band_edge [m], units (JSON),
+                           [m^3/mol], retardation_wavelength [m] (NaN: non-retarded;
+                           absent in older files, read as non-retarded),
+                           kelvin_radius [m], band_edge [m], units (JSON),
                            rq [m], summit_offset [m], gap_source (given or the Nayak
                            estimate), map_heights (JSON: "gaussian" or the histogram), model
     /environment/open_gaps/<t>  (rows) open gaps' pressure / K, t in vdw, capillary

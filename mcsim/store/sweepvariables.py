@@ -32,11 +32,23 @@ INPUTS: dict[str, tuple[str, tuple[str, ...], str]] = {
     "contact_angle": ("angle", ("contact_angle",), "contact angle of the condensing liquid"),
     "cutoff": ("length", ("cutoff",), "cutoff gap D0 of the environment (contact below it)"),
     "temperature": ("temperature", ("temperature",), "temperature of the environment"),
+    "retardation_wavelength": (
+        "length",
+        ("retardation_wavelength",),
+        "retardation wavelength of the van der Waals attraction",
+    ),
     "restoring_force": ("force", ("restoring_force",), "restoring force pulling each pad off"),
 }
 
 #: Inputs of :data:`INPUTS` that set the environment (:class:`mcsim.physics.environment.Environment`).
-ENVIRONMENT_INPUTS = ("rh", "hamaker", "contact_angle", "cutoff", "temperature")
+ENVIRONMENT_INPUTS = (
+    "rh",
+    "hamaker",
+    "contact_angle",
+    "cutoff",
+    "temperature",
+    "retardation_wavelength",
+)
 
 
 #: Dimension name of each input whose name is taken by an output.

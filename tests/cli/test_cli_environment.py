@@ -67,6 +67,44 @@ def test_environment_table_of_a_surface_file_and_options_override_it(capsys, tmp
     assert [r["capillary"] for r in overridden] == [r["capillary"] for r in lower]
 
 
+@pytest.mark.parametrize(
+    ("given", "wavelength"), [("100nm", 100e-9), ("7 nm", 7e-9), ("none", None)]
+)
+def test_the_retardation_wavelength_option_sets_the_van_der_waals_law(capsys, given, wavelength):
+    rows, err = analytic_csv(capsys, "smooth", "--hamaker", "1.6e-19", "--rh", "0.6",
+                             f"--retardation-wavelength={given}")  # fmt: skip
+    env = Environment(hamaker=1.6e-19, rh=0.6, retardation_wavelength=wavelength)
+    ref = gw_curves(SURFACES["smooth"], MATERIALS["silicon"], [2, 1, 0], environment=env)
+    np.testing.assert_array_equal([float(r["vdw"]) for r in rows], ref.values["vdw"])
+    said = "none (non-retarded)" if wavelength is None else f"{wavelength * 1e9:.4g} nm"
+    assert f"retardation wavelength = {said}" in err
+
+
+def test_the_default_retardation_is_gregorys_100_nm(capsys):
+    default, err = analytic_csv(capsys, "smooth", "--hamaker", "1.6e-19")
+    given, _ = analytic_csv(capsys, "smooth", "--hamaker", "1.6e-19", "--retardation-wavelength",
+                            "100nm")  # fmt: skip
+    flat, _ = analytic_csv(capsys, "smooth", "--hamaker", "1.6e-19", "--retardation-wavelength",
+                           "none")  # fmt: skip
+    assert [r["vdw"] for r in default] == [r["vdw"] for r in given]
+    assert all(float(a["vdw"]) < float(b["vdw"]) for a, b in zip(default, flat))
+    assert "retardation wavelength = 100 nm" in err and "lambda = 100 nm" in err
+
+
+def test_a_file_sets_the_retardation_wavelength_and_refuses_it_bare(capsys, tmp_path):
+    f, plain = tmp_path / "s.toml", tmp_path / "plain.toml"
+    plain.write_text('[surface]\nsigma = "1.4 nm"\nR = "1.7 um"\neta = "17 um^-2"\n')
+    table = '[environment]\nhamaker = "1.6e-19 J"\nretardation_wavelength = '
+    f.write_text(plain.read_text() + table + '"none"\n')
+    from_file, _ = analytic_csv(capsys, str(f))
+    from_options, _ = analytic_csv(capsys, str(plain), "--hamaker", "1.6e-19",
+                                   "--retardation-wavelength", "none")  # fmt: skip
+    assert [r["vdw"] for r in from_file] == [r["vdw"] for r in from_options]
+    f.write_text(plain.read_text() + table + "1e-7\n")
+    code, _, err = run_cli(capsys, "analytic", "--surface", f, H)
+    assert code != 0 and "[environment]: retardation_wavelength = 1e-07 has no unit" in err
+
+
 def test_a_file_refuses_a_bare_hamaker_and_unknown_keys(capsys, tmp_path):
     f = tmp_path / "s.toml"
     f.write_text('[surface]\nsigma = "1.4 nm"\nR = "1.7 um"\neta = "17 um^-2"\n'
@@ -90,6 +128,11 @@ def test_a_file_refuses_a_bare_hamaker_and_unknown_keys(capsys, tmp_path):
         ("--contact-angle", "-5", r"--contact-angle: contact_angle = -5.0 deg is out of range"),
         ("--temperature", "25 °C", r"--temperature: temperature: unknown unit '°C' for a temperature"),
         ("--hamaker", "1 nm", r"--hamaker: hamaker: unknown unit 'nm' for an energy"),
+        ("--retardation-wavelength", "0nm", r"--retardation-wavelength: retardation_wavelength = 0.0 m is out of range \(allowed: > 0 m\)"),
+        ("--retardation-wavelength", "-5nm", r"--retardation-wavelength: retardation_wavelength = -5e-09 m is out of range"),
+        ("--retardation-wavelength", "nan", r"--retardation-wavelength: retardation_wavelength: 'nan' is not finite"),
+        ("--retardation-wavelength", "100 s", r"--retardation-wavelength: retardation_wavelength: unknown unit 's' for a length"),
+        ("--retardation-wavelength", "abc", r"--retardation-wavelength: retardation_wavelength: cannot read 'abc'"),
     ],
 )  # fmt: skip
 def test_bad_values_get_one_line_naming_the_option(capsys, option, value, message):
@@ -112,7 +155,7 @@ def test_every_command_takes_the_environment_options(capsys, command):
     code, out, _ = run_cli(capsys, command, "--help")
     assert code == 0
     for option in ("--hamaker", "--cutoff", "--rh", "--contact-angle", "--temperature",
-                   "--liquid-surface-tension", "--molar-volume"):  # fmt: skip
+                   "--liquid-surface-tension", "--molar-volume", "--retardation-wavelength"):  # fmt: skip
         assert option in out, f"{command} {option}"
 
 

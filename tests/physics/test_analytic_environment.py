@@ -44,8 +44,13 @@ def quad_pressures(h, surface, env):
     def phi(x):
         return math.exp(-0.5 * x * x) / math.sqrt(2 * math.pi)
 
+    b = env.retardation  # Gregory's flats (1981): energy A/(12π u²)/(1 + b u)
+
+    def k(u):
+        return 1 / (u**2 * (1 + b * u))
+
     def cap_vdw(s):
-        return env.hamaker * R / 6 * (clip(sigma * (h - s), u_c) ** -2 - u_c**-2) * phi(s)
+        return env.hamaker * R / 6 * (k(clip(sigma * (h - s), u_c)) - k(u_c)) * phi(s)
 
     def cap_meniscus(s):
         return 2 * math.pi * R * laplace * (gk_cap - clip(sigma * (h - s), gk_cap)) * phi(s)
@@ -62,8 +67,12 @@ def quad_pressures(h, surface, env):
         return phi(z / rq) / rq
 
     top = D - u_c  # z below it: an open gap between the caps
+
+    def k3(g):  # −(1/2) dk/dg: the flats' pressure over A/6π
+        return 1 / (g**3 * (1 + b * g)) + b / (2 * g**2 * (1 + b * g) ** 2)
+
     vdw += env.hamaker / (6 * math.pi) * integrate.quad(
-        lambda z: (D - z) ** -3 * density(z), -12 * rq, top, **quad)[0]  # fmt: skip
+        lambda z: k3(D - z) * density(z), -12 * rq, top, **quad)[0]  # fmt: skip
     if g_k > u_c:
         cap += laplace * integrate.quad(density, D - g_k, top, **quad)[0]
     return vdw, cap
