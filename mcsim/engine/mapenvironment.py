@@ -268,7 +268,8 @@ def _attractions(h, n, sigma, p, vdw, capillary):
     for k in range(n):  # the caps: E[k(g) − k(u_c); D0 <= g < u_c], a = (σh − D0)/σ
         a[k] = h[k] - cutoff / sigma
     _moments(a, n, cutoff / sigma, sigma, 2, (band - cutoff) / sigma, p[P_RETARD], caps)
-    pressed = _kernel(cutoff, p[P_RETARD], 2) - _kernel(band, p[P_RETARD], 2)
+    b = p[P_RETARD]  # k(D0) − k(u_c), as the per-summit law writes it
+    pressed = 1.0 / (cutoff * cutoff * (1.0 + b * cutoff)) - 1.0 / (band * band * (1.0 + b * band))
     for k in range(n):  # η A R/6 = (A/6π) πRη
         vdw[k] = p[P_VDW] * (vdw[k] + math.pi * R * eta * (pressed * _upper(a[k]) + caps[k]))
 
