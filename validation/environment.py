@@ -5,7 +5,8 @@ polysilicon. These are the building blocks; mcsim applies them to the summits' c
 open gaps between them (docs/physics.md), and its answer for a device resting on its summits
 is checked against DelRio et al.'s measurements by ``validation/humid_pads.py``.
 
-Inputs: A = 1.6e-19 J (silicon across air), D0 = 0.2 nm, water at 25 °C (γ_L 0.072 J/m²,
+Inputs: A = 1.6e-19 J (silicon across air), D0 = 0.2 nm, no retardation (b = 0, as
+DelRio et al.), water at 25 °C (γ_L 0.072 J/m²,
 V_m 1.80e-5 m³/mol, T 298.15 K), θ = 0. Rq and the summit offset y_s of each surface are
 Nayak/McCool estimates from σ, R, η (rough at the seed's α of 2.5–4.9). The work of
 separation is taken from the mean summit plane at contact, d = 0, i.e. D_t = y_s.
@@ -54,6 +55,9 @@ from mcsim.physics.surfaceenvironment import environment_curves
 from mcsim.topography.empirical import Empirical
 
 A, D0, GAMMA = 1.6e-19, 0.2e-9, 0.072
+#: Retardation b = 0: the local laws as DelRio et al. wrote them, non-retarded (mcsim's
+#: default environment retards them, Gregory 1981: tests/physics/test_environment_retarded.py).
+FLAT_LAW = 0.0
 CEILING = 2 * GAMMA  # θ = 0
 
 
@@ -61,7 +65,7 @@ def check_limits(checks: Checks) -> list[str]:
     flat = 1e-15
     r_k = float(kelvin_radius(0.8))
     rows = [
-        ("W_vdW, flat, D_t = D0", vdw_work(D0, flat, A, D0), A / (12 * math.pi * D0**2)),
+        ("W_vdW, flat, D_t = D0", vdw_work(D0, flat, A, D0, FLAT_LAW), A / (12 * math.pi * D0**2)),
         (
             "W_cap, flat, D_t = D0, RH 0.8",
             capillary_work(D0, flat, D0, GAMMA, r_k, 0.0),
@@ -99,7 +103,7 @@ def check_derivatives(checks: Checks) -> list[str]:
     ]
     for label, heights in (("Gaussian", rq), ("histogram (0.05 nm bins)", histogram)):
         for term, work, pressure, args in (
-            ("vdW", vdw_work, vdw_pressure, (A, D0)),
+            ("vdW", vdw_work, vdw_pressure, (A, D0, FLAT_LAW)),
             ("capillary", capillary_work, capillary_pressure, cap),
         ):
             slope = -(work(D + step, heights, *args) - work(D - step, heights, *args)) / (2 * step)
@@ -152,8 +156,8 @@ def check_quadrature(checks: Checks) -> list[str]:
         ]
         cap = (D0, GAMMA, r_k, theta)
         got = [
-            vdw_pressure(D, rq, A, D0),
-            vdw_work(D, rq, A, D0),
+            vdw_pressure(D, rq, A, D0, FLAT_LAW),
+            vdw_work(D, rq, A, D0, FLAT_LAW),
             capillary_pressure(D, rq, *cap),
             capillary_work(D, rq, *cap),
         ]
@@ -176,7 +180,7 @@ def surfaces_table(rh: np.ndarray, h_t: float) -> tuple[list[str], dict]:
     sigma = np.array([SURFACES[n].sigma for n in names])[:, None]
     D_t = np.array([est[n].summit_offset for n in names])[:, None] + h_t * sigma
     w_cap = capillary_work(D_t, rq, D0, GAMMA, kelvin_radius(rh), 0.0)  # (surfaces, RH)
-    w_vdw = vdw_work(D_t[:, 0], rq[:, 0], A, D0)
+    w_vdw = vdw_work(D_t[:, 0], rq[:, 0], A, D0, FLAT_LAW)
     lines = [
         f"## The four Table-1 surfaces from d = {h_t:g}σ (A 1.6e-19 J, D0 0.2 nm, water, "
         "θ = 0, D_t = y_s + d)",
@@ -225,7 +229,7 @@ def timings(number: int) -> list[str]:
 
     def grid():
         return (
-            vdw_work(D_t, rq, A, D0),
+            vdw_work(D_t, rq, A, D0, FLAT_LAW),
             capillary_work(D_t, rq, D0, GAMMA, kelvin_radius(rh), 0.0),
         )
 

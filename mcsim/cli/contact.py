@@ -218,7 +218,7 @@ def run(args) -> int:
             e = environment
             header.append(
                 f"environment on the exact gaps, per nominal area: Hamaker A = "
-                f"{e.hamaker or 0:.4g} J, D0 = {e.cutoff * 1e9:.4g} nm, RH = {e.rh:.4g}, Laplace "
+                f"{e.hamaker or 0:.4g} J ({e.retardation_label}), D0 = {e.cutoff * 1e9:.4g} nm, RH = {e.rh:.4g}, Laplace "
                 f"pressure {e.laplace_pressure / 1e6:.4g} MPa on gaps from "
                 f"{e.wet_floor * 1e9:.4g} nm to g_K = {e.condensation_gap * 1e9:.4g} nm (films "
                 f"t = {e.film * 1e9:.4g} nm); the attraction does not deform the surface "

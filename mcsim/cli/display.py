@@ -238,8 +238,11 @@ def environment_notes(surface, environment, varied=(), material=None) -> list[st
               else "none (RH = 0: no condensation)")  # fmt: skip
     if {"rh", "temperature"} & set(varied):
         kelvin = "per point (kelvin_radius in the sweep file)"
+    wavelength = ("none (non-retarded)" if env.retardation_wavelength is None
+                  else f"{env.retardation_wavelength * 1e9:.4g} nm")  # fmt: skip
     lines = [f"environment: Hamaker A = {value('hamaker', hamaker)}, cutoff D0 = "
-             f"{value('cutoff', f'{env.cutoff * 1e9:.4g} nm')}, RH = {value('rh', f'{env.rh:.4g}')}, "
+             f"{value('cutoff', f'{env.cutoff * 1e9:.4g} nm')}, retardation wavelength = "
+             f"{value('retardation_wavelength', wavelength)}, RH = {value('rh', f'{env.rh:.4g}')}, "
              f"contact angle = {value('contact_angle', f'{math.degrees(env.contact_angle):.4g} deg')}, "
              f"T = {value('temperature', f'{env.temperature:.5g} K')}, gamma_L = "
              f"{env.surface_tension:.4g} J/m^2, V_m = {env.molar_volume:.4g} m^3/mol, "
@@ -262,7 +265,7 @@ def environment_notes(surface, environment, varied=(), material=None) -> list[st
         interface_notes,
     )
 
-    if not {"hamaker", "cutoff", "gamma"} & set(varied):
+    if not {"hamaker", "cutoff", "gamma", "retardation_wavelength"} & set(varied):  # the vdW share
         lines += [f"note: {w}" for w in interface_notes(surface, material, env)]
     if not {"rh", "temperature", "contact_angle", "cutoff"} & set(varied):
         lines += [f"warning: {w}" for w in environment_warnings(surface, env)]

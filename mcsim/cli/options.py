@@ -341,6 +341,10 @@ def add_environment(p) -> None:
                    "unless a unit is given: '1.6e-19 J', '0.16 aJ'); silicon in air ~1.6-2.0e-19 J")  # fmt: skip
     g.add_argument("--cutoff", metavar="D0", help="gap below which the surfaces touch, > 0 (m "
                    "unless a unit is given: '0.2 nm'; default 0.165 nm)")  # fmt: skip
+    g.add_argument("--retardation-wavelength", metavar="LAMBDA", help="retardation wavelength of "
+                   "the van der Waals attraction, > 0 (m unless a unit is given: '100nm'), or "
+                   "'none' (non-retarded); the flats' energy A/(12 pi D^2) falls by "
+                   "1/(1 + 5.32 D/LAMBDA) (Gregory 1981; default 100 nm)")  # fmt: skip
     g.add_argument("--rh", metavar="RH", help="relative humidity of the vapour, 0 <= RH < 1 "
                    "(default 0: dry)")  # fmt: skip
     g.add_argument("--contact-angle", metavar="THETA", help="contact angle of the liquid, in "

@@ -13,7 +13,8 @@ dry kernel, these are plain numba functions that the interpreter also runs:
   mean plane (D = hσ + y_s, g = D − z, z ~ N(0, Rq²)), which the summits' caps and the open
   gaps share (:func:`_attractions`): (γ_L/r_K) P(f <= g < g_K) in closed form (f = max(D0, 2t) the
   adsorbed films' wet floor), and
-  (A/6π) E[g⁻³; g >= D0] (:func:`_gap_moments`): :data:`VDW_PANELS` panels of
+  (A/6π) E[k_3(g); g >= D0], k_3 the retarded flats' pressure over A/6π (g⁻³ for b = 0,
+  b = 5.32/λ, Gregory 1981; :func:`_kernel`) (:func:`_gap_moments`): :data:`VDW_PANELS` panels of
   :data:`VDW_NODES` Gauss–Legendre nodes in u, τ = t + c/ρ = ln(1 + eᵘ) (c the lower end,
   ρ the Gaussian's width): the reference's map ξ = τ + ln τ has the same two regimes
   (geometric at the pole, uniform beyond) and strip of analyticity, but its inverse is
@@ -93,9 +94,10 @@ BLOCK = 16
 #: y_s (m); the Laplace pressure γ_L/r_K (Pa; 0: no condensation); the condensation gap g_K
 #: and the caps' min(g_K, u_c) (m; g_K 0 and the caps' D0 without condensation); the summit
 #: radius R (m); the top of the pull-off grid above the summits (h); K (Pa); the wet floor
-#: max(D0, 2t) of the adsorbed films t (m; D0 without condensation).
+#: max(D0, 2t) of the adsorbed films t (m; D0 without condensation); the van der Waals
+#: retardation b = 5.32/λ (m⁻¹; 0: non-retarded).
 (P_VDW, P_RQ, P_CUTOFF, P_BAND, P_OFFSET, P_LAPLACE, P_GAP, P_CAP_GAP, P_RADIUS, P_TOP,
- P_K, P_FLOOR) = range(7, 19)  # fmt: skip
+ P_K, P_FLOOR, P_RETARD) = range(7, 20)  # fmt: skip
 
 
 def _vdw_rule() -> tuple[np.ndarray, np.ndarray]:
@@ -110,12 +112,25 @@ VDW_U, VDW_W = _vdw_rule()
 
 
 @numba.njit(**OPTIONS)
-def _gap_moments(a, n, shift, scale, power, t_cap, out):
-    """E[g⁻ⁿ − u⁻ⁿ; c <= g < u] (m⁻ⁿ, n = ``power``, 2 or 3) for g = D − z,
+def _kernel(gap, retard, power):
+    """The retarded flats' energy over A/12π, 1/(g²(1 + b g)) (``power`` 2, m⁻²), or pressure
+    over A/6π, 1/(g³(1 + b g)) + b/(2 g²(1 + b g)²) (``power`` 3, m⁻³), as
+    :func:`mcsim.physics.environment._gap_kernel`; b = ``retard`` (m⁻¹), 0: g⁻ⁿ."""
+    inverse = 1.0 / gap
+    damping = 1.0 / (1.0 + retard * gap)
+    if power == 2:
+        return inverse * inverse * damping
+    return inverse * inverse * damping * (inverse + 0.5 * retard * damping)
+
+
+@numba.njit(**OPTIONS)
+def _gap_moments(a, n, shift, scale, power, t_cap, retard, out):
+    """E[k(g) − k(u); c <= g < u] (m⁻ⁿ, n = ``power``, 2 or 3; k the retarded kernel of
+    :func:`_kernel`, b = ``retard``, g⁻ⁿ for b = 0) for g = D − z,
     z ~ N(0, ρ²) (ρ = ``scale``), at the first ``n`` of a = (D − c)/ρ, into ``out``, all on
     one rule (module docstring); u = c + ρ·``t_cap`` (``t_cap`` = inf: no upper end).
 
-    With t = (g − c)/ρ each is ∫₀^t_cap ((c + ρt)⁻ⁿ − u⁻ⁿ) φ(a − t) dt, over the t range
+    With t = (g − c)/ρ each is ∫₀^t_cap (k(c + ρt) − k(u)) φ(a − t) dt, over the t range
     where φ exceeds e^-VDW_TAIL of its peak for one of the ``a`` (as
     :func:`mcsim.physics.environment._gaussian_gap_moment` for one), on
     :data:`VDW_PANELS` equal Gauss–Legendre panels in u, τ = t + c/ρ = ln(1 + eᵘ)
@@ -138,8 +153,7 @@ def _gap_moments(a, n, shift, scale, power, t_cap, out):
     tau_lo, tau_hi = t_lo + shift, t_hi + shift
     u_lo = tau_lo + math.log(-math.expm1(-tau_lo))  # ln(e^τ − 1), no overflow
     span = tau_hi + math.log(-math.expm1(-tau_hi)) - u_lo
-    edge = 1.0 / (scale * (t_cap + shift))  # 1/u (0 without an upper end)
-    edge = edge * edge if power == 2 else edge * edge * edge
+    edge = 0.0 if t_cap == math.inf else _kernel(scale * (t_cap + shift), retard, power)
     for j in range(VDW_U.size):
         u = u_lo + span * VDW_U[j]
         if u > 0.0:
@@ -150,9 +164,7 @@ def _gap_moments(a, n, shift, scale, power, t_cap, out):
             e = math.exp(u)
             tau = math.log1p(e)
             slope = e / (1.0 + e)
-        inverse = 1.0 / (scale * tau)
-        value = inverse * inverse if power == 2 else inverse * inverse * inverse
-        weight = VDW_W[j] * (value - edge) * slope
+        weight = VDW_W[j] * (_kernel(scale * tau, retard, power) - edge) * slope
         t = tau - shift
         for k in range(n):
             x = a[k] - t
@@ -162,7 +174,7 @@ def _gap_moments(a, n, shift, scale, power, t_cap, out):
 
 
 @numba.njit(**OPTIONS)
-def _moments(a, n, shift, scale, power, t_cap, out):
+def _moments(a, n, shift, scale, power, t_cap, retard, out):
     """:func:`_gap_moments` at the first ``n`` of ``a``, consecutive ones within
     :data:`VDW_SPREAD` of each other on one rule."""
     start = 0
@@ -172,7 +184,8 @@ def _moments(a, n, shift, scale, power, t_cap, out):
         while end < n and max(hi, a[end]) - min(lo, a[end]) <= VDW_SPREAD:
             lo, hi = min(lo, a[end]), max(hi, a[end])
             end += 1
-        _gap_moments(a[start:end], end - start, shift, scale, power, t_cap, out[start:end])
+        _gap_moments(a[start:end], end - start, shift, scale, power, t_cap, retard,
+                     out[start:end])  # fmt: skip
         start = end
 
 
@@ -194,7 +207,8 @@ def _attractions(h, n, sigma, p, vdw, capillary):
     ``vdw`` and ``capillary``, as :func:`mcsim.physics.surfaceenvironment.environment_curves`, each
     term 0 where its coefficient in ``p`` is 0 (module docstring): the whole surface's, over
     its heights about the mean plane (D = hσ + y_s, g = D − z, z ~ N(0, Rq²)),
-    (A/6π) E[g⁻³; g >= D0] and (γ_L/r_K) P(f <= g < g_K), f = max(D0, 2t) the
+    (A/6π) E[k_3(g); g >= D0] (k_3 the retarded flats'
+    pressure over A/6π, :func:`_kernel`) and (γ_L/r_K) P(f <= g < g_K), f = max(D0, 2t) the
     films' wet floor.
     """
     rq, cutoff = p[P_RQ], p[P_CUTOFF]
@@ -207,9 +221,9 @@ def _attractions(h, n, sigma, p, vdw, capillary):
     if p[P_VDW] == 0.0:
         vdw[:n] = 0.0
         return
-    for k in range(n):  # E[g⁻³; g >= D0], a = (D − D0)/Rq
+    for k in range(n):  # E[k_3(g); g >= D0], a = (D − D0)/Rq
         a[k] = (h[k] * sigma + p[P_OFFSET] - cutoff) / rq
-    _moments(a, n, cutoff / rq, rq, 3, math.inf, vdw)
+    _moments(a, n, cutoff / rq, rq, 3, math.inf, p[P_RETARD], vdw)
     for k in range(n):
         vdw[k] *= p[P_VDW]
 
@@ -352,13 +366,13 @@ def environment_params(environment, surfaces, K) -> np.ndarray:
     K : array_like
         Per point: K = 4E*/3, Pa.
     """
-    rows = np.empty((len(environment), P_FLOOR - P_VDW + 1))
+    rows = np.empty((len(environment), P_RETARD - P_VDW + 1))
     for i, (env, surface) in enumerate(zip(environment, surfaces)):
         caps = summit_parameters(surface, env)
         vdw = env.hamaker / (6 * math.pi) if env.has_vdw else 0.0
         rows[i] = (vdw, surface.rq, env.cutoff, caps["band"], surface.summit_offset,
                    env.laplace_pressure, env.condensation_gap, caps["gap_k"], surface.R,
-                   _environment_top(surface, env), K[i], env.wet_floor)  # fmt: skip
+                   _environment_top(surface, env), K[i], env.wet_floor, env.retardation)  # fmt: skip
     return rows
 
 

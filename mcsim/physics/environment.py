@@ -15,9 +15,14 @@ a piecewise-constant density). At mean-plane gap D the local gap is g = D − z;
 g < D0 (the cutoff) the surfaces touch and the contact law rules, elsewhere, per nominal
 area and positive when attractive:
 
-* van der Waals between locally flat regions (Israelachvili, *Intermolecular and Surface
-  Forces*, 3rd ed., Eq. 13.11, p = A/(6π g³)): p_vdW(D) = (A/6π) E[g⁻³; g ≥ D0], and its
-  work from D_t outward W_vdW(D_t) = (A/12π) E[max(D_t − z, D0)⁻²];
+* van der Waals between locally flat regions, retarded (:func:`vdw_flat_energy`,
+  :func:`vdw_flat_pressure`): the energy per area of two flats at gap g,
+  W(g) = A/(12π g²) · 1/(1 + b g), b = 5.32/λ (Gregory, J. Colloid Interface Sci. 83,
+  138, 1981: his flat-plate expression), and its pressure p(g) = −dW/dg; b = 0 (λ None)
+  is the non-retarded A/(12π g²), A/(6π g³) (Israelachvili, *Intermolecular and Surface
+  Forces*, 3rd ed., Eq. 13.11). Over the heights:
+  p_vdW(D) = E[p(g); g ≥ D0], and its work from D_t outward
+  W_vdW(D_t) = E[W(max(D_t − z, D0))];
 * capillary condensation in equilibrium with the vapour: Kelvin radius
   r_K = γ_L V_m / (R_g T ln(1/RH)) (Kelvin equation, Israelachvili Eq. 17.19); each face
   carries an adsorbed film of thickness t (:mod:`mcsim.physics.films`), liquid bridges the
@@ -27,9 +32,10 @@ area and positive when attractive:
   p_cap(D) = (γ_L/r_K) P(f ≤ g < g_K), W_cap(D_t) = (γ_L/r_K) E[(g_K − max(f, D_t − z))⁺].
 
 Both works satisfy −dW/dD = p. Gaussian heights: p_cap and W_cap in closed form (normal
-CDFs and densities); the van der Waals moments E[g⁻ⁿ; g ≥ D0] by one fixed composite
-Gauss–Legendre rule, vectorised over every point (see :func:`_gaussian_gap_moment`).
-Histogram heights: every quantity is an exact integral over each bin.
+CDFs and densities); the van der Waals means E[p(g); g ≥ D0] and E[W(g); g ≥ D0] by one
+fixed composite Gauss–Legendre rule, vectorised over every point (see
+:func:`_gaussian_gap_moment`). Histogram heights: every quantity is an exact integral over
+each bin (:func:`_gap_moment`).
 
 Not in this model: elastic deformation of the non-contacting surface, correlation between
 the two topographies, menisci that conserve volume, the adsorbed films' own disjoining
@@ -57,6 +63,18 @@ GAS_CONSTANT = 8.314462618
 #: Default cutoff D0, m: Israelachvili's "universal" 0.165 nm, with which A/(24π D0²) gives
 #: the surface energy of many solids (Intermolecular and Surface Forces, 3rd ed., §13.5).
 DEFAULT_CUTOFF = 0.165e-9
+
+#: Default retardation wavelength λ of the van der Waals attraction, m: the characteristic
+#: wavelength of the dispersion interaction, about 100 nm (Gregory, J. Colloid Interface
+#: Sci. 83, 138, 1981). See :func:`retardation`.
+DEFAULT_RETARDATION_WAVELENGTH = 100e-9
+
+#: Gregory's constant of two flat plates: their energy A/(12πD²) is retarded by
+#: 1/(1 + GREGORY_B·D/λ) (Gregory 1981, flat plates). By Derjaguin a sphere of radius R
+#: then pulls with A R/(6D²)·1/(1 + 5.32 D/λ), whose energy is Gregory's sphere–plate
+#: −(A R/6D)[1 − (5.32 D/λ) ln(1 + λ/(5.32 D))]. (His 14 belongs to another, simpler fit of
+#: that sphere–plate *energy*, −(A R/6D)/(1 + 14 D/λ), within 5 % of it up to D = 10 nm.)
+GREGORY_B = 5.32
 
 #: Largest Hamaker constant accepted, J: real ones lie between ~1e-21 and ~5e-19 J (metals
 #: across vacuum; Israelachvili, Intermolecular and Surface Forces, ch. 13); 1e-16 J is 200× the largest, and keeps every
@@ -115,6 +133,10 @@ class Environment:
         where t > t_s, with liquid-like water on top (RH > RH_dry = 0.30 on the isotherm);
         0: no structured layers, bridges at any RH > 0 (with ``film_thickness`` = 0 the Kelvin
         band D0 <= g < 2 r_K cos θ, no film).
+    retardation_wavelength : float or None
+        Retardation wavelength λ of the van der Waals attraction, m, > 0 (default
+        :data:`DEFAULT_RETARDATION_WAVELENGTH` = 100 nm, Gregory 1981); None: non-retarded.
+        The flats' energy A/(12πg²) is reduced by 1/(1 + 5.32 g/λ) (:func:`vdw_flat_energy`).
 
     Raises
     ------
@@ -131,6 +153,7 @@ class Environment:
     molar_volume: float = 1.80e-5
     film_thickness: float | None = None
     structured_film: float = films.STRUCTURED_FILM
+    retardation_wavelength: float | None = DEFAULT_RETARDATION_WAVELENGTH
 
     def __post_init__(self) -> None:
         set_ = object.__setattr__
@@ -149,6 +172,9 @@ class Environment:
             if getattr(self, name) is not None:
                 set_(self, name, check_range(name, getattr(self, name), "m", low=0,
                                              low_open=False))  # fmt: skip
+        if self.retardation_wavelength is not None:
+            set_(self, "retardation_wavelength",
+                 check_range("retardation_wavelength", self.retardation_wavelength, "m", low=0))  # fmt: skip
 
     @classmethod
     def from_user(
@@ -163,6 +189,7 @@ class Environment:
         molar_volume=1.80e-5,
         film_thickness=None,
         structured_film=films.STRUCTURED_FILM,
+        retardation_wavelength=DEFAULT_RETARDATION_WAVELENGTH,
     ) -> Environment:
         """An environment from values as users write them (numbers SI, or strings with units).
 
@@ -172,7 +199,9 @@ class Environment:
         a bare number is in **degrees**), ``temperature`` in K (no °C), ``surface_tension``
         an energy per area (``"72 mJ/m^2"``), ``molar_volume`` (``"18 cm^3/mol"``),
         ``film_thickness`` (None: the isotherm) and ``structured_film`` lengths
-        (``"0.8 nm"``).
+        (``"0.8 nm"``);
+        ``retardation_wavelength`` a length (``"100 nm"``), or None or ``"none"``:
+        non-retarded.
 
         Raises
         ------
@@ -194,15 +223,29 @@ class Environment:
             temperature=parse_quantity(temperature, "temperature", "temperature"),
             surface_tension=parse_quantity(surface_tension, "energy_per_area", "surface_tension"),
             molar_volume=parse_quantity(molar_volume, "molar_volume", "molar_volume"),
-            film_thickness=None if film_thickness is None
+            film_thickness=None
+            if film_thickness is None
             else parse_quantity(film_thickness, "length", "film_thickness"),
             structured_film=parse_quantity(structured_film, "length", "structured_film"),
-        )  # fmt: skip
+            retardation_wavelength=_wavelength(retardation_wavelength),
+        )
 
     @property
     def has_vdw(self) -> bool:
         """Whether a van der Waals term acts (a Hamaker constant > 0)."""
         return bool(self.hamaker)
+
+    @property
+    def retardation(self) -> float:
+        """Retardation b = 5.32/λ of the van der Waals attraction, m⁻¹: :func:`retardation`."""
+        return retardation(self.retardation_wavelength)
+
+    @property
+    def retardation_label(self) -> str:
+        """``lambda = 100 nm`` or ``non-retarded``: the retardation, for messages."""
+        if self.retardation_wavelength is None:
+            return "non-retarded"
+        return f"lambda = {self.retardation_wavelength * 1e9:.4g} nm"
 
     @property
     def is_dry(self) -> bool:
@@ -274,6 +317,84 @@ class Environment:
         return self.surface_tension / self.kelvin_radius if self.has_capillary else 0.0
 
 
+def _wavelength(value) -> float | None:
+    """``retardation_wavelength`` as users write it: a length, or None or ``"none"``."""
+    if value is None or (isinstance(value, str) and value.strip().lower() == "none"):
+        return None
+    return parse_quantity(value, "length", "retardation_wavelength")
+
+
+def retardation(wavelength: float | None) -> float:
+    """Retardation b = 5.32/λ of the van der Waals attraction, m⁻¹; 0 (non-retarded) for None.
+
+    Gregory, J. Colloid Interface Sci. 83, 138 (1981): two flat plates attract with the energy
+    A/(12π D²) · 1/(1 + b D) per area, b = 5.32/λ (:data:`GREGORY_B`), λ ≈ 100 nm the
+    characteristic wavelength of the dispersion interaction.
+
+    Parameters
+    ----------
+    wavelength : float or None
+        Retardation wavelength λ, m, > 0; None: no retardation.
+    """
+    return 0.0 if wavelength is None else GREGORY_B / wavelength
+
+
+def vdw_flat_energy(gap, hamaker, retardation):
+    """Retarded van der Waals energy per area of two flats, J/m² (> 0 attractive).
+
+    W(g) = A/(12π g²) · 1/(1 + b g), b = 5.32/λ: Gregory's flat plates (J. Colloid
+    Interface Sci. 83, 138, 1981); by Derjaguin (F_sphere = 2πR W) a sphere pulls with
+    A R/(6 g²) · 1/(1 + b g). b = 0: the non-retarded A/(12π g²) (Israelachvili,
+    *Intermolecular and Surface Forces*, 3rd ed., Eq. 13.11).
+
+    Parameters
+    ----------
+    gap : array_like
+        Gap g between the flats, m (> 0).
+    hamaker : array_like
+        Hamaker constant A, J.
+    retardation : array_like
+        b = 5.32/λ, m⁻¹ (:func:`retardation`); 0: non-retarded.
+
+    Returns
+    -------
+    ndarray
+        W, J/m².
+    """
+    return hamaker / (12 * math.pi) * _energy_kernel(np.asarray(gap, dtype=float), retardation)
+
+
+def vdw_flat_pressure(gap, hamaker, retardation):
+    """Retarded van der Waals pressure between two flats, Pa (> 0 attractive).
+
+    p(g) = −dW/dg of :func:`vdw_flat_energy`:
+    (A/12π) [2/(g³(1 + b g)) + b/(g²(1 + b g)²)]; b = 0: A/(6π g³) (Israelachvili Eq. 13.11).
+
+    Parameters
+    ----------
+    gap, hamaker, retardation
+        As for :func:`vdw_flat_energy`.
+
+    Returns
+    -------
+    ndarray
+        p, Pa.
+    """
+    return hamaker / (6 * math.pi) * _pressure_kernel(np.asarray(gap, dtype=float), retardation)
+
+
+def _energy_kernel(gap, b):
+    """W/(A/12π) = g⁻²/(1 + b g), m⁻² (:func:`vdw_flat_energy`)."""
+    return gap**-2 / (1 + b * gap)
+
+
+def _pressure_kernel(gap, b):
+    """p/(A/6π) = g⁻³/(1 + b g) + (b/2) g⁻²/(1 + b g)², m⁻³ (:func:`vdw_flat_pressure`;
+    minus half the derivative of :func:`_energy_kernel`)."""
+    damping = 1 / (1 + b * gap)
+    return gap**-3 * damping + b / 2 * gap**-2 * damping**2
+
+
 def as_environment(value) -> Environment | None:
     """The ``environment`` argument of the Python API: None, an :class:`Environment`, or a
     mapping of its fields as users write them in TOML files (:meth:`Environment.from_user`,
@@ -334,17 +455,24 @@ def _prob_between(lo, hi):
     return np.where(lo > 0, upper, special.ndtr(hi) - special.ndtr(lo))
 
 
-def _gaussian_gap_moment(D, rq, cutoff, n: int):
-    """E[g⁻ⁿ; g >= D0], m⁻ⁿ, for g = D − z, z ~ N(0, Rq²), by a fixed quadrature.
+def _gaussian_gap_moment(D, rq, cutoff, n: int, b):
+    """E[k_n(g); g >= D0] for g = D − z, z ~ N(0, Rq²), by a fixed quadrature: the retarded
+    kernels of :func:`_gap_kernel`, k_3 = p/(A/6π) (m⁻³) and k_2 = W/(A/12π) (m⁻²); with
+    b = 0, E[g⁻ⁿ; g >= D0].
 
     With t = (g − D0)/Rq >= 0 and a = (D − D0)/Rq the integral is
-    ∫₀^∞ (D0 + Rq t)⁻ⁿ φ(a − t) dt. Its two scales, the pole of (D0 + Rq t)⁻ⁿ at
-    distance τ = t + D0/Rq from it and the unit width of the Gaussian, are both resolved
+    ∫₀^∞ k_n(D0 + Rq t) φ(a − t) dt. Its two scales, the pole of k_n at g = 0, at
+    distance τ = t + D0/Rq from it, and the unit width of the Gaussian, are both resolved
     by the map ξ = τ + ln τ (geometric near the pole, uniform far from it; inverse
     τ = ω(ξ), the Wright omega function, analytic in a strip of half-width π). The
-    Gaussian is cut where it falls by e^-60, and [ξ(t_lo), ξ(t_hi)] is split into equal
-    Gauss–Legendre panels: ~1e-14 relative against 40-digit mpmath over Rq/D0 from
-    1e-3 to 1e3 and a from −30 to 30 (tests/physics/test_environment.py).
+    retardation's pole, at g = −1/b, lies farther from the path than g = 0 and maps to
+    Im ξ = π, the strip's edge. The Gaussian is cut where it falls by e^-60, and
+    [ξ(t_lo), ξ(t_hi)] is split into equal Gauss–Legendre panels: non-retarded ~1e-14
+    relative against 40-digit mpmath over Rq/D0 from 1e-3 to 1e3 and a from −30 to 30
+    (tests/physics/test_environment.py). Retarded, against 30-digit mpmath over λ = 1 nm,
+    100 nm and none, Rq/D0 = 1e-3, 1, 1e3 and a = −3, 0.5, 30: at worst 2.6e-13 (Rq/D0 =
+    1e-3, a = −3, the same with and without retardation), ~1e-14 elsewhere
+    (tests/physics/test_environment_retarded.py).
     """
     a = (D - cutoff) / rq
     shift = cutoff / rq
@@ -358,7 +486,14 @@ def _gaussian_gap_moment(D, rq, cutoff, n: int):
     t = tau - shift[..., None]
     gap = rq[..., None] * tau  # = D0 + Rq t
     density = np.exp(-0.5 * (a[..., None] - t) ** 2) / math.sqrt(2 * math.pi)
-    return span * np.sum(_WEIGHTS * gap**-n * density * tau / (1 + tau), axis=-1)
+    kernel = _gap_kernel(gap, b[..., None], n)
+    return span * np.sum(_WEIGHTS * kernel * density * tau / (1 + tau), axis=-1)
+
+
+def _gap_kernel(gap, b, n: int):
+    """The retarded flats' pressure over A/6π (n = 3, :func:`_pressure_kernel`, m⁻³) or
+    energy over A/12π (n = 2, :func:`_energy_kernel`, m⁻²) at gap g; g⁻ⁿ for b = 0."""
+    return _pressure_kernel(gap, b) if n == 3 else _energy_kernel(gap, b)
 
 
 def _partial_mean(h):
@@ -401,33 +536,48 @@ def _histogram_bins(D, heights, cutoff):
     D = np.asarray(D, dtype=float)[..., None]
     g_lo, g_hi = D - edges[1:], D - edges[:-1]
     g_a, g_b = np.maximum(g_lo, cutoff), np.maximum(g_hi, cutoff)
-    return g_a, g_b, np.diff(edges) - (g_b - g_a), density
+    # The bin's part below the cutoff: exactly 0 for an open bin (the bin's width less its open
+    # part, g_b − g_a, would leave D's rounding there, which k(D0)/k(g) then amplifies).
+    contact = np.minimum(g_hi, cutoff) - np.minimum(g_lo, cutoff)
+    return g_a, g_b, contact, density
 
 
 def _is_histogram(heights) -> bool:
     return hasattr(heights, "densities")
 
 
-def _gap_moment(D, heights, cutoff, n: int):
-    """E[g⁻³; g >= D0] (n = 3) or E[max(g, D0)⁻²] (n = 2), m⁻ⁿ, for g = D − z.
+def _gap_moment(D, heights, cutoff, n: int, b):
+    """E[k_3(g); g >= D0] (n = 3, m⁻³) or E[k_2(max(g, D0))] (n = 2, m⁻²) for g = D − z,
+    with the retarded kernels of :func:`_gap_kernel` (b, m⁻¹); g⁻ⁿ for b = 0.
 
-    Histogram: exact over each bin of the piecewise-constant density,
-    ∫ g⁻³ dg = (g_a⁻² − g_b⁻²)/2 and ∫ g⁻² dg = 1/g_a − 1/g_b, written as products of
-    g_b − g_a (no cancellation for narrow bins), plus D0⁻² times the contact length.
+    Histogram: exact over each bin [g_a, g_b] of the piecewise-constant density, written as
+    products of h = g_b − g_a (no cancellation for narrow bins), plus k_2(D0) times the
+    contact length for n = 2. As −dk_2/dg = 2 k_3, ∫ k_3 dg = (k_2(g_a) − k_2(g_b))/2 =
+    h [(g_a + g_b) + b (g_a² + g_a g_b + g_b²)] / [2 g_a² g_b² (1 + b g_a)(1 + b g_b)];
+    and ∫ k_2 dg = [−1/g + b ln((1 + b g)/g)] from g_a to g_b =
+    h/(g_a g_b) − b ln(1 + h/(g_a (1 + b g_b))), which leaves only rounding, ~(1 + b g_b) ε
+    relative (the two terms cancel to 1/(1 + b g_b) of the first): 3e-14 for a bin at 1 µm
+    with λ = 100 nm. For b = 0 both are the non-retarded (g_a⁻² − g_b⁻²)/2 and 1/g_a − 1/g_b.
     """
     cutoff = np.asarray(cutoff, dtype=float)
+    b = np.asarray(b, dtype=float)
     if _is_histogram(heights):
         g_a, g_b, contact, density = _histogram_bins(D, heights, cutoff[..., None])
+        h, b = g_b - g_a, b[..., None]
         if n == 3:
-            per_bin = (g_b - g_a) * (g_b + g_a) / (2 * g_a**2 * g_b**2)
+            rise = (g_b + g_a) + b * (g_a * g_a + g_a * g_b + g_b * g_b)
+            per_bin = h * rise / (2 * g_a**2 * g_b**2 * (1 + b * g_a) * (1 + b * g_b))
         else:
-            per_bin = (g_b - g_a) / (g_a * g_b) + contact / cutoff[..., None] ** 2
+            per_bin = h / (g_a * g_b) - b * np.log1p(h / (g_a * (1 + b * g_b)))
+            per_bin = per_bin + contact * _energy_kernel(cutoff[..., None], b)
         return np.sum(density * per_bin, axis=-1)
-    D, rq, cutoff = np.broadcast_arrays(*(np.asarray(x, dtype=float) for x in (D, heights, cutoff)))
-    moment = _gaussian_gap_moment(D, rq, cutoff, n)
+    D, rq, cutoff, b = np.broadcast_arrays(
+        *(np.asarray(x, dtype=float) for x in (D, heights, cutoff, b))
+    )
+    moment = _gaussian_gap_moment(D, rq, cutoff, n, b)
     if n == 3:
         return moment
-    return moment + special.ndtr(-(D - cutoff) / rq) / cutoff**2
+    return moment + special.ndtr(-(D - cutoff) / rq) * _energy_kernel(cutoff, b)
 
 
 def _condensate(D, heights, cutoff, gap_k):
@@ -453,11 +603,12 @@ def _condensate(D, heights, cutoff, gap_k):
 # -- the four terms ----------------------------------------------------------------------------
 
 
-def vdw_pressure(D, heights, hamaker, cutoff):
+def vdw_pressure(D, heights, hamaker, cutoff, retardation):
     """Van der Waals attraction across the non-contacting gaps, Pa (positive: attractive).
 
-    p_vdW(D) = (A/6π) E[g⁻³; g >= D0], g = D − z (DelRio et al. 2005; the
-    flat-flat pressure A/(6π g³), Israelachvili Eq. 13.11).
+    p_vdW(D) = E[p(g); g >= D0], g = D − z, with p the retarded flat–flat pressure
+    (:func:`vdw_flat_pressure`; Gregory 1981) (DelRio et al. 2005, non-retarded: b = 0 gives
+    (A/6π) E[g⁻³; g >= D0], Israelachvili Eq. 13.11).
 
     Parameters
     ----------
@@ -471,27 +622,30 @@ def vdw_pressure(D, heights, hamaker, cutoff):
         Hamaker constant A, J.
     cutoff : array_like
         Cutoff gap D0, m: smaller gaps are contact.
+    retardation : array_like
+        b = 5.32/λ, m⁻¹ (:func:`retardation`, :attr:`Environment.retardation`); 0:
+        non-retarded.
 
     Returns
     -------
     ndarray
         p_vdW, Pa, of the broadcast shape of the arguments.
     """
-    return hamaker / (6 * math.pi) * _gap_moment(D, heights, cutoff, 3)
+    return hamaker / (6 * math.pi) * _gap_moment(D, heights, cutoff, 3, retardation)
 
 
-def vdw_work(D_t, heights, hamaker, cutoff):
+def vdw_work(D_t, heights, hamaker, cutoff, retardation):
     """Van der Waals work of separation from ``D_t`` to infinity, J/m².
 
-    W_vdW(D_t) = (A/12π) E[max(D_t − z, D0)⁻²] (DelRio et al. 2005's
-    Σ A/(12π D_i²)); −dW/dD = :func:`vdw_pressure`. Flat surfaces at contact:
-    A/(12π D0²).
+    W_vdW(D_t) = E[W(max(D_t − z, D0))], W the retarded flat–flat energy
+    (:func:`vdw_flat_energy`; b = 0: DelRio et al. 2005's Σ A/(12π D_i²));
+    −dW/dD = :func:`vdw_pressure`. Flat surfaces at contact: A/(12π D0²)/(1 + b D0).
 
     Parameters
     ----------
     D_t : array_like
         Mean-plane gap at the closest approach, m.
-    heights, hamaker, cutoff
+    heights, hamaker, cutoff, retardation
         As for :func:`vdw_pressure`.
 
     Returns
@@ -499,7 +653,7 @@ def vdw_work(D_t, heights, hamaker, cutoff):
     ndarray
         W_vdW, J/m².
     """
-    return hamaker / (12 * math.pi) * _gap_moment(D_t, heights, cutoff, 2)
+    return hamaker / (12 * math.pi) * _gap_moment(D_t, heights, cutoff, 2, retardation)
 
 
 def _capillary(D, heights, cutoff, surface_tension, kelvin_radius, contact_angle, film,

@@ -16,7 +16,8 @@ caps carry its summits' fluctuations about that average. :func:`environment_curv
 
 **One interface, one law** (:func:`vdw_share`, :func:`contact_law`): the solids' van der Waals
 attraction is part of their interface's work of adhesion w, not an addition to it. Its share
-w_vdW = A/(12π D0²) (the flat–flat van der Waals energy at contact) acts through the caps and
+w_vdW = A/(12π D0²)·1/(1 + b D0) (the retarded flat–flat van der Waals energy at contact,
+:func:`mcsim.physics.environment.vdw_flat_energy`) acts through the caps and
 the open gaps, and the contact law carries the rest, w − w_vdW (the short-range part), so a
 touching summit's adhesion sums to w once (docs/physics.md); :func:`interface_notes` says how
 w is shared.
@@ -34,6 +35,7 @@ from mcsim.physics.environment import (
     Environment,
     capillary_pressure,
     capillary_work,
+    vdw_flat_energy,
     vdw_pressure,
     vdw_work,
 )
@@ -62,7 +64,8 @@ def band_edge(R: float, eta: float, env: Environment) -> float:
 
 def summit_parameters(surface, env: Environment) -> dict[str, float]:
     """Parameters of the per-summit laws of :mod:`mcsim.physics.laws.attraction` (SI):
-    ``hamaker`` (0 without van der Waals), ``cutoff`` (D0), ``band`` (u_c), ``laplace``
+    ``hamaker`` (0 without van der Waals), ``cutoff`` (D0), ``band`` (u_c), ``retardation``
+    (b = 5.32/λ, m⁻¹; 0 non-retarded), ``laplace``
     (γ_L/r_K, 0 without condensation), ``gap_k``, the cap's condensation gap min(g_K, u_c)
     (D0 without condensation): the rest of the condensate lies in the open gaps, and
     ``wet_floor``, the cap's wet floor min(max(D0, 2t), its gap_k) (D0 without condensation)."""
@@ -72,6 +75,7 @@ def summit_parameters(surface, env: Environment) -> dict[str, float]:
         "hamaker": env.hamaker or 0.0,
         "cutoff": env.cutoff,
         "band": u_c,
+        "retardation": env.retardation,
         "laplace": env.laplace_pressure,
         "gap_k": gap_k,
         "wet_floor": min(env.wet_floor, gap_k),
@@ -95,8 +99,9 @@ SUMMIT_OUTPUTS = {
 def vdw_share(w: float, env: Environment | None) -> float:
     """The van der Waals part w_vdW of the interface's work of adhesion w, J/m².
 
-    w_vdW = A/(12π D0²), the energy per unit area of two flats at the cutoff gap D0
-    (Israelachvili, *Intermolecular and Surface Forces*, 3rd ed., Eq. 13.11): the caps carry
+    w_vdW = A/(12π D0²)·1/(1 + b D0), the retarded energy per unit area of two flats at the
+    cutoff gap D0 (:func:`mcsim.physics.environment.vdw_flat_energy`: Gregory 1981; b = 0,
+    Israelachvili, *Intermolecular and Surface Forces*, 3rd ed., Eq. 13.11): the caps carry
     it as a sphere–flat pull of up to 2πR·w_vdW (Derjaguin), the open gaps as the flat–flat
     pressure. The contact law then carries w − w_vdW (:func:`contact_law`). With w = 0 (a
     contact law without adhesion) the van der Waals attraction is the interface's whole
@@ -115,16 +120,28 @@ def vdw_share(w: float, env: Environment | None) -> float:
     """
     if env is None or not env.has_vdw:
         return 0.0
-    share = env.hamaker / (12 * math.pi * env.cutoff**2)
+    share = float(vdw_flat_energy(env.cutoff, env.hamaker, env.retardation))
     if 0 < w < share:
-        least = math.sqrt(env.hamaker / (12 * math.pi * w))
         raise ParameterError(
-            f"the van der Waals part of the interface's adhesion, A/(12 pi D0^2) = {share:.4g} "
-            f"J/m^2 (A = {env.hamaker:.4g} J, D0 = cutoff = {env.cutoff * 1e9:.4g} nm), exceeds "
-            f"its work of adhesion w = {w:.4g} J/m^2: one interface has one adhesion; give "
-            f"w >= {share:.4g} J/m^2, a smaller hamaker or cutoff >= {least * 1e9:.4g} nm"
+            f"the van der Waals part of the interface's adhesion, {_SHARE} = {share:.4g} "
+            f"J/m^2 (A = {env.hamaker:.4g} J, D0 = cutoff = {env.cutoff * 1e9:.4g} nm, "
+            f"{env.retardation_label}), exceeds its work of adhesion w = {w:.4g} J/m^2: one "
+            f"interface has one adhesion; give w >= {share:.4g} J/m^2, a smaller hamaker or "
+            f"cutoff >= {_least_cutoff(w, env) * 1e9:.4g} nm"
         )
     return share
+
+
+#: The van der Waals share's formula, as messages write it (b = 5.32/λ).
+_SHARE = "A/(12 pi D0^2 (1 + b D0))"
+
+
+def _least_cutoff(w: float, env: Environment) -> float:
+    """The cutoff D0 (m) at which the van der Waals share equals ``w``: the positive root of
+    b D0³ + D0² = A/(12π w), whose left side rises with D0."""
+    c = env.hamaker / (12 * math.pi * w)
+    roots = np.roots([env.retardation, 1.0, 0.0, -c])
+    return float(max(r.real for r in roots if abs(r.imag) <= 1e-9 * abs(r)))
 
 
 def contact_adhesion(w: float, env: Environment | None) -> float:
@@ -209,7 +226,8 @@ def _summit_expectation(h, surface, env: Environment, work: bool) -> dict[str, n
 
     def integrand(delta, rows):
         d = sigma * delta
-        return np.stack([vdw(d, p["hamaker"], R, D0, u_c), cap(d, p["laplace"], R, floor, g_k)])
+        return np.stack([vdw(d, p["hamaker"], R, D0, u_c, p["retardation"]),
+                         cap(d, p["laplace"], R, floor, g_k)])  # fmt: skip
 
     # Below δ = −u_c a cap's forces and works are 0; between the edges they are smooth, the
     # van der Waals ones varying as u⁻² over D0 ≤ u < u_c: panels in geometric steps there.
@@ -252,7 +270,9 @@ def proximity_pressures(h, surface, env: Environment) -> dict[str, np.ndarray]:
     zero = np.zeros(np.shape(D))
     args = env.cutoff, env.surface_tension, env.kelvin_radius, env.contact_angle, env.film
     return {
-        "vdw": vdw_pressure(D, heights, env.hamaker, env.cutoff) if env.has_vdw else zero,
+        "vdw": vdw_pressure(D, heights, env.hamaker, env.cutoff, env.retardation)
+        if env.has_vdw
+        else zero,
         "capillary": capillary_pressure(D, heights, *args) if env.has_capillary else zero,
     }
 
@@ -264,7 +284,9 @@ def proximity_works(h_t, surface, env: Environment) -> dict[str, np.ndarray]:
     zero = np.zeros(np.shape(D))
     args = env.cutoff, env.surface_tension, env.kelvin_radius, env.contact_angle, env.film
     return {
-        "vdw": vdw_work(D, heights, env.hamaker, env.cutoff) if env.has_vdw else zero,
+        "vdw": vdw_work(D, heights, env.hamaker, env.cutoff, env.retardation)
+        if env.has_vdw
+        else zero,
         "capillary": capillary_work(D, heights, *args) if env.has_capillary else zero,
     }
 
@@ -357,7 +379,7 @@ def environment_works(h_t, surface, env: Environment) -> dict[str, np.ndarray]:
 def interface_notes(surface, material, env: Environment | None) -> list[str]:
     """How the interface's adhesion is shared (text lines; empty without van der Waals).
 
-    One line: the van der Waals share A/(12π D0²) of the work of adhesion w, which the caps
+    One line: the van der Waals share A/(12π D0²)/(1 + b D0) of the work of adhesion w, which the caps
     and the open gaps carry, and the rest, which the contact law carries
     (:func:`vdw_share`); with w = 0, that the van der Waals attraction is the interface's
     whole adhesion. Inputs whose share exceeds w are refused by :func:`vdw_share`.
@@ -367,13 +389,15 @@ def interface_notes(surface, material, env: Environment | None) -> list[str]:
     share = vdw_share(material.gamma, env)
     if material.gamma == 0:
         return [
-            f"w = 0: the van der Waals attraction, A/(12 pi D0^2) = {share:.3g} J/m^2 at "
-            "contact, is the interface's whole adhesion (the contact law carries none)"
+            f"w = 0: the van der Waals attraction, {_SHARE} = {share:.3g} J/m^2 at contact "
+            f"({env.retardation_label}), is the interface's whole adhesion (the contact law "
+            "carries none)"
         ]
     return [
         f"one interface: of w = {material.gamma:.3g} J/m^2 the van der Waals part "
-        f"A/(12 pi D0^2) = {share:.3g} J/m^2 acts on the summits' caps and across the open "
-        f"gaps, and the contact law carries the rest, {material.gamma - share:.3g} J/m^2"
+        f"{_SHARE} = {share:.3g} J/m^2 ({env.retardation_label}) acts on the summits' caps "
+        f"and across the open gaps, and the contact law carries the rest, "
+        f"{material.gamma - share:.3g} J/m^2"
     ]
 
 

@@ -30,6 +30,7 @@
     molar_volume = "18 cm^3/mol"           # default water
     film_thickness = "1.2 nm"  # adsorbed film on each face (default: the isotherm t(RH))
     structured_film = "0.84 nm"  # ice-like first layers: no bridges below (default 0.84 nm)
+    retardation_wavelength = "100 nm"      # van der Waals retardation (default), or "none"
 
 A second rough surface facing this one (default: a flat one) and the correlation ρ of the
 two surfaces' heights, in [-1, 1] (default 0), combined into the gap's surface by
@@ -526,7 +527,9 @@ ENVIRONMENT_KEYS = {
     "molar_volume": ("molar_volume", "molar_volume", "e.g. '18 cm^3/mol'"),
     "film_thickness": ("film_thickness", "length", "adsorbed film on each face, e.g. '1.2 nm'"),
     "structured_film": ("structured_film", "length", "ice-like first layers, e.g. '0.84 nm'"),
-}
+    "retardation_wavelength": ("retardation_wavelength", "length",
+                               "van der Waals retardation wavelength, e.g. '100 nm' or 'none'"),
+}  # fmt: skip
 
 
 def environment_from_values(values: dict[str, Any], where: str = "environment"):

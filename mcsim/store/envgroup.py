@@ -27,9 +27,11 @@ from mcsim.store.sweepvariables import CURVES
 #: Fields of the Environment as stored, with their units.
 _ENVIRONMENT_UNITS = {"hamaker": "J", "cutoff": "m", "rh": "1", "contact_angle": "rad",
                       "temperature": "K", "surface_tension": "J/m^2", "molar_volume": "m^3/mol",
-                      "film_thickness": "m", "structured_film": "m"}  # fmt: skip
-#: Fields stored as NaN when None.
-_OPTIONAL = ("hamaker", "film_thickness")
+                      "film_thickness": "m", "structured_film": "m",
+                      "retardation_wavelength": "m"}  # fmt: skip
+
+#: Fields stored as NaN when None (no van der Waals; the isotherm; non-retarded).
+_NONE_AS_NAN = ("hamaker", "film_thickness", "retardation_wavelength")
 
 #: The model of the environment, as recorded in run files.
 MODEL = ("the proximity model over the heights about the mean plane, each local gap once, "
@@ -81,7 +83,9 @@ def read_environment(path: Path, f, surface):
         raise RunFileError(f"{path}: this run's menisci predate the adsorbed films (a Kelvin "
                            "radius of 0.5 nm gated them); run it again")  # fmt: skip
     values = {k: float(a[k]) for k in _ENVIRONMENT_UNITS if k in a}  # dry, before films: defaults
-    for k in _OPTIONAL:
+    # a file written before retardation has no wavelength: its sums are non-retarded (NaN)
+    values["retardation_wavelength"] = float(a.get("retardation_wavelength", np.nan))
+    for k in _NONE_AS_NAN:
         values[k] = None if np.isnan(values.get(k, np.nan)) else values[k]
     try:
         env = Environment(**values)

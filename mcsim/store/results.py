@@ -235,7 +235,8 @@ class Run:
             rows.append(("branches", f"approach, then retraction from h = {np.min(spec.h):g}"))
         env = spec.environment
         if env is not None:
-            terms = " and ".join({"vdw": f"van der Waals (A = {env.hamaker or 0:.3g} J)",
+            terms = " and ".join({"vdw": f"van der Waals (A = {env.hamaker or 0:.3g} J, "
+                                         f"{env.retardation_label})",
                                   "capillary": f"menisci (RH = {env.rh:g})"}[t]
                                  for t in active_terms(env))  # fmt: skip
             rows.append(("environment", f"{terms}: on the summits' caps (sampled), and across "

@@ -34,12 +34,17 @@ INPUTS: dict[str, tuple[str, tuple[str, ...], str]] = {
     "temperature": ("temperature", ("temperature",), "temperature of the environment"),
     "film_thickness": ("length", ("film_thickness",), "adsorbed film on each face (given)"),
     "structured_film": ("length", ("structured_film",), "ice-like first layers of the film"),
+    "retardation_wavelength": (
+        "length",
+        ("retardation_wavelength",),
+        "retardation wavelength of the van der Waals attraction",
+    ),
     "restoring_force": ("force", ("restoring_force",), "restoring force pulling each pad off"),
 }
 
 #: Inputs of :data:`INPUTS` that set the environment (:class:`mcsim.physics.environment.Environment`).
 ENVIRONMENT_INPUTS = ("rh", "hamaker", "contact_angle", "cutoff", "temperature", "film_thickness",
-                      "structured_film")  # fmt: skip
+                      "structured_film", "retardation_wavelength")  # fmt: skip
 
 
 #: Dimension name of each input whose name is taken by an output.

@@ -39,8 +39,9 @@ DelRio et al., Nature Materials 4, 629 (2005) and Appl. Phys. Lett. 90, 163104 (
 a measured topography, here on the deformed one instead of the rigid overlap), per nominal
 area (:func:`gap_attraction`):
 
-* van der Waals: p_vdW = (1/N) Σ A/(6π g³) over the pixels with g ≥ D0 (the flat-flat pressure,
-  Israelachvili Eq. 13.11, in the Derjaguin approximation);
+* van der Waals: p_vdW = (1/N) Σ p(g) over the pixels with g ≥ D0, p the retarded flat-flat
+  pressure (:func:`~mcsim.physics.environment.vdw_flat_pressure`: Gregory 1981; A/(6π g³)
+  without retardation, Israelachvili Eq. 13.11), in the Derjaguin approximation;
 * capillary: p_cap = (γ_L/r_K) × the fraction of pixels with f ≤ g < g_K = 2 r_K cos θ + 2t
   (Laplace pressure on the area the liquid bridges between the adsorbed films t, above the wet
   floor f = max(D0, 2t): :mod:`mcsim.physics.films`);
@@ -67,7 +68,7 @@ import numpy as np
 from mcsim.model.errors import ParameterError
 from mcsim.model.params import Material, Surface
 from mcsim.physics import bem
-from mcsim.physics.environment import Environment, as_environment
+from mcsim.physics.environment import Environment, as_environment, vdw_flat_pressure
 from mcsim.physics.loadcontrol import hertz_area_fraction, load_control
 from mcsim.studies.ingest import (
     _is_histogram_file,
@@ -119,19 +120,21 @@ def gap_attraction(gap: np.ndarray, environment: Environment) -> tuple[float, fl
     gap : ndarray
         Gap between the deformed surface and the flat on each pixel, m.
     environment : Environment
-        Its Hamaker constant (J), cutoff D0 (m), Laplace pressure γ_L/r_K (Pa), wet floor
-        f = max(D0, 2t) and condensation gap g_K (m) are used.
+        Its Hamaker constant (J), cutoff D0 (m), retardation b (m⁻¹), Laplace pressure
+        γ_L/r_K (Pa), wet floor f = max(D0, 2t) and condensation gap g_K (m) are used.
 
     Returns
     -------
     (float, float)
-        p_vdW = (1/N) Σ_{g ≥ D0} A/(6π g³) and p_cap = (γ_L/r_K) #{f ≤ g < g_K}/N, Pa,
-        positive when attractive; 0 for a term the environment does not have.
+        p_vdW = (1/N) Σ_{g ≥ D0} p(g) (:func:`~mcsim.physics.environment.vdw_flat_pressure`;
+        A/(6π g³) non-retarded) and p_cap = (γ_L/r_K) #{f ≤ g < g_K}/N, Pa, positive when
+        attractive; 0 for a term the environment does not have.
     """
     open_ = gap >= environment.cutoff
     vdw = 0.0
     if environment.has_vdw:
-        vdw = environment.hamaker / (6 * np.pi) * float(np.sum(gap[open_] ** -3.0)) / gap.size
+        pressure = vdw_flat_pressure(gap[open_], environment.hamaker, environment.retardation)
+        vdw = float(np.sum(pressure)) / gap.size
     filled = np.count_nonzero((gap >= environment.wet_floor) & (gap < environment.condensation_gap))
     return vdw, environment.laplace_pressure * filled / gap.size
 

@@ -91,6 +91,44 @@ def test_below_rh_dry_the_note_names_the_film_and_the_structured_layers(capsys):
     assert "no capillary bridges: adsorbed film t = 0.803 nm <= structured film 0.84 nm" in err
 
 
+@pytest.mark.parametrize(
+    ("given", "wavelength"), [("100nm", 100e-9), ("7 nm", 7e-9), ("none", None)]
+)
+def test_the_retardation_wavelength_option_sets_the_van_der_waals_law(capsys, given, wavelength):
+    rows, err = analytic_csv(capsys, "smooth", "--hamaker", "1.6e-19", "--rh", "0.6",
+                             f"--retardation-wavelength={given}")  # fmt: skip
+    env = Environment(hamaker=1.6e-19, rh=0.6, retardation_wavelength=wavelength)
+    ref = gw_curves(SURFACES["smooth"], MATERIALS["silicon"], [2, 1, 0], environment=env)
+    np.testing.assert_array_equal([float(r["vdw"]) for r in rows], ref.values["vdw"])
+    said = "none (non-retarded)" if wavelength is None else f"{wavelength * 1e9:.4g} nm"
+    assert f"retardation wavelength = {said}" in err
+
+
+def test_the_default_retardation_is_gregorys_100_nm(capsys):
+    default, err = analytic_csv(capsys, "smooth", "--hamaker", "1.6e-19")
+    given, _ = analytic_csv(capsys, "smooth", "--hamaker", "1.6e-19", "--retardation-wavelength",
+                            "100nm")  # fmt: skip
+    flat, _ = analytic_csv(capsys, "smooth", "--hamaker", "1.6e-19", "--retardation-wavelength",
+                           "none")  # fmt: skip
+    assert [r["vdw"] for r in default] == [r["vdw"] for r in given]
+    assert all(float(a["vdw"]) < float(b["vdw"]) for a, b in zip(default, flat))
+    assert "retardation wavelength = 100 nm" in err and "lambda = 100 nm" in err
+
+
+def test_a_file_sets_the_retardation_wavelength_and_refuses_it_bare(capsys, tmp_path):
+    f, plain = tmp_path / "s.toml", tmp_path / "plain.toml"
+    plain.write_text('[surface]\nsigma = "1.4 nm"\nR = "1.7 um"\neta = "17 um^-2"\n')
+    table = '[environment]\nhamaker = "1.6e-19 J"\nretardation_wavelength = '
+    f.write_text(plain.read_text() + table + '"none"\n')
+    from_file, _ = analytic_csv(capsys, str(f))
+    from_options, _ = analytic_csv(capsys, str(plain), "--hamaker", "1.6e-19",
+                                   "--retardation-wavelength", "none")  # fmt: skip
+    assert [r["vdw"] for r in from_file] == [r["vdw"] for r in from_options]
+    f.write_text(plain.read_text() + table + "1e-7\n")
+    code, _, err = run_cli(capsys, "analytic", "--surface", f, H)
+    assert code != 0 and "[environment]: retardation_wavelength = 1e-07 has no unit" in err
+
+
 def test_a_file_refuses_a_bare_hamaker_and_unknown_keys(capsys, tmp_path):
     f = tmp_path / "s.toml"
     f.write_text('[surface]\nsigma = "1.4 nm"\nR = "1.7 um"\neta = "17 um^-2"\n'
@@ -117,6 +155,11 @@ def test_a_file_refuses_a_bare_hamaker_and_unknown_keys(capsys, tmp_path):
         ("--film-thickness", "-1nm", r"--film-thickness: film_thickness = -1e-09 m is out of range \(allowed: >= 0 m\)"),
         ("--structured-film", "-2 nm", r"--structured-film: structured_film = -2e-09 m is out of range \(allowed: >= 0 m\)"),
         ("--film-thickness", "1 J", r"--film-thickness: film_thickness: unknown unit 'J' for a length"),
+        ("--retardation-wavelength", "0nm", r"--retardation-wavelength: retardation_wavelength = 0.0 m is out of range \(allowed: > 0 m\)"),
+        ("--retardation-wavelength", "-5nm", r"--retardation-wavelength: retardation_wavelength = -5e-09 m is out of range"),
+        ("--retardation-wavelength", "nan", r"--retardation-wavelength: retardation_wavelength: 'nan' is not finite"),
+        ("--retardation-wavelength", "100 s", r"--retardation-wavelength: retardation_wavelength: unknown unit 's' for a length"),
+        ("--retardation-wavelength", "abc", r"--retardation-wavelength: retardation_wavelength: cannot read 'abc'"),
     ],
 )  # fmt: skip
 def test_bad_values_get_one_line_naming_the_option(capsys, option, value, message):
@@ -140,7 +183,7 @@ def test_every_command_takes_the_environment_options(capsys, command):
     assert code == 0
     for option in ("--hamaker", "--cutoff", "--rh", "--contact-angle", "--temperature",
                    "--liquid-surface-tension", "--molar-volume", "--film-thickness",
-                   "--structured-film"):  # fmt: skip
+                   "--structured-film", "--retardation-wavelength"):  # fmt: skip
         assert option in out, f"{command} {option}"
 
 

@@ -86,7 +86,8 @@ def random_cases(n: int, seed: int):
 #: The corners: van der Waals alone, condensation alone, both, a turn deep below the summits
 #: (h = −6.3: the menisci of the caps of a very smooth, sticky surface pull every summit in;
 #: there the dry kernel's 32-node contact rule is 2e-11 off in the turn), condensation off by
-#: the contact angle and by a dry vapour, on the smooth surface and rougher or smoother ones.
+#: the contact angle and by a dry vapour, on the smooth surface and rougher or smoother ones;
+#: van der Waals non-retarded and strongly retarded (the random draws: λ = 100 nm).
 CORNERS = [
     (SMOOTH, SILICON, Environment(hamaker=1.6e-19)),
     (SMOOTH, SILICON, Environment(rh=0.7, contact_angle=math.radians(20))),
@@ -95,6 +96,13 @@ CORNERS = [
         dataclasses.replace(SMOOTH, sigma=0.3e-9, R=4e-6),
         dataclasses.replace(SILICON, gamma=0.8, E1=90e9, E2=160e9),
         Environment(rh=0.6, contact_angle=math.radians(50), cutoff=0.21e-9),
+    ),
+    # van der Waals without retardation, and strongly retarded (λ = 5 nm; default 100 nm)
+    (SMOOTH, SILICON, Environment(hamaker=1.6e-19, rh=0.6, retardation_wavelength=None)),
+    (
+        dataclasses.replace(SMOOTH, sigma=4e-9),
+        SILICON,
+        Environment(hamaker=2.5e-19, rh=0.9, retardation_wavelength=5e-9),
     ),
     (SMOOTH, SILICON, Environment(hamaker=6.5e-20, rh=0.8, contact_angle=math.radians(100))),
     (dataclasses.replace(SMOOTH, sigma=2.5e-9), SILICON, Environment(hamaker=2e-19, rh=0.0)),

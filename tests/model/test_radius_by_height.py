@@ -250,7 +250,8 @@ def test_a_humid_pad_of_bands_sums_each_summits_caps_with_its_own_radius():
         for k, part in enumerate(with_bands().components()):
             p = summit_parameters(part, HUMID)
             delta = z[band == k][None, :] - d[:, None]
-            vdw = vdw_summit(delta, p["hamaker"], part.R, p["cutoff"], p["band"])
+            vdw = vdw_summit(delta, p["hamaker"], part.R, p["cutoff"], p["band"],
+                             p["retardation"])  # fmt: skip
             meniscus = capillary_summit(delta, p["laplace"], part.R, p["wet_floor"], p["gap_k"])
             caps += (vdw + meniscus).sum(axis=1)
         gaps = spec.area * padload.open_gaps(spec)(d / sigma)

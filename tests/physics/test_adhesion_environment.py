@@ -28,11 +28,21 @@ def summary(surface=SURFACE, env=ENV, **kw):
 
 
 #: The curves are integrated this far above the turn, in h; beyond, the open gaps' van der
-#: Waals work of a flat pair at D ≫ Rq, A/(12π D²)(1 + 3Rq²/D²), is added in closed form.
+#: Waals work at D ≫ Rq is added in closed form (:func:`flat_tail`).
 SPAN = 40.0
 #: Gauss–Legendre panels, 8 nodes each, on [turn, turn + SPAN], denser near the turn
 #: (edges at turn + SPAN·x², x uniform), where the contact load has its kinks.
 PANELS = 800
+
+
+def flat_tail(D, rq):
+    """E[W(D − z)] ≈ W(D) + (Rq²/2) W''(D) for Gaussian heights far from contact, J/m², W the
+    retarded flats' energy A/(12π D²)/(1 + b D) (Gregory 1981); b = 0: A/(12π D²)(1 + 3Rq²/D²)."""
+    b = ENV.retardation
+    s = 1 + b * D
+    w = 1 / (D**2 * s)
+    second = 6 / (D**4 * s) + 4 * b / (D**3 * s**2) + 2 * b**2 / (D**2 * s**3)
+    return ENV.hamaker / (12 * math.pi) * (w + rq**2 / 2 * second)
 
 
 def works_by_quadrature(surface, s):
@@ -47,7 +57,7 @@ def works_by_quadrature(surface, s):
     c = gw_curves(surface, MATERIAL, nodes, LAW, branch="retract", turn=s.turn, environment=ENV)
     gap = gap_heights(surface)
     D = (s.turn + SPAN) * surface.sigma + gap.summit_offset
-    tail = ENV.hamaker / (12 * math.pi * D**2) * (1 + 3 * gap.rq**2 / D**2)
+    tail = flat_tail(D, gap.rq)
     return {
         "work_of_separation": -np.sum(weights * c.load) + tail,
         "work_of_separation_vdw": np.sum(weights * c.vdw) + tail,
@@ -118,7 +128,7 @@ def test_capillary_work_rises_with_rh_and_stays_below_the_ceiling():
 
 
 def test_vdw_work_falls_with_roughness_and_stays_below_the_flat_limit():
-    flat = ENV.hamaker / (12 * math.pi * ENV.cutoff**2)
+    flat = ENV.hamaker / (12 * math.pi * ENV.cutoff**2) / (1 + ENV.retardation * ENV.cutoff)
     works = []
     for scale in (1, 2, 4, 8):
         surface = dataclasses.replace(SURFACE, sigma=SURFACE.sigma * scale, rq=SURFACE.rq * scale,

@@ -37,6 +37,7 @@ def quad_pressures(h, surface, env):
     n = math.log(math.log(1 / 0.3) / math.log(1 / 0.9)) / math.log(6.5 / 3)
     t = 0.84e-9 * (math.log(1 / 0.3) / math.log(1 / env.rh)) ** (1 / n)
     g_k = 2 * r_k * math.cos(env.contact_angle) + 2 * t
+    b = env.retardation  # Gregory's flats (1981): energy A/(12π u²)/(1 + b u)
     gap = gap_heights(surface)
     D, rq = h * surface.sigma + gap.summit_offset, gap.rq
 
@@ -45,8 +46,12 @@ def quad_pressures(h, surface, env):
 
     quad = dict(epsabs=0, epsrel=1e-12, limit=400)
     top = D - D0  # z below it: an open gap
+
+    def k3(g):  # the flats' pressure over A/6π: −(1/2) d/dg of 1/(g²(1 + b g))
+        return 1 / (g**3 * (1 + b * g)) + b / (2 * g**2 * (1 + b * g) ** 2)
+
     vdw = env.hamaker / (6 * math.pi) * integrate.quad(
-        lambda z: (D - z) ** -3 * density(z), -12 * rq, top, **quad)[0]  # fmt: skip
+        lambda z: k3(D - z) * density(z), -12 * rq, top, **quad)[0]  # fmt: skip
     floor = max(D0, 2 * t)
     cap = env.surface_tension / r_k * integrate.quad(density, D - g_k, D - floor, **quad)[0]
     return vdw, cap

@@ -30,6 +30,9 @@ from mcsim.topography.empirical import Empirical
 
 A = 1.6e-19  # J, silicon across air
 D0 = 0.2e-9  # m
+#: b = 0: the local laws here are the non-retarded ones (DelRio et al.); the retarded ones
+#: (Gregory 1981), against the same kinds of reference: tests/physics/test_environment_retarded.py
+FLAT_LAW = 0.0
 GAMMA = 0.072  # J/m², water
 NM = 1e-9
 
@@ -127,7 +130,7 @@ FLAT = 1e-15  # m: Rq 2e-4 D0, flat for every purpose below
 def test_flat_vdw_work_at_contact_is_hamaker_over_12_pi_cutoff_squared():
     # First correction ~ Rq/D0 (the open half of the heights lies ~Rq beyond D0).
     expected = A / (12 * math.pi * D0**2)
-    assert vdw_work(D0, FLAT, A, D0) == pytest.approx(expected, rel=2 * FLAT / D0)
+    assert vdw_work(D0, FLAT, A, D0, FLAT_LAW) == pytest.approx(expected, rel=2 * FLAT / D0)
 
 
 @pytest.mark.parametrize("theta_deg", [0, 40])
@@ -161,8 +164,10 @@ CASES = [
 
 @pytest.mark.parametrize(("rq", "D", "rh", "theta"), CASES)
 def test_gaussian_vdw_matches_quadrature(rq, D, rh, theta):
-    assert vdw_pressure(D, rq, A, D0) == pytest.approx(quad_vdw_pressure(D, rq), rel=QUAD_RTOL)
-    assert vdw_work(D, rq, A, D0) == pytest.approx(quad_vdw_work(D, rq), rel=QUAD_RTOL)
+    assert vdw_pressure(D, rq, A, D0, FLAT_LAW) == pytest.approx(
+        quad_vdw_pressure(D, rq), rel=QUAD_RTOL
+    )
+    assert vdw_work(D, rq, A, D0, FLAT_LAW) == pytest.approx(quad_vdw_work(D, rq), rel=QUAD_RTOL)
 
 
 @pytest.mark.parametrize(("rq", "D", "rh", "theta"), CASES)
@@ -192,9 +197,11 @@ def central_difference(work, D):
     "heights", [1.2e-9, gaussian_histogram(1.2e-9, 0.05e-9)], ids=["gaussian", "histogram"]
 )
 def test_minus_derivative_of_vdw_work_is_vdw_pressure(heights):
-    slope = central_difference(lambda D: vdw_work(D, heights, A, D0), GAPS)
+    slope = central_difference(lambda D: vdw_work(D, heights, A, D0, FLAT_LAW), GAPS)
     # DERIVATIVE_RTOL: truncation and round-off of the central difference (above)
-    np.testing.assert_allclose(slope, vdw_pressure(GAPS, heights, A, D0), rtol=DERIVATIVE_RTOL)
+    np.testing.assert_allclose(
+        slope, vdw_pressure(GAPS, heights, A, D0, FLAT_LAW), rtol=DERIVATIVE_RTOL
+    )
 
 
 @pytest.mark.parametrize(
@@ -233,8 +240,8 @@ def test_histogram_terms_are_exact_integrals_of_the_piecewise_constant_density()
         p_cap = GAMMA / r_k * expect(lambda z, D: float(D0 <= D - z < g_k), D)
         w_cap = GAMMA / r_k * expect(lambda z, D: max(g_k - max(D - z, D0), 0.0), D)
         args = water(0.9, theta)
-        assert vdw_pressure(D, heights, A, D0) == pytest.approx(p_vdw, rel=QUAD_RTOL)
-        assert vdw_work(D, heights, A, D0) == pytest.approx(w_vdw, rel=QUAD_RTOL)
+        assert vdw_pressure(D, heights, A, D0, FLAT_LAW) == pytest.approx(p_vdw, rel=QUAD_RTOL)
+        assert vdw_work(D, heights, A, D0, FLAT_LAW) == pytest.approx(w_vdw, rel=QUAD_RTOL)
         assert capillary_pressure(D, heights, *args) == pytest.approx(p_cap, rel=QUAD_RTOL)
         assert capillary_work(D, heights, *args) == pytest.approx(w_cap, rel=QUAD_RTOL)
 
@@ -245,8 +252,8 @@ def test_fine_histogram_of_a_gaussian_converges_to_the_gaussian():
     g⁻³ holds its mass within ~D0: relative error below w²/(D0 Rq) (3.3e-4 at w = 0.01 nm)."""
     rq, args = 1.5e-9, water(0.8, math.radians(20))
     terms = {
-        "p_vdw": lambda h: vdw_pressure(GAPS, h, A, D0),
-        "w_vdw": lambda h: vdw_work(GAPS, h, A, D0),
+        "p_vdw": lambda h: vdw_pressure(GAPS, h, A, D0, FLAT_LAW),
+        "w_vdw": lambda h: vdw_work(GAPS, h, A, D0, FLAT_LAW),
         "p_cap": lambda h: capillary_pressure(GAPS, h, *args),
         "w_cap": lambda h: capillary_work(GAPS, h, *args),
     }
@@ -276,7 +283,7 @@ def test_capillary_work_rises_with_rh_and_stays_below_two_gamma_cos_theta():
 def test_vdw_work_falls_with_roughness_and_stays_below_flat_contact():
     rq = np.geomspace(0.01e-9, 50e-9, 100)
     for rms_from_contact in (0.0, 1.0, 2.5):
-        work = vdw_work(D0 + rms_from_contact * rq, rq, A, D0)
+        work = vdw_work(D0 + rms_from_contact * rq, rq, A, D0, FLAT_LAW)
         assert np.all(np.diff(work) < 0)
         assert np.all(work <= A / (12 * math.pi * D0**2))
 
@@ -329,7 +336,7 @@ def test_the_attraction_measures_the_gap_from_the_mean_plane():
     h = np.array([-0.5, 0.0, 2.0])
     curves = environment_curves(h, surface, env)
     D = h * surface.sigma + 1.59e-9
-    np.testing.assert_array_equal(curves["vdw"], vdw_pressure(D, 1.55e-9, A, D0))
+    np.testing.assert_array_equal(curves["vdw"], vdw_pressure(D, 1.55e-9, A, D0, env.retardation))
     np.testing.assert_array_equal(curves["vdw_gaps"], curves["vdw"] - curves["vdw_caps"])
 
 

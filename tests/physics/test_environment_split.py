@@ -41,6 +41,7 @@ from mcsim.physics.surfaceenvironment import (
 A, D0, R = 1.6e-19, 0.2e-9, 0.5e-6
 GAMMA = 0.072
 HUMID = Environment(hamaker=A, cutoff=D0, rh=0.9)
+B = HUMID.retardation  # m⁻¹: 5.32/λ, Gregory 1981 (λ = 100 nm, the default)
 #: Central differences with a step of 1e-6 of the scale: truncation ~1e-12, rounding
 #: ~1e-16/1e-6 = 1e-10 of the value (the works are O(F × scale)).
 DERIVATIVE_RTOL = 1e-7
@@ -55,8 +56,9 @@ def central(f, x, step):
 
 @pytest.mark.parametrize("g", [D0, 0.5e-9, 2e-9, 10e-9])
 def test_one_summit_van_der_waals_is_the_sphere_flat_force_without_a_band_edge(g):
-    # Israelachvili Eq. 13.11 with Table 13.1: F = A R / (6 D²)
-    got = vdw_summit(np.float64(-g), A, R, D0, 1e30)
+    # non-retarded (b = 0): Israelachvili Eq. 13.11 with Table 13.1, F = A R / (6 D²);
+    # retarded: tests/physics/test_environment_retarded.py
+    got = vdw_summit(np.float64(-g), A, R, D0, 1e30, 0.0)
     assert got == pytest.approx(A * R / (6 * g**2), rel=ROUNDING_FORMULA)
 
 
@@ -75,23 +77,25 @@ def test_a_pressed_summit_keeps_its_touch_values_and_a_far_one_feels_nothing():
     g_k, laplace, u_c = HUMID.condensation_gap, HUMID.laplace_pressure, 20e-9
     pressed = np.array([1e-9, 5e-9, 1e-7])  # δ > 0
     np.testing.assert_array_equal(
-        vdw_summit(pressed, A, R, D0, u_c), vdw_summit(-D0, A, R, D0, u_c)
+        vdw_summit(pressed, A, R, D0, u_c, B), vdw_summit(-D0, A, R, D0, u_c, B)
     )
     np.testing.assert_array_equal(capillary_summit(pressed, laplace, R, D0, g_k),
                                   capillary_summit(-D0, laplace, R, D0, g_k))  # fmt: skip
-    assert vdw_summit(np.float64(-u_c), A, R, D0, u_c) == 0
-    assert vdw_summit(np.float64(-2 * u_c), A, R, D0, u_c) == 0
+    assert vdw_summit(np.float64(-u_c), A, R, D0, u_c, B) == 0
+    assert vdw_summit(np.float64(-2 * u_c), A, R, D0, u_c, B) == 0
     assert capillary_summit(np.float64(-g_k), laplace, R, D0, g_k) == 0
     assert capillary_summit(np.float64(-2 * g_k), laplace, R, D0, g_k) == 0
 
 
+@pytest.mark.parametrize("b", [0.0, B, 100 * B], ids=["non-retarded", "100nm", "1nm"])
 @pytest.mark.parametrize("g", [-5e-9, -0.1e-9, 0.1e-9, 0.3e-9, 2e-9, 8e-9, 15e-9])
-def test_one_summit_minus_work_slope_is_its_force(g):
+def test_one_summit_minus_work_slope_is_its_force(g, b):
     u_c, g_k, laplace = 12e-9, HUMID.condensation_gap, HUMID.laplace_pressure
     step = 1e-6 * u_c
     # d = z − δ: dW/dd = −dW/dδ, so −dW/dd = dW/dδ at δ = −g
-    slope = central(lambda x: vdw_summit_work(x, A, R, D0, u_c), -g, step)
-    assert slope == pytest.approx(vdw_summit(np.float64(-g), A, R, D0, u_c), rel=DERIVATIVE_RTOL)
+    slope = central(lambda x: vdw_summit_work(x, A, R, D0, u_c, b), -g, step)
+    force = vdw_summit(np.float64(-g), A, R, D0, u_c, b)
+    assert slope == pytest.approx(force, rel=DERIVATIVE_RTOL)
     slope = central(lambda x: capillary_summit_work(x, laplace, R, D0, g_k), -g, step)
     expected = capillary_summit(np.float64(-g), laplace, R, D0, g_k)
     assert slope == pytest.approx(expected, rel=DERIVATIVE_RTOL, abs=DERIVATIVE_RTOL * 1e-6)
@@ -124,10 +128,15 @@ def test_a_flat_pair_attracts_with_the_flat_flat_laws():
     u_c = band_edge(flat.R, flat.eta, HUMID)
     for gap in (0.5 * u_c, u_c * 1.01, 2 * u_c, 30e-9):
         p = environment_curves(np.float64(gap / flat.sigma), flat, HUMID)
-        assert p["vdw"] == pytest.approx(A / (6 * math.pi * gap**3), rel=1e-5)
+        assert p["vdw"] == pytest.approx(retarded_pressure(gap), rel=1e-5)
         # menisci between the films: wet floor 2t <= gap < g_K (every gap here ≫ 1 pm from both)
         inside = HUMID.wet_floor <= gap < HUMID.condensation_gap
         assert p["capillary"] == pytest.approx(HUMID.laplace_pressure * inside, rel=1e-12)
+
+
+def retarded_pressure(u, b=B):
+    """Gregory's flats (1981), −d/du of A/(12π u²(1 + b u)), written out here."""
+    return A / (12 * math.pi) * (2 / (u**3 * (1 + b * u)) + b / (u**2 * (1 + b * u) ** 2))
 
 
 def surface_integral(h, surface, kernel, lo, hi=None):
@@ -167,16 +176,16 @@ def caps_integral(h, surface, env, kernel):
 def test_the_environment_covers_the_surface_once(name, h):
     """Each term is its local law integrated once over the surface's own gaps: the menisci
     (γ_L/r_K on f = max(D0, 2t) <= u < g_K, t the adsorbed film) and van der Waals
-    (A/(6πu³) on u >= D0). The caps own their
+    (Gregory's retarded flats on u >= D0). The caps own their
     summits' paraboloids, the open gaps the rest; the caps' part is checked on its own."""
     surface, env = SURFACES[name], HUMID
     got = environment_curves(np.float64(h), surface, env)
     floor = max(env.cutoff, 2 * env.film)
     wetted = surface_integral(h, surface, lambda u: 1.0, floor, env.condensation_gap)
     assert got["capillary"] == pytest.approx(env.laplace_pressure * wetted, rel=1e-8)
-    vdw = surface_integral(h, surface, lambda u: A / (6 * math.pi * u**3), D0)
+    vdw = surface_integral(h, surface, retarded_pressure, D0)
     assert got["vdw"] == pytest.approx(vdw, rel=1e-8)
-    caps = caps_integral(h, surface, env, lambda u: A / (6 * math.pi * u**3))
+    caps = caps_integral(h, surface, env, retarded_pressure)
     assert got["vdw_caps"] == pytest.approx(caps, rel=1e-8)
     assert got["vdw_caps"] + got["vdw_gaps"] == pytest.approx(got["vdw"], rel=1e-14)
 
@@ -234,7 +243,7 @@ def test_the_law_set_with_an_environment_appends_the_caps_and_reaches_down_to_th
     d = np.array([1e-9, 4e-9])
     values = law.evaluate(z - d, surface, material)
     np.testing.assert_array_equal(
-        values["vdw"], vdw_summit(z - d, A, surface.R, D0, params["band"])
+        values["vdw"], vdw_summit(z - d, A, surface.R, D0, params["band"], B)
     )
 
 

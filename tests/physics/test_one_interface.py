@@ -2,7 +2,8 @@
 interface's work of adhesion w, not an addition to it (docs/physics.md, 'One interface, one
 law').
 
-The van der Waals share w_vdW = A/(12π D0²) acts on the summits' caps and across the open gaps;
+The van der Waals share w_vdW = A/(12π D0²)/(1 + b D0) (retarded, Gregory 1981; b = 5.32/λ)
+acts on the summits' caps and across the open gaps;
 the contact law carries w − w_vdW. A sphere of one interface then pulls off with between
 1.5πwR (JKR) and 2πwR (DMT) (Maugis, J. Colloid Interface Sci. 150, 243, 1992): counting the
 adhesion twice (w in the contact law plus the caps' 2πR·w_vdW) exceeds 2πwR by 2πR·w_vdW.
@@ -32,8 +33,16 @@ from mcsim.physics.surfaceenvironment import (
 SMOOTH = SURFACES["smooth"]  # R = 1.7 µm
 #: Silicon with the maugis-dugdale's z0 and w = 0.5 J/m².
 SILICON = MATERIALS["silicon"]
-#: A = 1.6e-19 J at D0 = 0.165 nm: w_vdW = 0.156 J/m², a third of w.
+#: A = 1.6e-19 J at D0 = 0.165 nm, λ = 100 nm: w_vdW = 0.1545 J/m², a third of w.
 VDW = Environment(hamaker=1.6e-19)
+B = VDW.retardation  # m⁻¹
+
+
+def k(u: float) -> float:
+    """The retarded flats' energy over A/12π, m⁻²: 1/(u²(1 + b u)) (Gregory 1981)."""
+    return 1 / (u**2 * (1 + B * u))
+
+
 ADHESIVE = ("jkr", "dmt", "maugis-dugdale")
 
 
@@ -64,16 +73,16 @@ def test_a_sphere_pulls_off_between_one_and_a_half_and_two_pi_w_R(law, env):
 
 
 def test_dmt_with_van_der_waals_pulls_off_with_w_less_the_tail_beyond_the_cap():
-    """DMT's pull-off 2πR(w − w_vdW) at touch plus the cap's (AR/6)(1/D0² − 1/u_c²) is
-    2πwR − AR/(6u_c²): the interface's w, less the part of its tail that the open gaps own
-    beyond the band edge u_c. To rounding (1e-12)."""
+    """DMT's pull-off 2πR(w − w_vdW) at touch plus the cap's (AR/6)(k(D0) − k(u_c)) is
+    2πwR − (AR/6) k(u_c): the interface's w, less the part of its tail that the open gaps own
+    beyond the band edge u_c (k(u) = 1/(u²(1 + b u))). To rounding (1e-12)."""
     u_c = summit_parameters(SMOOTH, VDW)["band"]
-    expected = 2 * math.pi * SILICON.gamma * SMOOTH.R - VDW.hamaker * SMOOTH.R / (6 * u_c**2)
+    expected = 2 * math.pi * SILICON.gamma * SMOOTH.R - VDW.hamaker * SMOOTH.R / 6 * k(u_c)
     assert _pull_off("dmt", VDW) == pytest.approx(expected, rel=1e-12)
 
 
 def test_the_contact_law_carries_w_less_the_van_der_waals_share():
-    share = VDW.hamaker / (12 * math.pi * VDW.cutoff**2)
+    share = VDW.hamaker / (12 * math.pi) * k(VDW.cutoff)
     assert vdw_share(SILICON.gamma, VDW) == pytest.approx(share, rel=1e-15)
     for name in ADHESIVE:
         params = contact_law(get_law_set(name), VDW).parameters(SMOOTH, SILICON)
@@ -107,7 +116,8 @@ def test_a_van_der_waals_share_above_w_is_refused_naming_the_fields():
     weak = dataclasses.replace(SILICON, gamma=0.1)
     with pytest.raises(
         ParameterError,
-        match=r"A/\(12 pi D0\^2\) = 0\.1559 .*w = 0\.1 J/m\^2.*cutoff >= 0\.206",
+        match=r"A/\(12 pi D0\^2 \(1 \+ b D0\)\) = 0\.1545 .*lambda = 100 nm.*w = 0\.1 J/m\^2.*"
+        r"cutoff >= 0\.2049",
     ):
         vdw_share(weak.gamma, VDW)
     with pytest.raises(ParameterError, match="exceeds its work of adhesion"):
@@ -115,18 +125,21 @@ def test_a_van_der_waals_share_above_w_is_refused_naming_the_fields():
 
 
 def test_without_contact_adhesion_van_der_waals_is_the_whole_adhesion():
-    """w = 0: the caps' Derjaguin pull, up to 2πR·A/(12πD0²), is the interface's adhesion."""
+    """w = 0: the caps' Derjaguin pull, up to 2πR·w_vdW, is the interface's adhesion."""
     hertz = dataclasses.replace(SILICON, gamma=0.0)
-    share = VDW.hamaker / (12 * math.pi * VDW.cutoff**2)
-    assert vdw_share(0.0, VDW) == share
+    share = VDW.hamaker / (12 * math.pi) * k(VDW.cutoff)
+    assert vdw_share(0.0, VDW) == pytest.approx(share, rel=1e-15)
     u_c = summit_parameters(SMOOTH, VDW)["band"]
-    expected = 2 * math.pi * share * SMOOTH.R - VDW.hamaker * SMOOTH.R / (6 * u_c**2)
+    expected = 2 * math.pi * share * SMOOTH.R - VDW.hamaker * SMOOTH.R / 6 * k(u_c)
     assert _pull_off("jkr", VDW, hertz) == pytest.approx(expected, rel=1e-12)
     assert "whole adhesion" in interface_notes(SMOOTH, hertz, VDW)[0]
 
 
 def test_the_note_says_how_w_is_shared():
     (note,) = interface_notes(SMOOTH, SILICON, VDW)
-    assert "w = 0.5 J/m^2" in note and "0.156 J/m^2" in note and "0.344 J/m^2" in note
+    # A/(12π D0² (1 + b D0)), b = 5.32/λ (Gregory): 0.155 J/m² (0.156 non-retarded)
+    share = VDW.hamaker / (12 * math.pi * VDW.cutoff**2 * (1 + 5.32 / 100e-9 * VDW.cutoff))
+    assert f"{share:.3g}" == "0.155" and f"{0.5 - share:.3g}" == "0.345"
+    assert "w = 0.5 J/m^2" in note and "0.155 J/m^2" in note and "0.345 J/m^2" in note
     assert interface_notes(SMOOTH, SILICON, None) == []
     assert interface_notes(SMOOTH, SILICON, Environment(rh=0.6)) == []

@@ -119,6 +119,8 @@ def test_environment_defaults():
     check_exact(r"`--temperature` \(kelvin only, default (\S+) K\)", env.temperature)
     check_exact(r"\(default water, (\S+) J/m²\)", env.surface_tension)
     check_exact(r"\(default water, (\S+) m³/mol\)", env.molar_volume)
+    check_exact(r"5\.32 D/λ\), λ default (\S+) nm; `none`", env.retardation_wavelength * 1e9)
+    assert env.retardation * env.retardation_wavelength == pytest.approx(5.32, rel=1e-15)
     check_rounded(r"up to 2γ_L cos θ ≈ (\S+) J/m²", 2 * env.surface_tension)
 
 

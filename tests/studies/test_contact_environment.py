@@ -17,14 +17,20 @@ SCAN = "examples/scan.npy"  # periodic, 100 x 100 pixels of 10 nm, heights in m
 HUMID = Environment(hamaker=1.6e-19, rh=0.5)
 
 
+def flat_pressure(g, b=HUMID.retardation):
+    """Gregory's retarded flats (1981), −d/dg of A/(12π g²)/(1 + b g), Pa; b = 0:
+    A/(6π g³), Israelachvili Eq. 13.11."""
+    return 1.6e-19 / (12 * math.pi) * (2 / (g**3 * (1 + b * g)) + b / (g**2 * (1 + b * g) ** 2))
+
+
 @pytest.mark.parametrize(("g", "bridged"), [(0.2e-9, False), (1.0e-9, False), (3.0e-9, True),
                                             (4.0e-9, False)])  # fmt: skip
 def test_a_uniform_gap_is_the_flat_flat_pressure_and_the_full_laplace_pressure_in_the_band(
     g, bridged
 ):
     vdw, cap = gap_attraction(np.full((8, 8), g), HUMID)
-    # Israelachvili Eq. 13.11 on every pixel; the mean of 64 equal terms: ROUNDING_SUM
-    assert vdw == pytest.approx(1.6e-19 / (6 * math.pi * g**3), rel=ROUNDING_SUM)
+    # the flats' pressure on every pixel; the mean of 64 equal terms: ROUNDING_SUM
+    assert vdw == pytest.approx(flat_pressure(g), rel=ROUNDING_SUM)
     assert (HUMID.wet_floor <= g < HUMID.condensation_gap) == bridged
     assert cap == (HUMID.laplace_pressure if bridged else 0.0)
 
@@ -32,7 +38,7 @@ def test_a_uniform_gap_is_the_flat_flat_pressure_and_the_full_laplace_pressure_i
 def test_contacts_and_gaps_below_the_cutoff_are_left_out():
     gap = np.array([[0.0, 0.1e-9], [0.5e-9, 2.5e-9]])  # a contact, a gap below D0 = 0.165 nm
     vdw, cap = gap_attraction(gap, HUMID)
-    expected = 1.6e-19 / (6 * math.pi) * (0.5e-9**-3 + 2.5e-9**-3) / 4
+    expected = (flat_pressure(0.5e-9) + flat_pressure(2.5e-9)) / 4
     assert vdw == pytest.approx(expected, rel=ROUNDING_SUM)  # a sum of two terms
     # only the 2.5 nm gap is bridged: the 0.5 nm one lies within the films (2t = 2.00 nm)
     assert cap == HUMID.laplace_pressure / 4
@@ -50,11 +56,11 @@ def test_pixel_sums_of_gaussian_gaps_are_the_proximity_model_s_integrals():
     gap = D - rq * rng.standard_normal((n // 400, 400))
     vdw, cap = gap_attraction(gap, HUMID)
     open_ = gap >= HUMID.cutoff
-    per_pixel_vdw = np.where(open_, 1.6e-19 / (6 * math.pi) * np.where(open_, gap, 1.0) ** -3, 0)
+    per_pixel_vdw = np.where(open_, flat_pressure(np.where(open_, gap, 1.0)), 0)
     filled = (gap >= HUMID.wet_floor) & (gap < HUMID.condensation_gap)
     se_vdw = per_pixel_vdw.std() / math.sqrt(n)
     se_cap = HUMID.laplace_pressure * filled.std() / math.sqrt(n)
-    expected_vdw = vdw_pressure(D, rq, 1.6e-19, HUMID.cutoff)
+    expected_vdw = vdw_pressure(D, rq, 1.6e-19, HUMID.cutoff, HUMID.retardation)
     expected_cap = capillary_pressure(D, rq, HUMID.cutoff, HUMID.surface_tension,
                                       HUMID.kelvin_radius, HUMID.contact_angle, HUMID.film)  # fmt: skip
     # sample means of independent pixels: |z| < 5 on their standard errors

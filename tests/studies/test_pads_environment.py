@@ -46,7 +46,7 @@ def test_the_net_load_of_a_one_summit_pad_is_its_laws_less_the_open_gaps():
     # one interface: the contact law carries w less the van der Waals share A/(12π D0²)
     shared = dataclasses.replace(SILICON, gamma=SILICON.gamma - vdw_share(SILICON.gamma, HUMID))
     contact = get_law_set("jkr").evaluate(z - d, SMOOTH, shared)["load"]
-    caps = vdw_summit(z - d, HUMID.hamaker, SMOOTH.R, p["cutoff"], p["band"])
+    caps = vdw_summit(z - d, HUMID.hamaker, SMOOTH.R, p["cutoff"], p["band"], p["retardation"])
     caps += capillary_summit(z - d, p["laplace"], SMOOTH.R, p["wet_floor"], p["gap_k"])
     gaps = open_gap_pressures(d / SMOOTH.sigma, SMOOTH, HUMID)
     expected = contact - caps - s.area * (gaps["vdw"] + gaps["capillary"])

@@ -166,6 +166,28 @@ def test_run_file_records_the_films_and_refuses_menisci_written_before_them(tmp_
     assert read_run(tmp_path / "dry.h5").spec.environment == dry  # no menisci: the same model
 
 
+def test_run_file_records_the_retardation_and_an_older_file_reads_as_non_retarded(tmp_path):
+    """The wavelength is stored (m; NaN: non-retarded); a file written before retardation has
+    none, and its sums were non-retarded: it reads back with retardation_wavelength None."""
+    from mcsim.store.files import checksum
+
+    run = _run(out=tmp_path / "env.h5")
+    with h5py.File(run.path, "r") as f:
+        assert f["environment"].attrs["retardation_wavelength"] == 100e-9
+        assert '"retardation_wavelength": "m"' in f["environment"].attrs["units"]
+    flat_env = dataclasses.replace(HUMID, retardation_wavelength=None)
+    flat = _run(environment=flat_env, out=tmp_path / "flat.h5")
+    # the same summits (common random numbers): retardation lowers every row's attraction
+    assert np.all(run.vdw.mean < flat.vdw.mean)
+    with h5py.File(flat.path, "r+") as f:
+        assert np.isnan(f["environment"].attrs["retardation_wavelength"])
+        del f["environment"].attrs["retardation_wavelength"]  # as written before retardation
+        f.attrs["checksum"] = checksum(f)
+    back = read_run(flat.path)
+    assert back.spec.environment == flat_env
+    np.testing.assert_array_equal(back.vdw.mean, flat.vdw.mean)
+
+
 def test_a_measured_map_keeps_its_heights_about_the_mean_plane_in_the_file(tmp_path):
     z = np.random.default_rng(5).exponential(1.0, 50_000)
     shape = Empirical.from_samples(z - z.mean(), bins=40, source="test map")

@@ -43,6 +43,26 @@ def test_rh_sweep_equals_adhesion_point_by_point():
     assert result.dims["capillary"] == ("rh", "h")
 
 
+@pytest.mark.parametrize("law", [LAW, "jkr"])  # jkr: the compiled design map's fast path
+def test_a_retardation_wavelength_sweep_equals_adhesion_point_by_point(law):
+    wavelengths = (2e-9, 100e-9)
+    result = sweep(SURFACES["smooth"], MATERIALS["silicon"],
+                   {"retardation_wavelength": "2nm,100nm"}, law=law, h=H,
+                   environment=Environment(hamaker=1.6e-19, rh=0.6), workers=1)  # fmt: skip
+    assert not result.failed and result.units["retardation_wavelength"] == "m"
+    np.testing.assert_allclose(result.coords["retardation_wavelength"], wavelengths, rtol=1e-15)
+    for i, wavelength in enumerate(wavelengths):
+        env = Environment(hamaker=1.6e-19, rh=0.6, retardation_wavelength=wavelength)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", RegimeWarning)
+            ref = adhesion_summary(SURFACES["smooth"], MATERIALS["silicon"], law, environment=env)
+        # jkr: the design map against adhesion_summary (tests/engine/test_designmap_environment.py)
+        for k in ("work_of_separation", "work_of_separation_vdw", "pull_off"):
+            assert result.data[k][i] == pytest.approx(getattr(ref, k), rel=2e-10), (k, wavelength)
+    vdw = result.data["work_of_separation_vdw"]
+    assert 0 < vdw[0] < vdw[1]  # the shorter the wavelength, the weaker the attraction
+
+
 def test_varying_an_environment_input_alone_starts_from_a_dry_default():
     result = sweep(SURFACES["smooth"], MATERIALS["silicon"], {"hamaker": "0.1 aJ,0.2 aJ"}, law=LAW,
                    h=H, workers=1)  # fmt: skip

@@ -13,10 +13,14 @@ local gaps u < u_c (its **cap**, u_c the band edge of
 which belongs to the contact law and is charged nothing here. Per summit, attractive
 positive (N):
 
-* van der Waals, the flat–flat pressure A/(6πu³) over the open part of the cap,
-  D0 ≤ u < u_c:  F_vdW = (A R/6)(m⁻² − u_c⁻²), m = min(max(g, D0), u_c);
-  u_c → ∞ with g ≥ D0 gives the sphere–flat A R/(6 g²) (Israelachvili Eq. 13.11 and
-  Table 13.1);
+* van der Waals, the retarded flat–flat pressure p(u) = −dW/du over the open part of the
+  cap, D0 ≤ u < u_c, W(u) = A/(12π u²)·1/(1 + b u) the flats' energy (Gregory, J. Colloid
+  Interface Sci. 83, 138, 1981; b = 5.32/λ, :func:`mcsim.physics.environment.vdw_flat_energy`):
+  F_vdW = 2πR [W(m) − W(u_c)] = (A R/6)[k(m) − k(u_c)], k(u) = 1/(u²(1 + b u)),
+  m = min(max(g, D0), u_c); b = 0 gives the non-retarded (A R/6)(m⁻² − u_c⁻²).
+  u_c → ∞ with g ≥ D0 gives the sphere–flat A R/(6 g²)·1/(1 + b g) (Derjaguin;
+  non-retarded: Israelachvili Eq. 13.11 and Table 13.1), whose energy is Gregory's retarded
+  sphere–plate −(A R/6g)[1 − b g ln(1 + 1/(b g))];
 * the meniscus: a liquid bridge joins the adsorbed films (thickness t on each face) where
   u < g_K = 2 r_K cos θ + 2t (Kelvin), and its Laplace pressure γ_L/r_K acts on the annulus
   f ≤ u < g_K above the wet floor f = max(D0, 2t) (below it the films are pressed into each
@@ -35,8 +39,10 @@ beyond their range (u_c, g_K), and −dW/dd = F with the works of :func:`vdw_sum
 import numpy as np
 
 
-def vdw_summit(delta, hamaker, R, cutoff, band):
-    """Van der Waals attraction of one summit across its open cap, N (> 0 attractive).
+def vdw_summit(delta, hamaker, R, cutoff, band, retardation):
+    """Van der Waals attraction of one summit across its open cap, N (> 0 attractive):
+    (A R/6)[k(m) − k(u_c)], k(u) = 1/(u²(1 + b u)), m = min(max(g, D0), u_c) (module
+    docstring; Gregory 1981 by Derjaguin).
 
     Parameters
     ----------
@@ -50,9 +56,12 @@ def vdw_summit(delta, hamaker, R, cutoff, band):
         Cutoff gap D0, m: smaller gaps are contact.
     band : float
         Band edge u_c, m (> D0): the cap's deepest local gap.
+    retardation : float
+        b = 5.32/λ, m⁻¹ (:func:`mcsim.physics.environment.retardation`); 0: non-retarded.
     """
     m = np.minimum(np.maximum(-delta, cutoff), band)
-    return hamaker * R / 6 * (1 / (m * m) - 1 / (band * band))
+    return hamaker * R / 6 * (1 / (m * m * (1 + retardation * m))
+                              - 1 / (band * band * (1 + retardation * band)))  # fmt: skip
 
 
 def capillary_summit(delta, laplace, R, wet_floor, gap_k):
@@ -76,14 +85,23 @@ def capillary_summit(delta, laplace, R, wet_floor, gap_k):
     return 2 * np.pi * R * laplace * (gap_k - m)
 
 
-def vdw_summit_work(delta_t, hamaker, R, cutoff, band):
+def vdw_summit_work(delta_t, hamaker, R, cutoff, band, retardation):
     """Work of :func:`vdw_summit` from interference ``delta_t`` to far away, J:
-    ∫ F dd from d_t = z − δ_t outward (NumPy only, not a kernel law)."""
+    ∫ F dd from d_t = z − δ_t outward (NumPy only, not a kernel law).
+
+    (A R/6) {∫_m^{u_c} [k(u) − k(u_c)] du + (D0 − g)⁺ [k(D0) − k(u_c)]}, with
+    ∫ k du = −1/u + b ln((1 + b u)/u), so ∫_m^{u_c} k du = 1/m − 1/u_c
+    − b ln(1 + (u_c − m)/(m (1 + b u_c))); b = 0: 1/m − 1/u_c.
+    """
     g = np.asarray(-delta_t, dtype=float)
     m = np.minimum(np.maximum(g, cutoff), band)
-    # Open part: ∫_m^{u_c} (u⁻² − u_c⁻²) du; pressed part: the constant force over D0 − g.
-    open_part = 1 / m - 1 / band - (band - m) / band**2
-    pressed = np.maximum(cutoff - g, 0) * (1 / cutoff**2 - 1 / band**2)
+    b = retardation
+    # Open part: ∫_m^{u_c} (k(u) − k(u_c)) du; pressed part: the constant force over D0 − g.
+    edge = 1 / (band**2 * (1 + b * band))
+    open_part = (
+        1 / m - 1 / band - b * np.log1p((band - m) / (m * (1 + b * band))) - (band - m) * edge
+    )
+    pressed = np.maximum(cutoff - g, 0) * (1 / (cutoff**2 * (1 + b * cutoff)) - edge)
     return hamaker * R / 6 * (open_part + pressed)
 
 
