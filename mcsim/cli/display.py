@@ -205,12 +205,20 @@ def _film_note(env, varied) -> str:
                   else f"{env.structured_film * 1e9:.4g} nm")  # fmt: skip
     band = (f"{env.wet_floor * 1e9:.4g} nm <= g < {env.condensation_gap * 1e9:.4g} nm"
             if env.has_capillary else "none")  # fmt: skip
+    thresholds = f"RH_dry = {env.bridging_rh:.3g}, RH_cr = {env.critical_rh:.3g}"
     if set(varied) & {"rh", "temperature", "contact_angle", "cutoff", "film_thickness",
-                      "structured_film"}:  # fmt: skip
+                      "structured_film", "asperity_roughness"}:  # fmt: skip
         band = "per point"
+    if set(varied) & {"temperature", "contact_angle", "film_thickness", "structured_film",
+                      "asperity_roughness"}:  # fmt: skip
+        thresholds = "per point"
+    nano = ("varied (--vary asperity_roughness)" if "asperity_roughness" in varied
+            else f"{env.asperity_roughness * 1e9:.4g} nm")  # fmt: skip
     return (f"environment films: adsorbed film t = {film} on each face, structured (ice-like) "
             f"film {structured} (bridges only where t exceeds it), bridges pull on "
-            f"max(D0, 2t) <= g < g_K = 2 r_K cos(theta) + 2t: {band}")  # fmt: skip
+            f"max(D0, 2t) <= g < g_K = 2 r_K cos(theta) + 2t: {band}; asperities' nanoscale "
+            f"roughness sigma_n = {nano} (menisci spread once 2 r_K cos(theta) >= 3 sigma_n): "
+            f"{thresholds}")  # fmt: skip
 
 
 def environment_notes(surface, environment, varied=(), material=None) -> list[str]:

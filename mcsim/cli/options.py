@@ -362,6 +362,11 @@ def add_environment(p) -> None:
     g.add_argument("--structured-film", metavar="T_S", help="thickness of the ice-like first "
                    "layers of the film, >= 0: liquid bridges form only where the film is at least "
                    "this thick (m unless a unit is given; default 0.84 nm, 3 layers: from RH 0.3)")  # fmt: skip
+    g.add_argument("--asperity-roughness", metavar="SIGMA_N", help="rms of the asperities' own "
+                   "nanoscale roughness, >= 0 (m unless a unit is given: '0.5 nm'; default 0): "
+                   "menisci spread across the interface only from the critical humidity RH_cr "
+                   "where the Kelvin band 2 r_K cos(theta) reaches 3 SIGMA_N; below it bridges stay "
+                   "at the asperity contacts (DelRio et al. 2009; docs/physics.md)")  # fmt: skip
 
 
 def environment_of(args):

@@ -155,7 +155,7 @@ def add_parser(sub) -> None:
                    help="input to vary (repeatable; the grid is their outer product, in this order): sigma, R, "
                    "eta, E (both solids), E1, E2, nu (both), nu1, nu2, w (work of adhesion; or gamma), z0, tau, H, law (a list, e.g. "
                    "law=jkr,dmt,maugis-dugdale), area (pad area, with --mc or --pads), restoring_force (with --pads, instead of --restoring-force), and the environment's rh, hamaker (J), "
-                   "contact_angle (degrees when bare), cutoff (m), temperature (K), film_thickness, structured_film, retardation_wavelength (m). SPEC: start:stop:num[:log] or a "
+                   "contact_angle (degrees when bare), cutoff (m), temperature (K), film_thickness, structured_film, asperity_roughness, retardation_wavelength (m). SPEC: start:stop:num[:log] or a "
                    "list a,b,c; each value with an optional unit, a bare number is SI "
                    "(sigma=0.3nm:20nm:40:log, w=0.05:1:5 in J/m^2)")  # fmt: skip
     p.add_argument("--out", required=True, metavar="FILE.h5", help="sweep file (HDF5)")

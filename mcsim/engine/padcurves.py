@@ -230,8 +230,8 @@ def force_turn(spec: MonteCarloSpec, z: np.ndarray, force: float) -> tuple[float
         The pad's summit heights, m (:func:`patch_heights`).
     force : float
         Applied compressive force P·A, N (>= 0). With 0 the pad rests under its own
-        attraction: the largest d below its first touch (the contact law's reach above the
-        tallest summit) where the net load turns compressive (far away the load is 0 too,
+        attraction: the largest d below its first touch (the tallest summit at its contact
+        law's jump-in) where the net load turns compressive (far away the load is 0 too,
         which does not count).
 
     Returns
@@ -247,11 +247,13 @@ def force_turn(spec: MonteCarloSpec, z: np.ndarray, force: float) -> tuple[float
     """
     sigma = spec.surface.sigma
     bottom = float(spec.h.min()) * sigma
-    # the first touch: the contact law's reach (the environment's open gaps may push back
-    # slightly above the summits, where the caps claim more than the surface: docs/physics.md,
-    # 'The environment covers the surface once'; a pad rests on its summits, not on that)
-    reach = min(contact_edges(spec).reach, 0.0)
-    top = max(float(z.max()) - reach, bottom) if z.size else bottom
+    # with an environment, the first touch: the tallest summit at its contact law's jump-in
+    # (0 without one): the open gaps may push back slightly above the summits, where the caps
+    # claim more than the surface (docs/physics.md, 'The environment covers the surface
+    # once'), and a pad rests on its summits, not on that; dry, as before, the law's reach
+    edges = contact_edges(spec)
+    touch = min(edges.reach if spec.environment is None else edges.jump_in, 0.0)
+    top = max(float(z.max()) - touch, bottom) if z.size else bottom
 
     def reaches(load):  # at 0 the force must be exceeded: far away the load is 0 too
         return load > force if force == 0 else load >= force

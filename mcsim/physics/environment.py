@@ -76,6 +76,13 @@ DEFAULT_RETARDATION_WAVELENGTH = 100e-9
 #: that sphere–plate *energy*, −(A R/6D)/(1 + 14 D/λ), within 5 % of it up to D = 10 nm.)
 GREGORY_B = 5.32
 
+#: The nano-gap of a contact in units of the asperities' nanoscale roughness σ_n: the tallest
+#: nano-asperities, about 3σ_n above their mean plane (the largest of a few hundred Gaussian
+#: heights), hold a contacting summit's mean surface that far from the counter-surface, and a
+#: meniscus spreads over the summit only once its Kelvin band spans it (DelRio et al.,
+#: Langmuir 25, 11727, 2009: bridges confined to the asperity contacts below RH_cr).
+NANO_GAP = 3.0
+
 #: Largest Hamaker constant accepted, J: real ones lie between ~1e-21 and ~5e-19 J (metals
 #: across vacuum; Israelachvili, Intermolecular and Surface Forces, ch. 13); 1e-16 J is 200× the largest, and keeps every
 #: attraction a finite float.
@@ -133,6 +140,13 @@ class Environment:
         where t > t_s, with liquid-like water on top (RH > RH_dry = 0.30 on the isotherm);
         0: no structured layers, bridges at any RH > 0 (with ``film_thickness`` = 0 the Kelvin
         band D0 <= g < 2 r_K cos θ, no film).
+    asperity_roughness : float
+        Rms σ_n of the asperities' own nanoscale roughness, m, >= 0 (default 0: smooth
+        asperities). Menisci spread from a contact across the interface only once the Kelvin
+        band 2 r_K cos θ spans the nano-gap :data:`NANO_GAP` σ_n that the nano-asperities hold
+        a contact open by (RH >= :attr:`critical_rh`, DelRio's RH_cr); below, bridges stay
+        confined to the nano-contacts and their pull is neglected (docs/physics.md, 'Two
+        thresholds').
     retardation_wavelength : float or None
         Retardation wavelength λ of the van der Waals attraction, m, > 0 (default
         :data:`DEFAULT_RETARDATION_WAVELENGTH` = 100 nm, Gregory 1981); None: non-retarded.
@@ -153,6 +167,7 @@ class Environment:
     molar_volume: float = 1.80e-5
     film_thickness: float | None = None
     structured_film: float = films.STRUCTURED_FILM
+    asperity_roughness: float = 0.0
     retardation_wavelength: float | None = DEFAULT_RETARDATION_WAVELENGTH
 
     def __post_init__(self) -> None:
@@ -168,7 +183,7 @@ class Environment:
         set_(self, "temperature", check_range("temperature", self.temperature, "K", low=0))
         for name, unit in (("surface_tension", "J/m^2"), ("molar_volume", "m^3/mol")):
             set_(self, name, check_range(name, getattr(self, name), unit, low=0))
-        for name in ("film_thickness", "structured_film"):
+        for name in ("film_thickness", "structured_film", "asperity_roughness"):
             if getattr(self, name) is not None:
                 set_(self, name, check_range(name, getattr(self, name), "m", low=0,
                                              low_open=False))  # fmt: skip
@@ -189,6 +204,7 @@ class Environment:
         molar_volume=1.80e-5,
         film_thickness=None,
         structured_film=films.STRUCTURED_FILM,
+        asperity_roughness=0.0,
         retardation_wavelength=DEFAULT_RETARDATION_WAVELENGTH,
     ) -> Environment:
         """An environment from values as users write them (numbers SI, or strings with units).
@@ -198,8 +214,8 @@ class Environment:
         ``rh`` a bare fraction, ``contact_angle`` an angle (``"20 deg"``, ``"0.35 rad"``;
         a bare number is in **degrees**), ``temperature`` in K (no °C), ``surface_tension``
         an energy per area (``"72 mJ/m^2"``), ``molar_volume`` (``"18 cm^3/mol"``),
-        ``film_thickness`` (None: the isotherm) and ``structured_film`` lengths
-        (``"0.8 nm"``);
+        ``film_thickness`` (None: the isotherm), ``structured_film`` and
+        ``asperity_roughness`` lengths (``"0.8 nm"``);
         ``retardation_wavelength`` a length (``"100 nm"``), or None or ``"none"``:
         non-retarded.
 
@@ -227,6 +243,7 @@ class Environment:
             if film_thickness is None
             else parse_quantity(film_thickness, "length", "film_thickness"),
             structured_film=parse_quantity(structured_film, "length", "structured_film"),
+            asperity_roughness=parse_quantity(asperity_roughness, "length", "asperity_roughness"),
             retardation_wavelength=_wavelength(retardation_wavelength),
         )
 
@@ -279,7 +296,44 @@ class Environment:
                 f"film {self.structured_film * 1e9:.3g} nm (rh = {self.rh:g}): the first, "
                 f"ice-like layers form no liquid bridges{onset}"
             )
+        band = 2 * self.kelvin_radius * math.cos(self.contact_angle)
+        if band < NANO_GAP * self.asperity_roughness:
+            return (
+                f"menisci confined to the asperities' contacts: the Kelvin band 2 r_K cos(theta) "
+                f"= {band * 1e9:.3g} nm < {NANO_GAP:g} sigma_n = "
+                f"{NANO_GAP * self.asperity_roughness * 1e9:.3g} nm (rh = {self.rh:g}; they "
+                f"spread from RH_cr = {self.critical_rh:.3g}); the confined bridges' pull is "
+                "neglected"
+            )
         return None
+
+    @property
+    def bridging_rh(self) -> float:
+        """DelRio's RH_dry: the humidity above which liquid bridges form at all, where the
+        isotherm's film passes the structured layers (:func:`mcsim.physics.films.film_humidity`);
+        0 with no structured layers; with a given ``film_thickness``, 0 if it passes them,
+        else 1 (none at any RH)."""
+        if self.structured_film == 0:
+            return 0.0
+        if self.film_thickness is not None:
+            return 0.0 if self.film_thickness > self.structured_film else 1.0
+        return float(films.film_humidity(self.structured_film))
+
+    @property
+    def critical_rh(self) -> float:
+        """DelRio's RH_cr: the humidity from which menisci spread across the interface, the
+        larger of :attr:`bridging_rh` and the RH at which the Kelvin band 2 r_K cos θ equals
+        the nano-gap :data:`NANO_GAP` σ_n (r_K = γ_L V_m/(R_g T ln(1/RH)), inverted); 1 for a
+        liquid that does not wet (θ >= 90°)."""
+        cos = math.cos(self.contact_angle)
+        if cos <= 0:
+            return 1.0
+        gap = NANO_GAP * self.asperity_roughness
+        if gap == 0:
+            return self.bridging_rh
+        radius = gap / (2 * cos)
+        scale = self.surface_tension * self.molar_volume / (GAS_CONSTANT * self.temperature)
+        return max(self.bridging_rh, math.exp(-scale / radius))
 
     @property
     def has_capillary(self) -> bool:

@@ -31,6 +31,7 @@
     film_thickness = "1.2 nm"  # adsorbed film on each face (default: the isotherm t(RH))
     structured_film = "0.84 nm"  # ice-like first layers: no bridges below (default 0.84 nm)
     retardation_wavelength = "100 nm"      # van der Waals retardation (default), or "none"
+    asperity_roughness = "0.5 nm"  # asperities' nanoscale roughness: menisci spread from RH_cr
 
 A second rough surface facing this one (default: a flat one) and the correlation ρ of the
 two surfaces' heights, in [-1, 1] (default 0), combined into the gap's surface by
@@ -527,6 +528,8 @@ ENVIRONMENT_KEYS = {
     "molar_volume": ("molar_volume", "molar_volume", "e.g. '18 cm^3/mol'"),
     "film_thickness": ("film_thickness", "length", "adsorbed film on each face, e.g. '1.2 nm'"),
     "structured_film": ("structured_film", "length", "ice-like first layers, e.g. '0.84 nm'"),
+    "asperity_roughness": ("asperity_roughness", "length",
+                           "rms of the asperities' nanoscale roughness, e.g. '0.5 nm'"),
     "retardation_wavelength": ("retardation_wavelength", "length",
                                "van der Waals retardation wavelength, e.g. '100 nm' or 'none'"),
 }  # fmt: skip

@@ -27,7 +27,7 @@ from mcsim.store.sweepvariables import CURVES
 #: Fields of the Environment as stored, with their units.
 _ENVIRONMENT_UNITS = {"hamaker": "J", "cutoff": "m", "rh": "1", "contact_angle": "rad",
                       "temperature": "K", "surface_tension": "J/m^2", "molar_volume": "m^3/mol",
-                      "film_thickness": "m", "structured_film": "m",
+                      "film_thickness": "m", "structured_film": "m", "asperity_roughness": "m",
                       "retardation_wavelength": "m"}  # fmt: skip
 
 #: Fields stored as NaN when None (no van der Waals; the isotherm; non-retarded).
@@ -37,7 +37,8 @@ _NONE_AS_NAN = ("hamaker", "film_thickness", "retardation_wavelength")
 MODEL = ("the proximity model over the heights about the mean plane, each local gap once, "
          "shared between the summits' caps (per-summit van der Waals and menisci, local gaps "
          "below band_edge) and the open gaps (the rest: the whole less the caps' expectation); "
-         "menisci bridge adsorbed films (film_thickness, structured_film)")  # fmt: skip
+         "menisci bridge adsorbed films (film_thickness, structured_film) and spread from a "
+         "critical humidity (asperity_roughness)")  # fmt: skip
 
 
 def write_environment(f, spec, part) -> None:

@@ -44,7 +44,7 @@ the axes ``(h)`` of an approach, or ``(branch, h)`` of a cycle (``--cycle``: the
     /environment           attrs: hamaker [J], cutoff [m], rh, contact_angle [rad],
                            temperature [K], surface_tension [J/m^2], molar_volume
                            [m^3/mol], film_thickness [m] (NaN: the isotherm),
-                           structured_film [m], retardation_wavelength [m] (NaN: non-retarded;
+                           structured_film [m], asperity_roughness [m], retardation_wavelength [m] (NaN: non-retarded;
                            absent in older files, read as non-retarded), kelvin_radius [m], film (the adsorbed
                            film used) [m], band_edge [m], units (JSON),
                            rq [m], summit_offset [m], gap_source (given or the Nayak

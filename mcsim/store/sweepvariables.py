@@ -34,6 +34,11 @@ INPUTS: dict[str, tuple[str, tuple[str, ...], str]] = {
     "temperature": ("temperature", ("temperature",), "temperature of the environment"),
     "film_thickness": ("length", ("film_thickness",), "adsorbed film on each face (given)"),
     "structured_film": ("length", ("structured_film",), "ice-like first layers of the film"),
+    "asperity_roughness": (
+        "length",
+        ("asperity_roughness",),
+        "rms of the asperities' nanoscale roughness",
+    ),
     "retardation_wavelength": (
         "length",
         ("retardation_wavelength",),
@@ -44,7 +49,7 @@ INPUTS: dict[str, tuple[str, tuple[str, ...], str]] = {
 
 #: Inputs of :data:`INPUTS` that set the environment (:class:`mcsim.physics.environment.Environment`).
 ENVIRONMENT_INPUTS = ("rh", "hamaker", "contact_angle", "cutoff", "temperature", "film_thickness",
-                      "structured_film", "retardation_wavelength")  # fmt: skip
+                      "structured_film", "asperity_roughness", "retardation_wavelength")  # fmt: skip
 
 
 #: Dimension name of each input whose name is taken by an output.

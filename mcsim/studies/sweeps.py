@@ -128,7 +128,7 @@ def sweep(
         ``auto``), ``area`` (pad area, m², with ``mc`` only), and the environment's
         ``rh``, ``hamaker`` (J), ``contact_angle`` (rad; degrees when bare in a
         string), ``cutoff`` (m), ``temperature`` (K), ``film_thickness``,
-        ``structured_film`` and ``retardation_wavelength`` (m). Values: a string
+        ``structured_film``, ``asperity_roughness`` and ``retardation_wavelength`` (m). Values: a string
         ``"start:stop:num[:log]"`` or ``"a,b,c"`` with optional units (a bare number
         is SI), or a sequence (numbers in SI).
     law : str, optional
@@ -452,7 +452,8 @@ def _attrs(surface, material, environment, law, dims, grid, config: Config, area
         attrs["environment"] = json.dumps(dataclasses.asdict(environment) | {"units": {
             "hamaker": "J", "cutoff": "m", "rh": "1", "contact_angle": "rad", "temperature": "K",
             "surface_tension": "J/m^2", "molar_volume": "m^3/mol", "film_thickness": "m",
-            "structured_film": "m", "retardation_wavelength": "m"}})  # fmt: skip
+            "structured_film": "m", "asperity_roughness": "m",
+            "retardation_wavelength": "m"}})  # fmt: skip
     if config.mc:
         attrs |= {"area": math.nan if area is None else area, "area_unit": "m^2",
                   "realizations": config.realizations, "seed_entropy": str(config.entropy),

@@ -294,7 +294,7 @@ def test_humid_turns_and_pull_offs_are_those_of_a_dense_evaluation_of_the_pads_c
             d_t, load = padcurves.force_turn(spec, z, force)
             assert (load > force) if force == 0 else (load >= force)
             # up to the first touch (a pad rests on its summits: force_turn)
-            touch = z.max() - min(padload.contact_edges(spec).reach, 0.0)
+            touch = z.max() - min(padload.contact_edges(spec).jump_in, 0.0)
             above = np.linspace(d_t + padload.XTOL * sigma, touch, 30001)
             dense = padload.pad_load(spec, z, above)
             assert np.all((dense <= force) if force == 0 else (dense < force))
