@@ -145,8 +145,9 @@ FIGURES = {
     ),
     "stiction_humid.png": Figure(
         data=(
-            ("sweep", "--surface", "smooth", "--law", "jkr", "--hamaker", "1.6e-19J", "--vary",
-             "rh=0,0.3,0.4,0.5,0.6,0.7,0.8,0.9", "--preload", "0", "--pads", "40", "--area",
+            ("sweep", "--surface", "smooth", "--law", "maugis-dugdale", "--hamaker", "1.6e-19J",
+             "--asperity-roughness", "0.5nm", "--vary", "rh=0,0.3,0.4,0.45,0.5,0.55,0.7,0.9",
+             "--preload", "0", "--pads", "40", "--area",
              "30um^2", "--restoring-force", "450uN", "--seed", "1", "--out", "{work}/humid.h5",
              "--quiet"),
         ),
