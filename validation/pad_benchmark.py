@@ -37,6 +37,7 @@ from mcsim.engine import kernels, padbounds, padcurves, padfriction, padload
 from mcsim.engine.spec import MonteCarloSpec
 from mcsim.model.presets import MATERIALS, SURFACES
 from mcsim.physics.environment import Environment
+from mcsim.physics.friction import has_friction
 
 HUMID = Environment(hamaker=1.6e-19, cutoff=0.2e-9, rh=0.7)
 PRELOAD, AREA = 1e6, 30e-12
@@ -60,8 +61,9 @@ def one_pad(spec, r, turn=None):
     t2 = time.perf_counter()
     work = padcurves.pad_work(spec, z, d_t)
     t3 = time.perf_counter()
-    padfriction.static_friction(spec, z, d_t)
-    padfriction.normal_load(spec, z, d_t, PRELOAD * spec.area)
+    if has_friction(spec.law, spec.material):  # jkr: Savkoor-Briggs; dmt, ... need tau
+        padfriction.static_friction(spec, z, d_t)
+        padfriction.normal_load(spec, z, d_t, PRELOAD * spec.area)
     t4 = time.perf_counter()
     return (pull, work, z.size), (t1 - t0, t2 - t1, t3 - t2, t4 - t3)
 

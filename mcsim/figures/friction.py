@@ -4,8 +4,8 @@ pad slips.
 
 * Top: μ_s of the pads against the varied input (RH, the preload, ...): the mean (points) with
   the 95 % interval of the mean (bars, ±1.96 std/√n over the n pads), and the spread from pad
-  to pad, the 5–95 % quantiles (band) with the median (dashed). A second varied input draws
-  a line per value.
+  to pad, the 5–95 % quantiles (band) with the median (dashed); on a log axis where they span
+  more than a factor 30. A second varied input draws a line per value.
 * Bottom, with a tangential force: p_slip with its 95 % interval (Clopper–Pearson; squares
   where importance sampling estimated it, ``p_slip_method``).
 """
@@ -72,7 +72,11 @@ def friction_figure(sweep):
                                          "importance sampling" if fmt == "s" else
                                          "fraction of the pads, Clopper-Pearson")).strip())  # fmt: skip
     axes[0].set_ylabel(r"static friction coefficient $\mu_s = T_s/W$")
-    axes[0].set_ylim(bottom=0)
+    low, high = np.nanmin(d["mu_static_q05"]), np.nanmax(d["mu_static_q95"])
+    if low > 0 and high / low > 30:  # μ_s ∝ 1/P over a decade or more of the preload
+        axes[0].set_yscale("log")
+    else:
+        axes[0].set_ylim(bottom=0)
     axes[0].legend(fontsize="small")
     if slip:
         axes[1].set_ylabel("probability that a pad slips, p_slip")
