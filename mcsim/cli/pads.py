@@ -1,4 +1,4 @@
-"""``mcsim pads``: pull-off statistics of finite pads from a cycle run."""
+"""``mcsim pads``: pull-off statistics of finite pads from a cycle run, and their static friction."""
 
 from __future__ import annotations
 
@@ -201,7 +201,9 @@ def add_parser(sub) -> None:
                        description="Per-pad pull-off force of a --cycle Monte Carlo run (one pad per realization): "
                        "mean, standard error, standard deviation, 5/50/95 % quantiles (N) and, with a restoring "
                        "force, the probability that a pad sticks with its 95 % interval (Clopper-Pearson, or "
-                       "Wilson's score interval). --format csv lists each pad's pull-off force (N) instead.")  # fmt: skip
+                       "Wilson's score interval). With --friction or --tangential-force: each pad's static friction at "
+                       "its turn and mu_s (mean, std, quantiles), and the probability that a pad slips. --format csv "
+                       "lists each pad's pull-off force (N) instead.")  # fmt: skip
     p.add_argument(
         "run", help="run file (.h5) of `mcsim simulate ... --cycle` with a contact law set"
     )

@@ -361,6 +361,12 @@ class Run:
                        turn_load=turn_load, preload=preload, exact=exact, top=float(grid[-1]),
                        static_friction=static, normal_load=normal)  # fmt: skip
 
+    def pads(self, turn: float | None = None) -> PullOff:
+        """Each pad of a cycle run (one per realization): its turn, its pull-off and its static
+        friction there, :meth:`pull_off` with ``friction`` (``static_friction``,
+        ``normal_load``, ``mu_static``; docs/physics.md, 'Friction of pads')."""
+        return self.pull_off(turn, friction=True)
+
     def to_dataframe(self):
         """Tidy table: one row per (source, realization, h, quantity).
 

@@ -185,7 +185,11 @@ def test_the_report_adds_each_pads_friction_and_p_slip_as_mcsim_pads_prints_them
         assert printed[name] == value and printed["units"][name] == unit, name
     assert printed["p_slip_method"] == "pads" and "Savkoor-Briggs" in err
     pads = report.pull_off
-    spec = mcsim.read_run(cycle_run).spec
+    run = mcsim.read_run(cycle_run)
+    spec = run.spec
+    each = run.pads()
+    assert np.array_equal(each.static_friction, pads.static_friction)
+    assert np.array_equal(each.mu_static, pads.static_friction / pads.normal_load)
     for r in range(3):  # each pad's T_s at its own turn under the preload
         z = padload.patch_heights(spec, r)
         assert pads.static_friction[r] == padfriction.static_friction(
