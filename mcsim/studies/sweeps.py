@@ -130,7 +130,9 @@ def sweep(
         Input name to its values, in grid order: ``sigma``, ``R``, ``eta`` (surface),
         ``E`` (both E1 and E2), ``E1``, ``E2``, ``nu`` (both), ``nu1``, ``nu2``,
         ``gamma``, ``z0``, ``tau``, ``H`` (material), ``law`` (law-set names or
-        ``auto``), ``area`` (pad area, m², with ``mc`` only), and the environment's
+        ``auto``), ``area`` (pad area, m², with ``mc`` only), ``preload`` (Pa; the pads
+        of points that differ in it alone are the same), with ``pads`` ``restoring_force``
+        and ``tangential_force`` (N), and the environment's
         ``rh``, ``hamaker`` (J), ``contact_angle`` (rad; degrees when bare in a
         string), ``cutoff`` (m), ``temperature`` (K). Values: a string
         ``"start:stop:num[:log]"`` or ``"a,b,c"`` with optional units (a bare number
