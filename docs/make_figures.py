@@ -156,6 +156,18 @@ FIGURES = {
         made="stiction_humid.png",
         slow=True,
     ),
+    "friction_slip.png": Figure(
+        data=(
+            ("sweep", "--surface", "smooth", "--law", "jkr", "--hamaker", "1.6e-19J", "--vary",
+             "preload=0.1MPa:10MPa:5:log", "--vary", "rh=0,0.6", "--pads", "40", "--area",
+             "30um^2", "--tangential-force", "1.75mN", "--seed", "1", "--out",
+             "{work}/slip.h5", "--quiet"),
+        ),
+        plot=(("plot", "{work}/slip.h5", "--out", "{work}/friction_slip.png", "--quiet"),),
+        inputs=("slip.h5",),
+        made="friction_slip.png",
+        slow=True,
+    ),
     "design_sigma.png": Figure(
         data=(
             ("sweep", "--surface", "smooth", "--law", "auto", "--vary",

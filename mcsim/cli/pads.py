@@ -1,4 +1,4 @@
-"""``mcsim pads``: pull-off statistics of finite pads from a cycle run."""
+"""``mcsim pads``: pull-off statistics of finite pads from a cycle run, and their static friction."""
 
 from __future__ import annotations
 
@@ -26,8 +26,15 @@ def run(args) -> int:
         if fr < 0:
             raise ParameterError(f"--restoring-force: {args.restoring_force!r} is negative "
                                  "(allowed: a force >= 0, e.g. 2uN)")  # fmt: skip
-    if args.tail and fr is None:
-        raise ParameterError("--tail: importance sampling estimates p_stick; add --restoring-force")
+    ft = None
+    if args.tangential_force is not None:
+        ft = parse_quantity(args.tangential_force, "force", "--tangential-force")
+        if not (math.isfinite(ft) and ft >= 0):
+            raise ParameterError(f"--tangential-force: {args.tangential_force!r} (allowed: a finite "
+                                 "force >= 0, e.g. 50uN)")  # fmt: skip
+    if args.tail and fr is None and ft is None:
+        raise ParameterError("--tail: importance sampling estimates p_stick or p_slip; add "
+                             "--restoring-force or --tangential-force")  # fmt: skip
     if args.plot:
         from mcsim.store.outputs import check_output
 
@@ -38,7 +45,8 @@ def run(args) -> int:
         check_output(args.plot, inputs=[args.run], overwrite=args.overwrite)
     run = read_run(args.run, allow_incomplete=args.partial)
     try:
-        report = pad_report(run, fr, args.interval, tail=True if args.tail else None)
+        report = pad_report(run, fr, args.interval, tail=True if args.tail else None,
+                            friction=args.friction, tangential_force=ft)  # fmt: skip
     except ParameterError as err:
         raise ParameterError(f"{args.run}: {err}") from None
     pull_off, stats = report.pull_off, report.statistics
@@ -58,6 +66,8 @@ def run(args) -> int:
         _p_stick_notes(report, stats.pads, args.tail)
         if report.stick["p_stick_method"] == "importance":
             interval = "Clopper-Pearson 95 % on the effective sample size (importance sampling)"
+    if report.friction is not None:
+        _friction_notes(report, run.spec)
     fields = report.quantities()
     method = _method(pull_off)
     if args.format == "json":  # the same fields as the table, with their units
@@ -65,6 +75,8 @@ def run(args) -> int:
                  for k, (v, _) in fields.items()}  # fmt: skip
         if fr is not None:
             clean["p_stick_method"] = report.stick["p_stick_method"]
+        if ft is not None:
+            clean["p_slip_method"] = report.slip["p_slip_method"]
         clean |= {"interval": interval, "pull_off_method": method,
                   "units": {k: u for k, (_, u) in fields.items()}}  # fmt: skip
         print(json.dumps(clean, indent=1, allow_nan=False))
@@ -127,6 +139,24 @@ def _p_stick_notes(report, n: int, asked: bool) -> None:
               "hold here", file=sys.stderr)  # fmt: skip
 
 
+def _friction_notes(report, spec) -> None:
+    """What T_s and μ_s are, and how p_slip was found."""
+    from mcsim.engine.padfriction import check_friction
+
+    rule = {"savkoor-briggs": "Savkoor-Briggs (Eq. 6) of each touching summit's load",
+            "shear": "tau x each touching summit's contact area"}[check_friction(spec)]  # fmt: skip
+    preload = report.pull_off.preload
+    load = ("the environment's pull at the turn (menisci and van der Waals; none dry: mu_s "
+            "undefined)" if preload == 0 else "the preload force P*A" if preload is not None
+            else "the pad's net approach load at the turn")  # fmt: skip
+    f = report.friction
+    print(f"mcsim: note: static friction T_s at each pad's turn: {rule}; mu_s = T_s / {load} "
+          f"(defined for {f.mu_pads} of {f.pads} pads)", file=sys.stderr)  # fmt: skip
+    if report.slip is not None and report.slip["p_slip_method"] == "importance":
+        print(f"mcsim: note: p_slip = P(T_s < tangential force) by importance sampling "
+              f"(effective pads on the rarer side {report.slip['p_slip_ess']:.3g})", file=sys.stderr)  # fmt: skip
+
+
 def _print_pads(pull_off) -> None:
     """``--format csv``: one row per pad."""
     import numpy as np
@@ -140,9 +170,14 @@ def _print_pads(pull_off) -> None:
                "grid_h_pull_off"]  # fmt: skip
     turn_load = (pull_off.turn_load if pull_off.turn_load is not None
                  else np.full(pull_off.force.shape, math.nan))  # fmt: skip
-    rows = [dict(zip(columns, (i, *map(float, row)))) for i, row in enumerate(zip(
-        pull_off.force, pull_off.h, pull_off.h_turn, turn_load, pull_off.grid_force,
-        pull_off.grid_h))]  # fmt: skip
+    values = [pull_off.force, pull_off.h, pull_off.h_turn, turn_load, pull_off.grid_force,
+              pull_off.grid_h]  # fmt: skip
+    if pull_off.static_friction is not None:
+        print("mcsim: note: with friction: static_friction_N (T_s at the turn), normal_load_N (W, "
+              "NaN where undefined) and mu_static (T_s/W)", file=sys.stderr)  # fmt: skip
+        columns += ["static_friction_N", "normal_load_N", "mu_static"]
+        values += [pull_off.static_friction, pull_off.normal_load, pull_off.mu_static]
+    rows = [dict(zip(columns, (i, *map(float, row)))) for i, row in enumerate(zip(*values))]
     print_rows(rows, columns, "csv")
 
 
@@ -166,7 +201,9 @@ def add_parser(sub) -> None:
                        description="Per-pad pull-off force of a --cycle Monte Carlo run (one pad per realization): "
                        "mean, standard error, standard deviation, 5/50/95 % quantiles (N) and, with a restoring "
                        "force, the probability that a pad sticks with its 95 % interval (Clopper-Pearson, or "
-                       "Wilson's score interval). --format csv lists each pad's pull-off force (N) instead.")  # fmt: skip
+                       "Wilson's score interval). With --friction or --tangential-force: each pad's static friction at "
+                       "its turn and mu_s (mean, std, quantiles), and the probability that a pad slips. --format csv "
+                       "lists each pad's pull-off force (N) instead.")  # fmt: skip
     p.add_argument(
         "run", help="run file (.h5) of `mcsim simulate ... --cycle` with a contact law set"
     )
@@ -179,6 +216,13 @@ def add_parser(sub) -> None:
     p.add_argument("--tail", action="store_true",
                    help="with --restoring-force and >= 100 pads: p_stick by importance sampling, down "
                    "to 1e-6 (default: where fewer than 10 pads lie on the rarer side, else the pads' fraction)")  # fmt: skip
+    p.add_argument("--friction", action="store_true",
+                   help="also each pad's static friction T_s at its turn (Savkoor-Briggs for jkr, tau x "
+                   "contact area with the material's tau) and mu_s = T_s / normal load: mean, std, "
+                   "5/50/95 %% quantiles")  # fmt: skip
+    p.add_argument("--tangential-force", metavar="F",
+                   help="force pulling the pad sideways (N or with a unit, '50uN'; implies --friction): "
+                   "p_slip, the fraction of pads whose static friction is below it, with its 95 %% interval")  # fmt: skip
     p.add_argument("--format", choices=FORMATS, default="table",
                    help="table or json: the statistics; csv: one row per pad (pull-off in N)")  # fmt: skip
     p.add_argument(

@@ -78,6 +78,7 @@ def run(args) -> int:
 
 def _plot_sweep(args, sweeps: list[str], out: Path) -> int:
     """``mcsim plot SWEEP.h5``: design curves or design maps (:mod:`mcsim.figures.sweeps`)."""
+    from mcsim.figures.friction import friction_figure, is_friction_sweep
     from mcsim.figures.stiction import is_pads_sweep, stiction_figure
     from mcsim.figures.style import save
     from mcsim.figures.sweeps import sweep_figure
@@ -92,7 +93,9 @@ def _plot_sweep(args, sweeps: list[str], out: Path) -> int:
                              "mcsim sweep command plus --resume, or pass --partial to plot its "
                              "completed points")  # fmt: skip
     check_output(out, inputs=args.run, overwrite=args.overwrite)
-    if is_pads_sweep(result):
+    if is_friction_sweep(result) and args.kind != "stiction":
+        figure = friction_figure(result)
+    elif is_pads_sweep(result):
         figure = stiction_figure(result)
     else:
         figure = sweep_figure(result, kind=args.kind)
@@ -110,9 +113,10 @@ def add_parser(sub) -> None:
     p.add_argument(
         "run", nargs="+", help="run file(s) (.h5); several are overlaid; or one sweep file"
     )
-    p.add_argument("--kind", choices=("auto", "lines", "map"), default="auto",
+    p.add_argument("--kind", choices=("auto", "lines", "map", "stiction"), default="auto",
                    help="sweep files: 'lines' (against the first input, a line per value of the second), "
-                   "'map' (two numeric inputs), 'auto' (default: a map for two numeric inputs)")  # fmt: skip
+                   "'map' (two numeric inputs), 'auto' (default: a map for two numeric inputs; a pads "
+                   "sweep with friction: mu_s and p_slip), 'stiction' (a pads sweep's p_stick)")  # fmt: skip
     p.add_argument("--out", help="PNG file (default: next to the file, FILE.png, or with --kind "
                    "lines or map FILE-lines.png, FILE-map.png; required for several)")  # fmt: skip
     p.add_argument("--overwrite", action="store_true", help="replace an existing PNG file")

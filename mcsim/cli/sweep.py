@@ -55,7 +55,7 @@ def run(args) -> int:
         try:
             result = sweep(
                 given, material, vary, **pair, law=args.law, h=parse_h(args.h), turn=parse_turn(args.turn),
-                environment=environment, mc=args.mc, pads=args.pads, restoring_force=args.restoring_force, preload=args.preload, tail=True if args.tail else None, area=args.area, realizations=args.realizations or 1, seed=args.seed, device=args.device,
+                environment=environment, mc=args.mc, pads=args.pads, restoring_force=args.restoring_force, preload=args.preload, tail=True if args.tail else None, friction=args.friction, tangential_force=args.tangential_force, area=args.area, realizations=args.realizations or 1, seed=args.seed, device=args.device,
                 workers=args.workers, scheduler=args.scheduler or args.dask, out=out,
                 overwrite=args.overwrite, resume=args.resume, checkpoint_every=args.checkpoint_every,
                 progress=not args.quiet and sys.stderr.isatty(), command=cli_command(),
@@ -76,6 +76,7 @@ def run(args) -> int:
                   f"(variable regime_warning), e.g.: {first}", file=sys.stderr)  # fmt: skip
         _warn_few_contacts(result)
         _p_stick_notes(result)
+        _p_slip_notes(result)
         failed = result.failed
         for inputs, error in failed[:MAX_FAILED_SHOWN]:
             shown = ", ".join(f"{k} = {v:.6g}" if isinstance(v, float) else f"{k} = {v}"
@@ -142,6 +143,20 @@ def _p_stick_notes(result) -> None:
               "hold there", file=sys.stderr)  # fmt: skip
 
 
+def _p_slip_notes(result) -> None:
+    """Where p_slip came from importance sampling."""
+    import numpy as np
+
+    d = result.data
+    if "p_slip_method" not in d:
+        return
+    tail = (d["p_slip_method"] == "importance") & np.isfinite(d["p_slip"])
+    if tail.any():
+        print(f"mcsim: note: p_slip by importance sampling at {int(tail.sum())} of {tail.size} "
+              f"points (variable p_slip_method; effective pads on the rarer side p_slip_ess, "
+              f"lowest {np.min(d['p_slip_ess'][tail]):.3g})", file=sys.stderr)  # fmt: skip
+
+
 def add_parser(sub) -> None:
     p = sub.add_parser("sweep", help="curves and adhesion summaries over a grid of inputs, as HDF5",
                        description="Analytic curves over --h, regime numbers and, for law sets with a load and a "
@@ -154,7 +169,7 @@ def add_parser(sub) -> None:
     p.add_argument("--vary", action="append", required=True, metavar="NAME=SPEC",
                    help="input to vary (repeatable; the grid is their outer product, in this order): sigma, R, "
                    "eta, E (both solids), E1, E2, nu (both), nu1, nu2, w (work of adhesion; or gamma), z0, tau, H, law (a list, e.g. "
-                   "law=jkr,dmt,maugis-dugdale), area (pad area, with --mc or --pads), restoring_force (with --pads, instead of --restoring-force), and the environment's rh, hamaker (J), "
+                   "law=jkr,dmt,maugis-dugdale), area (pad area, with --mc or --pads), restoring_force (with --pads, instead of --restoring-force), tangential_force (with --pads, instead of --tangential-force), preload (instead of --preload), and the environment's rh, hamaker (J), "
                    "contact_angle (degrees when bare), cutoff (m), temperature (K), film_thickness, structured_film, asperity_roughness, retardation_wavelength (m). SPEC: start:stop:num[:log] or a "
                    "list a,b,c; each value with an optional unit, a bare number is SI "
                    "(sigma=0.3nm:20nm:40:log, w=0.05:1:5 in J/m^2)")  # fmt: skip
@@ -178,6 +193,14 @@ def add_parser(sub) -> None:
     p.add_argument("--restoring-force", metavar="F",
                    help="with --pads: force pulling a pad off (N or with a unit, '20uN'); a pad sticks "
                    "when its pull-off exceeds it (or --vary restoring_force=...)")  # fmt: skip
+    p.add_argument("--friction", action="store_true",
+                   help="with --pads: also each pad's static friction at its turn (Savkoor-Briggs for jkr, "
+                   "tau x contact area with tau) and mu_s: static_friction_* (N) and mu_static_* (1); "
+                   "--restoring-force is then optional")  # fmt: skip
+    p.add_argument("--tangential-force", metavar="F",
+                   help="with --pads (implies --friction): force pulling a pad sideways (N or with a unit, "
+                   "'50uN'); p_slip, the probability that a pad's static friction is below it, with its "
+                   "95%% interval (or --vary tangential_force=...)")  # fmt: skip
     p.add_argument("--mc", action="store_true", help="also one Monte Carlo run per point (in memory): "
                    "mean and standard error of each curve")  # fmt: skip
     p.add_argument(

@@ -62,6 +62,8 @@ DISPLAY = {
     "H": (1e-9, "GPa", "$H$"),
     "pad_area": (1e12, "µm$^2$", "$A_n$"),
     "restoring_force": (1e6, "µN", "$F_r$"),
+    "tangential_force": (1e6, "µN", "$F_t$"),
+    "preload": (1e-6, "MPa", "$P$"),
     "law": (1.0, "", "law set"),
 }
 

@@ -80,6 +80,13 @@ class PullOff:
         The nominal pressure P (Pa) of force control: each pad pressed with P·A.
     exact : bool
         False for a GPU run (its heights cannot be drawn again): ``force`` is the grid's.
+    static_friction : ndarray, shape (R,) or None
+        With ``friction``: each pad's static friction T_s at its turn, N
+        (:func:`mcsim.engine.padfriction.static_friction`).
+    normal_load : ndarray, shape (R,) or None
+        With ``friction``: the normal load W its μ_s = T_s/W is taken on, N (P·A under force
+        control, else the pad's net approach load at the turn; where that is not positive,
+        the environment's pull; NaN dry: :func:`mcsim.engine.padfriction.normal_load`).
     """
 
     force: np.ndarray
@@ -94,6 +101,15 @@ class PullOff:
     exact: bool = True
 
     top: float = np.inf
+    static_friction: np.ndarray | None = None
+    normal_load: np.ndarray | None = None
+
+    @property
+    def mu_static(self) -> np.ndarray | None:
+        """μ_s = T_s/W of each pad (NaN where W is undefined); None without ``friction``."""
+        if self.static_friction is None:
+            return None
+        return self.static_friction / self.normal_load
 
     @property
     def past_grid_top(self) -> int:
@@ -283,16 +299,18 @@ class Run:
         spec = self.spec
         return pd.DataFrame(compare_table(self.summary, self.analytic, spec.row_h, spec.row_branch))
 
-    def pull_off(self, turn: float | None = None) -> PullOff:
+    def pull_off(self, turn: float | None = None, *, friction: bool = False) -> PullOff:
         """Per-patch pull-off of a cycle run (the law set must have a signed ``load``).
 
         Each pad's summits are drawn again from the seed (:mod:`mcsim.engine.padcurves`;
         checked against the stored approach sums) and its pull-off located on its own
         curve. The closest approach: ``turn`` (d/σ, common to all pads, ≥ min(h)) if
         given; else each pad's own under force control where the run was pressed with a
-        preload (attribute ``preload``, Pa); else the run's min(h).
+        preload (attribute ``preload``, Pa); else the run's min(h). With ``friction`` also
+        each pad's static friction at that turn and the normal load of its μ_s
+        (:mod:`mcsim.engine.padfriction`; a ParameterError for a law set without friction).
         """
-        from mcsim.engine import padcurves, padload
+        from mcsim.engine import padcurves, padfriction, padload
 
         spec = self.spec
         if not spec.cycle or "load" not in spec.law_set.names:
@@ -315,6 +333,13 @@ class Run:
         exact = spec.device == "cpu"
         if turn is not None:
             h_turn[:] = turn
+        static = normal = None
+        if friction:
+            padfriction.check_friction(spec)
+            if not exact:
+                raise ParameterError("static friction needs the pads' heights, which a GPU run "
+                                     "cannot draw again")  # fmt: skip
+            static, normal = np.empty(R), np.empty(R)
         if exact:
             for r in range(R):
                 z = padload.patch_heights(spec, r)
@@ -324,13 +349,24 @@ class Run:
                     h_turn[r] = d_t / sigma
                 force[r], d_off = padcurves.pull_off(spec, z, h_turn[r] * sigma)
                 h[r] = d_off / sigma
+                if friction:
+                    applied = None if preload is None else preload * spec.area
+                    static[r] = padfriction.static_friction(spec, z, h_turn[r] * sigma)
+                    normal[r] = padfriction.normal_load(spec, z, h_turn[r] * sigma, applied)
         elif preload is not None:
             raise ParameterError("force control (preload) needs the pads' heights, which a GPU "
                                  "run cannot draw again")  # fmt: skip
         return PullOff(force=force, normalised=force / (spec.area * spec.material.K), h=h,
                        resolution=float(np.max(np.diff(grid))) if grid.size > 1 else np.inf,
                        grid_force=grid_force, grid_h=spec.h[j], h_turn=h_turn,
-                       turn_load=turn_load, preload=preload, exact=exact, top=float(grid[-1]))  # fmt: skip
+                       turn_load=turn_load, preload=preload, exact=exact, top=float(grid[-1]),
+                       static_friction=static, normal_load=normal)  # fmt: skip
+
+    def pads(self, turn: float | None = None) -> PullOff:
+        """Each pad of a cycle run (one per realization): its turn, its pull-off and its static
+        friction there, :meth:`pull_off` with ``friction`` (``static_friction``,
+        ``normal_load``, ``mu_static``; docs/physics.md, 'Friction of pads')."""
+        return self.pull_off(turn, friction=True)
 
     def to_dataframe(self):
         """Tidy table: one row per (source, realization, h, quantity).

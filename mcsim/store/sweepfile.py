@@ -35,7 +35,13 @@ every variable has ``units`` and ``long_name`` attributes; schema :data:`SCHEMA_
                             pull_off_analytic (N), their work_of_separation_mean, _std,
                             _q05, _q50, _q95 (J/m^2), p_stick_model, p_stick_ess and
                             contacting_summits (1) (:data:`PADS`), p_stick_method (text,
-                            :data:`PAD_STRINGS`)
+                            :data:`PAD_STRINGS`); those of p_stick only with a
+                            restoring force
+    friction (...)          with ``friction`` or a tangential force: the pads' static
+                            friction static_friction_mean, _std, _q05, _q50, _q95 (N) and
+                            mu_static_mean, ... (1) (:data:`FRICTION`); with a tangential
+                            force p_slip, p_slip_low, p_slip_high, p_slip_ess (1,
+                            :data:`SLIP`) and p_slip_method (text)
     root attributes         sweep_schema_version, mcsim_version, created, command,
                             law, varied (JSON list of the dimension names), surface,
                             material (JSON of the inputs before variation, SI),
@@ -43,7 +49,8 @@ every variable has ``units`` and ``long_name`` attributes; schema :data:`SCHEMA_
                             realizations, seed_entropy; with an environment, environment
                             (JSON of its inputs before variation, SI); with a preload
                             preload (Pa); with pads pads, restoring_force (N; absent
-                            where it is varied), area,
+                            where it is varied or not given), tangential_force (N;
+                            absent where varied or not given), area,
                             seed_entropy, pads_streams; complete; checksum
 
 Strings are fixed-length UTF-8 bytes with ``_Encoding = "utf-8"`` (netCDF readers give
@@ -71,10 +78,14 @@ from mcsim.store.sweepvariables import (
     CURVES,
     DIMENSION,
     ENVIRONMENT_SUMMARY,
+    FRICTION,
     INPUTS,
     PAD_STRINGS,
     PADS,
     REGIME,
+    SLIP,
+    SLIP_STRINGS,
+    STICK,
     STRINGS,
     SUMMARY,
     dimension_name,
@@ -194,8 +205,11 @@ def _describe_values(values: np.ndarray, unit: str) -> str:
 
 def empty_sweep(
     dims, grid, h, curve_names, summary: bool, mc: bool, environment: bool = False, *,
-    pads: bool = False
+    pads: bool = False, stick: bool = True, friction: bool = False, slip: bool = False
 ) -> Sweep:  # fmt: skip
+    """The sweep of every variable, all NaN (strings empty). With ``pads`` the pads'
+    variables, those of p_stick only with ``stick`` (a restoring force); with ``friction``
+    the static friction's, with ``slip`` p_slip's."""
     shape = tuple(len(v) for v in grid)
     curve_shape = (*shape, len(h))
     coords = {d: v for d, v in zip(dims, grid)} | {"h": np.asarray(h)}
@@ -225,8 +239,12 @@ def empty_sweep(
             add(f"mc_{q}_se", "1", f"standard error of mc_{q}", per_h=True)
     if pads:
         for k, (u, m) in PADS.items():
+            if stick or k not in STICK:
+                add(k, u, m)
+        strings = (PAD_STRINGS if stick else {}) | (SLIP_STRINGS if slip else {})
+        for k, (u, m) in ((FRICTION if friction else {}) | (SLIP if slip else {})).items():
             add(k, u, m)
-        for k, m in PAD_STRINGS.items():
+        for k, m in strings.items():
             data[k] = np.full(shape, "", dtype=object)
             vdims[k], units[k], long_names[k] = grid_dims, "1", m
     attrs = {"varied": json.dumps(list(dims))}
@@ -304,6 +322,7 @@ ATTRIBUTE_RANGES = {
     "pads": (1, np.inf, False),
     "restoring_force": (0, np.inf, False),
     "preload": (0, np.inf, False),
+    "tangential_force": (0, np.inf, False),
     "area": (0, np.inf, True),
 }
 
@@ -311,6 +330,8 @@ ATTRIBUTE_RANGES = {
 #: the standard deviation of one pad).
 VARIABLE_RANGES = {
     **{k: (0, 1, True) for k in ("p_stick", "p_stick_low", "p_stick_high", "p_stick_model")},
+    **{k: (0, 1, True) for k in ("p_slip", "p_slip_low", "p_slip_high")},
+    **{k: (0, np.inf, True) for k in FRICTION},
     "pull_off_std": (0, np.inf, True),
     "contacting_summits": (0, np.inf, True),
 }
@@ -352,10 +373,11 @@ def _read(path: Path, f) -> dict:
     )
     if "pads" in f.attrs or any(k in f for k in PADS):
         wanted |= PADS_ATTRIBUTES
-        if "restoring_force" in f:  # varied: a coordinate, not an attribute
+        if "restoring_force" in f or "p_stick" not in f:  # varied (a coordinate), or none
             del wanted["restoring_force"]
-    if "preload" in f.attrs:
-        wanted |= {"preload": "number"}
+    for k in ("preload", "tangential_force"):
+        if k in f.attrs:
+            wanted |= {k: "number"}
     attrs = {
         k: (v.item() if np.ndim(v) == 0 and hasattr(v, "item") else v) for k, v in f.attrs.items()
     }
@@ -405,11 +427,12 @@ def _check_ranges(path: Path, attrs: dict, data: dict) -> None:
         for k, (low, high, nan) in ranges.items():
             if k in held:
                 schema.within(path, f"{kind} {k}", held[k], WHAT, low=low, high=high, nan=nan)
-    if "p_stick" in data and {"p_stick_low", "p_stick_high"} <= data.keys():
-        p, low, high = data["p_stick"], data["p_stick_low"], data["p_stick_high"]
-        if np.any((low > p) | (p > high)):  # False where NaN: a failed point
-            raise schema.refuse(path, WHAT, "dataset p_stick lies outside its interval "
-                                            "p_stick_low .. p_stick_high")  # fmt: skip
+    for name in ("p_stick", "p_slip"):
+        if name in data and {f"{name}_low", f"{name}_high"} <= data.keys():
+            p, low, high = data[name], data[f"{name}_low"], data[f"{name}_high"]
+            if np.any((low > p) | (p > high)):  # False where NaN: a failed point
+                raise schema.refuse(path, WHAT, f"dataset {name} lies outside its interval "
+                                                f"{name}_low .. {name}_high")  # fmt: skip
 
 
 def _grid(path: Path, varied: list) -> tuple[str, ...]:
@@ -427,7 +450,8 @@ def _grid(path: Path, varied: list) -> tuple[str, ...]:
 
 def _dtype(name: str) -> str:
     """Kind of values of variable ``name`` (:data:`mcsim.store.schema.DTYPES`)."""
-    return "S" if name in STRINGS or name in PAD_STRINGS else "iu" if name == "done" else "f"
+    strings = name in STRINGS or name in PAD_STRINGS or name in SLIP_STRINGS
+    return "S" if strings else "iu" if name == "done" else "f"
 
 
 def _shapes(name: str, grid: tuple, per_h: tuple) -> tuple[tuple, ...]:
@@ -439,6 +463,9 @@ def _shapes(name: str, grid: tuple, per_h: tuple) -> tuple[tuple, ...]:
         or name in REGIME
         or name in STRINGS
         or name in PAD_STRINGS
+        or name in SLIP_STRINGS
+        or name in FRICTION
+        or name in SLIP
         or name == "done"
     ):
         return (grid,)

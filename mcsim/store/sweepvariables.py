@@ -45,7 +45,12 @@ INPUTS: dict[str, tuple[str, tuple[str, ...], str]] = {
         "retardation wavelength of the van der Waals attraction",
     ),
     "restoring_force": ("force", ("restoring_force",), "restoring force pulling each pad off"),
+    "preload": ("pressure", ("preload",), "nominal pressure pressing each pad (force control)"),
+    "tangential_force": ("force", ("tangential_force",), "tangential force on each pad"),
 }
+
+#: Inputs of :data:`INPUTS` that only the pads take (:func:`mcsim.sweep` with ``pads``).
+PAD_INPUTS = ("restoring_force", "tangential_force")
 
 #: Inputs of :data:`INPUTS` that set the environment (:class:`mcsim.physics.environment.Environment`).
 ENVIRONMENT_INPUTS = ("rh", "hamaker", "contact_angle", "cutoff", "temperature", "film_thickness",
@@ -125,11 +130,46 @@ PADS = {
     ),
 }
 
+#: Variables of :data:`PADS` that a pads sweep holds only with a restoring force.
+STICK = ("p_stick", "p_stick_low", "p_stick_high", "p_stick_ess", "p_stick_model")
+
 #: Text variables of a pads sweep: meaning.
 PAD_STRINGS = {
     "p_stick_method": "how p_stick was estimated: pads (fraction of the pads) or importance "
     "(importance sampling, mcsim.studies.tail)",
 }
+
+#: Text variables of a pads sweep with a tangential force: meaning.
+SLIP_STRINGS = {
+    "p_slip_method": "how p_slip was estimated: pads (fraction of the pads) or importance "
+    "(importance sampling, mcsim.studies.tail)",
+}
+
+#: Per-point variables of a pads sweep with friction (``--friction`` or a tangential force).
+FRICTION = {
+    "static_friction_mean": ("N", "mean static friction T_s of the pads at their turns: sum of "
+                             "the touching summits' friction (Savkoor-Briggs, or tau x area)"),
+    "static_friction_std": ("N", "standard deviation of the pads' static friction (ddof = 1)"),
+    "static_friction_q05": ("N", "5 % quantile of the pads' static friction"),
+    "static_friction_q50": ("N", "median of the pads' static friction"),
+    "static_friction_q95": ("N", "95 % quantile of the pads' static friction"),
+    "mu_static_mean": ("1", "mean static friction coefficient mu_s = T_s/W of the pads, W the "
+                       "preload force P A (at P = 0 the environment's pull at the turn)"),
+    "mu_static_std": ("1", "standard deviation of the pads' mu_s (ddof = 1)"),
+    "mu_static_q05": ("1", "5 % quantile of the pads' mu_s"),
+    "mu_static_q50": ("1", "median of the pads' mu_s"),
+    "mu_static_q95": ("1", "95 % quantile of the pads' mu_s"),
+}  # fmt: skip
+
+#: Per-point variables of a pads sweep with a tangential force.
+SLIP = {
+    "p_slip": ("1", "probability that a pad's static friction is below the tangential force "
+               "(p_slip_method)"),
+    "p_slip_low": ("1", "lower end of the 95 % interval of p_slip (as p_stick_low)"),
+    "p_slip_high": ("1", "upper end of the 95 % interval of p_slip (as p_stick_high)"),
+    "p_slip_ess": ("1", "effective number of pads on the rarer side, slipping or not (pads: "
+                   "their count)"),
+}  # fmt: skip
 
 
 #: Regime numbers of one summit: meaning (all dimensionless).

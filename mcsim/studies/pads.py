@@ -271,8 +271,9 @@ MIN_ESS = 30
 METHODS = ("pads", "importance")
 
 
-def finite_pads(spec, restoring_force: float, *, preload: float | None = None, turn: float,
-                h_pull_off: float, tail: bool | None = None) -> dict:  # fmt: skip
+def finite_pads(spec, restoring_force: float | None, *, preload: float | None = None, turn: float,
+                h_pull_off: float, tail: bool | None = None, friction: bool = False,
+                tangential_force: float | None = None) -> dict:  # fmt: skip
     """Pull-off statistics of the ``spec.realizations`` pads of a cycle spec, as sweep variables.
 
     Each pad's summits are drawn from ``spec``'s seed as a ``--cycle`` run of the same spec
@@ -283,8 +284,8 @@ def finite_pads(spec, restoring_force: float, *, preload: float | None = None, t
     ----------
     spec : MonteCarloSpec
         A cycle spec: its realizations are the pads, its lowest separation bounds the turns.
-    restoring_force : float
-        F_r, N: a pad sticks when its pull-off exceeds it.
+    restoring_force : float or None
+        F_r, N: a pad sticks when its pull-off exceeds it (None: no p_stick, with ``friction``).
     preload : float, optional
         Nominal pressure P, Pa: each pad turns under force control where its own approach
         load reaches P·A (:func:`mcsim.engine.padcurves.force_turn`). Without it every pad
@@ -296,14 +297,21 @@ def finite_pads(spec, restoring_force: float, *, preload: float | None = None, t
         Separation d/σ of the mean curve's pull-off after ``turn`` (NaN: none), for the
         model estimate ``p_stick_model`` (:func:`mcsim.studies.stiction.p_stick_model`).
     tail : bool, optional
-        p_stick by importance sampling (:func:`tail_p_stick`): True always, None where the
-        pads see fewer than :data:`SWITCH` on the rarer side, False never.
+        p_stick (and p_slip) by importance sampling (:func:`tail_p_stick`): True always, None
+        where the pads see fewer than :data:`SWITCH` on the rarer side, False never.
+    friction : bool
+        Also each pad's static friction at its turn and μ_s (:mod:`mcsim.studies.padfriction`):
+        the keys of :data:`mcsim.store.sweepvariables.FRICTION`.
+    tangential_force : float, optional
+        F, N (implies ``friction``): also p_slip = P(T_s < F), the keys of
+        :data:`~mcsim.store.sweepvariables.SLIP` and ``p_slip_method``.
 
     Returns
     -------
     dict
         The keys of :data:`mcsim.store.sweepvariables.PADS` (floats, SI) and ``p_stick_method``
-        (one of :data:`METHODS`).
+        (one of :data:`METHODS`; those of p_stick only with a restoring force), and the
+        friction's.
 
     Raises
     ------
@@ -311,15 +319,20 @@ def finite_pads(spec, restoring_force: float, *, preload: float | None = None, t
         A turn below the spec's lowest separation (no summit below it is drawn), or a pad
         whose approach load stays below P·A down to it.
     """
-    from mcsim.engine import padcurves, padload
+    from mcsim.engine import padcurves, padfriction, padload
+    from mcsim.studies import padfriction as friction_study
     from mcsim.studies import tail as sampling
     from mcsim.studies.stiction import p_stick_model
 
     if turn < spec.turn:
         raise ParameterError(f"pads turn at h = {turn:.4g}, below the lowest separation h = "
                              f"{spec.turn:g}; extend the separations (--h) down")  # fmt: skip
+    friction = friction or tangential_force is not None
+    if friction:
+        padfriction.check_friction(spec)
     sigma = spec.surface.sigma
     force, work = np.empty(spec.realizations), np.empty(spec.realizations)
+    static, normal = np.empty(spec.realizations), np.empty(spec.realizations)
     cut, highs = sampling.cut(spec, turn), []  # the summits a tail's stage 0 needs
     for r in range(spec.realizations):
         z = padload.patch_heights(spec, r)
@@ -329,14 +342,27 @@ def finite_pads(spec, restoring_force: float, *, preload: float | None = None, t
         force[r] = padcurves.pull_off(spec, z, d_turn)[0]
         work[r] = padcurves.pad_work(spec, z, d_turn)
         highs.append(z[z > cut * sigma] / sigma)
+        if friction:
+            applied = None if preload is None else preload * spec.area
+            static[r] = padfriction.static_friction(spec, z, d_turn)
+            normal[r] = padfriction.normal_load(spec, z, d_turn, applied)
+    out = {}
+    if friction:
+        f = friction_study.friction_statistics(static, normal, tangential_force)
+        out |= friction_study.variables(f)
+        if tangential_force is not None:
+            out |= friction_study.tail_p_slip(spec, f, turn=turn, preload=preload, tail=tail,
+                                              start=(highs, static))  # fmt: skip
     s = pad_statistics(force, restoring_force)
     q05, q50, q95 = np.quantile(work, QUANTILES)  # signed (J/m²): not pad_statistics' forces
-    stick = tail_p_stick(spec, s, restoring_force, turn=turn, preload=preload, tail=tail,
-                         start=(highs, force))  # fmt: skip
+    if restoring_force is not None:
+        out |= tail_p_stick(spec, s, restoring_force, turn=turn, preload=preload, tail=tail,
+                            start=(highs, force))  # fmt: skip
+        model = (p_stick_model(spec, restoring_force, turn=turn, h_pull_off=h_pull_off,
+                               preload=preload) if math.isfinite(h_pull_off) else 0.0)  # fmt: skip
+        out["p_stick_model"] = min(max(model, 0.0), 1.0)
     lam = spec.surface.eta * spec.area
-    model = (p_stick_model(spec, restoring_force, turn=turn, h_pull_off=h_pull_off,
-                           preload=preload) if math.isfinite(h_pull_off) else 0.0)  # fmt: skip
-    return stick | {
+    return out | {
             "pull_off_mean": s.mean, "pull_off_std": s.std, "pull_off_q05": s.q05,
             "pull_off_q50": s.q50, "pull_off_q95": s.q95,
             "work_of_separation_mean": float(work.mean()),
@@ -344,8 +370,7 @@ def finite_pads(spec, restoring_force: float, *, preload: float | None = None, t
             "work_of_separation_q05": float(q05), "work_of_separation_q50": float(q50),
             "work_of_separation_q95": float(q95),
             "pull_off_analytic": analytic_pad_pull_off(spec, turn),
-            "contacting_summits": lam * float(spec.surface.heights.sf(turn)),
-            "p_stick_model": min(max(model, 0.0), 1.0)}  # fmt: skip
+            "contacting_summits": lam * float(spec.surface.heights.sf(turn))}  # fmt: skip
 
 
 def tail_p_stick(spec, statistics: PadStatistics, restoring_force: float, *, turn: float,
@@ -443,6 +468,12 @@ class PadReport:
     turns : dict
         Under a preload: ``preload`` (Pa), the mean-field turn ``h_turn_mean_field`` and the
         pads' own turns ``h_turn_min``, ``h_turn_q50``, ``h_turn_max`` (d/σ); else empty.
+    friction : mcsim.studies.padfriction.FrictionStatistics or None
+        With ``friction`` or a tangential force: the pads' static friction T_s and μ_s at their
+        turns (each pad's in ``pull_off.static_friction``, ``pull_off.mu_static``) and p_slip.
+    slip : dict or None
+        With a tangential force: p_slip, its interval, ``p_slip_ess`` and ``p_slip_method``
+        (:func:`mcsim.studies.padfriction.tail_p_slip`).
     """
 
     pull_off: object
@@ -452,6 +483,8 @@ class PadReport:
     p_stick_model: float | None
     turns: dict
     stick: dict | None = None
+    friction: object = None
+    slip: dict | None = None
 
     def quantities(self) -> dict[str, tuple[float, str]]:
         """Every reported quantity with its unit (``"N"``, ``"Pa"``, ``"1"``), in report order."""
@@ -468,12 +501,22 @@ class PadReport:
                        "p_stick_ess": (s["p_stick_ess"], "1")}  # fmt: skip
         fields["analytic_mean"] = (self.analytic_mean, "N")
         fields |= {k: (v, "Pa" if k == "preload" else "1") for k, v in self.turns.items()}
+        if self.friction is not None:
+            f = self.friction
+            fields |= {f"static_friction_{k}": (v, "N") for k, v in f.static_friction.items()}
+            fields |= {f"mu_static_{k}": (v, "1") for k, v in f.mu_static.items()}
+            fields["mu_static_pads"] = (f.mu_pads, "1")
+        if self.slip is not None:
+            s = self.slip
+            fields |= {"tangential_force": (self.friction.tangential_force, "N"),
+                       "p_slip": (s["p_slip"], "1"), "p_slip_ci_low": (s["p_slip_low"], "1"),
+                       "p_slip_ci_high": (s["p_slip_high"], "1"), "p_slip_ess": (s["p_slip_ess"], "1")}  # fmt: skip
         return fields
 
 
 def pad_report(
     run, restoring_force: float | None = None, interval: str = "clopper-pearson",
-    tail: bool | None = None
+    tail: bool | None = None, *, friction: bool = False, tangential_force: float | None = None
 ) -> PadReport:  # fmt: skip
     """Pull-off statistics of the pads of a cycle run (one pad per realization), as ``mcsim pads``.
 
@@ -490,7 +533,13 @@ def pad_report(
     tail : bool, optional
         With F_r: p_stick by importance sampling (:func:`tail_p_stick`, with pads of its own
         streams of the run's seed): True always, None where the pads see fewer than
-        :data:`SWITCH` on the rarer side, False never.
+        :data:`SWITCH` on the rarer side, False never. The same for p_slip with F.
+    friction : bool
+        Also the pads' static friction T_s at their turns and μ_s
+        (:mod:`mcsim.studies.padfriction`).
+    tangential_force : float or str, optional
+        F, N (≥ 0, finite; or with a unit; implies ``friction``): a pad slips when T_s < F;
+        adds p_slip and its interval.
 
     Returns
     -------
@@ -499,10 +548,15 @@ def pad_report(
     Raises
     ------
     ParameterError
-        Not a cycle run of a law set with a signed load, a bad F_r or interval, or ``tail``
-        True with too few pads.
+        Not a cycle run of a law set with a signed load, a bad F_r, F or interval, ``tail``
+        True with too few pads, or ``friction`` for a law set without friction.
     """
-    pull_off = run.pull_off()
+    from mcsim.studies import padfriction
+
+    if tangential_force is not None:
+        tangential_force = padfriction.check_tangential_force(tangential_force)
+    friction = friction or tangential_force is not None
+    pull_off = run.pull_off(friction=friction)
     statistics = pad_statistics(pull_off.force, restoring_force, interval)
     spec, turns, turn = run.spec, {}, None
     if pull_off.preload is not None:  # the analytic mean after the mean-field turn
@@ -517,8 +571,15 @@ def pad_report(
         fr = statistics.restoring_force
         model = min(max(_p_stick_model(spec, fr, pull_off.preload, turn), 0.0), 1.0)
         stick = tail_p_stick(spec, statistics, fr, turn=turn, preload=pull_off.preload, tail=tail)
+    fs = slip = None
+    if friction:
+        fs = padfriction.friction_statistics(pull_off.static_friction, pull_off.normal_load,
+                                             tangential_force, interval)  # fmt: skip
+        if tangential_force is not None:
+            slip = padfriction.tail_p_slip(spec, fs, turn=turn, preload=pull_off.preload,
+                                           tail=tail)  # fmt: skip
     return PadReport(pull_off, statistics, analytic_pad_pull_off(spec, turn), contacts, model,
-                     turns, stick)  # fmt: skip
+                     turns, stick, fs, slip)  # fmt: skip
 
 
 def _p_stick_model(spec, fr: float, preload: float | None, turn: float) -> float:

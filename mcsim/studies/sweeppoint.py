@@ -127,9 +127,9 @@ class Point:
     """One grid point: its flat index (C order), its inputs, and the index its pads draw from.
 
     ``pads_index`` is the flat index of the point in the grid without its environment inputs
-    (rh, hamaker, ...) and the restoring force: points that differ in these alone draw the
-    same pads (common random numbers, so that a curve against RH is the physics, not the
-    draw); without such inputs it is ``index``.
+    (rh, hamaker, ...), the restoring and tangential forces and the preload: points that
+    differ in these alone draw the same pads (common random numbers, so that a curve against
+    RH or the preload is the physics, not the draw); without such inputs it is ``index``.
     """
 
     index: int
@@ -140,6 +140,8 @@ class Point:
     environment: Environment | None = None
     pads_index: int | None = None
     restoring_force: float | None = None  # N, where varied; else the Config's
+    tangential_force: float | None = None  # N, where varied; else the Config's
+    preload: float | None = None  # Pa, where varied; else the Config's
 
 
 @dataclass(frozen=True)
@@ -156,18 +158,20 @@ class Config:
     restoring_force: float | None = None
     preload: float | None = None
     tail: bool | None = None
+    friction: bool = False
+    tangential_force: float | None = None
 
 
 def make_point(base_surface, base_material, base_environment, law, area, names, values,
                index, pads_index=None) -> Point:  # fmt: skip
     """The inputs at one point; a bad combination raises ParameterError (a failed point)."""
     surface_changes, material_changes, environment_changes = {}, {}, {}
-    restoring_force = None
+    forces = {}
     for name, value in zip(names, values):
         if name == "law":
             law = str(value)
-        elif name == "restoring_force":
-            restoring_force = float(value)
+        elif name in ("restoring_force", "tangential_force", "preload"):
+            forces[name] = float(value)
         elif name == "area":
             area = float(value)
         elif name in ENVIRONMENT_INPUTS:
@@ -180,8 +184,7 @@ def make_point(base_surface, base_material, base_environment, law, area, names, 
         environment = dataclasses.replace(environment, **environment_changes)
     return Point(index, dataclasses.replace(base_surface, **surface_changes),
                   dataclasses.replace(base_material, **material_changes), law, area,
-                  environment, index if pads_index is None else pads_index,
-                  restoring_force)  # fmt: skip
+                  environment, index if pads_index is None else pads_index, **forces)  # fmt: skip
 
 
 def has_summary(law: str) -> bool:
@@ -227,10 +230,11 @@ def _evaluate(point: Point, config: Config, out: dict) -> None:
     curves = gw_curves(surface, material, np.asarray(config.h), law, **with_environment)
     out |= curves.values
     out |= _regime(surface, material, law)
+    preload = config.preload if point.preload is None else point.preload
     if has_summary(law):
         turn = config.turn
-        if config.preload is not None:
-            turn = preload_turn(surface, material, config.preload, law, environment)
+        if preload is not None:
+            turn = preload_turn(surface, material, preload, law, environment)
         summary = adhesion_summary(surface, material, law, turn=turn, **with_environment)
         out |= {k: getattr(summary, k) for k in SUMMARY}
         if environment is not None:
@@ -246,10 +250,12 @@ def _evaluate(point: Point, config: Config, out: dict) -> None:
             out[f"mc_{q}"] = run.summary.mean[q]
             out[f"mc_{q}_se"] = run.summary.se[q]
     if config.pads:
-        out |= _pads(point, config, law, out.get("turn", math.nan), out.get("h_pull_off", math.nan))
+        out |= _pads(point, config, law, out.get("turn", math.nan), out.get("h_pull_off", math.nan),
+                     preload)  # fmt: skip
 
 
-def _pads(point: Point, config: Config, law: str, turn: float, h_pull_off: float) -> dict:
+def _pads(point: Point, config: Config, law: str, turn: float, h_pull_off: float,
+          preload: float | None) -> dict:  # fmt: skip
     """The pads of one point: ``config.pads`` pads of the point's area from its own stream."""
     from mcsim.engine.spec import MonteCarloSpec
 
@@ -259,8 +265,9 @@ def _pads(point: Point, config: Config, law: str, turn: float, h_pull_off: float
                           config.pads, pads_seed(config.entropy, point.pads_index), law, cycle=True,
                           environment=point.environment)  # fmt: skip
     force = config.restoring_force if point.restoring_force is None else point.restoring_force
-    return finite_pads(spec, force, preload=config.preload, turn=turn,
-                       h_pull_off=h_pull_off, tail=config.tail)  # fmt: skip
+    lateral = config.tangential_force if point.tangential_force is None else point.tangential_force
+    return finite_pads(spec, force, preload=preload, turn=turn, h_pull_off=h_pull_off,
+                       tail=config.tail, friction=config.friction, tangential_force=lateral)  # fmt: skip
 
 
 def pads_seed(entropy: int, index: int) -> int:
@@ -294,7 +301,8 @@ def _fast(point: Point, config: Config) -> bool:
     surface = point.surface
     gaussian_gaps = point.environment is None or surface.map_heights is None
     return (point.law == "jkr" and not config.mc and isinstance(surface.heights, Gaussian)
-            and gaussian_gaps and config.preload is None and not config.pads
+            and gaussian_gaps and config.preload is None and point.preload is None
+            and not config.pads
             and surface.radius_by_height is None)  # fmt: skip
 
 

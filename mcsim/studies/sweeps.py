@@ -62,7 +62,13 @@ from mcsim.physics.laws import get_law_set
 from mcsim.store import inputgroup
 from mcsim.store.claim import claim_output
 from mcsim.store.sweepfile import SCHEMA_VERSION, Sweep, empty_sweep, read_sweep, write_sweep
-from mcsim.store.sweepvariables import ENVIRONMENT_INPUTS, INPUTS, dimension_name, plain
+from mcsim.store.sweepvariables import (
+    ENVIRONMENT_INPUTS,
+    INPUTS,
+    PAD_INPUTS,
+    dimension_name,
+    plain,
+)
 from mcsim.studies.runoptions import check_checkpoint_every, check_workers
 from mcsim.studies.sweeppoint import (
     MAX_POINTS,
@@ -99,6 +105,8 @@ def sweep(
     restoring_force: float | str | None = None,
     preload: float | str | None = None,
     tail: bool | None = None,
+    friction: bool = False,
+    tangential_force: float | str | None = None,
     area: float | str | None = None,
     realizations: int = 1,
     seed: int | None = None,
@@ -125,7 +133,9 @@ def sweep(
         Input name to its values, in grid order: ``sigma``, ``R``, ``eta`` (surface),
         ``E`` (both E1 and E2), ``E1``, ``E2``, ``nu`` (both), ``nu1``, ``nu2``,
         ``gamma``, ``z0``, ``tau``, ``H`` (material), ``law`` (law-set names or
-        ``auto``), ``area`` (pad area, m², with ``mc`` only), and the environment's
+        ``auto``), ``area`` (pad area, m², with ``mc`` only), ``preload`` (Pa; the pads
+        of points that differ in it alone are the same), with ``pads`` ``restoring_force``
+        and ``tangential_force`` (N), and the environment's
         ``rh``, ``hamaker`` (J), ``contact_angle`` (rad; degrees when bare in a
         string), ``cutoff`` (m), ``temperature`` (K), ``film_thickness``,
         ``structured_film``, ``asperity_roughness`` and ``retardation_wavelength`` (m). Values: a string
@@ -156,18 +166,26 @@ def sweep(
         retracts after its own turn under force control with ``preload``, else after the
         adhesion summary's turn.
     restoring_force : float or str, optional
-        With ``pads`` (required): F_r, N or with a unit; a pad sticks when its pull-off
-        exceeds it.
+        With ``pads`` (required, unless ``friction`` or a tangential force): F_r, N or with a
+        unit; a pad sticks when its pull-off exceeds it.
     preload : float or str, optional
-        Nominal pressure P (Pa or with a unit, > 0): the adhesion summary's turn is the
+        Nominal pressure P (Pa or with a unit, >= 0): the adhesion summary's turn is the
         approach separation that balances P on the mean curve
         (:func:`mcsim.physics.loadcontrol.preload_turn`), and pads are pressed with P·A.
-        Not together with ``turn``.
+        Not together with ``turn``; or vary it (``vary={"preload": ...}``).
     tail : bool, optional
-        With ``pads``: p_stick by importance sampling (:mod:`mcsim.studies.tail`) where the
-        pads see fewer than 10 on the rarer side (None, needs >= 100 pads, else the fraction
-        stays), at every point (True, needs >= 100 pads) or never (False); variables
+        With ``pads``: p_stick (and p_slip) by importance sampling (:mod:`mcsim.studies.tail`)
+        where the pads see fewer than 10 on the rarer side (None, needs >= 100 pads, else the
+        fraction stays), at every point (True, needs >= 100 pads) or never (False); variables
         ``p_stick_method`` and ``p_stick_ess`` (:func:`mcsim.studies.pads.tail_p_stick`).
+    friction : bool
+        With ``pads``: also each pad's static friction at its turn and μ_s
+        (:mod:`mcsim.studies.padfriction`; variables
+        :data:`mcsim.store.sweepvariables.FRICTION`).
+    tangential_force : float or str, optional
+        With ``pads`` (implies ``friction``): F, N or with a unit (finite, >= 0); a pad slips
+        when its static friction is below it: ``p_slip`` and its interval
+        (:data:`mcsim.store.sweepvariables.SLIP`). Or vary it (``tangential_force``).
     area : float or str, optional
         Patch area of the Monte Carlo runs and the pads, m² or with a unit.
     realizations : int
@@ -234,8 +252,17 @@ def sweep(
         raise ParameterError(f"vary {combined[0]}: with a counter-surface the surface's sigma, R "
                              "and eta are the combination's, not inputs: vary them in the "
                              "surfaces and sweep each pair")  # fmt: skip
+    tangential_force, friction = _check_friction(pads, friction, tangential_force, names)
+    if friction and "tau" not in names:  # a law set without friction: refused before any point
+        from mcsim.physics.friction import friction_rule
+
+        laws = grid[names.index("law")] if "law" in names else [law or "seed"]
+        for name in laws:
+            if name != "auto":
+                friction_rule(str(name), material)
     restoring_force, preload = _check_pads(pads, restoring_force, preload, turn,
-                                           "restoring_force" in names, tail)  # fmt: skip
+                                           "restoring_force" in names, tail, friction,
+                                           "preload" in names)  # fmt: skip
     checkpoint_every = check_checkpoint_every(checkpoint_every)
     workers = check_workers(workers)
     law = "seed" if law is None else law
@@ -267,8 +294,9 @@ def sweep(
             seed = recorded_seed(claim)
         entropy = np.random.SeedSequence(seed).entropy if mc or pads else None
         config = Config(h, turn, mc, realizations, entropy, device, pads, restoring_force, preload,
-                        tail)  # fmt: skip
-        result = _empty_result(material, law, names, dims, grid, config, environment is not None)
+                        tail, friction, tangential_force)  # fmt: skip
+        result = _empty_result(material, law, names, dims, grid, config, environment is not None,
+                               "restoring_force" in names, "tangential_force" in names)  # fmt: skip
         if command is None:
             command = (
                 f"mcsim.sweep(vary={ {n: _shown(v) for n, v in zip(names, grid)} }, law={law!r})"
@@ -348,15 +376,17 @@ def _check_monte_carlo(
 
 
 def _empty_result(material: Material, law: str, names, dims, grid, config: Config,
-                  with_env: bool) -> Sweep:  # fmt: skip
+                  with_env: bool, stick_varied: bool, slip_varied: bool) -> Sweep:  # fmt: skip
     """The sweep of every variable the grid's points give, all NaN (no point done)."""
     laws = list(grid[names.index("law")]) if "law" in names else [law]
     curve_names = _union(point_curves(x, material, with_env) for x in laws)
     if "tau" in names and material.tau is None:
         curve_names = _union([curve_names, point_curves(laws[0], dataclasses.replace(material, tau=1.0), with_env)])  # fmt: skip
     summary = any(has_summary(x) for x in laws)
+    stick = config.restoring_force is not None or stick_varied
+    slip = config.tangential_force is not None or slip_varied
     return empty_sweep(dims, grid, config.h, curve_names, summary, config.mc, with_env,
-                       pads=bool(config.pads))  # fmt: skip
+                       pads=bool(config.pads), stick=stick, friction=config.friction, slip=slip)  # fmt: skip
 
 
 def _shown(values: np.ndarray) -> list:
@@ -395,8 +425,9 @@ def _check_vary(
         raise ParameterError("law: given both as --law and as a varied input (--vary law=...)")
     if "area" in names and not mc:
         raise ParameterError("vary area: the pad area applies to the Monte Carlo runs only (add --mc)")  # fmt: skip
-    if "restoring_force" in names and not pads:
-        raise ParameterError("vary restoring_force: it applies to the pads only (add pads=N, --pads N)")  # fmt: skip
+    for name in PAD_INPUTS:
+        if name in names and not pads:
+            raise ParameterError(f"vary {name}: it applies to the pads only (add pads=N, --pads N)")  # fmt: skip
     return names, [parse_values(n, vary[n]) for n in names]
 
 
@@ -409,11 +440,13 @@ def _check_values(surface: Surface, material: Material, environment, names, grid
             for v in values:
                 check_range("vary area", v, "m^2", low=0)
             continue
-        if name == "restoring_force":
+        if name in (*PAD_INPUTS, "preload"):
+            unit = "Pa" if name == "preload" else "N"
             for v in values:
                 if not (math.isfinite(v) and v >= 0):
-                    raise ParameterError(f"vary restoring_force: {float(v)!r} N is out of range "
-                                         "(allowed: a finite force >= 0 N)")  # fmt: skip
+                    raise ParameterError(f"vary {name}: {float(v)!r} {unit} is out of range "
+                                         f"(allowed: a finite {'pressure' if unit == 'Pa' else 'force'}"
+                                         f" >= 0 {unit})")  # fmt: skip
             continue
         for v in values:
             changes = dict.fromkeys(INPUTS[name][1], float(v))
@@ -458,7 +491,7 @@ def _attrs(surface, material, environment, law, dims, grid, config: Config, area
         attrs |= {"area": math.nan if area is None else area, "area_unit": "m^2",
                   "realizations": config.realizations, "seed_entropy": str(config.entropy),
                   "device": config.device}  # fmt: skip
-    attrs |= _pads_attrs(config, area) | pair
+    attrs |= _pads_attrs(config, area, dims) | pair
     # What must match for a resume: everything but the time and the command line.
     attrs["definition"] = json.dumps({k: (None if isinstance(v, float) and math.isnan(v) else v)
                                       for k, v in attrs.items() if k != "command"}
@@ -468,25 +501,49 @@ def _attrs(surface, material, environment, law, dims, grid, config: Config, area
 
 
 def _pads_index(index: int, names, shape) -> int:
-    """Flat index of grid point ``index`` without its environment and restoring-force
+    """Flat index of grid point ``index`` without its environment, force and preload
     dimensions (:class:`~mcsim.studies.sweeppoint.Point`)."""
     multi = np.unravel_index(index, shape)
-    shared = {*ENVIRONMENT_INPUTS, "restoring_force"}
+    shared = {*ENVIRONMENT_INPUTS, *PAD_INPUTS, "preload"}
     kept = [(i, n) for i, n, name in zip(multi, shape, names) if name not in shared]
     if not kept:
         return 0
     return int(np.ravel_multi_index([i for i, _ in kept], [n for _, n in kept]))
 
 
-def _check_pads(
-    pads, restoring_force, preload, turn, varied: bool, tail=None
-) -> tuple[float | None, float | None]:
-    """Check the pads' options; the restoring force (N; None where ``varied``) and the
-    preload (Pa), SI."""
+def _check_friction(pads, friction, tangential_force, names) -> tuple[float | None, bool]:
+    """Check the friction's options: the tangential force (N; None where not given or
+    varied) and whether the pads report their friction."""
+    from mcsim.studies.padfriction import check_tangential_force
+
+    if not isinstance(friction, bool):
+        raise ParameterError(f"friction = {friction!r}: allowed True or False")
+    varied = "tangential_force" in names
+    if tangential_force is not None:
+        if varied:
+            raise ParameterError("tangential_force: given both as a value and as a varied input")
+        tangential_force = check_tangential_force(plain(tangential_force))
+    friction = friction or varied or tangential_force is not None
+    if friction and not pads:
+        what = "friction" if tangential_force is None else "tangential_force"
+        raise ParameterError(f"{what} applies to the pads only (add pads=N, --pads N)")
+    return tangential_force, friction
+
+
+def _check_pads(pads, restoring_force, preload, turn, varied: bool, tail=None,
+                friction: bool = False, preload_varied: bool = False
+                ) -> tuple[float | None, float | None]:  # fmt: skip
+    """Check the pads' options; the restoring force (N; None where ``varied`` or, with
+    ``friction``, not given) and the preload (Pa), SI."""
     from mcsim.studies.pads import MIN_TAIL_PADS
 
     if tail not in (None, True, False):
         raise ParameterError(f"tail = {tail!r}: allowed None (automatic), True or False")
+    if preload_varied:
+        if preload is not None:
+            raise ParameterError("preload: given both as a value and as a varied input")
+        if turn is not None:
+            raise ParameterError("turn and vary preload: give one of them (the preload sets the turn)")  # fmt: skip
     if preload is not None:
         if turn is not None:
             raise ParameterError("turn and preload: give one of them (the preload sets the turn)")
@@ -508,8 +565,11 @@ def _check_pads(
             raise ParameterError("restoring_force: given both as a value and as a varied input")
         return None, preload
     if restoring_force is None:
+        if friction:
+            return None, preload
         raise ParameterError(
-            "pads need the restoring force (restoring_force=..., --restoring-force, or vary it)"
+            "pads need the restoring force (restoring_force=..., --restoring-force, or vary it), "
+            "or friction (friction=True, --friction, or a tangential force)"
         )
     fr = parse_quantity(plain(restoring_force), "force", "restoring_force")
     if not (math.isfinite(fr) and fr >= 0):
@@ -519,19 +579,24 @@ def _check_pads(
     return fr, preload
 
 
-def _pads_attrs(config: Config, area) -> dict:
+def _pads_attrs(config: Config, area, names=()) -> dict:
     """Root attributes of the pads and the preload (empty without them)."""
     attrs = {}
+    shared = "".join(f", {n}" for n in ("tangential_force", "preload") if n in names)
     if config.preload is not None:
         attrs |= {"preload": config.preload, "preload_unit": "Pa"}
     if config.pads:
-        if config.restoring_force is not None:  # else varied: a coordinate
+        if config.restoring_force is not None:  # else varied (a coordinate) or none
             attrs |= {"restoring_force": config.restoring_force, "restoring_force_unit": "N"}
+        if config.friction:
+            attrs["friction"] = True
+        if config.tangential_force is not None:  # else varied (a coordinate) or none
+            attrs |= {"tangential_force": config.tangential_force, "tangential_force_unit": "N"}
         attrs |= {"pads": config.pads, "area": math.nan if area is None else area,
                   "area_unit": "m^2", "seed_entropy": str(config.entropy),
                   "pads_streams": "point i: SeedSequence(seed_entropy, spawn_key=(i, 1)), i the "
                                   "point's index without its environment and restoring-force "
-                                  "dimensions (the same pads there)",
+                                  f"dimensions{shared} (the same pads there)",
                   "p_stick_tail": {None: "auto", True: "importance", False: "pads"}[config.tail]}  # fmt: skip
     return attrs
 

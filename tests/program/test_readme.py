@@ -42,6 +42,9 @@ SMALLER = (
      "--vary sigma=0.3nm:20nm:8:log --vary tau=100MPa \\\n    --mc --area 100um^2 --realizations 2"),
     ("--vary sigma=0.3nm:100nm:25:log \\\n    --vary gamma=0.002:5:13:log", "--vary sigma=0.3nm:100nm:5:log \\\n    --vary gamma=0.002:5:3:log"),
     ('{"sigma": "0.3nm:20nm:40:log", "gamma": [0.1, 0.5]}', '{"sigma": "0.3nm:20nm:8:log", "gamma": [0.1, 0.5]}'),
+    # the friction sweep on fewer preloads and pads
+    ("--vary preload=0.1MPa:10MPa:5:log \\\n    --vary rh=0,0.6 --pads 40",
+     "--vary preload=0.1MPa:10MPa:2:log \\\n    --vary rh=0,0.6 --pads 4"),
 )  # fmt: skip
 
 _BLOCK = re.compile(r"^```(bash|python)\n(.*?)^```", re.MULTILINE | re.DOTALL)

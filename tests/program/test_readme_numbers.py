@@ -418,6 +418,69 @@ def test_humid_p_stick_table(tmp_path):
 
 
 @pytest.mark.slow
+def test_friction_slip_table(tmp_path):
+    # the README's sweep of "Will my pad slip?" (about 20 s of CPU)
+    import xarray as xr
+
+    from mcsim.studies.pads import MIN_TAIL_PADS, SWITCH
+
+    args = quoted(
+        r"mcsim (sweep --surface smooth --law jkr --hamaker 1\.6e-19J --vary "
+        r"preload=0\.1MPa:10MPa:5:log \\ --vary rh=0,0\.6 --pads 40 --area 30um\^2 "
+        r"--tangential-force 1\.75mN --seed 1) --out slip"
+    )
+    mcsim(*args[0].replace("\\ ", "").split(), "--out", str(tmp_path / "slip.h5"), "--quiet")
+    with xr.open_dataset(tmp_path / "slip.h5", engine="h5netcdf") as ds:
+        shown = 0
+        for i, p in enumerate(ds.preload.values):
+            for j, rh in enumerate(ds.rh.values):
+                pattern = (rf"\| ({p / 1e6:.3g}) \| ({rh:g}) \| (\S+) \| (\S+) \[(\S+), (\S+)\] \| "
+                           rf"(\S+) \[(\S+), (\S+)\] \|")  # fmt: skip
+                if not re.search(pattern, TEXT):
+                    continue  # the table leaves some points out
+                row = ds.isel(preload=i, rh=j)
+                check_rounded(pattern, p / 1e6, rh, float(row["static_friction_mean"]) * 1e3,
+                              *(float(row[v]) for v in ("mu_static_mean", "mu_static_q05",
+                              "mu_static_q95", "p_slip", "p_slip_low", "p_slip_high")))  # fmt: skip
+                shown += 1
+        assert shown == 7
+        dry, humid = ds.sel(rh=0.0), ds.sel(rh=0.6)
+        t, mu = dry["static_friction_mean"].values * 1e3, dry["mu_static_mean"].values
+        check_rounded(r"\(from (\S+) to (\S+) mN dry over the whole range\)", t[0], t[-1])
+        check_rounded(r"the 5–95 % of the pads\): from (\S+) to (\S+) dry\.", mu[0], mu[-1])
+        at_1 = float(ds.sel(preload=1e6, rh=0.6)["static_friction_mean"]) * 1e3
+        check_rounded(r"\((\S+) against (\S+) mN at 1 MPa\)", at_1,
+                      float(ds.sel(preload=1e6, rh=0.0)["static_friction_mean"]) * 1e3)  # fmt: skip
+        quoted(r"slips under this force unless it is pressed with the top preload; at RH 0\.6 "
+               r"none of the pads does at any preload")  # fmt: skip
+        slip = dry["p_slip"].values
+        assert np.all(slip[:-1] > 0.5) and slip[-1] < 0.5 and np.all(humid["p_slip"].values == 0)
+    check_exact(r"where fewer than (\d+) pads lie on one side \(and at least (\d+) pads were "
+                r"simulated\) importance sampling estimates it", SWITCH, MIN_TAIL_PADS)  # fmt: skip
+
+
+def test_lim_et_al_inputs_are_the_validation_scripts():
+    import importlib.util
+
+    path = README.parent / "validation" / "pad_friction.py"
+    sys.path.insert(0, str(path.parent))
+    try:
+        spec = importlib.util.spec_from_file_location("pad_friction", path)
+        module = importlib.util.module_from_spec(spec)
+        spec.loader.exec_module(module)
+    finally:
+        sys.path.remove(str(path.parent))
+    poly, nitride = (
+        module.MEASURED["polysilicon/polysilicon"],
+        module.MEASURED["nitride/polysilicon"],
+    )
+    check_exact(r"\(μ_s = (\S+) ± (\S+) polysilicon on polysilicon, (\S+) ± (\S+) nitride on "
+                r"polysilicon\)", *poly, *nitride)  # fmt: skip
+    check_exact(r"Table-1 surface at (\S+)–(\S+) kPa: μ_s within a decade",
+                module.PRESSURES[0] / 1e3, module.PRESSURES[-1] / 1e3)  # fmt: skip
+
+
+@pytest.mark.slow
 def test_force_control_against_a_common_turn():
     # "Force control matters": 400 jkr pads of 30 µm² at σ = 2.5 nm (seed 1, the sweep's
     # default grid h = 4 … −1), each pressed to 1 MPa, then all turned at the mean-field turn

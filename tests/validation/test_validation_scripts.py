@@ -24,6 +24,7 @@ SCRIPTS = (
     "fuller_tabor",
     "gw_moments",
     "humid_pads",
+    "pad_friction",
     "memory",
     "pad_variation",
     "radius_height",
