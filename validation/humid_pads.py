@@ -10,9 +10,11 @@ are confined to the contacting asperities, held open by their own nanoscale roug
 RH_cr it jumps (menisci spread across the interface) and then rises toward
 2γ_L cos θ = 144 mJ/m²; RH_cr rises with roughness.
 
-Surfaces that hang together (docs/physics.md, 'Humid air as measured'): one isotropic
-self-affine spectrum (Hurst 0.8, flat below the roll-off q_r = 2π/1 µm) scaled to a combined
-rms Rq of 3, 5 and 8 nm, as DelRio's samples. Its wavelengths above 100 nm make the summits:
+Surfaces that hang together (docs/physics.md, 'Humid air as measured'): beam and substrate
+each carry one isotropic self-affine spectrum (Hurst 0.8, flat below the roll-off
+q_r = 2π/1 µm), correlated by ρ = 0.5 (the beam partly replicates its substrate), so that the
+gap between them has a combined rms Rq of 3, 5 and 8 nm, as DelRio's samples
+(:func:`mcsim.model.counterface.combine`: each face at Rq/√(2(1 − ρ)) = Rq). Its wavelengths above 100 nm make the summits:
 their spectral moments m0, m2, m4 give σ_s, R, η and the summit offset y_s by Nayak's and
 McCool's relations (:func:`mcsim.model.counterface.summits_of`), so that R falls and σ_s, y_s
 grow with Rq at a fixed η (printed). Its wavelengths from 100 nm down to 5 nm are the
@@ -58,7 +60,7 @@ from scipy import integrate
 
 from mcsim.engine import padcurves, padload
 from mcsim.engine.spec import MonteCarloSpec
-from mcsim.model.counterface import summits_of
+from mcsim.model.counterface import combine, combined_rms, summits_of
 from mcsim.model.params import Surface
 from mcsim.model.presets import MATERIALS
 from mcsim.physics.adhesion import maugis_parameter
@@ -69,6 +71,9 @@ RQ = (3e-9, 5e-9, 8e-9)
 #: The spectrum: Hurst exponent, roll-off, the summits' shortest and the nanoscale
 #: roughness's shortest wavelength, m.
 HURST, ROLL_OFF, SUMMIT_SCALE, NANO_SCALE = 0.8, 1e-6, 100e-9, 5e-9
+#: Correlation of the beam's and the substrate's heights: a beam released from a sacrificial
+#: layer partly replicates the substrate (DelRio et al., Appl. Phys. Lett. 90, 163104, 2007).
+REPLICATION = 0.5
 AREA = 100e-12
 LAW = "maugis-dugdale"
 HAMAKER, CUTOFF = 1.6e-19, 0.21e-9
@@ -83,10 +88,15 @@ H = np.linspace(-2.0, 6.0, 9)
 
 
 def spectrum_parts(rq: float) -> tuple[Surface, float]:
-    """The GW surface of the spectrum's summit scale, and the nanoscale roughness σ_n (m), of
-    the self-affine spectrum (module docstring) scaled to the rms ``rq``: the moments
-    m_n = ∫ q^(n+1) C(q) dq of the isotropic spectrum C, profile moments m2 = (1/2)⟨|∇z|²⟩
-    and m4 = (3/8)⟨(∇²z)²⟩ (Nayak 1971)."""
+    """The GW surface of the gap between beam and substrate at the spectrum's summit scale,
+    and the gap's nanoscale roughness σ_n (m), for a gap of rms ``rq``.
+
+    Each face carries the self-affine spectrum (module docstring) at the rms
+    rq/√(2(1 − ρ)), ρ = :data:`REPLICATION` (the beam partly replicates the substrate it was
+    released from); its moments m_n = ∫ q^(n+1) C(q) dq, profile moments m2 = (1/2)⟨|∇z|²⟩ and
+    m4 = (3/8)⟨(∇²z)²⟩ up to the summit scale give its summits (Nayak 1971), and
+    :func:`mcsim.model.counterface.combine` the gap's; the nanoscale parts combine the same way.
+    """
     q_r, q_s, q_n = (2 * math.pi / x for x in (ROLL_OFF, SUMMIT_SCALE, NANO_SCALE))
 
     def c(q):  # the radial spectrum, flat below the roll-off
@@ -96,14 +106,16 @@ def spectrum_parts(rq: float) -> tuple[Surface, float]:
         cut = [q_r] if lo < q_r < hi else None
         return integrate.quad(lambda q: q ** (n + 1) * c(q), lo, hi, points=cut, limit=200)[0]
 
-    total = moment(0, 0.0, q_n)
-    scale = rq**2 / total
+    face = rq / math.sqrt(2 * (1 - REPLICATION))
+    scale = face**2 / moment(0, 0.0, q_n)
     m0, m2 = scale * moment(0, 0.0, q_s), scale * moment(2, 0.0, q_s) / 2
     m4 = scale * moment(4, 0.0, q_s) * 3 / 8
     s = summits_of(m0, m2, m4)
-    surface = Surface(sigma=s.sigma, R=s.R, eta=s.eta, rq=rq, summit_offset=s.summit_offset,
-                      name=f"Rq {rq * 1e9:g} nm")  # fmt: skip
-    return surface, math.sqrt(scale * moment(0, q_s, q_n))
+    beam = Surface(sigma=s.sigma, R=s.R, eta=s.eta, name="beam")
+    substrate = Surface(sigma=s.sigma, R=s.R, eta=s.eta, name="substrate")
+    gap = combine(beam, substrate, REPLICATION)
+    nano = combined_rms(*[math.sqrt(scale * moment(0, q_s, q_n))] * 2, REPLICATION)
+    return dataclasses.replace(gap, name=f"Rq {rq * 1e9:g} nm"), nano
 
 
 def environment(rq: float, rh: float) -> Environment:
