@@ -1,11 +1,12 @@
 """The design-map kernel in a process of its own, and how close two runs of it must agree.
 
-``python tests/designmap_checks.py IN.npz OUT.npz [--from-cache]`` runs
-:func:`mcsim.engine.designmap.jkr_summaries` on the inputs of ``IN.npz`` (:func:`inputs`;
-with an environment where they hold ``hamaker``) and saves its outputs to ``OUT.npz``;
-``--from-cache`` then asserts that every function of the kernel came from numba's on-disk
-cache. tests/engine/test_designmap.py and test_designmap_environment.py run it with the
-interpreter (``NUMBA_DISABLE_JIT=1``) and in a fresh cache (:func:`run_elsewhere`).
+``python tests/designmap_checks.py IN.npz OUT.npz [IN2.npz OUT2.npz ...] [--from-cache]``
+runs :func:`mcsim.engine.designmap.jkr_summaries` on the inputs of each ``IN.npz`` in turn
+(:func:`inputs`; with an environment where they hold ``hamaker``) and saves its outputs to
+the ``OUT.npz`` after it; ``--from-cache`` then asserts that every function of the kernel
+came from numba's on-disk cache. tests/engine/test_designmap.py and
+test_designmap_environment.py run it with the interpreter (``NUMBA_DISABLE_JIT=1``) and in a
+fresh cache (:func:`run_elsewhere`, :func:`run_each_elsewhere`).
 """
 
 from __future__ import annotations
@@ -64,11 +65,20 @@ def summaries(arguments: dict) -> dict[str, np.ndarray]:
 def run_elsewhere(arguments: dict, folder, name: str, *options, **environ) -> dict:
     """:func:`summaries` in a fresh Python process with the environment variables
     ``environ`` (files in ``folder``); ``options``: ``--from-cache``."""
-    np.savez(folder / f"{name}-in.npz", **arguments)
-    out = folder / f"{name}.npz"
-    subprocess.run([sys.executable, __file__, str(folder / f"{name}-in.npz"), str(out), *options],
+    return run_each_elsewhere([arguments], folder, name, *options, **environ)[0]
+
+
+def run_each_elsewhere(batches: list[dict], folder, name: str, *options, **environ) -> list[dict]:
+    """:func:`summaries` of each of ``batches`` in turn, all in one fresh Python process (one
+    start-up, and the functions compiled for one batch not compiled again for the next), as
+    :func:`run_elsewhere`."""
+    files = []
+    for i, arguments in enumerate(batches):
+        np.savez(folder / f"{name}-{i}-in.npz", **arguments)
+        files += [folder / f"{name}-{i}-in.npz", folder / f"{name}-{i}.npz"]
+    subprocess.run([sys.executable, __file__, *map(str, files), *options],
                    env=os.environ | environ, check=True)  # fmt: skip
-    return dict(np.load(out))
+    return [dict(np.load(out)) for out in files[1::2]]
 
 
 def assert_agree(got: dict, expected: dict) -> None:
@@ -89,8 +99,10 @@ def assert_agree(got: dict, expected: dict) -> None:
 
 
 def main() -> None:
-    np.savez(sys.argv[2], **summaries(dict(np.load(sys.argv[1]))))
-    if "--from-cache" in sys.argv[3:]:
+    files = [a for a in sys.argv[1:] if a != "--from-cache"]
+    for source, target in zip(files[::2], files[1::2], strict=True):
+        np.savez(target, **summaries(dict(np.load(source))))
+    if "--from-cache" in sys.argv[1:]:
         from mcsim.engine.designmap import _kernels
 
         # a function compiled here, not loaded, counts a miss

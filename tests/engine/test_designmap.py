@@ -28,7 +28,7 @@ import warnings
 
 import numpy as np
 import pytest
-from designmap_checks import assert_agree, inputs, run_elsewhere, summaries
+from designmap_checks import assert_agree, inputs, run_each_elsewhere, run_elsewhere, summaries
 
 from mcsim.engine.designmap import NO_REST, OK, jkr_summaries
 from mcsim.model.presets import MATERIALS, SURFACES
@@ -191,7 +191,8 @@ def test_stale_modules_are_removed_and_the_kernel_compiled_once_is_loaded_after(
     versions (and numba's files of them), and compiles the kernel into the cache; a later
     process loads every function from there. The first process's numbers differ from the
     later one's by rounding (the module docstring of ``mcsim.engine.designmap``), within
-    ``AGREE`` (tests/designmap_checks.py), dry and with an environment."""
+    ``AGREE`` (tests/designmap_checks.py), dry and with an environment (each process runs
+    both, dry first)."""
     from mcsim.physics.environment import Environment
 
     kernels = tmp_path / "cache" / "kernels"
@@ -207,15 +208,17 @@ def test_stale_modules_are_removed_and_the_kernel_compiled_once_is_loaded_after(
     points = random_points(2, seed=12)
     dry = inputs(points, H)
     wet = inputs(points, H, [Environment(hamaker=1.6e-19, rh=0.6)] * 2)
-    first = [run_elsewhere(a, tmp_path, f"first{i}", **environ) for i, a in enumerate((dry, wet))]
+    # dry then wet in one process: each is compiled there (the wet kernel's own functions
+    # after the dry ones), as in a process of its own
+    first = run_each_elsewhere([dry, wet], tmp_path, "first", **environ)
     assert not any(path.exists() for path in stale) and kept.exists()
     cache = tmp_path / "cache" / "designmap"
     assert [*cache.glob("mapkernel._batch-*.nbi")] and [
         *cache.glob("mapenvironment._batch_net-*.nbi")
     ]
-    for i, arguments in enumerate((dry, wet)):
-        later = run_elsewhere(arguments, tmp_path, f"later{i}", "--from-cache", **environ)
-        assert_agree(later, first[i])
+    later = run_each_elsewhere([dry, wet], tmp_path, "later", "--from-cache", **environ)
+    for got, expected in zip(later, first, strict=True):
+        assert_agree(got, expected)
 
 
 def _toy_kernel(doc="One line.", scale="2.0", offset=1.0, options=""):

@@ -138,6 +138,12 @@ def batch():
     return cases, fast(cases)
 
 
+@pytest.fixture(scope="module")
+def references(batch):
+    """:func:`reference` at each point of the batch, computed once for the tests that read it."""
+    return [reference(*case) for case in batch[0]]
+
+
 def test_the_fast_curves_with_an_environment_equal_gw_curves_to_1e_13_of_their_scale(batch):
     cases, result = batch
     for i, (surface, material, env) in enumerate(cases):
@@ -148,13 +154,13 @@ def test_the_fast_curves_with_an_environment_equal_gw_curves_to_1e_13_of_their_s
                                        err_msg=f"{q} at point {i}")  # fmt: skip
 
 
-def test_the_fast_summary_with_an_environment_equals_adhesion_summary(batch):
-    cases, result = batch
+def test_the_fast_summary_with_an_environment_equals_adhesion_summary(batch, references):
+    result = batch[1]
     assert np.all(result["status"] == OK)
     assert np.sum(result["work_of_separation_vdw"] > 0) >= 5
     assert np.sum(result["work_of_separation_capillary"] > 0) >= 5
-    for i, case in enumerate(cases):
-        assert_summary_equal(result, i, reference(*case))
+    for i, ref in enumerate(references):
+        assert_summary_equal(result, i, ref)
 
 
 def test_without_condensation_the_capillary_terms_are_zero_as_in_adhesion_summary(batch):
@@ -166,13 +172,12 @@ def test_without_condensation_the_capillary_terms_are_zero_as_in_adhesion_summar
         assert result["work_of_separation_vdw"][i] > 0
 
 
-def test_the_fast_pull_off_is_located_to_1e_7_in_h_on_the_reference_net_curve(batch):
+def test_the_fast_pull_off_is_located_to_1e_7_in_h_on_the_reference_net_curve(batch, references):
     cases, result = batch
     checked = 0
-    for i, (surface, material, env) in enumerate(cases):
+    for i, ((surface, material, env), ref) in enumerate(zip(cases, references, strict=True)):
         if result["pull_off"][i] == 0:
             continue
-        ref = reference(surface, material, env)
         h = result["h_pull_off"][i]
         stop = 2 * (math.sqrt(np.finfo(float).eps) * abs(ref.h_pull_off) + 1e-7 / 3) + 1e-8
         assert abs(h - ref.h_pull_off) <= stop, i

@@ -45,6 +45,26 @@ SMALLER = (
     # the friction sweep on fewer preloads and pads
     ("--vary preload=0.1MPa:10MPa:5:log \\\n    --vary rh=0,0.6 --pads 40",
      "--vary preload=0.1MPa:10MPa:2:log \\\n    --vary rh=0,0.6 --pads 4"),
+    ("--vary rh=0.05:0.95:10 --out rh.h5", "--vary rh=0.05:0.95:3 --out rh.h5"),
+    # The runs below are also run as written, with their numbers checked, by
+    # tests/program/test_readme_numbers.py (each named there); here smaller ones take the
+    # same code path for the commands that read them. The exact adhesive cycle on 10 of the
+    # 30 positions:
+    ("--pressure 100MPa --plot runs/scan-adhesion.png", "--pressure 100MPa --steps 10 --plot runs/scan-adhesion.png"),
+    # the run to interrupt: a third of the pads (its plan and each checkpoint scale with
+    # them), its first checkpoint after 0.2 s of work and Ctrl-C within a tenth of a second
+    # after it (fewer completed pads for `mcsim pads --partial`): stopped five times sooner,
+    # it keeps at least the share of its work still to do that the README's run keeps
+    ("--realizations 30000 --seed 1 --checkpoint-every 1 --out many.h5 & \\\n  until [ -e many.partial.h5 ]; do sleep 1; done",
+     "--realizations 10000 --seed 1 --checkpoint-every 0.2 --out many.h5 & \\\n  until [ -e many.partial.h5 ]; do sleep 0.1; done"),
+    # the p_stick sweep (test_p_stick_table) at its two ends: σ = 1.5 nm switches to
+    # importance sampling by itself, σ = 3 nm stays with the pads and warns
+    ("--vary sigma=1.5nm:3nm:4 --preload 1MPa", "--vary sigma=1.5nm:3nm:2 --preload 1MPa"),
+    # importance sampling with --tail (test_tail_example) from 300 plain pads, which are its
+    # first cross-entropy stage as the README's 2000 are (mcsim.studies.pads.TAIL_PILOT)
+    ("--pads 2000 \\\n    --area 30um^2 --restoring-force 83uN --tail", "--pads 300 \\\n    --area 30um^2 --restoring-force 83uN --tail"),
+    # the humid sweep (test_humid_p_stick_table) dry and at its most humid point
+    ("--vary rh=0,0.3,0.4,0.45,0.5,0.55,0.7,0.9 ", "--vary rh=0,0.9 "),
 )  # fmt: skip
 
 _BLOCK = re.compile(r"^```(bash|python)\n(.*?)^```", re.MULTILINE | re.DOTALL)

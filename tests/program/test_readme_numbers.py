@@ -10,6 +10,8 @@ fails the test, naming the README text.
 
 from __future__ import annotations
 
+import contextlib
+import io
 import json
 import math
 import re
@@ -218,7 +220,7 @@ def pads_run(tmp_path_factory) -> Path:
     )
     readme = r"(--area 10um\^2 \\ --realizations 300 --seed 1 --out pads\.h5)"
     assert quoted(r"maugis-dugdale --cycle --h=4:0:41 " + readme)  # the README's command
-    mcsim(*args.split(), "--out", str(out), "--quiet")
+    mcsim_here(*args.split(), "--out", str(out), "--quiet")
     return out
 
 
@@ -228,10 +230,24 @@ def mcsim(*args: str) -> str:
     return subprocess.run(command, capture_output=True, text=True, check=True).stdout
 
 
+def mcsim_here(*args: str) -> str:
+    """Standard output of ``mcsim ARGS`` run in this process (:func:`mcsim.cli.main.main`),
+    for the commands that tests/program/test_readme.py runs as written, each in a process
+    of its own: a new interpreter here would only import NumPy, SciPy and mcsim again."""
+    from mcsim.cli.main import main
+
+    out, err = io.StringIO(), io.StringIO()
+    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+        code = main(list(args))
+    assert code == 0, err.getvalue()
+    return out.getvalue()
+
+
 def test_pad_statistics(pads_run):
+    # the README's `mcsim pads` commands, in this process (test_readme.py runs them as written)
     cp, wilson = (
-        json.loads(mcsim("pads", str(pads_run), "--restoring-force", "130uN", "--format", "json",
-                         *extra))
+        json.loads(mcsim_here("pads", str(pads_run), "--restoring-force", "130uN", "--format",
+                              "json", *extra))
         for extra in ((), ("--interval", "wilson"))
     )  # fmt: skip
     check_rounded(
