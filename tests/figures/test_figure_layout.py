@@ -161,9 +161,9 @@ def test_humidity_figure_draws_no_empty_part_no_single_regime_and_no_cut_title_o
     from mcsim.figures.environment import humidity_figure
 
     # intermediate: the contacts give back more than they take at rest (contact work < 0:
-    # the attraction presses them) and the capillary work stays below 10 % of the ceiling up
-    # to 95 %: dry over the whole sweep
-    result = _rh_sweep("intermediate", [0.05, 0.5, 0.95])
+    # the attraction presses them), and up to RH 0.3 (the films' onset, RH_dry) nothing
+    # condenses: dry over the whole sweep
+    result = _rh_sweep("intermediate", [0.05, 0.15, 0.3])
     assert np.all(result.data["work_of_separation_contact"] < 0)
     fig = humidity_figure(result)
     ax = fig.axes[0]
@@ -177,7 +177,7 @@ def test_humidity_figure_draws_no_empty_part_no_single_regime_and_no_cut_title_o
     box = ax.title.get_window_extent(renderer)
     assert fig.bbox.x0 <= box.x0 and box.x1 <= fig.bbox.x1 and box.y1 <= fig.bbox.y1
     low, high = ax.get_xlim()
-    assert low < 5 and high > 95  # the markers at 5 % and 95 % are drawn whole
+    assert low < 5 and high > 30  # the markers at 5 % and 30 % are drawn whole
 
 
 def test_humidity_figure_names_its_regimes_where_no_curve_runs():
@@ -187,7 +187,7 @@ def test_humidity_figure_names_its_regimes_where_no_curve_runs():
     ax = fig.axes[0]
     renderer = _renderer(fig)
     names = {t.get_text(): t for t in ax.texts}
-    assert set(names) == {"dry", "transition"}  # 10 % of the ceiling at RH = 27 %
+    assert set(names) == {"dry", "transition", "saturated"}
     points, frame = _line_points(ax, renderer), ax.get_window_extent(renderer)
     for text in names.values():
         box = text.get_window_extent(renderer)
