@@ -39,8 +39,10 @@ SCRIPTS = (
     "stiction_model",
     "tail_benchmark",
 )
-#: Scripts whose --quick run starts a process pool (concurrent.futures.ProcessPoolExecutor).
-OWN_PROCESS = ("tail_benchmark",)
+#: Scripts whose --quick run starts a process pool (concurrent.futures.ProcessPoolExecutor), or
+#: measures its child processes' peak memory (RUSAGE_CHILDREN is the largest of every child
+#: the process ever waited for: in a test worker, earlier tests' children too).
+OWN_PROCESS = ("tail_benchmark", "memory")
 
 
 def run_as_main(argv: list[str], monkeypatch, capsys) -> tuple[int, str, str]:
