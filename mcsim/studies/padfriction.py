@@ -178,35 +178,13 @@ def tail_p_slip(spec, statistics: FrictionStatistics, *, turn: float, preload: f
     ParameterError
         ``tail`` True with fewer than MIN_TAIL_PADS pads or a fixed summit count.
     """
-    from mcsim.studies.pads import MIN_ESS, MIN_TAIL_PADS, SWITCH, TAIL_PADS, TAIL_PILOT
-    from mcsim.studies.tail import importance_p_stick
-
-    n, p, f = statistics.pads, statistics.p_slip, statistics.tangential_force
-    k = round(p * n)
-    rare = min(k, n - k)
-    plain = {"p_slip": p, "p_slip_low": statistics.p_slip_ci[0],
-             "p_slip_high": statistics.p_slip_ci[1], "p_slip_ess": float(rare),
-             "p_slip_method": "pads"}  # fmt: skip
-    if tail is True and n < MIN_TAIL_PADS:
-        raise ParameterError(f"pads = {n}: importance sampling (tail) needs at least "
-                             f"{MIN_TAIL_PADS} pads")  # fmt: skip
-    if tail is False or (
-        tail is None and (rare >= SWITCH or n < MIN_TAIL_PADS or spec.count != "poisson")
-    ):
-        return plain
+    from mcsim.studies.pads import rare_event
 
     def score(s):  # slips when −T_s > −F
         return -pad_static_friction(spec, s, turn=turn, preload=preload)
 
     if start is not None:
         start = (start[0], -np.asarray(start[1]))
-    estimate = importance_p_stick(spec, -f, turn=turn, preload=preload, pads=max(n, TAIL_PADS),
-                                  pilot=max(TAIL_PILOT, n // 10),
-                                  start=start if n >= TAIL_PILOT else None,
-                                  event="stick" if k <= n - k else "release", score=score,
-                                  give_up=tail is None)  # fmt: skip
-    if estimate.ess < MIN_ESS:
-        return plain
-    return {"p_slip": estimate.p_stick, "p_slip_low": estimate.low,
-            "p_slip_high": estimate.high, "p_slip_ess": estimate.ess,
-            "p_slip_method": "importance"}  # fmt: skip
+    return rare_event(spec, "p_slip", statistics.pads, statistics.p_slip,
+                      statistics.p_slip_ci, -statistics.tangential_force, turn=turn,
+                      preload=preload, tail=tail, start=start, score=score)  # fmt: skip

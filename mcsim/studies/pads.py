@@ -415,14 +415,28 @@ def tail_p_stick(spec, statistics: PadStatistics, restoring_force: float, *, tur
     ParameterError
         ``tail`` True with fewer than :data:`MIN_TAIL_PADS` pads or a fixed summit count.
     """
+    return rare_event(spec, "p_stick", statistics.pads, statistics.p_stick,
+                      statistics.p_stick_ci, restoring_force, turn=turn, preload=preload,
+                      tail=tail, start=start)  # fmt: skip
+
+
+def rare_event(spec, name: str, n: int, p: float, ci, threshold: float, *, turn: float,
+               preload: float | None, tail: bool | None, start=None, score=None) -> dict:  # fmt: skip
+    """The probability ``name`` (``p_stick``, ``p_slip``) of the pads of ``spec`` whose score
+    (their pull-off, or ``score``) exceeds ``threshold``: the plain fraction ``p`` of ``n`` pads
+    with its interval ``ci``, or importance sampling, by the rules of :func:`tail_p_stick`.
+
+    Returns
+    -------
+    dict
+        ``name``, ``name_low``, ``name_high`` (95 %), ``name_ess`` and ``name_method``.
+    """
     from mcsim.studies.tail import importance_p_stick
 
-    n, p = statistics.pads, statistics.p_stick
     k = round(p * n)
     rare = min(k, n - k)
-    plain = {"p_stick": p, "p_stick_low": statistics.p_stick_ci[0],
-             "p_stick_high": statistics.p_stick_ci[1], "p_stick_ess": float(rare),
-             "p_stick_method": "pads"}  # fmt: skip
+    plain = {name: p, f"{name}_low": ci[0], f"{name}_high": ci[1], f"{name}_ess": float(rare),
+             f"{name}_method": "pads"}  # fmt: skip
     if tail is True and n < MIN_TAIL_PADS:
         raise ParameterError(f"pads = {n}: importance sampling (tail) needs at least "
                              f"{MIN_TAIL_PADS} pads")  # fmt: skip
@@ -430,17 +444,15 @@ def tail_p_stick(spec, statistics: PadStatistics, restoring_force: float, *, tur
         tail is None and (rare >= SWITCH or n < MIN_TAIL_PADS or spec.count != "poisson")
     ):
         return plain
-    estimate = importance_p_stick(spec, restoring_force, turn=turn, preload=preload,
-                                  pads=max(n, TAIL_PADS),
-                                  pilot=max(TAIL_PILOT, n // 10),
+    estimate = importance_p_stick(spec, threshold, turn=turn, preload=preload,
+                                  pads=max(n, TAIL_PADS), pilot=max(TAIL_PILOT, n // 10),
                                   start=start if n >= TAIL_PILOT else None,
                                   event="stick" if k <= n - k else "release",
-                                  give_up=tail is None)  # fmt: skip
+                                  give_up=tail is None, score=score)  # fmt: skip
     if estimate.ess < MIN_ESS:
         return plain
-    return {"p_stick": estimate.p_stick, "p_stick_low": estimate.low,
-            "p_stick_high": estimate.high, "p_stick_ess": estimate.ess,
-            "p_stick_method": "importance"}  # fmt: skip
+    return {name: estimate.p_stick, f"{name}_low": estimate.low, f"{name}_high": estimate.high,
+            f"{name}_ess": estimate.ess, f"{name}_method": "importance"}  # fmt: skip
 
 
 @dataclass(frozen=True)
