@@ -71,7 +71,7 @@ from mcsim.engine.mapkernel import (
 )
 from mcsim.physics.adhesion import GAUSSIAN_TOP, GRID, PANELS, _environment_top
 from mcsim.physics.environment import _TAIL as _GAP_TAIL
-from mcsim.physics.surfaceenvironment import environment_works, summit_parameters
+from mcsim.physics.surfaceenvironment import environment_works
 
 #: Gauss–Legendre nodes of the contact's one-panel rule in u (as
 #: :data:`mcsim.engine.mapkernel.S_NODES`, which has 32): the attraction pulls the turn deep
@@ -90,14 +90,13 @@ VDW_TAIL = _GAP_TAIL
 VDW_SPREAD = 1.0
 BLOCK = 16
 #: Columns of a point's parameters after the law's seven, with an environment
-#: (:func:`environment_params`): A/6π (J; 0: no van der Waals); Rq, D0, the band edge u_c,
-#: y_s (m); the Laplace pressure γ_L/r_K (Pa; 0: no condensation); the condensation gap g_K
-#: and the caps' min(g_K, u_c) (m; g_K 0 and the caps' D0 without condensation); the summit
-#: radius R (m); the top of the pull-off grid above the summits (h); K (Pa); the wet floor
+#: (:func:`environment_params`): A/6π (J; 0: no van der Waals); Rq, D0, y_s (m); the Laplace
+#: pressure γ_L/r_K (Pa; 0: no condensation); the condensation gap g_K (m; 0 without
+#: condensation); the top of the pull-off grid above the summits (h); K (Pa); the wet floor
 #: max(D0, 2t) of the adsorbed films t (m; D0 without condensation); the van der Waals
 #: retardation b = 5.32/λ (m⁻¹; 0: non-retarded).
-(P_VDW, P_RQ, P_CUTOFF, P_BAND, P_OFFSET, P_LAPLACE, P_GAP, P_CAP_GAP, P_RADIUS, P_TOP,
- P_K, P_FLOOR, P_RETARD) = range(7, 20)  # fmt: skip
+(P_VDW, P_RQ, P_CUTOFF, P_OFFSET, P_LAPLACE, P_GAP, P_TOP, P_K, P_FLOOR,
+ P_RETARD) = range(7, 17)  # fmt: skip
 
 
 def _vdw_rule() -> tuple[np.ndarray, np.ndarray]:
@@ -368,11 +367,10 @@ def environment_params(environment, surfaces, K) -> np.ndarray:
     """
     rows = np.empty((len(environment), P_RETARD - P_VDW + 1))
     for i, (env, surface) in enumerate(zip(environment, surfaces)):
-        caps = summit_parameters(surface, env)
         vdw = env.hamaker / (6 * math.pi) if env.has_vdw else 0.0
-        rows[i] = (vdw, surface.rq, env.cutoff, caps["band"], surface.summit_offset,
-                   env.laplace_pressure, env.condensation_gap, caps["gap_k"], surface.R,
-                   _environment_top(surface, env), K[i], env.wet_floor, env.retardation)  # fmt: skip
+        rows[i] = (vdw, surface.rq, env.cutoff, surface.summit_offset, env.laplace_pressure,
+                   env.condensation_gap, _environment_top(surface, env), K[i], env.wet_floor,
+                   env.retardation)  # fmt: skip
     return rows
 
 
