@@ -158,27 +158,13 @@ def _friction_notes(report, spec) -> None:
 
 
 def _print_pads(pull_off) -> None:
-    """``--format csv``: one row per pad."""
-    import numpy as np
-
-    print("mcsim: note: columns: pad (realization index), pull_off_N (most tensile retraction "
-          "load of the pad, a magnitude, N), h_pull_off (its separation d/sigma), h_turn (the "
-          "pad's closest approach d/sigma), turn_load_N (approach load reached there under a "
-          "preload, N), grid_pull_off_N and grid_h_pull_off (the most tensile point of the "
-          "run's grid)", file=sys.stderr)  # fmt: skip
-    columns = ["pad", "pull_off_N", "h_pull_off", "h_turn", "turn_load_N", "grid_pull_off_N",
-               "grid_h_pull_off"]  # fmt: skip
-    turn_load = (pull_off.turn_load if pull_off.turn_load is not None
-                 else np.full(pull_off.force.shape, math.nan))  # fmt: skip
-    values = [pull_off.force, pull_off.h, pull_off.h_turn, turn_load, pull_off.grid_force,
-              pull_off.grid_h]  # fmt: skip
-    if pull_off.static_friction is not None:
-        print("mcsim: note: with friction: static_friction_N (T_s at the turn), normal_load_N (W, "
-              "NaN where undefined) and mu_static (T_s/W)", file=sys.stderr)  # fmt: skip
-        columns += ["static_friction_N", "normal_load_N", "mu_static"]
-        values += [pull_off.static_friction, pull_off.normal_load, pull_off.mu_static]
-    rows = [dict(zip(columns, (i, *map(float, row)))) for i, row in enumerate(zip(*values))]
-    print_rows(rows, columns, "csv")
+    """``--format csv``: one row per pad (:meth:`mcsim.store.results.PullOff.to_dataframe`)."""
+    df = pull_off.to_dataframe()
+    meaning = "; ".join(f"{name} ({df.attrs['long_names'][name]}, {unit})"
+                        for name, unit in df.attrs["units"].items())  # fmt: skip
+    print(f"mcsim: note: columns: pad (realization index), {meaning}", file=sys.stderr)
+    rows = [{"pad": i, **row} for i, row in enumerate(df.to_dict("records"))]
+    print_rows(rows, ["pad", *df.columns], "csv")
 
 
 def _method(pull_off) -> str:

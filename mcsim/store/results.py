@@ -111,6 +111,38 @@ class PullOff:
             return None
         return self.static_friction / self.normal_load
 
+    #: Columns of :meth:`to_dataframe` (those of ``mcsim pads --format csv``): name, unit,
+    #: meaning.
+    COLUMNS = (
+        ("pull_off_N", "N", "most tensile retraction load of the pad, a magnitude"),
+        ("h_pull_off", "1", "its separation d/sigma"),
+        ("h_turn", "1", "the pad's closest approach d/sigma"),
+        ("turn_load_N", "N", "approach load reached there under a preload"),
+        ("grid_pull_off_N", "N", "the most tensile load on the run's grid"),
+        ("grid_h_pull_off", "1", "its separation d/sigma"),
+        ("static_friction_N", "N", "T_s at the turn"),
+        ("normal_load_N", "N", "W, the load of mu_s; NaN where undefined"),
+        ("mu_static", "1", "T_s/W"),
+    )
+
+    def to_dataframe(self):
+        """One row per pad (index ``pad``, the realization), the columns of :data:`COLUMNS`
+        (the friction columns only with ``friction``); ``df.attrs["units"]`` and
+        ``df.attrs["long_names"]`` give each column's unit and meaning."""
+        import pandas as pd
+
+        nan = np.full(self.force.shape, np.nan)
+        values = [self.force, self.h, self.h_turn,
+                  nan if self.turn_load is None else self.turn_load, self.grid_force, self.grid_h]  # fmt: skip
+        if self.static_friction is not None:
+            values += [self.static_friction, self.normal_load, self.mu_static]
+        columns = self.COLUMNS[: len(values)]
+        df = pd.DataFrame({name: v for (name, _, _), v in zip(columns, values)},
+                          index=pd.RangeIndex(len(self.force), name="pad"))  # fmt: skip
+        df.attrs["units"] = {name: unit for name, unit, _ in columns}
+        df.attrs["long_names"] = {name: meaning for name, _, meaning in columns}
+        return df
+
     @property
     def past_grid_top(self) -> int:
         """Pads whose pull-off lies beyond ``top``, the run's largest separation: the grid

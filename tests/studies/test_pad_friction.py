@@ -2,10 +2,12 @@
 plain pads and importance sampling, `mcsim pads --tangential-force` and `mcsim.pad_report`."""
 
 import dataclasses
+import io
 import json
 import math
 
 import numpy as np
+import pandas as pd
 import pytest
 from conftest import run_cli
 from scipy.stats import poisson
@@ -229,3 +231,16 @@ def test_cli_friction_of_a_law_set_without_it_names_those_that_have(tmp_path, ca
     assert "'dmt' has no friction without a shear strength tau" in err and "jkr" in err
     with pytest.raises(ParameterError, match="no friction"):
         mcsim.pad_report(mcsim.read_run(run), friction=True)
+
+
+def test_each_pad_as_a_table_is_what_mcsim_pads_csv_prints(cycle_run, capsys):
+    code, out, err = run_cli(capsys, "pads", cycle_run, "--friction", "--format", "csv")
+    assert code == 0, err
+    printed = pd.read_csv(io.StringIO(out), index_col="pad")
+    table = mcsim.read_run(cycle_run).pads().to_dataframe()
+    pd.testing.assert_frame_equal(printed, table, check_exact=True, check_index_type=False)
+    assert table.attrs["units"]["static_friction_N"] == "N"
+    assert table.attrs["units"]["mu_static"] == "1"
+    assert np.array_equal(table["mu_static"], table["static_friction_N"] / table["normal_load_N"])
+    for name in table.columns:
+        assert name in err, name  # every column explained in the note
