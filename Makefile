@@ -3,7 +3,7 @@ PYTHON ?= python3
 VENV ?= .venv
 BIN := $(VENV)/bin
 
-.PHONY: run test test-portable lint bench docs clean
+.PHONY: run test test-portable lint bench docs figures clean
 
 $(BIN)/.installed: pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -45,9 +45,14 @@ bench: $(BIN)/.installed
 	status=0; for script in benchmark sweep_benchmark scaling memory; do \
 		$(BIN)/python validation/$$script.py || status=1; done; exit $$status
 
+# The documentation site (Sphinx, MyST; the tutorials executed): docs/_build/html/index.html.
+# Warnings are errors, as in tests/program/test_docs_site.py.
+docs: $(BIN)/.installed
+	$(BIN)/python -m sphinx -W --keep-going -b html docs docs/_build/html
+
 # Every figure in docs/ and docs/figures.json, the digest of each figure's inputs that
 # tests/program/test_docs_figures.py checks (a few minutes on 2 cores)
-docs: $(BIN)/.installed
+figures: $(BIN)/.installed
 	$(BIN)/python docs/make_figures.py
 
 lint: $(BIN)/.installed

@@ -4,9 +4,11 @@ Four dimensionless numbers, each a pure function of SI scalars (vectorised), and
 :func:`stickiness`, which measures a map's slopes, curvatures and full-contact energy and
 returns them all as a :class:`Stickiness` with its :meth:`Stickiness.warnings`.
 
-Definitions (those of the Pastewka group, e.g. ``SurfaceTopography``'s ``rms_gradient`` and
-``rms_curvature_from_area``, which returns half the Laplacian)
------------------------------------------------------------------------------------------
+Definitions
+-----------
+Those of the Pastewka group, e.g. ``SurfaceTopography``'s ``rms_gradient`` and
+``rms_curvature_from_area``, which returns half the Laplacian:
+
 * rms slope h′ = √⟨|∇h|²⟩ (dimensionless);
 * rms curvature h″ = √⟨(∇²h/2)²⟩, 1/m: the rms of the mean curvature (half the Laplacian).
   For h = a cos(kx): h′ = ak/√2, h″ = ak²/(2√2).

@@ -105,7 +105,7 @@ def claim_output(
     ----------
     stack : contextlib.ExitStack
         Holds the lock of ``out`` until it closes.
-    out : path
+    out : str or path-like
         The output file (:func:`mcsim.store.files.check_output_path`: an existing file, or
         another run's checkpoint, is refused unless ``overwrite`` or ``resume``).
     overwrite, resume : bool

@@ -171,7 +171,7 @@ def simulate(
         Summits per task; the numbers do not depend on it.
     keep_heights : bool
         Keep the sampled heights (above h_min) in the result and file (no checkpoints).
-    out : path, optional
+    out : str or path-like, optional
         Write the complete run to this HDF5 file, atomically, when it ends. While it
         runs, its checkpoint (an incomplete, resumable run) is
         :func:`mcsim.store.files.checkpoint_path` (``<stem>.partial<suffix>`` beside

@@ -199,7 +199,7 @@ def sweep(
         Local worker threads (1 to 1024; all cores by default), or processes of ``"local"`` Dask.
     scheduler : str or dask.distributed.Client, optional
         ``"local"``, a scheduler address or a client, as in :func:`mcsim.simulate`.
-    out : path, optional
+    out : str or path-like, optional
         Write the sweep (HDF5, see the module docstring) atomically; completed points
         are checkpointed in ``<stem>.partial<suffix>`` beside it.
     overwrite : bool
