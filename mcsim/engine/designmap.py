@@ -9,9 +9,9 @@ Python), with the same law functions (:mod:`mcsim.physics.laws.jkr`). The kernel
 numba functions in two modules, each with its steps, rules and measured accuracy in its
 docstring:
 
-* :mod:`mcsim.engine.mapkernel`: the contact alone (``_batch``): the GW integrals, the
+* :mod:`mcsim.engine.mapkernel`: the contact alone (``batch``): the GW integrals, the
   zero-load turn, the work of separation and hysteresis, the pull-off;
-* :mod:`mcsim.engine.mapenvironment`: with an environment (``_batch_net``; van der Waals
+* :mod:`mcsim.engine.mapenvironment`: with an environment (``batch_net``; van der Waals
   attraction and capillary condensation on the summits' caps and across the open gaps
   between them, over Gaussian heights, :mod:`mcsim.physics.environment`), the same steps on the net load, and the parameters
   and outputs of the environment (:func:`~mcsim.engine.mapenvironment.environment_params`).
@@ -45,6 +45,7 @@ import threading
 import numpy as np
 
 from mcsim.engine.kernels import cache_dir
+from mcsim.engine.mapstatus import NO_REST, OK, REFERENCE
 from mcsim.model.params import Surface
 from mcsim.physics.adhesion import NODES
 from mcsim.physics.environment import Environment
@@ -54,10 +55,6 @@ from mcsim.physics.surfaceenvironment import contact_adhesion
 # The entry point, and the statuses of its points.
 __all__ = ["NO_REST", "OK", "REFERENCE", "jkr_summaries"]
 
-#: Status of a point, set by the kernel: summarised; the approach load is never tensile
-#: (the surfaces rest apart: zero pull-off, work and hysteresis); outside the fast path (the
-#: approach load stays tensile down to h = -1e6: the reference path reports it).
-OK, NO_REST, REFERENCE = 0, 1, 2
 
 _LOCK = threading.Lock()
 
@@ -71,12 +68,12 @@ def _kernels():
 
 @functools.cache
 def _first_use():
-    from mcsim.engine.mapenvironment import _batch_net
-    from mcsim.engine.mapkernel import _batch, enable_cache
+    from mcsim.engine.mapenvironment import batch_net
+    from mcsim.engine.mapkernel import batch, enable_cache
 
     _remove_generated_modules()
-    enable_cache(_batch, _batch_net)
-    return _batch, _batch_net
+    enable_cache(batch, batch_net)
+    return batch, batch_net
 
 
 def _remove_generated_modules() -> None:
@@ -129,8 +126,8 @@ def jkr_summaries(sigma, R, eta, E_star, K, gamma, h, turn=None, environment=Non
         ``work_of_separation_capillary`` (J/m²; with the surfaces in contact at rest their
         sum is ``work_of_separation``), ``kelvin_radius``, ``rq`` and ``summit_offset`` (m).
     """
-    from mcsim.engine.mapenvironment import S_NODES_NET, _environment_outputs, environment_params
-    from mcsim.engine.mapkernel import S_NODES, _rule
+    from mcsim.engine.mapenvironment import S_NODES_NET, environment_outputs, environment_params
+    from mcsim.engine.mapkernel import S_NODES, gauss_rule
     from mcsim.physics.laws.jkr import reduced_constants
 
     sigma, R, eta, E_star, K, gamma = np.broadcast_arrays(
@@ -161,7 +158,7 @@ def jkr_summaries(sigma, R, eta, E_star, K, gamma, h, turn=None, environment=Non
     dry, net = _kernels()
     kernel, s_nodes = (dry, S_NODES) if environment is None else (net, S_NODES_NET)
     kernel(np.ascontiguousarray(sigma), np.ascontiguousarray(eta / K), params, turns, h,
-           *_rule(s_nodes), *np.polynomial.legendre.leggauss(NODES), curves, summary, status)  # fmt: skip
+           *gauss_rule(s_nodes), *np.polynomial.legendre.leggauss(NODES), curves, summary, status)  # fmt: skip
     scale = K * sigma  # load·K is force per nominal area; dd = σ dh
     out = {
         "load": curves[:, 0],
@@ -174,5 +171,5 @@ def jkr_summaries(sigma, R, eta, E_star, K, gamma, h, turn=None, environment=Non
         "status": status,
     }
     if environment is not None:
-        out |= _environment_outputs(environment, surfaces, out, curves)
+        out |= environment_outputs(environment, surfaces, out, curves)
     return out

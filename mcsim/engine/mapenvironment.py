@@ -3,7 +3,7 @@
 With an environment (``jkr_summaries(..., environment=...)``: van der Waals attraction and
 capillary condensation across the gaps of Gaussian heights about the mean plane,
 :mod:`mcsim.physics.environment`) the steps of :mod:`mcsim.engine.mapkernel` run on the net
-load, as ``adhesion_summary(..., environment=...)`` does (:func:`_batch_net`, a kernel of
+load, as ``adhesion_summary(..., environment=...)`` does (:func:`batch_net`, a kernel of
 its own: the dry one is untouched and gives the same bits as without this part). Like the
 dry kernel, these are plain numba functions that the interpreter also runs:
 
@@ -34,7 +34,7 @@ dry kernel, these are plain numba functions that the interpreter also runs:
   load is never tensile (no attraction acts and too little adhesion);
 * **the pull-off**: the lowest net retraction load on the retraction's grid and on
   :data:`mcsim.physics.adhesion.PANELS` points from the top of the summits to where every
-  gap is open and wider than max(g_K, u_c) (:func:`mcsim.physics.adhesion._environment_top`),
+  gap is open and wider than max(g_K, u_c) (:func:`mcsim.physics.adhesion.environment_top_separation`),
   where the attraction alone acts, then the bounded minimiser on the net load (:func:`_point_net`);
 * **work of separation and hysteresis**: the contact's, as dry (signed, −∫ load dd from the
   turn), plus the works of the attractions from the turn to infinity by the reference's own
@@ -57,7 +57,6 @@ import math
 import numba
 import numpy as np
 
-from mcsim.engine.designmap import NO_REST, OK, REFERENCE
 from mcsim.engine.mapkernel import (
     _SQRT_2PI,
     H_TOLERANCE,
@@ -66,10 +65,11 @@ from mcsim.engine.mapkernel import (
     _minimum,
     _retraction,
     _root,
-    _rule,
+    gauss_rule,
     gw_load,
 )
-from mcsim.physics.adhesion import GAUSSIAN_TOP, GRID, PANELS, _environment_top
+from mcsim.engine.mapstatus import NO_REST, OK, REFERENCE
+from mcsim.physics.adhesion import GAUSSIAN_TOP, GRID, PANELS, environment_top_separation
 from mcsim.physics.environment import _TAIL as _GAP_TAIL
 from mcsim.physics.surfaceenvironment import environment_works
 
@@ -101,7 +101,7 @@ BLOCK = 16
 
 def _vdw_rule() -> tuple[np.ndarray, np.ndarray]:
     """:data:`VDW_PANELS` equal panels of :data:`VDW_NODES` Gauss–Legendre nodes on [0, 1]."""
-    x, w = _rule(VDW_NODES)
+    x, w = gauss_rule(VDW_NODES)
     start = np.arange(VDW_PANELS)[:, None] / VDW_PANELS
     return (start + x / VDW_PANELS).ravel(), np.tile(w / VDW_PANELS, VDW_PANELS)
 
@@ -290,7 +290,7 @@ def _point_net(turn, sigma, factor, p, nodes, weights, gl_x, gl_w, out):
     Work and hysteresis are the contact's. The pull-off grid is the retraction's points with
     the attraction taken off, and :data:`PANELS` more from the top of the summits to where
     every gap is open and wider than max(g_K, u_c) (``p[P_TOP]``;
-    :func:`mcsim.physics.adhesion._environment_top`), where the attraction alone acts.
+    :func:`mcsim.physics.adhesion.environment_top_separation`), where the attraction alone acts.
     """
     grid, values, top, work, hysteresis = _retraction(turn, sigma, factor, p, nodes, weights, gl_x,
                                                       gl_w, PANELS)  # fmt: skip
@@ -322,9 +322,9 @@ def _point_net(turn, sigma, factor, p, nodes, weights, gl_x, gl_w, out):
 
 
 @numba.njit(**OPTIONS)
-def _batch_net(sigma, factor, params, turns, h, nodes, weights, gl_x, gl_w, curves, summary,
+def batch_net(sigma, factor, params, turns, h, nodes, weights, gl_x, gl_w, curves, summary,
                status):  # fmt: skip
-    """As :func:`_batch` with an environment (the columns of ``params`` from :data:`P_VDW`
+    """As :func:`batch` with an environment (the columns of ``params`` from :data:`P_VDW`
     on): the van der Waals and capillary curves/K too, the turn and the pull-off of the net
     load."""
     out = np.empty(4)
@@ -369,12 +369,12 @@ def environment_params(environment, surfaces, K) -> np.ndarray:
     for i, (env, surface) in enumerate(zip(environment, surfaces)):
         vdw = env.hamaker / (6 * math.pi) if env.has_vdw else 0.0
         rows[i] = (vdw, surface.rq, env.cutoff, surface.summit_offset, env.laplace_pressure,
-                   env.condensation_gap, _environment_top(surface, env), K[i], env.wet_floor,
+                   env.condensation_gap, environment_top_separation(surface, env), K[i], env.wet_floor,
                    env.retardation)  # fmt: skip
     return rows
 
 
-def _environment_outputs(environment, surfaces, out, curves) -> dict[str, np.ndarray]:
+def environment_outputs(environment, surfaces, out, curves) -> dict[str, np.ndarray]:
     """The net load, the attraction curves and the summary's works: the works of the
     attractions from each point's turn outward by the reference's own function
     (:func:`mcsim.physics.surfaceenvironment.environment_works`, as

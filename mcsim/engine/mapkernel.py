@@ -1,6 +1,6 @@
 """The design map's kernel without an environment: the jkr summaries of one batch, dry.
 
-Plain numba functions (:func:`_batch` the entry point), which the interpreter also runs
+Plain numba functions (:func:`batch` the entry point), which the interpreter also runs
 (``NUMBA_DISABLE_JIT=1``, or each function's ``py_func``); the JKR law functions
 (:mod:`mcsim.physics.laws.jkr`) are compiled into them (:data:`load_law`, :data:`area_law`).
 Each function follows a step of :func:`mcsim.physics.adhesion.adhesion_summary`:
@@ -59,8 +59,8 @@ import numpy as np
 from numba.core import caching
 from numba.core.dispatcher import Dispatcher
 
-from mcsim.engine.designmap import NO_REST, OK, REFERENCE
 from mcsim.engine.kernels import cache_dir, compile_law
+from mcsim.engine.mapstatus import NO_REST, OK, REFERENCE
 from mcsim.physics.adhesion import GAUSSIAN_TOP, GRID, PANELS
 from mcsim.physics.laws.jkr import jkr_area, jkr_load
 
@@ -363,7 +363,7 @@ def _point(turn, sigma, factor, p, nodes, weights, gl_x, gl_w, out):
 
 
 @numba.njit(**OPTIONS)
-def _batch(sigma, factor, params, turns, h, nodes, weights, gl_x, gl_w, curves, summary, status):
+def batch(sigma, factor, params, turns, h, nodes, weights, gl_x, gl_w, curves, summary, status):
     """Every point of a batch: approach curves at ``h`` and the summary (``_point``)."""
     out = np.empty(4)
     for i in range(sigma.size):
@@ -383,7 +383,7 @@ def _batch(sigma, factor, params, turns, h, nodes, weights, gl_x, gl_w, curves, 
             summary[i, 1 + k] = out[k]
 
 
-def _rule(n: int) -> tuple[np.ndarray, np.ndarray]:
+def gauss_rule(n: int) -> tuple[np.ndarray, np.ndarray]:
     """Gauss–Legendre nodes and weights on [0, 1]."""
     x, w = np.polynomial.legendre.leggauss(n)
     return (x + 1.0) / 2.0, w / 2.0

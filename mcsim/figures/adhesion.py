@@ -38,7 +38,7 @@ def adhesion_figure(surface, material, law, summary=None, *, points: int = 400):
     from matplotlib.figure import Figure
     from matplotlib.ticker import FuncFormatter
 
-    from mcsim.physics.adhesion import RegimeWarning, _top, adhesion_summary
+    from mcsim.physics.adhesion import RegimeWarning, adhesion_summary, top_separation
     from mcsim.physics.analytic import gw_curves
     from mcsim.physics.laws import get_law_set
 
@@ -48,7 +48,7 @@ def adhesion_figure(surface, material, law, summary=None, *, points: int = 400):
             warnings.simplefilter("ignore", RegimeWarning)
             summary = adhesion_summary(surface, material, laws)
     turn, K, sigma = summary.turn, material.K, surface.sigma
-    h = np.linspace(turn, _top(surface, laws, material), points)
+    h = np.linspace(turn, top_separation(surface, laws, material), points)
     approach = gw_curves(surface, material, h, laws).load
     retract = gw_curves(surface, material, h, laws, branch="retract", turn=turn).load
     # show the separations where either branch carries a visible load

@@ -7,7 +7,7 @@ import math
 import numpy as np
 
 from mcsim.model.errors import MCSimError
-from mcsim.physics.loadcontrol import hertz_area_fraction
+from mcsim.physics.analytic import hertz_area_fraction
 
 
 def light_load_ratio(surface, h) -> np.ndarray:

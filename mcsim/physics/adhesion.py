@@ -266,7 +266,7 @@ class AdhesionSummary:
         return asdict(self)
 
 
-def _top(surface: Surface, laws: LawSet, material: Material) -> float:
+def top_separation(surface: Surface, laws: LawSet, material: Material) -> float:
     """Separation h above which no summit carries force on either branch."""
     heights = surface.heights
     top = float(heights.edges[-1]) if hasattr(heights, "edges") else GAUSSIAN_TOP
@@ -279,7 +279,7 @@ def _edges(surface: Surface, laws: LawSet, material: Material) -> list:
     return [laws.edges_for(part, material) for part in surface.components()]
 
 
-def _bottom(surface: Surface) -> float:
+def bottom_separation(surface: Surface) -> float:
     heights = surface.heights
     return float(heights.edges[0]) if hasattr(heights, "edges") else -GAUSSIAN_TOP
 
@@ -327,7 +327,7 @@ def zero_load_separation(
     from scipy import optimize  # here, not at import: a sweep's fast path does without it
 
     laws = get_law_set(law)
-    top, bottom = _top(surface, laws, material), _bottom(surface)
+    top, bottom = top_separation(surface, laws, material), bottom_separation(surface)
     # Below the lowest summit every summit is pressed in: extend the scan downwards
     # (doubling its span) until the load turns compressive, or up to |h| = 1e6.
     while True:
@@ -410,7 +410,7 @@ def adhesion_summary(
             turn_from = "zero load on approach"
         except NoAdhesiveRest:
             # Under no external load the surfaces never come together: nothing to pull off.
-            top = _top(surface, laws, material)
+            top = top_separation(surface, laws, material)
             return _summary(surface, material, laws, top,
                             "none: the mean approach load is never tensile, so the mean curve of an "
                             "infinite surface rests apart",
@@ -418,7 +418,7 @@ def adhesion_summary(
                             _environment_parts(surface, top, environment, 0.0, zero=True))  # fmt: skip
     else:
         turn, turn_from = check_range("turn", turn, "1"), "given"
-    top = max(_top(surface, laws, material), turn)
+    top = max(top_separation(surface, laws, material), turn)
 
     def load(x, branch: str) -> np.ndarray:
         return gw_curves(surface, material, np.atleast_1d(x), laws, branch=branch,
@@ -451,7 +451,7 @@ def adhesion_summary(
     grid = np.concatenate([cuts, nodes])
     values = np.concatenate([load(cuts, "retract"), retract])
     if environment is not None:
-        grid = np.concatenate([grid, np.linspace(top, _environment_top(surface, environment),
+        grid = np.concatenate([grid, np.linspace(top, environment_top_separation(surface, environment),
                                                  PANELS + 1)[1:]])  # fmt: skip
         values = np.concatenate([values, load(grid[values.size :], "retract")])
         values = values - _attraction(surface, material, environment, grid)
@@ -486,7 +486,7 @@ def _attraction(surface: Surface, material: Material, environment: Environment, 
     return (p["vdw"] + p["capillary"]) / material.K
 
 
-def _environment_top(surface: Surface, environment: Environment) -> float:
+def environment_top_separation(surface: Surface, environment: Environment) -> float:
     """Separation h above which every gap is open and wider than the condensation gap:
     there the attraction only falls with h (beyond the highest heights, ~9 rq)."""
     gap = gap_heights(surface)

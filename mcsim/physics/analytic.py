@@ -34,6 +34,7 @@ friction/net load. Both branches carry the same environment terms (equilibrium m
 from __future__ import annotations
 
 import dataclasses
+import math
 from dataclasses import dataclass
 from typing import ClassVar
 
@@ -200,8 +201,6 @@ class AnalyticCurves:
             One line if the area fraction passes the nominal area or
             :data:`~mcsim.physics.validity.INTERACTING_AREA` at some ``h``; else empty.
         """
-        from mcsim.physics.loadcontrol import hertz_area_fraction
-
         h = self.h[np.isfinite(self.h)]  # NaN rows: no equilibrium under load control
         if "area" in self.values:
             area = self.values["area"][np.isfinite(self.h)]
@@ -418,3 +417,13 @@ def _breaks(edges: Edges, sigma: float, lag: np.ndarray) -> np.ndarray:
     columns += [np.full_like(lag, b / sigma) for b in in_delta]
     columns += [b / sigma - lag for b in in_max]
     return np.stack(columns, axis=1)
+
+
+def hertz_area_fraction(surface: Surface, h) -> np.ndarray:
+    """GW real contact area of Hertz summits, A_r/A_n = π η R σ F_1(h) (GW 1966, Eq. 9)."""
+    h = np.atleast_1d(np.asarray(h, dtype=float))
+    out = np.zeros_like(h)
+    for part in surface.components():  # a radius by height: the sum over its bands
+        scale, integral = part.heights.gw_integrals(lambda d: d[None], h)
+        out += math.pi * part.eta * part.R * part.sigma * scale * integral[0]
+    return out

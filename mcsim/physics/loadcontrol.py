@@ -26,7 +26,6 @@ zero-load rest of the super-smooth surface) one ulp of h moves it by ~1e-9 relat
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -36,8 +35,8 @@ from mcsim.model.errors import ParameterError
 from mcsim.model.params import MAX_ABS_H, Material, Surface
 from mcsim.model.presets import as_material, as_surface
 from mcsim.model.units import parse_values
-from mcsim.physics.adhesion import _bottom, _top
-from mcsim.physics.analytic import AnalyticCurves, gw_curves
+from mcsim.physics.adhesion import bottom_separation, top_separation
+from mcsim.physics.analytic import AnalyticCurves, gw_curves, hertz_area_fraction
 from mcsim.physics.environment import Environment, as_environment
 from mcsim.physics.laws import LawSet, get_law_set
 from mcsim.physics.surfaceenvironment import contact_law
@@ -59,16 +58,6 @@ def balanced_quantity(law: str | LawSet, environment: bool = False) -> str:
     if "load" not in laws.names:
         raise ParameterError(f"law set {laws.name!r} has no 'load' output to balance a pressure")
     return "load"
-
-
-def hertz_area_fraction(surface: Surface, h) -> np.ndarray:
-    """GW real contact area of Hertz summits, A_r/A_n = π η R σ F_1(h) (GW 1966, Eq. 9)."""
-    h = np.atleast_1d(np.asarray(h, dtype=float))
-    out = np.zeros_like(h)
-    for part in surface.components():  # a radius by height: the sum over its bands
-        scale, integral = part.heights.gw_integrals(lambda d: d[None], h)
-        out += math.pi * part.eta * part.R * part.sigma * scale * integral[0]
-    return out
 
 
 @dataclass(frozen=True)
@@ -216,7 +205,7 @@ def load_control(
     def load(h):
         return gw_curves(surface, material, h, laws, environment=environment).values[quantity]
 
-    top, bottom = _top(surface, laws, material), _bottom(surface)
+    top, bottom = top_separation(surface, laws, material), bottom_separation(surface)
     while True:
         grid = np.linspace(top, bottom, GRID)
         values = load(grid)

@@ -68,8 +68,9 @@ import numpy as np
 from mcsim.model.errors import ParameterError
 from mcsim.model.params import Material, Surface
 from mcsim.physics import bem
+from mcsim.physics.analytic import hertz_area_fraction
 from mcsim.physics.environment import Environment, as_environment, vdw_flat_pressure
-from mcsim.physics.loadcontrol import hertz_area_fraction, load_control
+from mcsim.physics.loadcontrol import load_control
 from mcsim.studies.ingest import (
     _is_histogram_file,
     decide_periodic,
@@ -91,7 +92,7 @@ def gw_hertz(surface: Surface, material: Material, pressure: np.ndarray):
 
     The separation balances the Hertz load of the summits, the seed law set's P̄ (Eq. 3),
     by :func:`mcsim.physics.loadcontrol.load_control`; the area is
-    :func:`~mcsim.physics.loadcontrol.hertz_area_fraction`.
+    :func:`~mcsim.physics.analytic.hertz_area_fraction`.
 
     Parameters
     ----------

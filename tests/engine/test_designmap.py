@@ -197,9 +197,9 @@ def test_stale_modules_are_removed_and_the_kernel_compiled_once_is_loaded_after(
 
     kernels = tmp_path / "cache" / "kernels"
     stale = [kernels / "mcsim_designmap_jkr_0123456789abcdef.py",
-             kernels / "mcsim_designmap_jkr_0123456789abcdef.py._batch_net.compiled",
-             kernels / "__pycache__" / "mcsim_designmap_jkr_0123456789abcdef._batch-215.py311.nbi",
-             kernels / "__pycache__" / "mcsim_designmap_jkr_0123456789abcdef._batch-215.py311.1.nbc"]  # fmt: skip
+             kernels / "mcsim_designmap_jkr_0123456789abcdef.py.batch_net.compiled",
+             kernels / "__pycache__" / "mcsim_designmap_jkr_0123456789abcdef.batch-215.py311.nbi",
+             kernels / "__pycache__" / "mcsim_designmap_jkr_0123456789abcdef.batch-215.py311.1.nbc"]  # fmt: skip
     kept = kernels / "mcsim_kernel_seed_0123456789abcdef.py"  # the Monte Carlo kernel's
     for path in [*stale, kept]:
         path.parent.mkdir(parents=True, exist_ok=True)
@@ -213,8 +213,8 @@ def test_stale_modules_are_removed_and_the_kernel_compiled_once_is_loaded_after(
     first = run_each_elsewhere([dry, wet], tmp_path, "first", **environ)
     assert not any(path.exists() for path in stale) and kept.exists()
     cache = tmp_path / "cache" / "designmap"
-    assert [*cache.glob("mapkernel._batch-*.nbi")] and [
-        *cache.glob("mapenvironment._batch_net-*.nbi")
+    assert [*cache.glob("mapkernel.batch-*.nbi")] and [
+        *cache.glob("mapenvironment.batch_net-*.nbi")
     ]
     later = run_each_elsewhere([dry, wet], tmp_path, "later", "--from-cache", **environ)
     for got, expected in zip(later, first, strict=True):

@@ -18,10 +18,9 @@ from mcsim.engine.spec import MonteCarloSpec
 from mcsim.model.errors import ParameterError
 from mcsim.model.params import RadiusByHeight, combine_surfaces
 from mcsim.model.presets import MATERIALS, SURFACES
-from mcsim.physics.analytic import gw_curves
+from mcsim.physics.analytic import gw_curves, hertz_area_fraction
 from mcsim.physics.environment import Environment
 from mcsim.physics.laws import get_law_set
-from mcsim.physics.loadcontrol import hertz_area_fraction
 from mcsim.topography.empirical import Empirical
 
 SMOOTH, SILICON = SURFACES["smooth"], MATERIALS["silicon"]
