@@ -7,9 +7,13 @@ installed (``PYTHONPATH=...``) has no such file and reports ``0+unknown``; an ed
 install keeps the version of its install until it is installed again.
 """
 
-try:
+import os.path
+
+# Only the file beside this one: an editable install of another source tree in the same
+# environment would lend its own, since its import finder answers for mcsim's modules too.
+if os.path.exists(os.path.join(os.path.dirname(__file__), "_build_version.py")):
     from mcsim._build_version import __version__
-except ImportError:  # a source tree that was never built or installed
+else:  # a source tree that was never built or installed
     __version__ = "0+unknown"
 
 __all__ = ["__version__"]
