@@ -108,6 +108,18 @@ def test_parameter_ranges():
     assert quoted(r"(each finite with \|h\| <= 10⁶)") and MAX_ABS_H == 1e6
 
 
+def test_the_error_of_a_bad_surface_is_the_one_the_readme_shows():
+    from mcsim import Surface
+    from mcsim.model.errors import ParameterError
+
+    call, kind, message = quoted(r"`(mcsim\.Surface\(sigma=-1, R=1e-6, eta=1e12\))` raises "
+                                 r"`(\w+): (.+?)`")  # fmt: skip
+    assert call == "mcsim.Surface(sigma=-1, R=1e-6, eta=1e12)" and kind == "ParameterError"
+    with pytest.raises(ParameterError) as raised:
+        Surface(sigma=-1, R=1e-6, eta=1e12)
+    assert str(raised.value) == message
+
+
 def test_adhesion_map_thresholds():
     check_exact(
         r"\(DMT for λ < (\S+), JKR for λ > (\S+), Maugis–Dugdale between\)",
@@ -234,13 +246,18 @@ def mcsim_here(*args: str) -> str:
     """Standard output of ``mcsim ARGS`` run in this process (:func:`mcsim.cli.main.main`),
     for the commands that tests/program/test_readme.py runs as written, each in a process
     of its own: a new interpreter here would only import NumPy, SciPy and mcsim again."""
+    return mcsim_here_with_stderr(*args)[0]
+
+
+def mcsim_here_with_stderr(*args: str) -> tuple[str, str]:
+    """Standard output and standard error of ``mcsim ARGS`` run in this process."""
     from mcsim.cli.main import main
 
     out, err = io.StringIO(), io.StringIO()
     with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
         code = main(list(args))
     assert code == 0, err.getvalue()
-    return out.getvalue()
+    return out.getvalue(), err.getvalue()
 
 
 def test_pad_statistics(pads_run):
@@ -258,8 +275,29 @@ def test_pad_statistics(pads_run):
         cp["p_stick"] * cp["pads"], cp["p_stick"], cp["p_stick_ci_low"], cp["p_stick_ci_high"],
         wilson["p_stick_ci_low"], wilson["p_stick_ci_high"],
     )  # fmt: skip
-    check_rounded(r"give the GW analytic mean \(the analytic pull-off × A K, (\S+) µN here\)",
+    check_rounded(r"gives the GW analytic mean \(`analytic_mean`: the analytic pull-off × A K, (\S+) µN here\)",
                   1e6 * cp["analytic_mean"])  # fmt: skip
+
+
+def test_pads_csv_has_the_columns_the_readme_lists_and_its_note_the_analytic_mean(pads_run):
+    (columns,) = quoted(r"mcsim pads pads\.h5 --format csv > pads\.csv # columns (\S+)")
+    out, err = mcsim_here_with_stderr("pads", str(pads_run), "--format", "csv")
+    assert out.splitlines()[0] == columns
+    (note,) = [line for line in err.splitlines() if "analytic_mean = " in line]
+    assert note.startswith("mcsim: note: pads = 300, mean = ")  # a count: no unit after it
+    assert not re.search(r" = \S+ 1[,;]", note), f"a dimensionless value with a unit 1: {note}"
+
+
+def test_analytic_with_an_area_adds_the_columns_the_readme_lists():
+    (args, named) = quoted(r"mcsim (analytic --surface smooth --h=2:0:5 --area 1mm\^2) # adds the "
+                           r"columns (.+?) \(N\)")  # fmt: skip
+    header = {}
+    for extra in ((), ("--area", "1mm^2")):
+        plain = [a for a in args.split() if a not in ("--area", "1mm^2")]
+        out = mcsim_here(*plain, *extra, "--format", "csv", "--quiet")
+        header[extra] = next(line for line in out.splitlines() if not line.startswith("#"))
+    added = [c for c in header[("--area", "1mm^2")].split(",") if c not in header[()].split(",")]
+    assert added == named.split(", ")
 
 
 def test_design_map_stiction_boundary():
