@@ -195,6 +195,41 @@ def test_humidity_example_smooth_at_60_percent():
     )  # fmt: skip
 
 
+def test_humid_thresholds_and_films():
+    from mcsim.physics import films
+    from mcsim.physics.environment import NANO_GAP
+
+    # "Will my device stick in humid air?": A = 1.6e-19 J, σ_n = 0.5 nm, water at 298.15 K
+    env = Environment(hamaker=1.6e-19, asperity_roughness=0.5e-9)
+    check_rounded(r"\*\*Nothing changes up to RH_cr ≈ ([\d.]+)\*\*", env.critical_rh)
+    check_exact(r"`--asperity-roughness`, σ_n = (\S+) nm here\) holds each contact (\d+)σ_n open",
+                env.asperity_roughness * 1e9, NANO_GAP)  # fmt: skip
+    check_rounded(r"film on each face \(about (\S+) nm, ice-like, by RH (\S+), when bridges",
+                  films.film_thickness(env.bridging_rh) * 1e9, env.bridging_rh)  # fmt: skip
+    check_rounded(r"above RH_dry = ([\d.]+), the adsorbed films' onset", env.bridging_rh)
+    (rh,) = quoted(
+        r"default the isotherm t\(RH\) of water on silicon oxide, [\d.]+ nm at RH ([\d.]+)\)"
+    )
+    check_rounded(
+        r"of water on silicon oxide, (\S+) nm at RH", films.film_thickness(float(rh)) * 1e9
+    )
+    check_rounded(r"\(its ice-like first layers, default (\S+) nm: menisci form only on a thicker "
+                  r"film, above RH ([\d.]+) by default", films.STRUCTURED_FILM * 1e9,
+                  films.film_humidity(films.STRUCTURED_FILM))  # fmt: skip
+
+
+def test_the_van_der_waals_share_of_silicons_work_of_adhesion():
+    from mcsim.physics.surfaceenvironment import contact_adhesion, vdw_share
+
+    env = Environment(hamaker=1.6e-19)  # default cutoff D0 and retardation wavelength λ
+    check_exact(r"of silicon's w = (\S+) J/m², A/\(12πD0²\)/\(1 \+ 5\.32 D0/λ\) = \S+ J/m² \(A = "
+                r"(\S+) J, D0 = (\S+) nm, Gregory's retardation λ = (\S+) nm\)", SILICON.gamma,
+                env.hamaker, env.cutoff * 1e9, env.retardation_wavelength * 1e9)  # fmt: skip
+    check_rounded(r"of silicon's w = \S+ J/m², A/\(12πD0²\)/\(1 \+ 5\.32 D0/λ\) = (\S+) J/m² .{0,120}?"
+                  r"the contacts carry the other (\S+) J/m²", vdw_share(SILICON.gamma, env),
+                  contact_adhesion(SILICON.gamma, env))  # fmt: skip
+
+
 def _pull_off_pressure(sigma: float, w: float = SILICON.gamma) -> float:
     """Analytic pull-off per nominal area (Pa) of the smooth surface at `sigma`, law auto."""
     surface = type(SMOOTH)(sigma=sigma, R=SMOOTH.R, eta=SMOOTH.eta)
