@@ -382,6 +382,57 @@ def test_engine_and_file_constants():
     check_rounded(r"\(a 16384² map: (\S+) GB\)", BYTES_PER_PIXEL * 16384**2 / 1e9)
 
 
+def test_more_constants_of_the_code():
+    import inspect
+    import tomllib
+
+    from mcsim.engine import cuda, montecarlo
+    from mcsim.figures.topography import MAX_DRAWN_BINS
+    from mcsim.physics import validity
+    from mcsim.physics.laws import dmt
+    from mcsim.store import files, runfile
+    from mcsim.studies import adhesivecontact, ingest, simulation, tail
+
+    project = tomllib.loads((README.parent / "pyproject.toml").read_text())["project"]
+    (python,) = quoted(r"On a fresh machine with Python ≥ (\S+) \(and `make`\)")
+    assert project["requires-python"] == f">={python}"
+    check_exact(r"cut at D = (\S+) z0 \(the outputs report", dmt.DEFAULT_CUTOFF)
+    check_exact(r"schema version (\d+), netCDF-compatible", runfile.SCHEMA_VERSION)
+    check_exact(r"Datasets over (\d+) KiB \(the per-patch curves", files.COMPRESS_ABOVE / 1024)
+    check_exact(r"checked between tasks and every (\S+) s while waiting", montecarlo.POLL)
+    default = inspect.signature(simulation.simulate).parameters["checkpoint_every"].default
+    check_exact(r"every `--checkpoint-every` seconds, default (\d+),", default)
+    check_exact(r"Per step \((\d+) by default, `--steps`\)", adhesivecontact.STEPS)
+    check_exact(r"at most (\d+) blocks per launch", cuda.LAUNCH_BLOCKS)
+    check_exact(r"a histogram of more than (\d+) bins is drawn merged into at most (\d+) bars",
+                MAX_DRAWN_BINS, MAX_DRAWN_BINS)  # fmt: skip
+    check_exact(r"direct and spectral routes more than a factor (\d+) apart",
+                ingest.ROUTE_DISAGREEMENT)  # fmt: skip
+    check_exact(r"or beyond A_r/A_n = (\S+) \(where neighbouring contacts interact\)",
+                validity.INTERACTING_AREA)  # fmt: skip
+    assert quoted(r"(A fifth of the estimate's pads are drawn from the real law and three tenths "
+                  r"from a law half-way to the tilted one)") and (tail.DEFENSIVE, tail.HALF_WAY) == (
+        0.2, 0.3)  # fmt: skip
+    check_rounded(
+        r"because these summits sit at Maugis λ ≈ (\S+),", maugis_parameter(SMOOTH, SILICON)
+    )
+
+
+def test_the_coverage_asked_of_importance_sampling_is_the_benchmarks():
+    import importlib.util
+
+    path = README.parent / "validation" / "tail_benchmark.py"
+    sys.path.insert(0, str(path.parent))
+    try:
+        spec = importlib.util.spec_from_file_location("tail_benchmark", path)
+        module = importlib.util.module_from_spec(spec)
+        spec.loader.exec_module(module)
+    finally:
+        sys.path.remove(str(path.parent))
+    check_exact(r"95 % interval in at least (\d+) % of the runs, the coverage asked of them",
+                module.COVERAGE * 100)  # fmt: skip
+
+
 def test_humidity_threshold_of_the_intermediate_surface():
     # the README's sweep, rh = 0.05 … 0.95 in 10 steps, law auto; the work of separation
     # grows with rh: its ends below the threshold and the two points above it suffice
@@ -504,6 +555,13 @@ def test_humid_p_stick_table(tmp_path):
             )  # fmt: skip
             shown += 1
         assert shown == 6
+        # the pull-off peaks and falls while the work of separation keeps rising
+        (wet, humid) = (ds.sel(rh=rh) for rh in (0.5, 0.9))
+        check_rounded(r"the mean pull-off falls from (\S+) to (\S+) µN between RH 0\.5 and 0\.9 here",
+                      float(wet["pull_off_mean"]) * 1e6, float(humid["pull_off_mean"]) * 1e6)  # fmt: skip
+        assert float(ds["pull_off_mean"].max()) == float(wet["pull_off_mean"])
+        assert np.all(np.diff(ds["work_of_separation_mean"].sel(rh=ds.rh >= 0.5).values) > 0)
+        assert float(humid["p_stick"]) < 1  # "some pads are released again"
 
 
 @pytest.mark.slow
