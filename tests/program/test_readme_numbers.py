@@ -411,8 +411,8 @@ def test_more_constants_of_the_code():
     check_exact(r"or beyond A_r/A_n = (\S+) \(where neighbouring contacts interact\)",
                 validity.INTERACTING_AREA)  # fmt: skip
     assert quoted(r"(A fifth of the estimate's pads are drawn from the real law and three tenths "
-                  r"from a law half-way to the tilted one)") and (tail.DEFENSIVE, tail.HALF_WAY) == (
-        0.2, 0.3)  # fmt: skip
+                  r"from a law half-way to the tilted one)")  # fmt: skip
+    assert (tail.DEFENSIVE, tail.HALF_WAY) == (0.2, 0.3)
     check_rounded(
         r"because these summits sit at Maugis λ ≈ (\S+),", maugis_parameter(SMOOTH, SILICON)
     )
