@@ -596,8 +596,9 @@ def test_friction_slip_table(tmp_path):
         check_rounded(r"\(from (\S+) to (\S+) mN dry over the whole range\)", t[0], t[-1])
         check_rounded(r"the 5–95 % of the pads\): from (\S+) to (\S+) dry\.", mu[0], mu[-1])
         at_1 = float(ds.sel(preload=1e6, rh=0.6)["static_friction_mean"]) * 1e3
-        check_rounded(r"\((\S+) against (\S+) mN at 1 MPa\)", at_1,
-                      float(ds.sel(preload=1e6, rh=0.0)["static_friction_mean"]) * 1e3)  # fmt: skip
+        dry_1 = float(ds.sel(preload=1e6, rh=0.0)["static_friction_mean"]) * 1e3
+        check_rounded(r"\((\S+) against (\S+) mN at 1 MPa\)", at_1, dry_1)
+        check_rounded(r"Humidity raises T_s by (\S+) % here", (at_1 / dry_1 - 1) * 100)
         quoted(r"slips under this force unless it is pressed with the top preload; at RH 0\.6 "
                r"none of the pads does at any preload")  # fmt: skip
         slip = dry["p_slip"].values
