@@ -315,7 +315,7 @@ def test_pad_statistics(pads_run):
 
 
 def test_pads_csv_has_the_columns_the_readme_lists_and_its_note_the_analytic_mean(pads_run):
-    (columns,) = quoted(r"mcsim pads pads\.h5 --format csv > pads\.csv # columns (\S+)")
+    (columns,) = quoted(r"mcsim pads pads\.h5 --format csv > runs/pads\.csv # columns (\S+)")
     out, err = mcsim_here_with_stderr("pads", str(pads_run), "--format", "csv")
     assert out.splitlines()[0] == columns
     (note,) = [line for line in err.splitlines() if "analytic_mean = " in line]
