@@ -148,6 +148,8 @@ def test_guarantees_state_the_bounds_the_tests_check():
 
     check_exact(r"the compiling one within (\S+) relative \(summaries\) and (\S+) in h",
                 AGREE["summary"], AGREE["h_pull_off"])  # fmt: skip
+    check_exact(r"agrees with it within stated tolerances, (\S+) relative for the summary:",
+                AGREE["summary"])  # fmt: skip
 
 
 def test_zero_sticking_pads_bound():
