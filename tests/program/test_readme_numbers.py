@@ -366,12 +366,14 @@ def test_engine_and_file_constants():
     from mcsim.studies.ingest import BYTES_PER_PIXEL
     from mcsim.studies.pads import FEW_CONTACTS
     from mcsim.studies.paper import MC_AREA
+    from mcsim.studies.stiction import OFFSETS
 
     check_exact(r"located to (\S+) in h\) at `h_pull_off`", adhesion.H_TOLERANCE)
     check_exact(r"the minimum of the mean curve, located to (\S+) in h", adhesion.H_TOLERANCE)
     check_exact(r"located in continuous h to (\S+) between the grid's", padload.XTOL)
     check_exact(r"drawn in fixed blocks of (\S+) summits", montecarlo.BLOCK)
     assert quoted(r"(ηA is limited to 10¹⁸ summits)") and spec.MAX_SUMMITS == 1e18
+    check_rounded(r"NumPy's Poisson sampler ends near (\S+)·10¹⁸", np.iinfo(np.int64).max / 1e18)
     check_exact(r"\(after (\S+) s of work, then every", montecarlo.FIRST_CHECKPOINT)
     check_exact(r"no more than (\S+) times the file's size", MAX_EXPANSION)
     check_exact(r"one Monte Carlo patch of (\S+) mm² per surface", MC_AREA * 1e6)
@@ -381,6 +383,7 @@ def test_engine_and_file_constants():
         distributions._PANELS, distributions._NODES_PER_PANEL,
     )  # fmt: skip
     check_exact(r"needs about (\S+) bytes per pixel", BYTES_PER_PIXEL)
+    check_exact(r"the tails at (\d+) separations joined by their Gaussian copula", len(OFFSETS))
     check_rounded(r"\(a 16384² map: (\S+) GB\)", BYTES_PER_PIXEL * 16384**2 / 1e9)
 
 
@@ -472,6 +475,9 @@ def test_p_stick_table(tmp_path):
                 sigma * 1e9, *(float(row[v]) for v in ("p_stick", "p_stick_low", "p_stick_high",
                                                       "p_stick_model", "contacting_summits")),
             )  # fmt: skip
+            row_start = re.escape(f"| {sigma * 1e9:.1f} |")
+            method = quoted(rf"{row_start}[^|]+\|[^|]+\|[^|]+\| (\w+) \|")
+            assert method == (str(row["p_stick_method"].values),)
 
 
 def test_when_importance_sampling_replaces_the_fraction_of_the_pads():
