@@ -696,6 +696,14 @@ def test_every_file_the_readme_names_exists():
     assert named and not missing, f"README.md names files that do not exist: {missing}"
 
 
+def test_the_stickiness_thresholds_are_the_codes():
+    from mcsim.physics import stickiness
+
+    check_exact(r"its validity Δr/g0 = \S+ \(below (\S+): valid\)", stickiness.PR_RANGE_LIMIT)
+    check_exact(r"\(below (\S+): the pixels resolve the law; above it mcsim warns\)",
+                stickiness.MESH_LIMIT)  # fmt: skip
+
+
 @pytest.mark.slow
 def test_adhesive_contact_of_the_shipped_scan():
     # "Is GW's adhesion right on my map?": the README's command as JSON (about 10 s of CPU)
