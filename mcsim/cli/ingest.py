@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import sys
 from pathlib import Path
 
 from mcsim.cli.display import announce
@@ -34,13 +35,11 @@ def run(args) -> int:
     inputs = [args.file, *([args.counter_surface] if args.counter_surface else [])]
     extra = IngestResult.companion_paths(out)
     figures = [extra["histogram_figure"]] + ([extra["comparison_figure"]] if args.plot else [])
-    for path in [
-        out,
-        extra["histogram"],
-        extra["map_histogram"],
-        *figures,
-        *([pads_out] if pads_out else []),
-    ]:  # all refused before any work or writing
+    # every file an ingest to `out` may write, whatever its options: those this one does not
+    # write are an earlier ingest's, refused as any output is and removed with --overwrite
+    outputs = dict.fromkeys([out, *extra.values(), *([pads_out] if pads_out else []),
+                             _default_pads(out)])  # fmt: skip
+    for path in outputs:  # all refused before any work or writing
         check_output(path, inputs=inputs, overwrite=args.overwrite)
     if (args.w is not None or args.range is not None) and not args.calibrate:
         raise ParameterError("--w: used only with --calibrate (the adhesion calibration); add it")
@@ -90,6 +89,13 @@ def run(args) -> int:
         written = [*written, pads.write(pads_out, overwrite=args.overwrite, command=cli_command())]
     for path in [*written, *figures]:
         announce(path, quiet=args.quiet)
+    done = {Path(p) for p in [*written, *figures]}
+    for path in (p for p in outputs if p not in done):
+        if path.is_file():  # an earlier ingest's, left stale by this one (checked above)
+            path.unlink()
+            if not args.quiet:
+                print(f"mcsim: removed {path} (an earlier ingest's, not written by this one)",
+                      file=sys.stderr)  # fmt: skip
     print(f"next: mcsim analytic --surface {out} --h=4:-1:11")
     return 0
 
@@ -114,7 +120,12 @@ def _pads_options(args, out: Path) -> Path | None:
                   "`path`": "--synthesize"}  # fmt: skip
         name = str(err).split(" = ")[0]
         raise ParameterError(f"{option.get(name, name)}: {err}") from None
-    return Path(args.pads_out) if args.pads_out else out.with_name(f"{out.stem}-pads.h5")
+    return Path(args.pads_out) if args.pads_out else _default_pads(out)
+
+
+def _default_pads(out: Path) -> Path:
+    """The pads file of ``--synthesize`` without ``--pads-out``: ``<out stem>-pads.h5``."""
+    return out.with_name(f"{out.stem}-pads.h5")
 
 
 def add_parser(sub) -> None:
@@ -135,7 +146,9 @@ def add_parser(sub) -> None:
                    "with --calibrate or --synthesize)")  # fmt: skip
     p.add_argument("--out", help="surface file (default: <file stem>.toml here, "
                    "<file stem>-on-<MAP2 stem>.toml with --counter-surface)")  # fmt: skip
-    p.add_argument("--overwrite", action="store_true", help="replace existing output files")
+    p.add_argument("--overwrite", action="store_true", help="replace existing output files, and "
+                   "remove those of an earlier ingest to the same surface file that this one does "
+                   "not write (e.g. its --plot figure)")  # fmt: skip
     p.add_argument("--route", choices=("direct", "spectral"), default="direct",
                    help="summit statistics written as sigma, R, eta (default: direct)")  # fmt: skip
     p.add_argument("--level", choices=("none", "plane", "poly2", "poly3", "poly4", "poly5"),

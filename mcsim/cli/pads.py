@@ -81,7 +81,9 @@ def run(args) -> int:
                   "units": {k: u for k, (_, u) in fields.items()}}  # fmt: skip
         print(json.dumps(clean, indent=1, allow_nan=False))
     elif args.format == "csv":  # a row per pad; the statistics as a note
-        print(f"mcsim: note: {', '.join(f'{k} = {v:.6g} {u}' for k, (v, u) in fields.items() if v is not None)}; "
+        values = (f"{k} = {v:.6g}" + ("" if u == "1" else f" {u}")  # no unit on a number
+                  for k, (v, u) in fields.items() if v is not None)  # fmt: skip
+        print(f"mcsim: note: {', '.join(values)}; "
               f"{interval} interval; per-pad pull-off: {method}", file=sys.stderr)  # fmt: skip
         _print_pads(pull_off)
     else:

@@ -449,26 +449,62 @@ def _pressure_kernel(gap, b):
     return gap**-3 * damping + b / 2 * gap**-2 * damping**2
 
 
+#: The names a mapping of the environment may give a field other than its own: the keys of
+#: an ``[environment]`` table and the command line's options (``--liquid-surface-tension``)
+#: say whose surface tension it is. Both names are read, by :func:`environment_fields`.
+KEY_ALIASES = {"liquid_surface_tension": "surface_tension"}
+
+
+def environment_fields(values: Mapping) -> dict:
+    """The :class:`Environment` fields that a mapping as users write it sets: its keys, as in a
+    TOML ``[environment]`` table (``liquid_surface_tension``) or as the fields are named
+    (``surface_tension``), resolved to the fields; the values untouched.
+
+    The one resolver of the environment's keys, for TOML files, the command line and the
+    Python API alike.
+
+    Raises
+    ------
+    ParameterError
+        A key that names no field, or two keys for one field.
+    """
+    names = {f.name: f.name for f in dataclasses.fields(Environment)} | KEY_ALIASES
+    unknown = sorted(str(k) for k in values if k not in names)
+    if unknown:
+        allowed = [k for k in names if k not in KEY_ALIASES.values()]
+        raise ParameterError(f"unknown key(s) {', '.join(unknown)} (allowed: {', '.join(allowed)}; "
+                             f"{', '.join(f'{v} for {k}' for k, v in KEY_ALIASES.items())})")  # fmt: skip
+    fields: dict = {}
+    for key, value in values.items():
+        if names[key] in fields:
+            first = next(k for k in values if names[k] == names[key])
+            raise ParameterError(f"{first} and {key} set the same field: give one")
+        fields[names[key]] = value
+    return fields
+
+
 def as_environment(value) -> Environment | None:
     """The ``environment`` argument of the Python API: None, an :class:`Environment`, or a
-    mapping of its fields as users write them in TOML files (:meth:`Environment.from_user`,
-    e.g. ``{"rh": 0.5, "hamaker": "1.6e-19 J", "contact_angle": "20 deg"}``; there a bare
+    mapping as written in a TOML ``[environment]`` table (:func:`environment_fields`, then
+    :meth:`Environment.from_user`, e.g. ``{"rh": 0.5, "hamaker": "1.6e-19 J",
+    "contact_angle": "20 deg", "liquid_surface_tension": "72 mJ/m^2"}``; there a bare
     ``contact_angle`` is in degrees, where ``Environment(contact_angle=...)`` takes radians).
 
     Raises
     ------
     ParameterError
-        Anything else, or a mapping with a key that is not a field.
+        Anything else, or a mapping with a key that names no field (one line starting
+        ``environment:``).
     """
     if value is None or isinstance(value, Environment):
         return value
-    fields = [f.name for f in dataclasses.fields(Environment)]
     if isinstance(value, Mapping):
-        unknown = [k for k in value if k not in fields]
-        if unknown:
-            raise ParameterError(f"environment: unknown field {unknown[0]!r} "
-                                 f"(allowed: {', '.join(fields)})")  # fmt: skip
-        return Environment.from_user(**value)
+        try:
+            fields = environment_fields(value)
+        except ParameterError as err:
+            raise ParameterError(f"environment: {err}") from None
+        return Environment.from_user(**fields)
+    fields = [f.name for f in dataclasses.fields(Environment)]
     raise ParameterError(f"environment must be an Environment or a mapping of its fields "
                          f"({', '.join(fields)}), got {type(value).__name__} {value!r}")  # fmt: skip
 

@@ -539,11 +539,10 @@ def environment_from_values(values: dict[str, Any], where: str = "environment"):
     """An :class:`~mcsim.physics.environment.Environment` from values keyed as in
     :data:`ENVIRONMENT_KEYS` (numbers SI, a bare contact angle in degrees, or strings with
     units); a bad value raises an MCSimError that names ``where`` and the key."""
-    from mcsim.physics.environment import Environment
+    from mcsim.physics.environment import Environment, environment_fields
 
-    fields = {ENVIRONMENT_KEYS[k][0]: v for k, v in values.items()}
     try:
-        return Environment.from_user(**fields)
+        return Environment.from_user(**environment_fields(values))
     except MCSimError as err:
         raise type(err)(f"{where}: {err}") from None
 
@@ -551,7 +550,9 @@ def environment_from_values(values: dict[str, Any], where: str = "environment"):
 def environment_in_file(spec: str | Path) -> dict[str, Any]:
     """The ``[environment]`` table of a surface or material TOML file (empty if none).
 
-    Values as written (checked: known keys, units on dimensional values, in range), for
+    Values as written (checked: known keys, units on dimensional values, in range), keyed
+    as in :data:`ENVIRONMENT_KEYS` whichever name the file gives a field
+    (:func:`mcsim.physics.environment.environment_fields`), for
     :func:`environment_from_values` after command-line options override them.
     """
     path = Path(spec)
@@ -560,18 +561,21 @@ def environment_in_file(spec: str | Path) -> dict[str, Any]:
     data = _read_toml(path)
     if "environment" not in data:
         return {}
+    from mcsim.physics.environment import environment_fields
+
     table, where = _table(data, "environment", path), f"{path} [environment]"
-    unknown = set(table) - set(ENVIRONMENT_KEYS)
-    if unknown:
-        raise ParameterError(f"{where}: unknown key(s) {', '.join(sorted(unknown))} (allowed: "
-                             f"{', '.join(ENVIRONMENT_KEYS)})")  # fmt: skip
-    for key, value in table.items():
-        _, dimension, meaning = ENVIRONMENT_KEYS[key]
+    try:
+        fields = environment_fields(table)
+    except MCSimError as err:
+        raise type(err)(f"{where}: {err}") from None
+    key_of = {field: key for key, (field, _, _) in ENVIRONMENT_KEYS.items()}
+    for (written, value), field in zip(table.items(), fields, strict=True):
+        _, dimension, meaning = ENVIRONMENT_KEYS[key_of[field]]
         if dimension not in ("dimensionless", "angle") and _is_bare(value):
-            raise UnitError(f"{where}: {key} = {value!r} has no unit (a bare number in a file is "
-                            f"refused); write it with its unit, {meaning}")  # fmt: skip
+            raise UnitError(f"{where}: {written} = {value!r} has no unit (a bare number in a file "
+                            f"is refused); write it with its unit, {meaning}")  # fmt: skip
     environment_from_values(table, where)
-    return dict(table)
+    return {key_of[field]: value for field, value in fields.items()}
 
 
 def calibration_in_surface_file(spec: str | Path) -> dict[str, Any] | None:

@@ -96,16 +96,36 @@ def _is_setup(command: str) -> bool:
     return command.strip().split("#")[0].strip() in SETUP
 
 
-def _copy_tracked_files(destination: Path) -> None:
-    """The repository as a fresh clone has it: its tracked files only."""
+def _copy_tracked_files(destination: Path) -> set[str]:
+    """The repository as a fresh clone has it: its tracked files only (their names)."""
     listed = subprocess.run(
         ["git", "ls-files", "-z"], cwd=ROOT, capture_output=True, check=True
     ).stdout.decode()
+    copied = set()
     for name in filter(None, listed.split("\0")):
         source = ROOT / name
         if source.is_file():  # a file deleted in the work tree is not in a fresh clone either
             (destination / name).parent.mkdir(parents=True, exist_ok=True)
             shutil.copy2(source, destination / name)
+            copied.add(name)
+    return copied
+
+
+def not_ignored(folder: Path, tracked: set[str]) -> list[str]:
+    """The files under ``folder`` (a copy of the repository) that are neither ``tracked`` nor
+    ignored by the repository's .gitignore: what ``git status`` would show a user."""
+    new = sorted(
+        p.relative_to(folder).as_posix()
+        for p in folder.rglob("*")
+        if p.is_file() and not {"__pycache__", ".git"} & set(p.parts)
+    )
+    new = [name for name in new if name not in tracked]
+    checked = subprocess.run(
+        ["git", "check-ignore", "--no-index", "--stdin", "-z"], cwd=ROOT,
+        input="\0".join(new), capture_output=True, text=True,
+    )  # fmt: skip
+    assert checked.returncode in (0, 1), checked.stderr  # 1: none of them is ignored
+    return sorted(set(new) - set(filter(None, checked.stdout.split("\0"))))
 
 
 def test_every_substitution_matches_the_readme_once():
@@ -155,7 +175,7 @@ def test_setup_lines_are_only_the_listed_ones():
 def test_readme_runs_as_written(tmp_path, monkeypatch):
     if shutil.which("git") is None or not (ROOT / ".git").exists():
         pytest.skip("needs the git checkout (git ls-files) to copy the tracked files")
-    _copy_tracked_files(tmp_path)
+    tracked = _copy_tracked_files(tmp_path)
     text = README.read_text()
     for readme, smaller in SMALLER:
         text = text.replace(readme, smaller)
@@ -182,3 +202,5 @@ def test_readme_runs_as_written(tmp_path, monkeypatch):
             except Exception:
                 pytest.fail(f"README.md:{line}: python block failed\n{traceback.format_exc()}",
                             pytrace=False)  # fmt: skip
+    # what the commands wrote is all covered by .gitignore: `git status` stays clean
+    assert not not_ignored(tmp_path, tracked), "README outputs that .gitignore does not cover"

@@ -108,6 +108,18 @@ def test_parameter_ranges():
     assert quoted(r"(each finite with \|h\| <= 10⁶)") and MAX_ABS_H == 1e6
 
 
+def test_the_error_of_a_bad_surface_is_the_one_the_readme_shows():
+    from mcsim import Surface
+    from mcsim.model.errors import ParameterError
+
+    call, kind, message = quoted(r"`(mcsim\.Surface\(sigma=-1, R=1e-6, eta=1e12\))` raises "
+                                 r"`(\w+): (.+?)`")  # fmt: skip
+    assert call == "mcsim.Surface(sigma=-1, R=1e-6, eta=1e12)" and kind == "ParameterError"
+    with pytest.raises(ParameterError) as raised:
+        Surface(sigma=-1, R=1e-6, eta=1e12)
+    assert str(raised.value) == message
+
+
 def test_adhesion_map_thresholds():
     check_exact(
         r"\(DMT for λ < (\S+), JKR for λ > (\S+), Maugis–Dugdale between\)",
@@ -136,6 +148,8 @@ def test_guarantees_state_the_bounds_the_tests_check():
 
     check_exact(r"the compiling one within (\S+) relative \(summaries\) and (\S+) in h",
                 AGREE["summary"], AGREE["h_pull_off"])  # fmt: skip
+    check_exact(r"agrees with it within stated tolerances, (\S+) relative for the summary:",
+                AGREE["summary"])  # fmt: skip
 
 
 def test_zero_sticking_pads_bound():
@@ -181,6 +195,41 @@ def test_humidity_example_smooth_at_60_percent():
         summary.work_of_separation_vdw, summary.work_of_separation_capillary,
         summary.kelvin_radius * 1e9, summary.turn,
     )  # fmt: skip
+
+
+def test_humid_thresholds_and_films():
+    from mcsim.physics import films
+    from mcsim.physics.environment import NANO_GAP
+
+    # "Will my device stick in humid air?": A = 1.6e-19 J, σ_n = 0.5 nm, water at 298.15 K
+    env = Environment(hamaker=1.6e-19, asperity_roughness=0.5e-9)
+    check_rounded(r"\*\*Nothing changes up to RH_cr ≈ ([\d.]+)\*\*", env.critical_rh)
+    check_exact(r"`--asperity-roughness`, σ_n = (\S+) nm here\) holds each contact (\d+)σ_n open",
+                env.asperity_roughness * 1e9, NANO_GAP)  # fmt: skip
+    check_rounded(r"film on each face \(about (\S+) nm, ice-like, by RH (\S+), when bridges",
+                  films.film_thickness(env.bridging_rh) * 1e9, env.bridging_rh)  # fmt: skip
+    check_rounded(r"above RH_dry = ([\d.]+), the adsorbed films' onset", env.bridging_rh)
+    (rh,) = quoted(
+        r"default the isotherm t\(RH\) of water on silicon oxide, [\d.]+ nm at RH ([\d.]+)\)"
+    )
+    check_rounded(
+        r"of water on silicon oxide, (\S+) nm at RH", films.film_thickness(float(rh)) * 1e9
+    )
+    check_rounded(r"\(its ice-like first layers, default (\S+) nm: menisci form only on a thicker "
+                  r"film, above RH ([\d.]+) by default", films.STRUCTURED_FILM * 1e9,
+                  films.film_humidity(films.STRUCTURED_FILM))  # fmt: skip
+
+
+def test_the_van_der_waals_share_of_silicons_work_of_adhesion():
+    from mcsim.physics.surfaceenvironment import contact_adhesion, vdw_share
+
+    env = Environment(hamaker=1.6e-19)  # default cutoff D0 and retardation wavelength λ
+    check_exact(r"of silicon's w = (\S+) J/m², A/\(12πD0²\)/\(1 \+ 5\.32 D0/λ\) = \S+ J/m² \(A = "
+                r"(\S+) J, D0 = (\S+) nm, Gregory's retardation λ = (\S+) nm\)", SILICON.gamma,
+                env.hamaker, env.cutoff * 1e9, env.retardation_wavelength * 1e9)  # fmt: skip
+    check_rounded(r"of silicon's w = \S+ J/m², A/\(12πD0²\)/\(1 \+ 5\.32 D0/λ\) = (\S+) J/m² .{0,120}?"
+                  r"the contacts carry the other (\S+) J/m²", vdw_share(SILICON.gamma, env),
+                  contact_adhesion(SILICON.gamma, env))  # fmt: skip
 
 
 def _pull_off_pressure(sigma: float, w: float = SILICON.gamma) -> float:
@@ -234,13 +283,18 @@ def mcsim_here(*args: str) -> str:
     """Standard output of ``mcsim ARGS`` run in this process (:func:`mcsim.cli.main.main`),
     for the commands that tests/program/test_readme.py runs as written, each in a process
     of its own: a new interpreter here would only import NumPy, SciPy and mcsim again."""
+    return mcsim_here_with_stderr(*args)[0]
+
+
+def mcsim_here_with_stderr(*args: str) -> tuple[str, str]:
+    """Standard output and standard error of ``mcsim ARGS`` run in this process."""
     from mcsim.cli.main import main
 
     out, err = io.StringIO(), io.StringIO()
     with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
         code = main(list(args))
     assert code == 0, err.getvalue()
-    return out.getvalue()
+    return out.getvalue(), err.getvalue()
 
 
 def test_pad_statistics(pads_run):
@@ -258,8 +312,29 @@ def test_pad_statistics(pads_run):
         cp["p_stick"] * cp["pads"], cp["p_stick"], cp["p_stick_ci_low"], cp["p_stick_ci_high"],
         wilson["p_stick_ci_low"], wilson["p_stick_ci_high"],
     )  # fmt: skip
-    check_rounded(r"give the GW analytic mean \(the analytic pull-off × A K, (\S+) µN here\)",
+    check_rounded(r"gives the GW analytic mean \(`analytic_mean`: the analytic pull-off × A K, (\S+) µN here\)",
                   1e6 * cp["analytic_mean"])  # fmt: skip
+
+
+def test_pads_csv_has_the_columns_the_readme_lists_and_its_note_the_analytic_mean(pads_run):
+    (columns,) = quoted(r"mcsim pads pads\.h5 --format csv > runs/pads\.csv # columns (\S+)")
+    out, err = mcsim_here_with_stderr("pads", str(pads_run), "--format", "csv")
+    assert out.splitlines()[0] == columns
+    (note,) = [line for line in err.splitlines() if "analytic_mean = " in line]
+    assert note.startswith("mcsim: note: pads = 300, mean = ")  # a count: no unit after it
+    assert not re.search(r" = \S+ 1[,;]", note), f"a dimensionless value with a unit 1: {note}"
+
+
+def test_analytic_with_an_area_adds_the_columns_the_readme_lists():
+    (args, named) = quoted(r"mcsim (analytic --surface smooth --h=2:0:5 --area 1mm\^2) # adds the "
+                           r"columns (.+?) \(N\)")  # fmt: skip
+    header = {}
+    for extra in ((), ("--area", "1mm^2")):
+        plain = [a for a in args.split() if a not in ("--area", "1mm^2")]
+        out = mcsim_here(*plain, *extra, "--format", "csv", "--quiet")
+        header[extra] = next(line for line in out.splitlines() if not line.startswith("#"))
+    added = [c for c in header[("--area", "1mm^2")].split(",") if c not in header[()].split(",")]
+    assert added == named.split(", ")
 
 
 def test_design_map_stiction_boundary():
@@ -291,12 +366,14 @@ def test_engine_and_file_constants():
     from mcsim.studies.ingest import BYTES_PER_PIXEL
     from mcsim.studies.pads import FEW_CONTACTS
     from mcsim.studies.paper import MC_AREA
+    from mcsim.studies.stiction import OFFSETS
 
     check_exact(r"located to (\S+) in h\) at `h_pull_off`", adhesion.H_TOLERANCE)
     check_exact(r"the minimum of the mean curve, located to (\S+) in h", adhesion.H_TOLERANCE)
     check_exact(r"located in continuous h to (\S+) between the grid's", padload.XTOL)
     check_exact(r"drawn in fixed blocks of (\S+) summits", montecarlo.BLOCK)
     assert quoted(r"(ηA is limited to 10¹⁸ summits)") and spec.MAX_SUMMITS == 1e18
+    check_rounded(r"NumPy's Poisson sampler ends near (\S+)·10¹⁸", np.iinfo(np.int64).max / 1e18)
     check_exact(r"\(after (\S+) s of work, then every", montecarlo.FIRST_CHECKPOINT)
     check_exact(r"no more than (\S+) times the file's size", MAX_EXPANSION)
     check_exact(r"one Monte Carlo patch of (\S+) mm² per surface", MC_AREA * 1e6)
@@ -306,7 +383,59 @@ def test_engine_and_file_constants():
         distributions._PANELS, distributions._NODES_PER_PANEL,
     )  # fmt: skip
     check_exact(r"needs about (\S+) bytes per pixel", BYTES_PER_PIXEL)
+    check_exact(r"the tails at (\d+) separations joined by their Gaussian copula", len(OFFSETS))
     check_rounded(r"\(a 16384² map: (\S+) GB\)", BYTES_PER_PIXEL * 16384**2 / 1e9)
+
+
+def test_more_constants_of_the_code():
+    import inspect
+    import tomllib
+
+    from mcsim.engine import cuda, montecarlo
+    from mcsim.figures.topography import MAX_DRAWN_BINS
+    from mcsim.physics import validity
+    from mcsim.physics.laws import dmt
+    from mcsim.store import files, runfile
+    from mcsim.studies import adhesivecontact, ingest, simulation, tail
+
+    project = tomllib.loads((README.parent / "pyproject.toml").read_text())["project"]
+    (python,) = quoted(r"On a fresh machine with Python ≥ (\S+) \(and `make`\)")
+    assert project["requires-python"] == f">={python}"
+    check_exact(r"cut at D = (\S+) z0 \(the outputs report", dmt.DEFAULT_CUTOFF)
+    check_exact(r"schema version (\d+), netCDF-compatible", runfile.SCHEMA_VERSION)
+    check_exact(r"Datasets over (\d+) KiB \(the per-patch curves", files.COMPRESS_ABOVE / 1024)
+    check_exact(r"checked between tasks and every (\S+) s while waiting", montecarlo.POLL)
+    default = inspect.signature(simulation.simulate).parameters["checkpoint_every"].default
+    check_exact(r"every `--checkpoint-every` seconds, default (\d+),", default)
+    check_exact(r"Per step \((\d+) by default, `--steps`\)", adhesivecontact.STEPS)
+    check_exact(r"at most (\d+) blocks per launch", cuda.LAUNCH_BLOCKS)
+    check_exact(r"a histogram of more than (\d+) bins is drawn merged into at most (\d+) bars",
+                MAX_DRAWN_BINS, MAX_DRAWN_BINS)  # fmt: skip
+    check_exact(r"direct and spectral routes more than a factor (\d+) apart",
+                ingest.ROUTE_DISAGREEMENT)  # fmt: skip
+    check_exact(r"or beyond A_r/A_n = (\S+) \(where neighbouring contacts interact\)",
+                validity.INTERACTING_AREA)  # fmt: skip
+    assert quoted(r"(A fifth of the estimate's pads are drawn from the real law and three tenths "
+                  r"from a law half-way to the tilted one)")  # fmt: skip
+    assert (tail.DEFENSIVE, tail.HALF_WAY) == (0.2, 0.3)
+    check_rounded(
+        r"because these summits sit at Maugis λ ≈ (\S+),", maugis_parameter(SMOOTH, SILICON)
+    )
+
+
+def test_the_coverage_asked_of_importance_sampling_is_the_benchmarks():
+    import importlib.util
+
+    path = README.parent / "validation" / "tail_benchmark.py"
+    sys.path.insert(0, str(path.parent))
+    try:
+        spec = importlib.util.spec_from_file_location("tail_benchmark", path)
+        module = importlib.util.module_from_spec(spec)
+        spec.loader.exec_module(module)
+    finally:
+        sys.path.remove(str(path.parent))
+    check_exact(r"95 % interval in at least (\d+) % of the runs, the coverage asked of them",
+                module.COVERAGE * 100)  # fmt: skip
 
 
 def test_humidity_threshold_of_the_intermediate_surface():
@@ -346,6 +475,9 @@ def test_p_stick_table(tmp_path):
                 sigma * 1e9, *(float(row[v]) for v in ("p_stick", "p_stick_low", "p_stick_high",
                                                       "p_stick_model", "contacting_summits")),
             )  # fmt: skip
+            row_start = re.escape(f"| {sigma * 1e9:.1f} |")
+            method = quoted(rf"{row_start}[^|]+\|[^|]+\|[^|]+\| (\w+) \|")
+            assert method == (str(row["p_stick_method"].values),)
 
 
 def test_when_importance_sampling_replaces_the_fraction_of_the_pads():
@@ -431,6 +563,13 @@ def test_humid_p_stick_table(tmp_path):
             )  # fmt: skip
             shown += 1
         assert shown == 6
+        # the pull-off peaks and falls while the work of separation keeps rising
+        (wet, humid) = (ds.sel(rh=rh) for rh in (0.5, 0.9))
+        check_rounded(r"the mean pull-off falls from (\S+) to (\S+) µN between RH 0\.5 and 0\.9 here",
+                      float(wet["pull_off_mean"]) * 1e6, float(humid["pull_off_mean"]) * 1e6)  # fmt: skip
+        assert float(ds["pull_off_mean"].max()) == float(wet["pull_off_mean"])
+        assert np.all(np.diff(ds["work_of_separation_mean"].sel(rh=ds.rh >= 0.5).values) > 0)
+        assert float(humid["p_stick"]) < 1  # "some pads are released again"
 
 
 @pytest.mark.slow
@@ -465,8 +604,9 @@ def test_friction_slip_table(tmp_path):
         check_rounded(r"\(from (\S+) to (\S+) mN dry over the whole range\)", t[0], t[-1])
         check_rounded(r"the 5–95 % of the pads\): from (\S+) to (\S+) dry\.", mu[0], mu[-1])
         at_1 = float(ds.sel(preload=1e6, rh=0.6)["static_friction_mean"]) * 1e3
-        check_rounded(r"\((\S+) against (\S+) mN at 1 MPa\)", at_1,
-                      float(ds.sel(preload=1e6, rh=0.0)["static_friction_mean"]) * 1e3)  # fmt: skip
+        dry_1 = float(ds.sel(preload=1e6, rh=0.0)["static_friction_mean"]) * 1e3
+        check_rounded(r"\((\S+) against (\S+) mN at 1 MPa\)", at_1, dry_1)
+        check_rounded(r"Humidity raises T_s by (\S+) % here", (at_1 / dry_1 - 1) * 100)
         quoted(r"slips under this force unless it is pressed with the top preload; at RH 0\.6 "
                r"none of the pads does at any preload")  # fmt: skip
         slip = dry["p_slip"].values
@@ -554,6 +694,14 @@ def test_every_file_the_readme_names_exists():
                            README.read_text()))  # fmt: skip
     missing = sorted(p for p in named if not (README.parent / p).exists())
     assert named and not missing, f"README.md names files that do not exist: {missing}"
+
+
+def test_the_stickiness_thresholds_are_the_codes():
+    from mcsim.physics import stickiness
+
+    check_exact(r"its validity Δr/g0 = \S+ \(below (\S+): valid\)", stickiness.PR_RANGE_LIMIT)
+    check_exact(r"\(below (\S+): the pixels resolve the law; above it mcsim warns\)",
+                stickiness.MESH_LIMIT)  # fmt: skip
 
 
 @pytest.mark.slow

@@ -257,6 +257,26 @@ def test_ingest_overwrite_replaces_every_output_and_leaves_no_temporary(capsys, 
     assert names == ["h.csv", "s-heights.csv", "s-heights.png", "s.toml"]
 
 
+def test_ingest_overwrite_removes_the_files_of_an_earlier_ingest_it_does_not_write(
+    capsys, tmp_path
+):
+    # docs/contact.md's ingest after the README's: no --plot figure of the earlier run stays
+    source = _histogram(tmp_path / "h.csv")
+    args = ("ingest", source, "--out", tmp_path / "s.toml", "--R", "2um", "--eta", "10um^-2")
+    assert run_cli(capsys, *args, "--plot")[0] == 0
+    assert (tmp_path / "s-gw.png").is_file()
+    for name in ("s.toml", "s-heights.csv", "s-heights.png"):
+        (tmp_path / name).unlink()  # the figure alone is still an output of this ingest
+    code, _, err = run_cli(capsys, *args)
+    one_line_error(code, err, "s-gw.png: file exists")
+    (tmp_path / "s-pads.h5").write_bytes(b"an earlier --synthesize")
+    code, _, err = run_cli(capsys, *args, "--overwrite")
+    assert code == 0, err
+    assert f"mcsim: removed {tmp_path / 's-gw.png'} (an earlier ingest's" in err
+    names = sorted(p.name for p in tmp_path.iterdir())
+    assert names == ["h.csv", "s-heights.csv", "s-heights.png", "s.toml"]
+
+
 def test_an_unwritable_folder_is_a_one_line_error(capsys, run_file, tmp_path):
     if os.geteuid() == 0:
         pytest.skip("root writes into read-only folders")

@@ -41,11 +41,34 @@ def test_an_environment_may_be_given_as_a_mapping_of_its_fields_as_in_a_toml_fil
     assert summary.pull_off == adhesion_summary(SMOOTH, SILICON, "jkr", environment=env).pull_off
 
 
+def test_a_mapping_takes_the_keys_of_a_toml_environment_table(tmp_path):
+    # README: "a mapping of its fields, as written in a TOML file"; one resolver for both
+    from mcsim.store.config import environment_from_values, environment_in_file
+
+    table = {"hamaker": "1.6e-19 J", "rh": 0.6, "liquid_surface_tension": "50 mJ/m^2"}
+    surface = tmp_path / "s.toml"
+    surface.write_text('[surface]\nsigma = "1.4 nm"\nR = "1.7 um"\neta = "17 um^-2"\n'
+                       '[environment]\nhamaker = "1.6e-19 J"\nrh = 0.6\n'
+                       'liquid_surface_tension = "50 mJ/m^2"\n')  # fmt: skip
+    from_file = environment_from_values(environment_in_file(surface))
+    assert as_environment(table) == from_file
+    assert from_file == Environment(hamaker=1.6e-19, rh=0.6, surface_tension=0.05)
+    # the field's own name still works, in a mapping and in a file
+    renamed = {
+        "surface_tension" if k == "liquid_surface_tension" else k: v for k, v in table.items()
+    }
+    assert as_environment(renamed) == from_file
+    surface.write_text(surface.read_text().replace("liquid_surface_tension", "surface_tension"))
+    assert environment_in_file(surface) == table
+
+
 @pytest.mark.parametrize(
     ("environment", "says"),
-    [({"rh": 0.5, "humidity": 0.5}, r"environment: unknown field 'humidity' \(allowed: hamaker, "),
+    [({"rh": 0.5, "humidity": 0.5}, r"environment: unknown key\(s\) humidity \(allowed: hamaker, "),
      (0.5, r"environment must be an Environment or a mapping of its fields .*got float 0.5"),
-     ({"rh": 1.2}, r"rh = 1.2 is out of range")],
+     ({"rh": 1.2}, r"rh = 1.2 is out of range"),
+     ({"surface_tension": 0.05, "liquid_surface_tension": "50 mJ/m^2"},
+      r"^environment: surface_tension and liquid_surface_tension set the same field: give one$")],
 )  # fmt: skip
 def test_an_environment_that_is_not_one_is_a_parameter_error_naming_it(environment, says):
     with pytest.raises(ParameterError, match=says):
