@@ -1,0 +1,44 @@
+"""Defects a new user meets on the command line (issue 44, point 7): each is a one-line
+``mcsim: error: ...`` naming the field, exit status 2 and nothing written, or a fixed output."""
+
+import numpy as np
+import pytest
+from conftest import run_cli
+
+SCAN = "examples/scan.npy"  # periodic, 100 x 100 pixels of 10 nm, heights in m
+
+
+def one_line_error(capsys, *argv) -> str:
+    code, _, err = run_cli(capsys, *argv)
+    assert code == 2, err
+    assert err.startswith("mcsim: error: ") and err.count("\n") == 1, err
+    return err
+
+
+@pytest.fixture
+def huge_map(tmp_path):
+    """A 16 x 16 map whose heights (read in m) are about 1e300 m."""
+    path = tmp_path / "huge.npy"
+    np.save(path, np.random.default_rng(0).normal(size=(16, 16)) * 1e300)
+    return path
+
+
+@pytest.mark.parametrize("command", [["contact", "--pressure", "1MPa"],
+                                     ["contact", "--pressure", "1MPa", "--adhesion"],
+                                     ["ingest", "--calibrate"], ["ingest"]])  # fmt: skip
+def test_absurd_heights_are_refused_by_name_before_any_work(capsys, tmp_path, huge_map, command):
+    out = tmp_path / "out.toml"
+    err = one_line_error(capsys, command[0], huge_map, *command[1:], "--unit", "m",
+                         "--pixel-size", "10nm", "--out", out)  # fmt: skip
+    assert "heights up to" in err and "allowed: |height| <= 1 m" in err
+    assert list(tmp_path.iterdir()) == [huge_map]
+
+
+@pytest.mark.parametrize("size", ["1e300m", "1e-300m"])
+@pytest.mark.parametrize("command", [["contact", "--pressure", "1MPa"], ["ingest", "--calibrate"]])
+def test_absurd_pixel_sizes_are_refused_by_name(capsys, tmp_path, command, size):
+    out = tmp_path / "out.toml"
+    err = one_line_error(capsys, command[0], SCAN, *command[1:], "--unit", "m",
+                         "--pixel-size", size, "--out", out)  # fmt: skip
+    assert "pixel size dx" in err and "allowed: 1e-12 m to 1 m" in err
+    assert not any(tmp_path.iterdir())
