@@ -147,6 +147,29 @@ def parse_values(spec: str, dimension: str, option: str) -> list[float]:
     return parse_values(spec, dimension, option, limit=MAX_SEPARATIONS)
 
 
+def positive_quantity(text: str | None, dimension: str, option: str) -> float | None:
+    """A quantity option (:func:`mcsim.model.units.parse_quantity`) that must be > 0, in SI;
+    None if not given."""
+    from mcsim.model.units import parse_quantity
+
+    if text is None:
+        return None
+    value = parse_quantity(text, dimension, option)
+    if not value > 0:
+        raise ParameterError(f"{option} = {text!r} is out of range (allowed: > 0)")
+    return value
+
+
+def positive_values(spec: str, dimension: str, option: str) -> list[float]:
+    """:func:`parse_values`, each value > 0."""
+    values = parse_values(spec, dimension, option)
+    bad = [v for v in values if not v > 0]
+    if bad:
+        raise ParameterError(f"{option} = {spec!r}: {bad[0]:g} (SI) is out of range "
+                             "(allowed: > 0)")  # fmt: skip
+    return values
+
+
 #: Unit of each load-control column (``mcsim analytic --pressure``).
 LOAD_UNITS = {
     "pressure": "Pa", "h": "1 (d/sigma)", "contact_fraction": "1 (N_c/N)",

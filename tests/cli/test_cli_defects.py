@@ -42,3 +42,28 @@ def test_absurd_pixel_sizes_are_refused_by_name(capsys, tmp_path, command, size)
                          "--pixel-size", size, "--out", out)  # fmt: skip
     assert "pixel size dx" in err and "allowed: 1e-12 m to 1 m" in err
     assert not any(tmp_path.iterdir())
+
+
+@pytest.mark.parametrize(("argv", "option"), [
+    (["contact", SCAN, "--unit", "m", "--pixel-size", "10nm", "--pressure", "-1MPa"], "--pressure"),
+    (["contact", SCAN, "--unit", "m", "--pixel-size", "-1nm", "--pressure", "1MPa"], "--pixel-size"),
+    (["ingest", SCAN, "--unit", "m", "--pixel-size", "-1nm"], "--pixel-size"),
+    (["analytic", "--surface", "smooth", "--pressure", "-1MPa"], "--pressure"),
+    (["simulate", "--surface", "smooth", "--area", "1um^2", "--h=1", "--cycle",
+      "--law", "jkr", "--preload", "-1MPa"], "--preload"),
+    (["simulate", "--surface", "smooth", "--area", "-1um^2", "--h=1"], "area"),
+])  # fmt: skip
+def test_a_negative_value_is_refused_by_name_as_not_positive(capsys, tmp_path, argv, option):
+    out = [] if argv[0] == "analytic" else ["--out", tmp_path / "o.h5"]
+    err = one_line_error(capsys, *argv, *out)
+    assert "expected one argument" not in err
+    assert err.startswith(("mcsim: error: " + option, "mcsim: error: " + option.lstrip("-"))), err
+    assert "(allowed: > 0" in err or "(allowed: >= 0" in err, err
+    assert not any(tmp_path.iterdir())
+
+
+@pytest.mark.parametrize("h", ["-1", "-1,0", "-1:0:3", "-.5"])
+def test_negative_separations_still_read_after_a_space(capsys, h):
+    code, out, err = run_cli(capsys, "analytic", "--surface", "smooth", "--h", h, "--format", "csv")
+    assert code == 0, err
+    assert float(out.splitlines()[1].split(",")[0]) == float(h.split(",")[0].split(":")[0])
