@@ -156,7 +156,7 @@ def positive_quantity(text: str | None, dimension: str, option: str) -> float | 
         return None
     value = parse_quantity(text, dimension, option)
     if not value > 0:
-        raise ParameterError(f"{option} = {text!r} is out of range (allowed: > 0)")
+        raise ParameterError(f"{option} = {text!r} must be positive (allowed: > 0)")
     return value
 
 
@@ -165,7 +165,7 @@ def positive_values(spec: str, dimension: str, option: str) -> list[float]:
     values = parse_values(spec, dimension, option)
     bad = [v for v in values if not v > 0]
     if bad:
-        raise ParameterError(f"{option} = {spec!r}: {bad[0]:g} (SI) is out of range "
+        raise ParameterError(f"{option} = {spec!r}: {bad[0]:g} (SI) must be positive "
                              "(allowed: > 0)")  # fmt: skip
     return values
 
