@@ -67,3 +67,43 @@ def test_negative_separations_still_read_after_a_space(capsys, h):
     code, out, err = run_cli(capsys, "analytic", "--surface", "smooth", "--h", h, "--format", "csv")
     assert code == 0, err
     assert float(out.splitlines()[1].split(",")[0]) == float(h.split(",")[0].split(":")[0])
+
+
+CYCLE = ["simulate", "--surface", "smooth", "--law", "jkr", "--area", "4um^2", "--cycle",
+         "--preload", "1MPa", "--seed", "1"]  # fmt: skip
+
+
+def test_a_preloaded_cycle_without_h_runs_over_the_sweep_grid_and_says_so(capsys, tmp_path):
+    from mcsim.model.presets import MATERIALS, SURFACES
+    from mcsim.physics.loadcontrol import preload_turn
+    from mcsim.store.runfile import read_run
+
+    code, _, err = run_cli(capsys, *CYCLE, "--out", tmp_path / "c.h5")
+    assert code == 0, err
+    turn = preload_turn(SURFACES["smooth"], MATERIALS["silicon"], 1e6, "jkr")
+    assert (
+        -1 < turn < 4 and f"--h=4:-1:51 (d/sigma; the preload's mean turn is h = {turn:.4g})" in err
+    )
+    np.testing.assert_allclose(read_run(tmp_path / "c.h5").h, np.linspace(4, -1, 51))
+    assert f"mcsim pads {tmp_path / 'c.h5'}" in err.splitlines()[-1]  # the next step of a cycle
+
+
+def test_a_preload_below_the_sweep_grid_extends_it_one_below_the_turn(capsys, tmp_path):
+    from mcsim.store.runfile import read_run
+
+    argv = [*CYCLE[:-3], "10GPa", "--seed", "1", "--quiet", "--out", tmp_path / "c.h5"]
+    code, _, err = run_cli(capsys, *argv)
+    assert code == 0, err
+    h = read_run(tmp_path / "c.h5").h
+    assert h[0] == 4 and h[-1] <= -2 and np.allclose(np.diff(h), -0.1)
+
+
+def test_without_h_pressure_or_load_only_a_preloaded_cycle_runs(capsys, tmp_path):
+    err = one_line_error(capsys, *CYCLE[:-5], "--out", tmp_path / "c.h5")  # no --cycle, --preload
+    assert "--h --pressure --load is required" in err and "--cycle --preload" in err
+    assert not any(tmp_path.iterdir())
+
+
+def test_a_plain_run_s_next_hint_has_no_pads(capsys, tmp_path):
+    code, _, err = run_cli(capsys, *CYCLE[:-5], "--h=1", "--out", tmp_path / "c.h5")
+    assert code == 0 and "next: mcsim compare" in err and "mcsim pads" not in err
