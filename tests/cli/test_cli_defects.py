@@ -107,3 +107,41 @@ def test_without_h_pressure_or_load_only_a_preloaded_cycle_runs(capsys, tmp_path
 def test_a_plain_run_s_next_hint_has_no_pads(capsys, tmp_path):
     code, _, err = run_cli(capsys, *CYCLE[:-5], "--h=1", "--out", tmp_path / "c.h5")
     assert code == 0 and "next: mcsim compare" in err and "mcsim pads" not in err
+
+
+@pytest.fixture(scope="module")
+def pads_sweep(tmp_path_factory):
+    """A sweep of 10 pads of 4 um^2 at two sigmas, pressed with 1 MPa, against 2 uN."""
+    from mcsim.cli.main import main
+
+    path = tmp_path_factory.mktemp("sweep") / "stick.h5"
+    argv = ["sweep", "--surface", "smooth", "--law", "jkr", "--vary", "sigma=1.5nm:3nm:2",
+            "--preload", "1MPa", "--pads", "10", "--area", "4um^2", "--restoring-force", "2uN",
+            "--seed", "1", "--quiet", "--out", str(path)]  # fmt: skip
+    assert main(argv) == 0
+    return path
+
+
+@pytest.mark.parametrize("command", ["compare", "pads"])
+def test_a_run_command_given_a_sweep_file_names_it_and_the_commands_that_read_it(
+    capsys, pads_sweep, command
+):
+    err = one_line_error(capsys, command, pads_sweep)
+    assert "a sweep file (mcsim sweep), not a run file" in err
+    assert f"mcsim show {pads_sweep}" in err and "not an mcsim run file" not in err
+
+
+def test_show_of_a_pads_sweep_prints_each_point_with_p_stick_and_its_interval(capsys, pads_sweep):
+    from mcsim.store.sweepfile import read_sweep
+
+    code, out, _ = run_cli(capsys, "show", pads_sweep)
+    assert code == 0
+    table = read_sweep(pads_sweep).table()
+    lines = out.splitlines()
+    start = next(i for i, line in enumerate(lines) if line.startswith("# results per point"))
+    assert "p_stick: fraction of pads [95 % interval]" in lines[start]
+    header, *rows = lines[start + 1 : start + 1 + len(table) + 1]
+    assert header.split()[:2] == ["sigma", "law_used"] and "p_stick" in header.split()
+    for row, (_, point) in zip(rows, table.iterrows(), strict=True):
+        shown = f"{point.p_stick:.3g} [{point.p_stick_low:.3g}, {point.p_stick_high:.3g}]"
+        assert shown in row and f"{point.pull_off_pressure:.6g}" in row
