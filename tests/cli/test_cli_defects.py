@@ -145,3 +145,20 @@ def test_show_of_a_pads_sweep_prints_each_point_with_p_stick_and_its_interval(ca
     for row, (_, point) in zip(rows, table.iterrows(), strict=True):
         shown = f"{point.p_stick:.3g} [{point.p_stick_low:.3g}, {point.p_stick_high:.3g}]"
         assert shown in row and f"{point.pull_off_pressure:.6g}" in row
+
+
+def test_compare_csv_prints_data_on_stdout_and_one_note_per_kind_on_stderr(capsys, tmp_path):
+    run = tmp_path / "r.h5"
+    code, _, _ = run_cli(capsys, *CYCLE[:-5], "--h=4:-1:26", "--quiet", "--out", run)
+    assert code == 0
+    code, out, err = run_cli(capsys, "compare", run, "--format", "csv")
+    assert code == 0
+    lines = out.splitlines()
+    assert lines[0] == "h,branch,quantity,mc_mean,mc_se,analytic,z"
+    assert all(line[0].isdigit() or line[0] == "-" for line in lines[1:])
+    empty = sum(line.endswith(",") for line in lines[1:])  # rows whose z is left empty
+    assert empty > 10
+    assert err.splitlines() == [
+        line for line in err.splitlines() if line.startswith("mcsim: note:")
+    ]
+    assert len(err.splitlines()) == 1 and f"z left empty in {empty} row(s)" in err
