@@ -162,3 +162,32 @@ def test_compare_csv_prints_data_on_stdout_and_one_note_per_kind_on_stderr(capsy
         line for line in err.splitlines() if line.startswith("mcsim: note:")
     ]
     assert len(err.splitlines()) == 1 and f"z left empty in {empty} row(s)" in err
+
+
+def test_a_monte_carlo_sweep_says_its_regime_warning_once(capsys, tmp_path):
+    code, _, err = run_cli(capsys, "sweep", "--surface", "smooth", "--law", "jkr", "--vary",
+                           "sigma=1.5nm,2nm,3nm", "--mc", "--area", "1um^2", "--h=2:0:3",
+                           "--seed", "1", "--out", tmp_path / "s.h5")  # fmt: skip
+    assert code == 0, err
+    assert err.count("outside the JKR zone") == 1, err
+    assert "3 of 3 points outside their law set's regime" in err
+
+
+def test_a_sweep_warns_once_where_gw_s_area_passes_the_nominal_area(capsys, tmp_path):
+    import mcsim
+    from mcsim.model.presets import MATERIALS, SURFACES
+    from mcsim.physics.adhesion import ValidityWarning
+
+    vary = {"sigma": "0.3nm:20nm:4:log"}
+    with pytest.warns(ValidityWarning, match="passes the nominal area") as caught:
+        result = mcsim.sweep(SURFACES["smooth"], MATERIALS["silicon"], vary, law="dmt",
+                             h=np.linspace(4, -1, 51))  # fmt: skip
+    largest = float(np.nanmax(result.data["area"]))
+    assert largest > 1 and f"A_r/A_n = {largest:.3g}" in str(caught[0].message)
+    assert len([w for w in caught if issubclass(w.category, ValidityWarning)]) == 1
+    code, _, err = run_cli(capsys, "sweep", "--surface", "smooth", "--law", "dmt", "--vary",
+                           "sigma=0.3nm:20nm:4:log", "--out", tmp_path / "s.h5")  # fmt: skip
+    assert code == 0
+    lines = [line for line in err.splitlines() if "passes the nominal area" in line]
+    assert len(lines) == 1 and lines[0].startswith("mcsim: warning: at 1 of 4 points: ")
+    assert f"A_r/A_n = {largest:.3g} at h = -1" in lines[0]
