@@ -191,3 +191,23 @@ def test_a_sweep_warns_once_where_gw_s_area_passes_the_nominal_area(capsys, tmp_
     lines = [line for line in err.splitlines() if "passes the nominal area" in line]
     assert len(lines) == 1 and lines[0].startswith("mcsim: warning: at 1 of 4 points: ")
     assert f"A_r/A_n = {largest:.3g} at h = -1" in lines[0]
+
+
+@pytest.mark.parametrize(("text", "dimension", "si"), [
+    ("10uN", "force", 1e-05), ("17 um^-2", "density", 1.7e13), ("1.7um", "length", 1.7e-06),
+    ("20 deg", "angle", 20 * np.pi / 180), ("0.16 aJ", "energy", 1.6e-19),
+])  # fmt: skip
+def test_a_quantity_with_a_unit_is_the_nearest_float_to_its_decimal_value(text, dimension, si):
+    from mcsim.model.units import parse_quantity
+
+    assert parse_quantity(text, dimension, "x") == si  # rounded once: no spurious digits
+
+
+def test_a_load_over_an_area_prints_the_pressure_without_spurious_digits(capsys):
+    import json
+
+    code, out, _ = run_cli(capsys, "analytic", "--surface", "smooth", "--law", "jkr", "--load",
+                           "10uN", "--area", "100um^2", "--format", "json")  # fmt: skip
+    assert code == 0
+    assert [row["pressure"] for row in json.loads(out)["rows"]] == [100000.0]
+    assert '"pressure": 100000.0' in out
