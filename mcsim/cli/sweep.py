@@ -6,7 +6,14 @@ import sys
 import warnings
 from pathlib import Path
 
-from mcsim.cli.display import announce, environment_notes, file_state, log_notes, print_lines
+from mcsim.cli.display import (
+    announce,
+    environment_notes,
+    file_state,
+    log_notes,
+    print_lines,
+    work_notes,
+)
 from mcsim.cli.options import (
     add_environment,
     add_inputs,
@@ -80,6 +87,8 @@ def run(args) -> int:
                   f"(variable regime_warning), e.g.: {first}", file=sys.stderr)  # fmt: skip
         for line in area_warnings(result):
             print(f"mcsim: warning: {line}", file=sys.stderr)
+        if "work_of_separation" in result.data:
+            print_lines(work_notes(result.data["work_of_separation"], " (work_of_separation)"))
         _warn_few_contacts(result)
         _p_stick_notes(result)
         _p_slip_notes(result)

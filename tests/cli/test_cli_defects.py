@@ -1,6 +1,8 @@
 """Defects a new user meets on the command line (issue 44, point 7): each is a one-line
 ``mcsim: error: ...`` naming the field, exit status 2 and nothing written, or a fixed output."""
 
+import json
+
 import numpy as np
 import pytest
 from conftest import run_cli
@@ -211,3 +213,18 @@ def test_a_load_over_an_area_prints_the_pressure_without_spurious_digits(capsys)
     assert code == 0
     assert [row["pressure"] for row in json.loads(out)["rows"]] == [100000.0]
     assert '"pressure": 100000.0' in out
+
+
+def test_a_negative_work_of_separation_comes_with_a_note_on_its_meaning(capsys, tmp_path):
+    surface = tmp_path / "s3.toml"
+    surface.write_text('[surface]\nsigma = "3 nm"\nR = "1.7 um"\neta = "17 um^-2"\n')
+    code, out, err = run_cli(capsys, "adhesion", "--surface", surface, "--law", "jkr",
+                             "--preload", "1MPa", "--format", "json")  # fmt: skip
+    work = json.loads(out)["work_of_separation"]
+    assert code == 0 and work < 0
+    assert f"note: the work of separation is negative ({work:.4g} J/m^2): it is signed" in err
+    code, _, err = run_cli(capsys, "adhesion", "--surface", surface, "--law", "jkr")
+    assert code == 0 and "negative" not in err  # at zero load: only the tensile part
+    code, _, err = run_cli(capsys, "sweep", "--surface", "smooth", "--law", "jkr", "--vary",
+                           "sigma=1.5nm,3nm", "--preload", "1MPa", "--out", tmp_path / "w.h5")  # fmt: skip
+    assert code == 0 and "note: at 1 of 2 points (work_of_separation) the work of separation" in err
