@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import sys
 from pathlib import Path
 
 from mcsim.cli.display import announce
@@ -60,6 +61,7 @@ def run(args) -> int:
         calibrate=material if args.calibrate else None, radius_by_height=args.radius_by_height,
         adhesion_w=positive_quantity(args.w, "energy_per_area", "--w"),
         adhesion_range=length(args.range, "--range"), counter=args.counter_surface,
+        progress=not args.quiet and sys.stderr.isatty(),
     )  # fmt: skip
     for line in result.summary_lines():
         print(line)
@@ -185,5 +187,5 @@ def add_parser(sub) -> None:
     )
     p.add_argument("--pads-out", help="pads file of --synthesize (default: <out stem>-pads.h5)")
     p.add_argument("--seed", type=int, help="root seed of --synthesize (default: fresh, recorded)")
-    p.add_argument("--quiet", action="store_true", help="no 'wrote FILE' line")
+    p.add_argument("--quiet", action="store_true", help="no progress bar, no 'wrote FILE' line")
     p.set_defaults(func=run)

@@ -168,6 +168,7 @@ def ingest_file(
     adhesion_w: float | None = None,
     adhesion_range: float | None = None,
     counter: str | Path | None = None,
+    progress: bool = False,
 ) -> IngestResult:
     """Read a height map or a height histogram and derive a GW surface from it.
 
@@ -219,6 +220,8 @@ def ingest_file(
         gap's topography, map − flipped counter
         (:func:`~mcsim.topography.summits.facing_gap`); the correlation of the two levelled
         maps is measured (``IngestResult.facing``). Maps only; not with ``calibrate``.
+    progress : bool
+        Progress bars on stderr over the calibrations' exact solves.
 
     Returns
     -------
@@ -346,7 +349,8 @@ def ingest_file(
         from mcsim.studies.calibration import calibrate as fit
 
         calibration = fit(path, calibrate, unit=unit, pixel_size=pixel_size, channel=channel,
-                          level=level, periodic=periodic, surface=surface)  # fmt: skip
+                          level=level, periodic=periodic, surface=surface,
+                          progress=progress)  # fmt: skip
     adhesion = None
     if adhesion_w is not None:
         from mcsim.studies.adhesioncalibration import calibrate_adhesion
@@ -354,7 +358,8 @@ def ingest_file(
         try:
             adhesion = calibrate_adhesion(levelled, (hmap.dx, hmap.dy), calibrate,
                                           calibration.apply(surface), w=adhesion_w,
-                                          range_=adhesion_range, periodic=periodic)  # fmt: skip
+                                          range_=adhesion_range, periodic=periodic,
+                                          progress=progress)  # fmt: skip
         except MCSimError as err:
             raise type(err)(f"{path}: adhesion calibration: {err}") from None
     return IngestResult(

@@ -2,6 +2,7 @@
 ``mcsim: error: ...`` naming the field, exit status 2 and nothing written, or a fixed output."""
 
 import json
+import sys
 
 import numpy as np
 import pytest
@@ -228,3 +229,15 @@ def test_a_negative_work_of_separation_comes_with_a_note_on_its_meaning(capsys, 
     code, _, err = run_cli(capsys, "sweep", "--surface", "smooth", "--law", "jkr", "--vary",
                            "sigma=1.5nm,3nm", "--preload", "1MPa", "--out", tmp_path / "w.h5")  # fmt: skip
     assert code == 0 and "note: at 1 of 2 points (work_of_separation) the work of separation" in err
+
+
+def test_pads_shows_a_progress_bar_over_the_pads_on_a_terminal(capsys, tmp_path, monkeypatch):
+    run = tmp_path / "c.h5"
+    code, _, _ = run_cli(capsys, *CYCLE, "--h=4:-1:26", "--realizations", "3", "--quiet",
+                         "--out", run)  # fmt: skip
+    assert code == 0
+    monkeypatch.setattr(sys.stderr, "isatty", lambda: True)
+    code, out, err = run_cli(capsys, "pads", run)
+    assert code == 0 and "/3 [" in err and "pads/s" in err  # tqdm over the 3 pads
+    code, quiet_out, err = run_cli(capsys, "pads", run, "--quiet")
+    assert code == 0 and "/3 [" not in err and quiet_out == out
