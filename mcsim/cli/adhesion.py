@@ -14,6 +14,7 @@ from mcsim.cli.display import (
     environment_notes,
     print_lines,
     print_rows,
+    work_notes,
 )
 from mcsim.cli.options import (
     add_environment,
@@ -92,6 +93,7 @@ def run(args) -> int:
         announce(args.plot, "approach and retraction loads", quiet=args.quiet)
     values = summary.to_dict()
     notes += [f"warning: {line}" for line in summary.validity]
+    notes += work_notes(summary.work_of_separation)
     notes += cutoff_notes(surface, material, summary.law, summary.h_pull_off)
     flag = cutoff_flag(surface, material, summary)
     if flag:

@@ -14,7 +14,7 @@ def run(args) -> int:
     run = read_run(args.run, allow_incomplete=args.partial)
     rows = run.compare().to_dict("records")
     columns = ["h", "branch", "quantity", "mc_mean", "mc_se", "analytic", "z"]
-    notes = sorted({(r["h"], r["note"]) for r in rows if r["note"]}, key=lambda t: -t[0])
+    notes = [(r["h"], r["note"]) for r in rows if r["note"]]
     if args.format == "table":
         columns.append("note")
         for r in rows:
@@ -25,10 +25,22 @@ def run(args) -> int:
     if not run.complete:
         print(f"mcsim: note: {run.path} is incomplete: compared over its {run.spec.realizations} "
               "completed realization(s)", file=sys.stderr)  # fmt: skip
-    if args.format == "csv" and notes:
-        for h, note in notes:
-            print(f"mcsim: note: h = {h:g}: z left empty: {note}", file=sys.stderr)
+    if args.format == "csv":  # the table and json carry the notes in their rows
+        for line in _note_lines(notes):
+            print(line, file=sys.stderr)
     return 0
+
+
+def _note_lines(notes: list[tuple[float, str]]) -> list[str]:
+    """One stderr line per kind of note (the text before its first parenthesis or colon):
+    how many rows, over which separations, and the first such note."""
+    kinds: dict[str, list[tuple[float, str]]] = {}
+    for h, note in notes:
+        kinds.setdefault(note.split(":")[0].split(" (")[0], []).append((h, note))
+    return [f"mcsim: note: z left empty in {len(group)} row(s) at h = "
+            f"{min(h for h, _ in group):g} .. {max(h for h, _ in group):g}: {kind}, e.g. "
+            f"{group[0][1]} (the note column of --format table or json says it per row)"
+            for kind, group in kinds.items()]  # fmt: skip
 
 
 def add_parser(sub) -> None:

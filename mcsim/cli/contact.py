@@ -5,7 +5,13 @@ from __future__ import annotations
 import argparse
 
 from mcsim.cli.display import announce, print_lines, print_rows
-from mcsim.cli.options import FORMATS, add_environment, environment_of, parse_values
+from mcsim.cli.options import (
+    FORMATS,
+    add_environment,
+    environment_of,
+    positive_quantity,
+    positive_values,
+)
 
 #: Unit of each printed column.
 UNITS = {
@@ -33,7 +39,6 @@ def run_adhesion(args) -> int:
     import json
 
     from mcsim.model.errors import ParameterError
-    from mcsim.model.units import parse_quantity
     from mcsim.store.config import load_material
     from mcsim.store.outputs import check_output
     from mcsim.studies.adhesivecontact import adhesive_contact
@@ -45,15 +50,14 @@ def run_adhesion(args) -> int:
         if path is not None:
             check_output(path, inputs=[args.file, *_counter(args)], overwrite=args.overwrite)
     material = load_material(args.material)
-    pressure = parse_values(args.pressure, "pressure", "--pressure")
+    pressure = positive_values(args.pressure, "pressure", "--pressure")
     if len(pressure) != 1:
         raise ParameterError(f"--pressure = {args.pressure!r}: with --adhesion give one pressure, "
                              "the non-adhesive load of the deepest position")  # fmt: skip
     quantity = {
-        "w": None if args.w is None else parse_quantity(args.w, "energy_per_area", "--w"),
-        "range_": None if args.range is None else parse_quantity(args.range, "length", "--range"),
-        "pixel_size": None if args.pixel_size is None
-        else parse_quantity(args.pixel_size, "length", "--pixel-size"),
+        "w": positive_quantity(args.w, "energy_per_area", "--w"),
+        "range_": positive_quantity(args.range, "length", "--range"),
+        "pixel_size": positive_quantity(args.pixel_size, "length", "--pixel-size"),
     }  # fmt: skip
     result = adhesive_contact(
         args.file, material, pressure[0], law=args.interaction, steps=args.steps,
@@ -172,7 +176,6 @@ def _summary_lines(result, summary: dict) -> list[str]:
 def run(args) -> int:
     import json
 
-    from mcsim.model.units import parse_quantity
     from mcsim.store.config import load_material
     from mcsim.store.outputs import check_output
     from mcsim.studies.contact import contact_map
@@ -184,13 +187,9 @@ def run(args) -> int:
             check_output(path, inputs=[args.file, *_counter(args)], overwrite=args.overwrite)
     material = load_material(args.material)
     environment = environment_of(args)
-    pixel = (
-        None
-        if args.pixel_size is None
-        else parse_quantity(args.pixel_size, "length", "--pixel-size")
-    )
+    pixel = positive_quantity(args.pixel_size, "length", "--pixel-size")
     result = contact_map(
-        args.file, material, parse_values(args.pressure, "pressure", "--pressure"), unit=args.unit, pixel_size=pixel, channel=args.channel,
+        args.file, material, positive_values(args.pressure, "pressure", "--pressure"), unit=args.unit, pixel_size=pixel, channel=args.channel,
         level=args.level, periodic=args.periodic, **({} if args.tol is None else {"tol": args.tol}), keep_fields=bool(args.out or args.plot),
         progress=not args.quiet, environment=environment, counter=args.counter_surface,
     )  # fmt: skip

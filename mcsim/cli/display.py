@@ -140,6 +140,30 @@ def counterface_notes(surface, counter, correlation: float, combined) -> list[st
             "(spectral moments combined; docs/physics.md, section 'Two rough surfaces')"]  # fmt: skip
 
 
+#: What a negative work of separation means (:mod:`mcsim.physics.adhesion`: the signed
+#: integral -∫ F_net dd of the retraction from the turn to infinity).
+NEGATIVE_WORK = ("it is signed, -int F_net dd from the turn to infinity: the elastic energy the "
+                 "pressed summits give back while the load falls from the turn's to zero exceeds "
+                 "the adhesive work of the tensile part after it, so the whole retraction releases "
+                 "energy on balance; the surfaces still stick until the pull-off force pulls them "
+                 "apart")  # fmt: skip
+
+
+def work_notes(work, where: str = "") -> list[str]:
+    """A line on what a negative work of separation (J/m², one value or one per point of a
+    sweep) means; none where every one is >= 0 or undefined."""
+    import numpy as np
+
+    work = np.atleast_1d(np.asarray(work, dtype=float))
+    negative = work < 0
+    if not negative.any():
+        return []
+    if work.size == 1:
+        return [f"note: the work of separation is negative ({work[0]:.4g} J/m^2): {NEGATIVE_WORK}"]
+    return [f"note: at {int(negative.sum())} of {work.size} points{where} the work of separation "
+            f"is negative (lowest {np.nanmin(work):.4g} J/m^2): {NEGATIVE_WORK}"]  # fmt: skip
+
+
 def print_lines(lines: list[str]) -> None:
     for line in lines:
         print(f"mcsim: {line}", file=sys.stderr)

@@ -7,7 +7,7 @@ import sys
 from pathlib import Path
 
 from mcsim.cli.display import announce
-from mcsim.cli.options import parse_h
+from mcsim.cli.options import parse_h, positive_quantity
 from mcsim.model.errors import ParameterError
 
 #: Default pixels along a side of a ``--synthesize`` pad.
@@ -15,14 +15,13 @@ PAD_PIXELS = 32
 
 
 def run(args) -> int:
-    from mcsim.model.units import parse_quantity
     from mcsim.store.outputs import check_output
     from mcsim.studies.ingest import ingest_file
     from mcsim.studies.ingested import IngestResult
     from mcsim.studies.simulation import cli_command
 
     def length(value, option):
-        return None if value is None else parse_quantity(value, "length", option)
+        return positive_quantity(value, "length", option)
 
     default = Path(args.file).stem
     if args.counter_surface is not None:
@@ -55,11 +54,12 @@ def run(args) -> int:
     result = ingest_file(
         args.file, unit=args.unit, pixel_size=length(args.pixel_size, "--pixel-size"),
         route=args.route, level=args.level, heights=args.heights, R=length(args.R, "--R"),
-        eta=None if args.eta is None else parse_quantity(args.eta, "density", "--eta"),
+        eta=positive_quantity(args.eta, "density", "--eta"),
         channel=args.channel, periodic=args.periodic,
         calibrate=material if args.calibrate else None, radius_by_height=args.radius_by_height,
-        adhesion_w=None if args.w is None else parse_quantity(args.w, "energy_per_area", "--w"),
+        adhesion_w=positive_quantity(args.w, "energy_per_area", "--w"),
         adhesion_range=length(args.range, "--range"), counter=args.counter_surface,
+        progress=not args.quiet and sys.stderr.isatty(),
     )  # fmt: skip
     for line in result.summary_lines():
         print(line)
@@ -199,5 +199,5 @@ def add_parser(sub) -> None:
     )
     p.add_argument("--pads-out", help="pads file of --synthesize (default: <out stem>-pads.h5)")
     p.add_argument("--seed", type=int, help="root seed of --synthesize (default: fresh, recorded)")
-    p.add_argument("--quiet", action="store_true", help="no 'wrote FILE' line")
+    p.add_argument("--quiet", action="store_true", help="no progress bar, no 'wrote FILE' line")
     p.set_defaults(func=run)

@@ -9,6 +9,7 @@ partial output; ``simulate`` (see :mod:`mcsim.engine.interrupt`) also stops on S
 from __future__ import annotations
 
 import argparse
+import re
 import sys
 
 from mcsim._version import __version__
@@ -37,8 +38,23 @@ COMMANDS = (analytic, adhesion, paper, simulate, sweep, compare, show, plot, pad
 # --- parser ------------------------------------------------------------------------------
 
 
+#: An argument that starts like a negative number (``-1MPa``, ``-.5``, ``-1e3,0``, ``-inf``) is
+#: a value, never an option: no option of mcsim starts with a digit, a point or ``inf``/``nan``.
+_NEGATIVE_VALUE = re.compile(r"-(\.?\d|inf|nan)", re.IGNORECASE)
+
+
 class _Parser(argparse.ArgumentParser):
-    """argparse with the one-line error contract: ``mcsim: error: ...``, exit status 2."""
+    """argparse with the one-line error contract: ``mcsim: error: ...``, exit status 2.
+
+    A value that starts like a negative number (``--pressure -1MPa``) is read as the option's
+    value, to be refused by name if out of range, rather than as an unknown option
+    (argparse takes only plain numbers such as ``-1`` or ``-.5`` for values).
+    """
+
+    def _parse_optional(self, arg_string):
+        if _NEGATIVE_VALUE.match(arg_string):
+            return None
+        return super()._parse_optional(arg_string)
 
     def error(self, message: str):
         text = " ".join(message.split())  # argparse's messages may wrap

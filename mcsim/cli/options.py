@@ -147,6 +147,29 @@ def parse_values(spec: str, dimension: str, option: str) -> list[float]:
     return parse_values(spec, dimension, option, limit=MAX_SEPARATIONS)
 
 
+def positive_quantity(text: str | None, dimension: str, option: str) -> float | None:
+    """A quantity option (:func:`mcsim.model.units.parse_quantity`) that must be > 0, in SI;
+    None if not given."""
+    from mcsim.model.units import parse_quantity
+
+    if text is None:
+        return None
+    value = parse_quantity(text, dimension, option)
+    if not value > 0:
+        raise ParameterError(f"{option} = {text!r} must be positive (allowed: > 0)")
+    return value
+
+
+def positive_values(spec: str, dimension: str, option: str) -> list[float]:
+    """:func:`parse_values`, each value > 0."""
+    values = parse_values(spec, dimension, option)
+    bad = [v for v in values if not v > 0]
+    if bad:
+        raise ParameterError(f"{option} = {spec!r}: {bad[0]:g} (SI) must be positive "
+                             "(allowed: > 0)")  # fmt: skip
+    return values
+
+
 #: Unit of each load-control column (``mcsim analytic --pressure``).
 LOAD_UNITS = {
     "pressure": "Pa", "h": "1 (d/sigma)", "contact_fraction": "1 (N_c/N)",
@@ -271,10 +294,11 @@ def add_inputs(p: argparse.ArgumentParser, separations: bool = True, law: str = 
                         f"(at most {MAX_SEPARATIONS})")  # fmt: skip
 
 
-def add_separations_or_loads(p, balance: str) -> None:
+def add_separations_or_loads(p, balance: str, required: bool = True) -> None:
     """``--h``, or the pressures (``--pressure``) or forces (``--load``, over ``--area``)
-    whose balancing separations on the analytic approach branch are used instead."""
-    mode = p.add_mutually_exclusive_group(required=True)
+    whose balancing separations on the analytic approach branch are used instead (one of
+    them ``required``; else the command checks, e.g. :func:`preload_grid`)."""
+    mode = p.add_mutually_exclusive_group(required=required)
     mode.add_argument("--h", metavar="SPEC",
                       help="separations d/sigma: a list '--h=-1,0,1.5' or start:stop:num '--h=4:-1:51' "
                            f"(at most {MAX_SEPARATIONS})")  # fmt: skip
@@ -316,6 +340,38 @@ def turn_of(args, surface, material, law, environment=None) -> tuple[float | Non
 
     pressure = parse_preload(args.preload)
     return preload_turn(surface, material, pressure, law, environment), pressure
+
+
+#: Grid of ``simulate --cycle --preload`` without ``--h``: ``sweep``'s default, 4 down to -1
+#: in steps of 0.1, reaching further down (same step) when the preload's mean turn is lower.
+PRELOAD_GRID = (4.0, -1.0, 0.1)
+
+
+def preload_grid(args, surface, material, law, environment=None) -> list[float]:
+    """The separations of ``simulate --cycle --preload P`` when no ``--h`` is given:
+    :data:`PRELOAD_GRID`, down to 1 below the preload's mean turn
+    (:func:`mcsim.physics.loadcontrol.preload_turn`) if that lies below -1; said on stderr.
+
+    Raises
+    ------
+    ParameterError
+        Without ``--cycle --preload``: one of ``--h``, ``--pressure``, ``--load`` is needed.
+    """
+    import math
+
+    if not (args.cycle and args.preload is not None):
+        raise ParameterError("one of the arguments --h --pressure --load is required (--h may be "
+                             "left out only with --cycle --preload)")  # fmt: skip
+    from mcsim.physics.loadcontrol import preload_turn
+
+    turn = preload_turn(surface, material, parse_preload(args.preload), law, environment)
+    top, low, step = PRELOAD_GRID
+    low = min(low, math.floor(turn) - 1.0)
+    spec = f"{top:g}:{low:g}:{round((top - low) / step) + 1}"
+    if not args.quiet:
+        print(f"mcsim: no --h given: the cycle runs over --h={spec} (d/sigma; the preload's mean "
+              f"turn is h = {turn:.4g}); give --h to choose another grid", file=sys.stderr)  # fmt: skip
+    return parse_h(spec)
 
 
 def parse_preload(text: str) -> float:

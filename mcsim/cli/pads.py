@@ -46,7 +46,8 @@ def run(args) -> int:
     run = read_run(args.run, allow_incomplete=args.partial)
     try:
         report = pad_report(run, fr, args.interval, tail=True if args.tail else None,
-                            friction=args.friction, tangential_force=ft)  # fmt: skip
+                            friction=args.friction, tangential_force=ft,
+                            progress=not args.quiet and sys.stderr.isatty())  # fmt: skip
     except ParameterError as err:
         raise ParameterError(f"{args.run}: {err}") from None
     pull_off, stats = report.pull_off, report.statistics
@@ -224,5 +225,5 @@ def add_parser(sub) -> None:
         help="histogram and CDF of the pad pull-off with the analytic mean",
     )
     p.add_argument("--overwrite", action="store_true", help="replace an existing --plot file")
-    p.add_argument("--quiet", action="store_true", help="no 'wrote FILE' line")
+    p.add_argument("--quiet", action="store_true", help="no progress bar, no 'wrote FILE' line")
     p.set_defaults(func=run)

@@ -23,6 +23,7 @@ def run(args) -> int:
         )
         for inputs, error in result.failed[:5]:
             print(f"  failed   {inputs}: {error}")
+        _sweep_results(result)
         return 0
     state, a = read_state(args.run)
     spec = state.spec
@@ -73,6 +74,36 @@ def run(args) -> int:
         print(f"vs GW         max |z| = {np.max(np.abs(finite)):.2f} over {finite.size} (h, quantity) pairs "
               f"with enough contacts{part}; details: mcsim compare {args.run}")  # fmt: skip
     return 0
+
+
+#: Outputs of a sweep that ``mcsim show`` prints per point, in this order, where the file
+#: has them (the pads' p_stick and p_slip with their 95 % intervals); the rest: ``mcsim plot``
+#: or :meth:`~mcsim.store.sweepfile.Sweep.table`.
+SHOWN = ("law_used", "pull_off_pressure", "work_of_separation", "hysteresis", "pull_off_mean",
+         "pull_off_std", "p_stick", "p_stick_model", "static_friction_mean", "mu_static_mean",
+         "p_slip")  # fmt: skip
+
+
+def _sweep_results(result) -> None:
+    """Each point's inputs and main outputs (:data:`SHOWN`), one row each, units in the
+    header; p_stick and p_slip as ``p [low, high]``."""
+    from mcsim.cli.display import print_rows
+
+    table = result.table()
+    units = table.attrs["units"]
+    columns = [*result.grid, *(c for c in SHOWN if c in table.columns)]
+    rows = table.to_dict("records")
+    for row in rows:
+        for name in ("p_stick", "p_slip"):
+            if name in row:
+                low, high = row[f"{name}_low"], row[f"{name}_high"]
+                row[name] = f"{row[name]:.3g} [{low:.3g}, {high:.3g}]"
+    fractions = [c for c in ("p_stick", "p_slip") if c in columns]
+    said = ", ".join(f"{c} {units[c]}" for c in columns if units[c] != "1")
+    if fractions:
+        said += f"; {', '.join(fractions)}: fraction of pads [95 % interval]"
+    print()
+    print_rows(rows, columns, "table", header=[f"results per point ({said})"])
 
 
 def add_parser(sub) -> None:

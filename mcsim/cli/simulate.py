@@ -18,6 +18,7 @@ from mcsim.cli.options import (
     environment_of,
     inputs_of,
     parse_h,
+    preload_grid,
     resolve_law,
     seed_type,
 )
@@ -53,13 +54,15 @@ def run(args) -> int:
         # Only with an environment, so that the run is exactly as before without one.
         with_environment = {} if environment is None else {"environment": environment}
         pressure = None
-        if args.h is None:
-            h, pressure = balancing_h(args, surface, material, environment)
-        else:
+        law, notes = resolve_law(args, surface, material)
+        if args.h is not None:
             h = parse_h(args.h)
+        elif args.pressure is None and args.load is None:
+            h = preload_grid(args, surface, material, law, environment)
+        else:
+            h, pressure = balancing_h(args, surface, material, environment)
         extra = {} if pressure is None else {"load_control": json.dumps(
             {"pressure": pressure.tolist(), "unit": "Pa"})}  # fmt: skip
-        law, notes = resolve_law(args, surface, material)
         if args.law == "auto" and not args.quiet:
             print_lines(notes[:1])  # the choice; simulate() logs the regime warnings
         out = file_path(args.out, "--out") if args.out is not None else _default_run_path(surface)
@@ -90,7 +93,8 @@ def run(args) -> int:
             n = run.n_summits
             announce(run.path, f"{_count(run.spec.realizations, 'realization')} x {_count(len(h), 'separation')}, "
                      f"N = {n.mean():.6g} summits per patch on average, {elapsed:.2f} s")  # fmt: skip
-            print(f"mcsim: next: mcsim compare {run.path}   |   mcsim plot {run.path}",
+            pads = f"   |   mcsim pads {run.path}" if args.cycle else ""  # pull-off per pad
+            print(f"mcsim: next: mcsim compare {run.path}   |   mcsim plot {run.path}{pads}",
                   file=sys.stderr)  # fmt: skip
     return 0
 
@@ -103,7 +107,7 @@ def add_parser(sub) -> None:
                        "`mcsim analytic --pressure` finds them; `mcsim plot` then draws each patch's "
                        "load and area.")  # fmt: skip
     add_inputs(p, separations=False)
-    add_separations_or_loads(p, "the run's separations balance them")
+    add_separations_or_loads(p, "the run's separations balance them", required=False)
     add_environment(p)
     p.add_argument(
         "--area", required=True, help="patch area: m^2 or with a unit ('100um^2', '0.01mm^2')"

@@ -3,9 +3,17 @@
 from __future__ import annotations
 
 import sys
+import warnings
 from pathlib import Path
 
-from mcsim.cli.display import announce, environment_notes, file_state, log_notes, print_lines
+from mcsim.cli.display import (
+    announce,
+    environment_notes,
+    file_state,
+    log_notes,
+    print_lines,
+    work_notes,
+)
 from mcsim.cli.options import (
     add_environment,
     add_inputs,
@@ -28,9 +36,10 @@ def run(args) -> int:
     from mcsim.engine.interrupt import Interrupted, interruptible
 
     with interruptible(), log_notes(args.quiet):  # SIGINT/SIGTERM owned before heavy imports
+        from mcsim.physics.adhesion import ValidityWarning
         from mcsim.store.files import checkpoint_path
         from mcsim.studies.simulation import cli_command
-        from mcsim.studies.sweeps import sweep
+        from mcsim.studies.sweeps import area_warnings, sweep
 
         vary = {}
         for item in args.vary:
@@ -53,13 +62,15 @@ def run(args) -> int:
         out = Path(args.out)
         before = file_state(out)
         try:
-            result = sweep(
-                given, material, vary, **pair, law=args.law, h=parse_h(args.h), turn=parse_turn(args.turn),
-                environment=environment, mc=args.mc, pads=args.pads, restoring_force=args.restoring_force, preload=args.preload, tail=True if args.tail else None, friction=args.friction, tangential_force=args.tangential_force, area=args.area, realizations=args.realizations or 1, seed=args.seed, device=args.device,
-                workers=args.workers, scheduler=args.scheduler or args.dask, out=out,
-                overwrite=args.overwrite, resume=args.resume, checkpoint_every=args.checkpoint_every,
-                progress=not args.quiet and sys.stderr.isatty(), command=cli_command(),
-            )  # fmt: skip
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", ValidityWarning)  # printed below, as a line
+                result = sweep(
+                    given, material, vary, **pair, law=args.law, h=parse_h(args.h), turn=parse_turn(args.turn),
+                    environment=environment, mc=args.mc, pads=args.pads, restoring_force=args.restoring_force, preload=args.preload, tail=True if args.tail else None, friction=args.friction, tangential_force=args.tangential_force, area=args.area, realizations=args.realizations or 1, seed=args.seed, device=args.device,
+                    workers=args.workers, scheduler=args.scheduler or args.dask, out=out,
+                    overwrite=args.overwrite, resume=args.resume, checkpoint_every=args.checkpoint_every,
+                    progress=not args.quiet and sys.stderr.isatty(), command=cli_command(),
+                )  # fmt: skip
         except Interrupted as stop:
             partial = checkpoint_path(out)
             saved = f"completed points saved in {partial}: run the same command with --resume to finish it"
@@ -74,6 +85,10 @@ def run(args) -> int:
             first = next(str(w) for w in warned.ravel() if w)
             print(f"mcsim: warning: {n_warned} of {warned.size} points outside their law set's regime "
                   f"(variable regime_warning), e.g.: {first}", file=sys.stderr)  # fmt: skip
+        for line in area_warnings(result):
+            print(f"mcsim: warning: {line}", file=sys.stderr)
+        if "work_of_separation" in result.data:
+            print_lines(work_notes(result.data["work_of_separation"], " (work_of_separation)"))
         _warn_few_contacts(result)
         _p_stick_notes(result)
         _p_slip_notes(result)

@@ -219,10 +219,28 @@ def parse_quantity(value: object, dimension: str, field: str) -> float:
         factor = unit_factor(m["unit"], dimension)
     except UnitError as err:
         raise UnitError(f"{field}: {err}") from None
-    result = float(m["num"]) * factor
+    result = _scaled(m["num"], factor)
     if not math.isfinite(result):
         raise UnitError(f"{field}: {value!r} is not finite; units for {_allowed(dimension)}")
     return result
+
+
+def _scaled(number: str, factor: float) -> float:
+    """``number`` (decimal text) times ``factor``, rounded once to the nearest float.
+
+    The exact decimal product, then one rounding: ``"10"`` µN is 1e-05 N, not
+    ``float("10") * 1e-06`` = 9.999999999999999e-06 N, whose spurious digits reappear in every
+    value derived from it (a pressure of 99999.99999999999 Pa for 10 µN over 100 µm²).
+    """
+    import decimal
+
+    context = decimal.Context(prec=80, Emax=decimal.MAX_EMAX, Emin=decimal.MIN_EMIN)
+    short = f"{factor:.3g}"  # a factor computed as 1/(1e-6)**2 is 1e12 up to an ulp or two
+    exact = short if abs(float(short) - factor) <= 2 * math.ulp(factor) else repr(factor)
+    try:
+        return float(context.multiply(decimal.Decimal(number), decimal.Decimal(exact)))
+    except (decimal.DecimalException, OverflowError):  # out of any float's range
+        return float(number) * factor
 
 
 def _finite(result: float, value: object, field: str) -> float:

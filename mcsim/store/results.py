@@ -331,7 +331,8 @@ class Run:
         spec = self.spec
         return pd.DataFrame(compare_table(self.summary, self.analytic, spec.row_h, spec.row_branch))
 
-    def pull_off(self, turn: float | None = None, *, friction: bool = False) -> PullOff:
+    def pull_off(self, turn: float | None = None, *, friction: bool = False,
+                 progress: bool = False) -> PullOff:  # fmt: skip
         """Per-patch pull-off of a cycle run (the law set must have a signed ``load``).
 
         Each pad's summits are drawn again from the seed (:mod:`mcsim.engine.padcurves`;
@@ -341,6 +342,7 @@ class Run:
         preload (attribute ``preload``, Pa); else the run's min(h). With ``friction`` also
         each pad's static friction at that turn and the normal load of its μ_s
         (:mod:`mcsim.engine.padfriction`; a ParameterError for a law set without friction).
+        With ``progress`` a progress bar over the pads on stderr.
         """
         from mcsim.engine import padcurves, padfriction, padload
 
@@ -373,7 +375,14 @@ class Run:
                                      "cannot draw again")  # fmt: skip
             static, normal = np.empty(R), np.empty(R)
         if exact:
-            for r in range(R):
+            pads = range(R)
+            if progress:
+                import sys
+
+                from tqdm import tqdm
+
+                pads = tqdm(pads, unit=" pads", file=sys.stderr, leave=False)
+            for r in pads:
                 z = padload.patch_heights(spec, r)
                 _check_regenerated(spec, r, z, load[r, :M])
                 if preload is not None:

@@ -263,6 +263,9 @@ def _open(path: Path):
     try:
         with _damaged(path):
             version = f.attrs.get("schema_version")
+            if version is None and "sweep_schema_version" in f.attrs:
+                raise RunFileError(f"{path}: a sweep file (mcsim sweep), not a run file: "
+                                   f"read it with mcsim show {path} or mcsim plot {path}")  # fmt: skip
             if version is None:
                 raise RunFileError(f"{path}: not an mcsim run file (no schema_version)")
             if not (np.ndim(version) == 0 and np.issubdtype(np.asarray(version).dtype, np.integer)):

@@ -454,6 +454,7 @@ def calibrate_adhesion(
     preloads: np.ndarray = PRELOADS,
     extrapolated: float = EXTRAPOLATED_PRELOAD,
     steps: int = STEPS,
+    progress: bool = False,
 ) -> AdhesionCalibration:
     """Fit GW's pull-off to exact adhesive cycles of a levelled map (module docstring).
 
@@ -479,6 +480,8 @@ def calibrate_adhesion(
         The out-of-sample preload p/E*, above them.
     steps : int
         Positions of each exact cycle.
+    progress : bool
+        A progress bar over the exact cycles on stderr.
 
     Returns
     -------
@@ -503,7 +506,14 @@ def calibrate_adhesion(
     adhesivebem.check_inputs(z, pixels, material.E_star, law)
     all_loads = np.append(preloads, extrapolated)
     exact, reached = np.empty(all_loads.size), np.empty(all_loads.size)
-    for k, p in enumerate(all_loads):
+    cycles = enumerate(all_loads)
+    if progress:
+        import sys
+
+        from tqdm import tqdm
+
+        cycles = tqdm(cycles, total=all_loads.size, unit=" cycles", file=sys.stderr, leave=False)
+    for k, p in cycles:
         exact[k], reached[k] = exact_pull_off(z, pixels, material.E_star, law,
                                               p * material.E_star, periodic=periodic, steps=steps)  # fmt: skip
     if not np.all(exact > 0):

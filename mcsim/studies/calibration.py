@@ -291,6 +291,7 @@ def calibrate(
     periodic: bool | None = None,
     tol: float = bem.TOL,
     surface: Surface | None = None,
+    progress: bool = False,
 ) -> Calibration:
     """Fit GW's summit-radius scale to the exact contact of a map (module docstring).
 
@@ -307,6 +308,8 @@ def calibrate(
     surface : Surface, optional
         The GW surface whose radius is scaled (``mcsim ingest``'s, with its radius by
         height); default: the map's own GW surface (:func:`~mcsim.studies.contact.contact_map`).
+    progress : bool
+        A progress bar over the exact solves (as ``mcsim contact``'s, on large maps).
 
     Returns
     -------
@@ -322,7 +325,8 @@ def calibrate(
     loads = np.append(LOADS, EXTRAPOLATED_LOAD)  # ascending: the last solve warm-starts from 1e-2
     pressure = loads * material.E_star
     exact = contact_map(path, material, pressure, unit=unit, pixel_size=pixel_size,
-                        channel=channel, level=level, periodic=periodic, tol=tol)  # fmt: skip
+                        channel=channel, level=level, periodic=periodic, tol=tol,
+                        progress=progress)  # fmt: skip
     if not np.all(exact.area_fraction > 0):
         raise ParameterError(f"{path}: no pixel in contact at p/E* = {LOADS[0]:g}: the map is too "
                              "coarse to calibrate on (refine it)")  # fmt: skip

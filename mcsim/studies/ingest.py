@@ -76,6 +76,13 @@ from mcsim.topography.summits import level as level_heights
 from mcsim.topography.summits import radius_by_height as fit_radius
 
 HEIGHTS = ("summits", "map")
+#: Pixel sizes a map may have, m: from 1 pm (below an atom's spacing) to 1 m (above any
+#: profilometer's field). Outside them the summit statistics' powers of heights and
+#: slopes (curvatures ~ z/dx², moments ~ (z/dx²)²) overflow or underflow double precision.
+PIXEL_SIZE_RANGE = (1e-12, 1.0)
+#: Largest |height| of a map, m (1 m): a larger one is a unit mistake, and its squares
+#: overflow the summit statistics.
+MAX_HEIGHT = 1.0
 #: Largest number of bins of a written histogram (Freedman–Diaconis otherwise).
 MAX_BINS = 256
 #: Bins wider than this many σ (forced by the :data:`MAX_BINS` cap) are warned about.
@@ -161,6 +168,7 @@ def ingest_file(
     adhesion_w: float | None = None,
     adhesion_range: float | None = None,
     counter: str | Path | None = None,
+    progress: bool = False,
 ) -> IngestResult:
     """Read a height map or a height histogram and derive a GW surface from it.
 
@@ -212,6 +220,8 @@ def ingest_file(
         gap's topography, map − flipped counter
         (:func:`~mcsim.topography.summits.facing_gap`); the correlation of the two levelled
         maps is measured (``IngestResult.facing``). Maps only; not with ``calibrate``.
+    progress : bool
+        Progress bars on stderr over the calibrations' exact solves.
 
     Returns
     -------
@@ -276,7 +286,7 @@ def ingest_file(
         raise ParameterError(
             f"{path}: R and eta come from the map's summits: give them only with a histogram file"
         )
-    hmap = read_height_map(path, unit=unit, pixel_size=pixel_size, channel=channel)
+    hmap = read_checked(path, unit=unit, pixel_size=pixel_size, channel=channel)
     alone, counter_map = hmap.heights, None
     if counter is not None:
         counter_map = read_counter_map(path, counter, hmap, unit=unit, pixel_size=pixel_size,
@@ -339,7 +349,8 @@ def ingest_file(
         from mcsim.studies.calibration import calibrate as fit
 
         calibration = fit(path, calibrate, unit=unit, pixel_size=pixel_size, channel=channel,
-                          level=level, periodic=periodic, surface=surface)  # fmt: skip
+                          level=level, periodic=periodic, surface=surface,
+                          progress=progress)  # fmt: skip
     adhesion = None
     if adhesion_w is not None:
         from mcsim.studies.adhesioncalibration import calibrate_adhesion
@@ -347,7 +358,8 @@ def ingest_file(
         try:
             adhesion = calibrate_adhesion(levelled, (hmap.dx, hmap.dy), calibrate,
                                           calibration.apply(surface), w=adhesion_w,
-                                          range_=adhesion_range, periodic=periodic)  # fmt: skip
+                                          range_=adhesion_range, periodic=periodic,
+                                          progress=progress)  # fmt: skip
         except MCSimError as err:
             raise type(err)(f"{path}: adhesion calibration: {err}") from None
     return IngestResult(
@@ -384,13 +396,39 @@ def ingest_file(
     )
 
 
+def check_scale(hmap: HeightMap) -> HeightMap:
+    """``hmap`` if its pixel sizes lie in :data:`PIXEL_SIZE_RANGE` and its heights within
+    ±:data:`MAX_HEIGHT`.
+
+    Raises
+    ------
+    ReaderError
+        Naming the file, the field, its value and the allowed range.
+    """
+    low, high = PIXEL_SIZE_RANGE
+    for name, value in (("dx", hmap.dx), ("dy", hmap.dy)):
+        if not low <= value <= high:
+            raise ReaderError(f"{hmap.source}: pixel size {name} = {value:.4g} m is out of range "
+                              f"(allowed: {low:g} m to {high:g} m; check --pixel-size)")  # fmt: skip
+    largest = float(np.nanmax(np.abs(hmap.heights)))
+    if not largest <= MAX_HEIGHT:
+        raise ReaderError(f"{hmap.source}: heights up to {largest:.4g} m are out of range "
+                          f"(allowed: |height| <= {MAX_HEIGHT:g} m; check --unit)")  # fmt: skip
+    return hmap
+
+
+def read_checked(path: str | Path, **options) -> HeightMap:
+    """:func:`~mcsim.topography.readers.read_height_map`, then :func:`check_scale`."""
+    return check_scale(read_height_map(path, **options))
+
+
 def read_map(
     path: str | Path, *, unit=None, pixel_size=None, channel=None, counter: str | Path | None = None
 ) -> HeightMap:
-    """The height map of ``path`` (:func:`~mcsim.topography.readers.read_height_map`), or with a
-    ``counter``-surface's map the gap's topography, map − turned-over counter
+    """The height map of ``path`` (:func:`read_checked`), or with a ``counter``-surface's map
+    the gap's topography, map − turned-over counter
     (:func:`~mcsim.topography.summits.facing_gap`; :func:`read_counter_map` checks it)."""
-    hmap = read_height_map(path, unit=unit, pixel_size=pixel_size, channel=channel)
+    hmap = read_checked(path, unit=unit, pixel_size=pixel_size, channel=channel)
     if counter is None:
         return hmap
     other = read_counter_map(Path(path), counter, hmap, unit=unit, pixel_size=pixel_size,
@@ -421,7 +459,7 @@ def read_counter_map(
         raise ParameterError(f"{where}: a text histogram, not a height map: a counter-surface "
                              "combines two height maps")  # fmt: skip
     try:
-        other = read_height_map(counter, unit=unit, pixel_size=pixel_size, channel=channel)
+        other = read_checked(counter, unit=unit, pixel_size=pixel_size, channel=channel)
     except MCSimError as err:
         raise type(err)(f"{where}: {err}") from None
     same_pixel = all(math.isclose(a, b, rel_tol=1e-6) for a, b in ((hmap.dx, other.dx),

@@ -528,7 +528,8 @@ class PadReport:
 
 def pad_report(
     run, restoring_force: float | None = None, interval: str = "clopper-pearson",
-    tail: bool | None = None, *, friction: bool = False, tangential_force: float | None = None
+    tail: bool | None = None, *, friction: bool = False, tangential_force: float | None = None,
+    progress: bool = False,
 ) -> PadReport:  # fmt: skip
     """Pull-off statistics of the pads of a cycle run (one pad per realization), as ``mcsim pads``.
 
@@ -552,6 +553,8 @@ def pad_report(
     tangential_force : float or str, optional
         F, N (≥ 0, finite; or with a unit; implies ``friction``): a pad slips when T_s < F;
         adds p_slip and its interval.
+    progress : bool
+        A progress bar over the pads on stderr (:meth:`mcsim.Run.pull_off`).
 
     Returns
     -------
@@ -568,7 +571,7 @@ def pad_report(
     if tangential_force is not None:
         tangential_force = padfriction.check_tangential_force(tangential_force)
     friction = friction or tangential_force is not None
-    pull_off = run.pull_off(friction=friction)
+    pull_off = run.pull_off(friction=friction, progress=progress)
     statistics = pad_statistics(pull_off.force, restoring_force, interval)
     spec, turns, turn = run.spec, {}, None
     if pull_off.preload is not None:  # the analytic mean after the mean-field turn

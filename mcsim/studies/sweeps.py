@@ -54,9 +54,7 @@ from mcsim.model.errors import ParameterError
 from mcsim.model.params import Material, Surface, check_range, check_seed, check_separations
 from mcsim.model.presets import as_material, as_surface
 from mcsim.model.units import parse_quantity
-from mcsim.physics.adhesion import (
-    RegimeWarning,
-)
+from mcsim.physics.adhesion import RegimeWarning, ValidityWarning
 from mcsim.physics.environment import Environment, as_environment
 from mcsim.physics.laws import get_law_set
 from mcsim.store import inputgroup
@@ -285,6 +283,8 @@ def sweep(
     seed = check_seed(seed)
     dims = [dimension_name(n) for n in names]
     with interrupt.interruptible(), contextlib.ExitStack() as stack:
+        if mc:
+            stack.enter_context(_quiet_point_runs())
         claim = None
         if out is not None:
             claim = claim_output(stack, out, overwrite=overwrite, resume=resume, what="sweep",
@@ -334,9 +334,39 @@ def sweep(
         _run(stack, points, config, result, done, workers, scheduler, progress, checkpoint,
              checkpoint_every)  # fmt: skip
         if claim is None:
-            return dataclasses.replace(result, attrs=attrs)
-        claim.finish(lambda path: write_sweep(path, result, attrs, complete=True))
-        return dataclasses.replace(result, attrs=attrs, path=claim.out)
+            final = dataclasses.replace(result, attrs=attrs)
+        else:
+            claim.finish(lambda path: write_sweep(path, result, attrs, complete=True))
+            final = dataclasses.replace(result, attrs=attrs, path=claim.out)
+    for line in area_warnings(final):
+        warnings.warn(line, ValidityWarning, stacklevel=2)
+    return final
+
+
+def area_warnings(result: Sweep) -> list[str]:
+    """At most one line: GW's real contact area A_r/A_n of the sweep's curves past the nominal
+    area, or past where independent summits hold, at some point and separation
+    (:func:`mcsim.physics.validity.area_warnings` on the largest; how many points; which one).
+
+    Parameters
+    ----------
+    result : Sweep
+        A sweep with the curves' variable ``area`` (none: no line).
+    """
+    from mcsim.physics.validity import INTERACTING_AREA
+    from mcsim.physics.validity import area_warnings as lines_of
+    from mcsim.store.sweepvariables import plain
+
+    area = result.data.get("area")
+    if area is None or not np.any(area > INTERACTING_AREA):
+        return []
+    h = np.broadcast_to(result.coords["h"], area.shape)
+    worst = np.unravel_index(int(np.nanargmax(area)), area.shape)
+    limit = 1.0 if area[worst] > 1 else INTERACTING_AREA
+    count = int(np.sum(np.nanmax(area, axis=-1) > limit))
+    at = ", ".join(f"{d} = {plain(result.coords[d][i])}" for d, i in zip(result.grid, worst))
+    line = lines_of(area[worst], h[worst])[0]
+    return [f"at {count} of {int(np.prod(result.shape))} points: {line}; largest at {at}"]
 
 
 def _check_monte_carlo(
@@ -373,6 +403,20 @@ def _check_monte_carlo(
             "area: the pad area applies to the Monte Carlo runs only, or the pads (add mc / --mc or pads / --pads)"
         )
     return area_m2
+
+
+@contextlib.contextmanager
+def _quiet_point_runs():
+    """Each Monte Carlo point's :func:`~mcsim.studies.simulation.simulate` logs its inputs'
+    notes (its law set's regime, the environment's) at INFO; the sweep records them per point
+    (variable ``regime_warning``) and its caller says them once, so they are dropped here."""
+    logger = logging.getLogger("mcsim.studies.simulation")
+    level = logger.level
+    logger.setLevel(logging.WARNING)
+    try:
+        yield
+    finally:
+        logger.setLevel(level)
 
 
 def _empty_result(material: Material, law: str, names, dims, grid, config: Config,

@@ -189,12 +189,11 @@ def synthesize_pads(
     ParameterError
         A bad ``n`` or ``pixels``, a histogram file, a map with non-square pixels or NaN.
     """
-    from mcsim.studies.ingest import decide_periodic
-    from mcsim.topography.readers import read_height_map
+    from mcsim.studies.ingest import decide_periodic, read_checked
 
     check_pads(n, pixels, seed, path)
     path = Path(path)
-    hmap = read_height_map(path, unit=unit, pixel_size=pixel_size, channel=channel)
+    hmap = read_checked(path, unit=unit, pixel_size=pixel_size, channel=channel)
     if not np.isclose(hmap.dx, hmap.dy, rtol=1e-9):
         raise ParameterError(f"`pixel_size`: {hmap.dx:.4g} m x {hmap.dy:.4g} m; square pixels only")
     is_periodic, _ = decide_periodic(hmap.heights, periodic)
