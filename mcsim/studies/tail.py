@@ -112,6 +112,10 @@ DEFENSIVE = 0.2
 #: 0.3 (and 0.5 from the tilt) the intervals held brute force in 63 of 64 runs at p ≈ 1e-2,
 #: against 60 of 64 with the two-part mixture on the same seeds (validation/README.md).
 HALF_WAY = 0.3
+#: Independent cross-entropy chains, each with its own tilt in the final mixture: where their
+#: own estimates' intervals do not overlap the event has a way in that one tilt misses
+#: (module docstring), and the estimate is not trusted.
+CHAINS = 2
 #: First element of the tail's stream keys (module docstring): above any realization index.
 STREAM = 2**63
 
@@ -157,10 +161,17 @@ class TailEstimate:
         F_r after :data:`STAGES` stages: the estimate is unbiased still, its variance larger).
     event : str
         ``"stick"`` or ``"release"``: which side was sampled.
-    tilt : Tilt
-        The last tilt.
+    tilts : tuple of Tilt
+        Each chain's last tilt.
     cut : float
         The cut s_c, in σ.
+    agree : bool
+        Whether the chains' own estimates agree: their 95 % intervals overlap (module
+        docstring); True where no final pads were drawn.
+    chains : tuple of tuple of float
+        Each chain's own estimate and 95 % interval (p, low, high) of the sampled side (the
+        event, before ``"release"`` takes the complement), from its tilts' pads and its share
+        of the nominal pads.
     """
 
     p_stick: float
@@ -174,8 +185,10 @@ class TailEstimate:
     stages: int
     reached: bool
     event: str
-    tilt: Tilt
+    tilts: tuple[Tilt, ...]
     cut: float
+    agree: bool
+    chains: tuple[tuple[float, float, float], ...] = ()
 
 
 def cut(spec, turn: float) -> float:
@@ -221,12 +234,20 @@ class _Law:
         high = _split(s[np.argsort(pad, kind="stable")], counts.sum(axis=1))
         return [np.concatenate([a[a <= self.cut], b]) for a, b in zip(low, high)], high
 
-    def log_ratio(self, tilt: Tilt | None, highs: list) -> np.ndarray:
-        """log L of each pad whose summits above the cut are ``highs`` (module docstring)."""
+    def log_ratio(self, tilt: Tilt | None, counts: np.ndarray) -> np.ndarray:
+        """log L of each pad from its summits per bin above the cut, ``counts`` (module docstring)."""
         if tilt is None:
-            return np.zeros(len(highs))
+            return np.zeros(len(counts))
         r = np.asarray(tilt.ratio)
-        return np.sum(self.mass * (r - 1)) - self.bins(highs) @ np.log(r)
+        return np.sum(self.mass * (r - 1)) - counts @ np.log(r)
+
+    def weight(self, laws: list, sizes: list, counts: np.ndarray) -> np.ndarray:
+        """The balance heuristic w = 1/Σ_j c_j/L_j, c_j = n_j/Σ n, of pads drawn from ``laws``
+        (None: nominal) in numbers ``sizes``, from their summits per bin (module docstring)."""
+        total = sum(sizes)
+        with np.errstate(over="ignore"):
+            return 1.0 / sum(n / total * np.exp(-self.log_ratio(q, counts))
+                             for q, n in zip(laws, sizes, strict=True))  # fmt: skip
 
 
 def _split(values: np.ndarray, counts: np.ndarray) -> list:
@@ -234,10 +255,9 @@ def _split(values: np.ndarray, counts: np.ndarray) -> list:
     return np.split(values, np.cumsum(counts)[:-1])
 
 
-def _fit(law: _Law, previous: Tilt, highs: list, weights: np.ndarray) -> Tilt:
-    """The smoothed cross-entropy tilt from elite pads' summits above the cut and their weights:
-    each bin's weighted mean count over its nominal count (module docstring)."""
-    counts = law.bins(highs)
+def _fit(law: _Law, previous: Tilt, counts: np.ndarray, weights: np.ndarray) -> Tilt:
+    """The smoothed cross-entropy tilt from elite pads' summits per bin above the cut and their
+    weights: each bin's weighted mean count over its nominal count (module docstring)."""
     with np.errstate(invalid="ignore", divide="ignore"):
         fit = (weights @ counts) / (np.sum(weights) * law.mass)
     fit = np.where(law.mass > 0, fit, 1.0)
@@ -261,18 +281,59 @@ def pad_pull_off(spec, s: np.ndarray, *, turn: float, preload: float | None) -> 
     return padcurves.pull_off(spec, z, d_turn)[0]
 
 
-def _stage(law: _Law, tilt: Tilt | None, n: int, key: int, evaluate, workers: int):
-    """``n`` pads drawn from ``tilt`` (nominal: None) on stream ``key``: their summits above
-    the cut, log L and pull-off (N)."""
-    rng = np.random.default_rng(np.random.SeedSequence(law.spec.entropy, spawn_key=(STREAM, key)))
-    pads, highs = law.draw(tilt, n, rng)  # all drawn before any is evaluated
-    log_l = law.log_ratio(tilt, highs)
+def _stage(law: _Law, tilt: Tilt | None, n: int, key: tuple, evaluate, workers: int):
+    """``n`` pads drawn from ``tilt`` (nominal: None) on stream ``key``: their summits per bin
+    above the cut and their scores (pull-off, N)."""
+    seed = np.random.SeedSequence(law.spec.entropy, spawn_key=(STREAM, *key))
+    pads, highs = law.draw(
+        tilt, n, np.random.default_rng(seed)
+    )  # all drawn before any is evaluated
     if workers > 1:
         with ThreadPoolExecutor(workers) as pool:
             force = np.array(list(pool.map(evaluate, pads)))
     else:
         force = np.array([evaluate(s) for s in pads])
-    return highs, log_l, force
+    return law.bins(highs), force
+
+
+@dataclass(frozen=True)
+class _Chain:
+    """One chain's cross-entropy stages: its tilt, stages after stage 0, pads evaluated, and
+    whether its last stage reached the event."""
+
+    tilt: Tilt
+    stages: int
+    evaluations: int
+    reached: bool
+
+
+def _cross_entropy(law, c, counts, force, *, pilot, margin, hit, evaluate, workers, give_up):
+    """Chain ``c``'s tilt from its stage 0 (summits per bin, scores) by the multilevel
+    cross-entropy method, every stage's pads reused in every fit (module docstring)."""
+    laws, sizes, new = [None], [len(force)], force
+    fitted, previous, stage, evaluations = Tilt((1.0,) * BINS), -math.inf, 0, 0
+    while True:
+        elite_size = math.ceil(RHO * new.size)
+        reached = int(np.count_nonzero(hit(new))) >= elite_size
+        if reached:
+            elite = hit(force)
+        else:
+            level = np.sort(margin(new))[-elite_size]
+            # stalled, or too slow to reach F_r in the stages left at its latest pace
+            # (Rubinstein & Kroese 2004, ch. 3: a level that stops rising ends the method)
+            if give_up and (level <= previous or -level > (level - previous) * (STAGES - stage)):
+                break
+            previous, elite = level, margin(force) >= level
+        weights = law.weight(laws, sizes, counts[elite])
+        fitted = _fit(law, fitted, counts[elite], weights)
+        if reached or stage == STAGES:
+            break
+        stage += 1
+        more, new = _stage(law, fitted, pilot, (c, stage), evaluate, workers)
+        laws.append(fitted), sizes.append(pilot)
+        counts, force = np.vstack([counts, more]), np.concatenate([force, new])
+        evaluations += pilot
+    return _Chain(fitted, stage, evaluations, reached)
 
 
 def importance_p_stick(spec, restoring_force: float, *, turn: float, preload: float | None = None,
@@ -330,9 +391,9 @@ def importance_p_stick(spec, restoring_force: float, *, turn: float, preload: fl
                              "Poisson summit count")  # fmt: skip
     if event not in ("stick", "release"):
         raise ParameterError(f"event = {event!r}: allowed stick, release")
-    if pads < 2 or pilot * RHO < 1:
+    if pads < 4 * CHAINS or pilot * RHO < 1:
         raise ParameterError(f"pads = {pads!r}, pilot = {pilot!r}: importance sampling needs "
-                             f"pads >= 2 and pilot >= {math.ceil(1 / RHO)}")  # fmt: skip
+                             f"pads >= {4 * CHAINS} and pilot >= {math.ceil(1 / RHO)}")  # fmt: skip
     law = _Law(spec, cut(spec, turn))
     fr = float(restoring_force)
     sign = 1.0 if event == "stick" else -1.0
@@ -345,58 +406,58 @@ def importance_p_stick(spec, restoring_force: float, *, turn: float, preload: fl
     def hit(force):  # the event: sticking, or its complement
         return (force > fr) if event == "stick" else ~(force > fr)
 
-    tilt, evaluations = None, 0
-    if start is None:
-        highs, log_l, force = _stage(law, None, pilot, 0, evaluate, workers)
-        evaluations += pilot
-    else:
-        highs, force = start
-        log_l = np.zeros(len(highs))
-    fitted = Tilt((1.0,) * BINS)  # the nominal law
-    reached, stage, previous = False, 0, -math.inf
-    while True:
-        margin = sign * (force - fr)
-        hits = hit(force)
-        elite_size = math.ceil(RHO * margin.size)
-        reached = int(np.count_nonzero(hits)) >= elite_size
-        if reached:
-            elite = hits
-        else:
-            level = np.sort(margin)[-elite_size]
-            elite = margin >= level
-            # stalled, or too slow to reach F_r in the stages left at its latest pace
-            # (Rubinstein & Kroese 2004, ch. 3: a level that stops rising ends the method)
-            if give_up and (level <= previous or -level > (level - previous) * (STAGES - stage)):
-                break
-            previous = level
-        weights = np.exp(log_l[elite] - np.max(log_l[elite]))  # L up to a common factor
-        fitted = _fit(law, fitted, [h for h, e in zip(highs, elite) if e], weights)
-        tilt = fitted
-        if reached or stage == STAGES:
-            break
-        stage += 1
-        highs, log_l, force = _stage(law, tilt, pilot, stage, evaluate, workers)
-        evaluations += pilot
+    def margin(force):  # how far into the event
+        return sign * (force - fr)
+
+    evaluations = 0
+    if start is None:  # each chain's own stage 0 from the nominal law
+        zero = [_stage(law, None, pilot, (c, 0), evaluate, workers) for c in range(CHAINS)]
+        evaluations += CHAINS * pilot
+    else:  # the given pads, dealt to the chains in turn
+        counts, force = law.bins(start[0]), np.asarray(start[1], dtype=float)
+        zero = [(counts[c::CHAINS], force[c::CHAINS]) for c in range(CHAINS)]
+    chains = [_cross_entropy(law, c, *zero[c], pilot=pilot, margin=margin, hit=hit,
+                             evaluate=evaluate, workers=workers, give_up=give_up)
+              for c in range(CHAINS)]  # fmt: skip
+    evaluations += sum(c.evaluations for c in chains)
+    tilts = tuple(c.tilt for c in chains)
+    stages, reached = max(c.stages for c in chains), all(c.reached for c in chains)
     if give_up and not reached:
-        return TailEstimate(math.nan, math.nan, 0.0, 1.0, 0.0, 0, 0, evaluations, stage, False,
-                            event, tilt, law.cut)  # fmt: skip
-    laws = (None, half(tilt), tilt)  # nominal, half-way, tilted
-    n = mixture(pads)
-    parts = [_stage(law, q, k, STAGES + 1 + j, evaluate, workers)
-             for j, (q, k) in enumerate(zip(laws, n, strict=True)) if k]  # fmt: skip
+        return TailEstimate(math.nan, math.nan, 0.0, 1.0, 0.0, 0, 0, evaluations, stages, False,
+                            event, tilts, law.cut, True)  # fmt: skip
+    sizes = mixture(pads)
+    laws = (None, *(q for t in tilts for q in (half(t), t)))
+    parts = [_stage(law, q, n, (CHAINS, j), evaluate, workers)
+             for j, (q, n) in enumerate(zip(laws, sizes, strict=True))]  # fmt: skip
     evaluations += pads
-    highs = [h for part in parts for h in part[0]]
-    # the balance heuristic w = p / Σ c_j q_j = 1 / Σ c_j / L_j (at most 1/c_0)
-    mix = sum(k / pads * np.exp(-law.log_ratio(q, highs)) for q, k in zip(laws, n, strict=True))
-    y = hit(np.concatenate([part[2] for part in parts])) / mix
-    q, se = float(np.mean(y)), float(np.std(y, ddof=1) / math.sqrt(pads))
-    low, high = effective_clopper_pearson(q, se, pads)
+    counts = np.vstack([part[0] for part in parts])
+    y = hit(np.concatenate([part[1] for part in parts])) * law.weight(laws, sizes, counts)
+    q, se, low, high = _estimate(y, sizes[0])
+    # each chain's own estimate from its tilts' pads and its share of the nominal pads
+    # (independent of the other chain's): the two intervals overlap unless the tilts disagree
+    own = []
+    for c in range(CHAINS):
+        nominal = slice(c * sizes[0] // CHAINS, (c + 1) * sizes[0] // CHAINS)
+        mine = [(parts[0][0][nominal], parts[0][1][nominal]), parts[1 + 2 * c], parts[2 + 2 * c]]
+        n = [len(part[1]) for part in mine]
+        w = law.weight([None, *laws[1 + 2 * c : 3 + 2 * c]], n, np.vstack([m[0] for m in mine]))
+        own.append(_estimate(hit(np.concatenate([m[1] for m in mine])) * w, n[0]))
+    chain = tuple((o[0], o[2], o[3]) for o in own)
+    agree = max(o[2] for o in own) <= min(o[3] for o in own)
+    ess = q * q * (1 - q) / se**2 if se > 0 and 0 < q < 1 else 0.0
     if event == "release":
         q, low, high = 1.0 - q, 1.0 - high, 1.0 - low
-    ess = float(np.sum(y) ** 2 / np.sum(y**2)) if np.any(y) else 0.0
     return TailEstimate(min(max(q, 0.0), 1.0), se, max(low, 0.0), min(high, 1.0), ess,
-                        int(np.count_nonzero(y)), pads, evaluations, stage, reached, event,
-                        tilt, law.cut)  # fmt: skip
+                        int(np.count_nonzero(y)), pads, evaluations, stages, reached, event,
+                        tilts, law.cut, agree, chain)  # fmt: skip
+
+
+def _estimate(y: np.ndarray, n0: int) -> tuple[float, float, float, float]:
+    """p̂ = mean(y) of the weighted indicators ``y`` (the first ``n0`` from the nominal law),
+    its standard error and 95 % interval (:func:`effective_clopper_pearson`)."""
+    q, se = float(np.mean(y)), float(np.std(y, ddof=1) / math.sqrt(y.size))
+    k0 = int(np.count_nonzero(y[:n0]))
+    return (q, se, *effective_clopper_pearson(q, se, k0, n0))
 
 
 def half(tilt: Tilt) -> Tilt:
@@ -404,29 +465,37 @@ def half(tilt: Tilt) -> Tilt:
     return Tilt(tuple(math.sqrt(r) for r in tilt.ratio))
 
 
-def mixture(pads: int) -> tuple[int, int, int]:
-    """Final pads from the nominal law, the half-way tilt and the tilt (module docstring)."""
+def mixture(pads: int) -> tuple[int, ...]:
+    """Final pads from the nominal law, then from each chain's half-way tilt and its tilt
+    (module docstring)."""
     n0 = math.ceil(DEFENSIVE * pads)
-    n1 = math.ceil(HALF_WAY * pads)
-    return n0, n1, pads - n0 - n1
+    n1 = math.ceil(HALF_WAY * pads / CHAINS)
+    n2 = (pads - n0 - CHAINS * n1) // CHAINS
+    out = [n0, *(n1, n2) * CHAINS]
+    out[-1] += pads - sum(out)
+    return tuple(out)
 
 
-def effective_clopper_pearson(q: float, se: float, pads: int) -> tuple[float, float]:
-    """95 % interval of a weighted estimate ``q`` of a probability with standard error ``se``.
+def effective_clopper_pearson(q: float, se: float, k0: int, n0: int) -> tuple[float, float]:
+    """95 % interval of a weighted estimate ``q`` of a probability with standard error ``se``,
+    of which ``n0`` pads from the nominal law saw ``k0`` events.
 
     Clopper–Pearson's (Clopper & Pearson 1934) on the effective sample size
     n* = q(1 − q)/se² with x* = n* q events, non-integer (Korn & Graubard, *Survey
     Methodology* 24, 193, 1998): the 0.025 quantile of Beta(x*, n* − x* + 1) and the 0.975
     one of Beta(x* + 1, n* − x*); for 0/1 values (se² = q(1 − q)/n) it is the plain
-    Clopper–Pearson interval of n trials. Where q is 0 or at least 1, or se is 0, the plain
-    one of 0 or ``pads`` events in ``pads`` trials, e.g. [0, 1 − 0.025^(1/pads)].
+    Clopper–Pearson interval of n trials. Where n* is undefined (q is 0 or at least 1, or se
+    is 0: no pad in the event, or all weights alike) the plain Clopper–Pearson interval of
+    the nominal pads alone, ``k0`` events in ``n0`` trials: they are plain pads, so it holds
+    whatever the other laws drew (with no event, [0, 1 − 0.025^(1/n0)] ≈ [0, 3.7/n0], n0 =
+    ⌈DEFENSIVE · pads⌉; module docstring).
     """
     from scipy.stats import beta
+
+    from mcsim.studies.pads import clopper_pearson
 
     if se > 0 and 0 < q < 1:
         n = q * (1 - q) / se**2
         x = q * n
         return float(beta.ppf(0.025, x, n - x + 1)), float(beta.ppf(0.975, x + 1, n - x))
-    if q >= 1:
-        return 0.025 ** (1 / pads), 1.0
-    return 0.0, 1 - 0.025 ** (1 / pads)
+    return clopper_pearson(k0, n0)
