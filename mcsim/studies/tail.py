@@ -26,15 +26,20 @@ the event; q only sets the variance.
   summit that carries the preload (a pad that does not stick); a shifted normal for every
   summit could not do both (measured at p ≈ 6e-6, σ = 3 nm, 2000 pads: relative standard
   error 12 % against 19 %).
-* **The tilt, by the cross-entropy method** (Rubinstein & Kroese, *The cross-entropy
-  method*, 2004, ch. 3, the multilevel algorithm for rare events). Under force control the pull-off is not monotone in the
-  heights (a taller summit turns the pad higher and weakens it), so the tilt is found, not
-  assumed: stage 0 draws pads from the nominal law (or takes the plain pads already
-  evaluated), each stage keeps its elite, the :data:`RHO` fraction of pads nearest the
-  event (all pads in the event once they are that many), and sets r_k to the elite's
-  weighted mean count in bin k over m_k (the maximum-likelihood intensity of a Poisson
-  process, weights L), smoothed by :data:`SMOOTHING` (Rubinstein & Kroese's smoothed
-  updating) and kept above :data:`RATIO_FLOOR`. At most :data:`STAGES` stages.
+* **The tilts, by the cross-entropy method** (Rubinstein & Kroese, *The cross-entropy
+  method*, 2004, ch. 3, the multilevel algorithm for rare events). Under force control the
+  pull-off is not monotone in the heights (a taller summit turns the pad higher and weakens
+  it), so the tilt is found, not assumed, by :data:`CHAINS` independent chains: each starts
+  from its own stage 0 from the nominal law (its own ``pilot`` pads, or its share of the
+  plain pads already evaluated, dealt in turn), and each stage sets a level, the margin to
+  F_r of the :data:`RHO` fraction of the stage's new pads nearest the event (the event itself
+  once that many are in it), and fits r_k to the elite: every pad of *all* the chain's stages
+  at or above the level, r_k its weighted mean count in bin k over m_k (the
+  maximum-likelihood intensity of a Poisson process), each pad weighted by the balance
+  heuristic over the laws the chain has drawn from (below; stage 0's nominal law among
+  them), smoothed by :data:`SMOOTHING` (Rubinstein & Kroese's smoothed updating) and kept
+  above :data:`RATIO_FLOOR`. At most :data:`STAGES` stages. Reusing the stages' pads gives
+  each fit the elite of every stage, not only the last one's thirty.
 * **The estimate: a defensive mixture** (Hesterberg, *Technometrics* 37, 185, 1995; Owen,
   ch. 9.11). The last tilt alone gives every pad in the event the weight L, unbounded: a
   sticking pad with a summit in a bin the tilt thins to r_k = 0.03 weighs ×33 per summit, and
@@ -42,11 +47,12 @@ the event; q only sets the variance.
   E_q[L²·1], a relative standard deviation per pad of 13–48 against 9.9 for plain pads, which
   a run of 1000 pads seldom sees: its p̂ lies low, its standard error too small, and its
   interval covered brute force in 23 of 28 runs (validation/README.md). So the
-  ``pads`` final pads are drawn from three laws: n₀ = ⌈:data:`DEFENSIVE` · pads⌉ from the
-  nominal law q₀ = p, n₁ = ⌈:data:`HALF_WAY` · pads⌉ from the tilt half-way q₁ (ratios √r_k,
-  :func:`half`: between the two in log) and n₂ = pads − n₀ − n₁ from the last tilt q₂ = q
-  (:func:`mixture`), and every pad, whichever law drew it, is weighted by the balance
-  heuristic of the mixture (Veach & Guibas, SIGGRAPH 1995; Owen, ch. 9.12),
+  ``pads`` final pads are drawn from 1 + 2 :data:`CHAINS` laws: n₀ = ⌈:data:`DEFENSIVE` ·
+  pads⌉ from the nominal law q₀ = p and, for each chain, ⌈:data:`HALF_WAY` · pads/CHAINS⌉
+  from its tilt half-way (ratios √r_k, :func:`half`: between the two in log) and the rest of
+  its share from its last tilt (:func:`mixture`), and every pad, whichever law drew it, is
+  weighted by the balance heuristic of the mixture (Veach & Guibas, SIGGRAPH 1995; Owen,
+  ch. 9.12),
 
       w = p/Σ_j c_j q_j = 1/Σ_j (c_j/L_j),   c_j = n_j/pads,   L_j = p/q_j,
 
@@ -61,22 +67,34 @@ the event; q only sets the variance.
   1/c₁·L₁ instead of 1/c₀). p̂ = mean(w·1{event}); its standard error is the pooled
   sample standard deviation of w·1 (ddof = 1) over √pads, which for the fixed allocation
   overstates the variance by the spread of the two laws' means (Owen, ch. 9.12):
-  conservative. The 95 % interval is Clopper–Pearson's on the effective sample size
-  n* = p̂(1 − p̂)/se² with x* = n* p̂ events (Korn & Graubard, *Survey Methodology* 24, 193,
-  1998; not capped at ``pads``, since importance sampling beats plain pads): skewed upwards
-  as the sum of a few large weights is, where the normal interval p̂ ± 1.96 se covered in
-  fewer runs (41 against 43 of 48 runs of the mixture of 1000 pads; 46 of 48 both with
-  2000; validation/README.md). The effective sample size reported is Kish's of the weights in the event, (Σ w·1)²/Σ (w·1)² (Owen, ch. 9): the pads
-  outside the event do not enter p̂. The event is sticking when sticking is rare, and not
+  conservative. **One effective sample size**, n* = p̂(1 − p̂)/se² (the plain pads that would
+  give the same standard error); the reported ``ess`` is n*·p̂, the effective number of pads
+  in the event (for plain pads exactly their count of events), which
+  :func:`mcsim.studies.pads.rare_event` gates on and the interval takes: Clopper–Pearson's
+  of x* = n*·p̂ events in n* trials (Korn & Graubard, *Survey Methodology* 24, 193, 1998; not
+  capped at ``pads``, since importance sampling beats plain pads), skewed upwards as the sum
+  of a few large weights is, where the normal interval p̂ ± 1.96 se covered in fewer runs
+  (41 against 43 of 48 runs of the two-part mixture of 1000 pads; validation/README.md).
+  Where n* is undefined (no pad in the event, or all weights alike) the interval is
+  Clopper–Pearson's of the n₀ nominal pads alone: they are plain pads, so it holds whatever
+  the tilts drew; with none in the event [0, 1 − 0.025^(1/n₀)] ≈ [0, 3.7/(DEFENSIVE · pads)]
+  (:func:`effective_clopper_pearson`). The event is sticking when sticking is rare, and not
   sticking (p = 1 − P(not sticking)) when that is the rarer one.
+* **The chains' check.** Each chain also estimates p from its own half-way and tilted pads
+  and its half of the nominal ones (the balance heuristic of those three laws), independently
+  of the other; where they differ by more than :data:`AGREE` = 3.29 of their combined
+  standard error √(se₁² + se₂²) (for two correct normal estimates a chance of 0.1 %) the
+  tilts have found different ways into the event and ``agree`` is False: :func:`mcsim.studies.pads.rare_event` then keeps the plain
+  fraction. The pooled mixture holds both tilts, so a way in that one chain finds and the
+  other misses is in the estimate; a way in that both miss is not detected (docs/physics.md).
 
 Each pad is evaluated by :func:`mcsim.engine.padcurves.force_turn` and
 :func:`~mcsim.engine.padcurves.pull_off` with the run's spec, as plain pads are, so every
-law set (and its environment) of the spec applies unchanged. Stage k draws from its own
-stream ``SeedSequence(spec.entropy, spawn_key=(STREAM, k))``, apart from the plain pads'
-(realization r: keys (r, 0), (r, 1 + b)), the final pads from the nominal law, the
-half-way tilt and the tilt on keys STAGES + 1, + 2 and + 3; all of a stage is drawn before any pad is
-evaluated, so the estimate is bit-identical for any ``workers``.
+law set (and its environment) of the spec applies unchanged. Stage k of chain c draws from
+its own stream ``SeedSequence(spec.entropy, spawn_key=(STREAM, c, k))``, apart from the plain
+pads' (realization r: keys (r, 0), (r, 1 + b)), the final pads of law j (:func:`mixture`'s
+order) on keys (STREAM, CHAINS, j); all of a stage is drawn before any pad is evaluated, so
+the estimate is bit-identical for any ``workers``.
 """
 
 from __future__ import annotations
@@ -116,6 +134,9 @@ HALF_WAY = 0.3
 #: own estimates' intervals do not overlap the event has a way in that one tilt misses
 #: (module docstring), and the estimate is not trusted.
 CHAINS = 2
+#: Largest |z| = |p̂₁ − p̂₂|/√(se₁² + se₂²) of the chains' own estimates that agree: the two-sided
+#: normal 0.1 % point, so two correct chains disagree by chance in about one run of 1000.
+AGREE = 3.29
 #: First element of the tail's stream keys (module docstring): above any realization index.
 STREAM = 2**63
 
@@ -145,8 +166,9 @@ class TailEstimate:
     low, high : float
         Its 95 % interval (:func:`effective_clopper_pearson`), in [0, 1].
     ess : float
-        Effective number of final pads in the event: (Σ w·1)²/Σ (w·1)² over the pads, 1 the
-        event's indicator (Kish's effective sample size of the weights that make p̂).
+        Effective number of final pads in the sampled event, n*·p̂ with n* = p̂(1 − p̂)/se²
+        (p̂ of the sampled side): the one effective sample size, which the interval takes
+        (module docstring); 0 where n* is undefined.
     hits : int
         Final pads in the event (sticking, or not sticking where that is the rare side).
     pads : int
@@ -166,8 +188,8 @@ class TailEstimate:
     cut : float
         The cut s_c, in σ.
     agree : bool
-        Whether the chains' own estimates agree: their 95 % intervals overlap (module
-        docstring); True where no final pads were drawn.
+        Whether the chains' own estimates agree within :data:`AGREE` combined standard errors
+        (module docstring); True where no final pads were drawn.
     chains : tuple of tuple of float
         Each chain's own estimate and 95 % interval (p, low, high) of the sampled side (the
         event, before ``"release"`` takes the complement), from its tilts' pads and its share
@@ -434,7 +456,8 @@ def importance_p_stick(spec, restoring_force: float, *, turn: float, preload: fl
     y = hit(np.concatenate([part[1] for part in parts])) * law.weight(laws, sizes, counts)
     q, se, low, high = _estimate(y, sizes[0])
     # each chain's own estimate from its tilts' pads and its share of the nominal pads
-    # (independent of the other chain's): the two intervals overlap unless the tilts disagree
+    # (independent of the other chain's): they agree within AGREE standard errors unless the
+    # tilts found different ways into the event
     own = []
     for c in range(CHAINS):
         nominal = slice(c * sizes[0] // CHAINS, (c + 1) * sizes[0] // CHAINS)
@@ -443,7 +466,8 @@ def importance_p_stick(spec, restoring_force: float, *, turn: float, preload: fl
         w = law.weight([None, *laws[1 + 2 * c : 3 + 2 * c]], n, np.vstack([m[0] for m in mine]))
         own.append(_estimate(hit(np.concatenate([m[1] for m in mine])) * w, n[0]))
     chain = tuple((o[0], o[2], o[3]) for o in own)
-    agree = max(o[2] for o in own) <= min(o[3] for o in own)
+    (qa, sa, *_), (qb, sb, *_) = own
+    agree = abs(qa - qb) <= AGREE * math.hypot(sa, sb)
     ess = q * q * (1 - q) / se**2 if se > 0 and 0 < q < 1 else 0.0
     if event == "release":
         q, low, high = 1.0 - q, 1.0 - high, 1.0 - low
