@@ -25,6 +25,7 @@ from mcsim.studies.pads import (
     clopper_pearson,
     finite_pads,
     pad_statistics,
+    rare_event,
     tail_p_stick,
 )
 from mcsim.studies.tail import (
@@ -355,3 +356,23 @@ def test_the_automatic_switch_gives_up_where_the_stages_cannot_reach_the_event()
     assert full.p_stick == 0 and full.ess == 0
     # no pad in the event: the nominal pads' own bound, 0 in ⌈0.2 · 400⌉ = 80
     assert (full.low, full.high) == clopper_pearson(0, 80)
+
+
+def test_where_the_chains_disagree_the_plain_fraction_stays(monkeypatch):
+    # rare_event keeps the plain fraction (it cannot tell) where the two tilts' own estimates
+    # disagree, however large the effective sample size.
+    import mcsim.studies.tail as tail
+
+    real = tail.importance_p_stick
+
+    def disagreeing(*args, **kwargs):
+        return dataclasses.replace(real(*args, **kwargs), agree=False)
+
+    plain = ("p_stick", 100, 0.03, clopper_pearson(3, 100), 18.5)
+    options = dict(turn=TURN, preload=None, tail=True, score=_band_score)
+    out = rare_event(_spec(2), *plain, **options)
+    assert out["p_stick_method"] == "importance" and out["p_stick_ess"] >= MIN_ESS
+    monkeypatch.setattr(tail, "importance_p_stick", disagreeing)
+    out = rare_event(_spec(2), *plain, **options)
+    assert out["p_stick_method"] == "pads" and out["p_stick"] == 0.03
+    assert (out["p_stick_low"], out["p_stick_high"]) == clopper_pearson(3, 100)
