@@ -516,10 +516,9 @@ def effective_clopper_pearson(q: float, se: float, k0: int, n0: int) -> tuple[fl
     """
     from scipy.stats import beta
 
-    from mcsim.studies.pads import clopper_pearson
-
     if se > 0 and 0 < q < 1:
         n = q * (1 - q) / se**2
         x = q * n
         return float(beta.ppf(0.025, x, n - x + 1)), float(beta.ppf(0.975, x + 1, n - x))
-    return clopper_pearson(k0, n0)
+    low = 0.0 if k0 == 0 else float(beta.ppf(0.025, k0, n0 - k0 + 1))
+    return low, 1.0 if k0 == n0 else float(beta.ppf(0.975, k0 + 1, n0 - k0))
