@@ -1,10 +1,11 @@
 """Figures of a pads sweep (``mcsim sweep --pads``): the probability that a pad sticks.
 
 * One varied input: p_stick (points) with its 95 % interval (bars) and the model estimate
-  ``p_stick_model`` (line) against the input, p on a log axis down to the smallest p or
-  interval end drawn (1e-6 and below with importance sampling): circles for the fraction
-  of the pads (Clopper-Pearson), squares for importance sampling (Clopper-Pearson on the
-  effective sample size; ``p_stick_method``).
+  ``p_stick_model`` (line, a × on it where fewer than 10 summits touch: the model is then
+  unreliable) against the input, p on a log axis from half the smallest p, interval end or
+  model value drawn (1e-6 and below with importance sampling) to 1.5: circles for the
+  fraction of the pads (Clopper-Pearson), squares for importance sampling (Clopper-Pearson
+  on the effective sample size; ``p_stick_method``).
 * Two: p_stick over the map in log colour, with the contours of :data:`LEVELS` (1e-6, 1e-3,
   and 0.5: the stiction boundary) that its range holds; hatched where the interval
   straddles a level, i.e. where the data cannot tell on which side of it the point lies.

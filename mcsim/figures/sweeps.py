@@ -27,7 +27,9 @@
   ψ = 1 (Greenwood & Williamson 1966) where it is defined.
 
 Axes carry units; an input whose grid is log-spaced gets a log axis. Failed points
-(the ``error`` variable) are gaps in the curves and grey cells in the maps.
+(the ``error`` variable) are gaps in the curves and grey cells in the maps. A log axis shows
+:data:`DECADES` below its largest value: smaller values are marked ▼ at its edge and counted
+above the panel, as are the zeros it cannot show.
 """
 
 from __future__ import annotations

@@ -166,7 +166,7 @@ def test_the_region_names_of_a_design_map_cover_no_coloured_cell(design_map):
     ye = _edges(w, is_log_grid(w))
     names = {name for name, *_ in REGIONS}
     checked = 0
-    for ax, key in zip(fig.axes[::2], ("pull_off_pressure", "work_of_separation")):
+    for ax, key in zip(fig.axes[:2], ("pull_off_pressure", "work_of_separation")):  # not the bars
         z = (
             design_map.data[key][:, :, 0]
             if design_map.data[key].ndim == 3
@@ -180,7 +180,7 @@ def test_the_region_names_of_a_design_map_cover_no_coloured_cell(design_map):
                 cell = type(box).from_extents(*corners.min(axis=0), *corners.max(axis=0))
                 assert not _overlaps(box, cell), (text.get_text(), sigma[i], w[j])
             checked += 1
-    assert checked >= 2  # at least one region name per panel was placed and checked
+    assert checked == 6  # DMT, Maugis-Dugdale and JKR on each panel, all in blank cells
 
 
 # --- humidity ----------------------------------------------------------------------------------
