@@ -222,7 +222,7 @@ def add_parser(sub) -> None:
     p.add_argument(
         "--plot",
         metavar="FILE.png",
-        help="histogram and CDF of the pad pull-off with the analytic mean",
+        help="histogram of the pad pull-off with the analytic mean, and the fraction of pads whose pull-off exceeds each force (p_stick marked)",
     )
     p.add_argument("--overwrite", action="store_true", help="replace an existing --plot file")
     p.add_argument("--quiet", action="store_true", help="no progress bar, no 'wrote FILE' line")
