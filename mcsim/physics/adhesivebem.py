@@ -52,8 +52,8 @@ the edge crosses changes in k² steps (λ = 2: +0.17 % on 64² with k = 4; the g
 convergence in docs/contact.md). The contact condition g ≥ 0 stays on the pixel centres
 (the interpolant is then ≥ 0 too), and so does the elastic part. Cost: φ and φ' on k²
 points a pixel and B, Bᵀ (compiled), against two FFTs of the padded grid: a 64² sphere's
-retraction takes about 5 times as long with k = 4 and 15 times with k = 8 (validation/
-md_sphere.py).
+retraction takes 1.5–3 times as long with k = 4 and 12 times with k = 8
+(validation/md_sphere.py).
 
 **Convergence** (:func:`solve_gap`): the residual is the largest force imbalance, relative
 to the largest traction of the law (w/range): |p + φ'(g)| on pixels out of contact (less the

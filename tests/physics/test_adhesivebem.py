@@ -70,7 +70,7 @@ def sphere_half():
 # releases snaps off), which makes the pull-off too tensile, roughly in proportion to the
 # pixel: at λ = 1, +4.1 % on 64² over ±2 A0 (dx = 0.0625 A0). At λ = 2 and 5 the zone is
 # 0.15 and 0.029 A0 wide and 2 % needs finer grids than a test affords (λ = 2: 512², 586 s,
-# +1.41 %; see the grid test).
+# +1.41 %; see the grid test), or the sub-pixel quadrature of the tests below.
 @pytest.mark.parametrize(("lam", "n", "half"), [(0.1, 64, 4.5), (0.5, 64, 2.2), (1.0, 128, 2.0)])
 def test_md_sphere_pull_off_within_two_percent_of_maugis(lam, n, half):
     _, loads, steps = retraction(lam, n, half)
@@ -111,8 +111,8 @@ def test_pull_off_error_shrinks_with_the_grid():
 
 # Sub-pixel quadrature of the interaction (adhesivebem, "Sub-pixel quadrature"): φ at k × k
 # points a pixel on the bilinear interpolant of the gaps. Measured pull-off (tol 1e-4, steps
-# of 0.1 in Δ): λ = 2 on 64² over ±1.6 A0 with k = 4: +0.17 % (k = 1: +13.4 %; 4 s);
-# λ = 5 on 64² over ±1.4 A0 with k = 8: +0.57 % (k = 1: +41.8 %; 17 s). Sampling Maugis'
+# of 0.1 in Δ): λ = 2 on 64² over ±1.6 A0 with k = 4: +0.17 % (k = 1: +13.4 %; 3 s);
+# λ = 5 on 64² over ±1.4 A0 with k = 8: +0.57 % (k = 1: +41.8 %; 6 s). Sampling Maugis'
 # curve at these steps misses its minimum by at most 0.16 % (λ = 2), well inside the 2 %.
 # At λ = 5 the pixel (0.044 A0) is wider than the zone (0.029 A0), and the mesh parameter
 # is 1.07 > 0.5, so the solver warns; the k² = 64 points a pixel resolve the zone all the
