@@ -157,13 +157,14 @@ def cycle(
     refine: int = REFINE,
     strict: bool = True,
     on_step: Callable[[str, AdhesiveSolution], None] | None = None,
+    subpixel: int = 1,
 ) -> AdhesiveCycle:
     """An approach of the flat through ``positions`` (descending) and the retraction back.
 
     Parameters
     ----------
-    heights, pixel_size, E_star, law, periodic, tol, max_iter
-        As for :func:`solve_gap`.
+    heights, pixel_size, E_star, law, periodic, tol, max_iter, subpixel
+        As for :func:`mcsim.physics.adhesivebem.solve_gap`.
     positions : iterable of float
         Heights d of the flat on approach, m, strictly descending; the retraction visits
         them in reverse, warm-started from the end of the approach.
@@ -201,7 +202,7 @@ def cycle(
     if d.ndim != 1 or d.size < 2 or not np.all(np.diff(d) < 0):
         raise ParameterError("`positions` must be at least two strictly descending heights, m")
     check_solver(tol, max_iter)
-    problem = Problem(heights, pixel_size, E_star, law, periodic)
+    problem = Problem(heights, pixel_size, E_star, law, periodic, subpixel)
     branches, found, u = [], [], None
     for name, path in (("approach", d), ("retraction", d[::-1])):
         steps: list[AdhesiveSolution] = []

@@ -32,6 +32,7 @@ SCRIPTS = (
     "fuller_tabor",
     "gw_moments",
     "humid_pads",
+    "md_sphere",
     "pad_friction",
     "memory",
     "pad_variation",
