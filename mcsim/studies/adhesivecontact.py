@@ -156,6 +156,8 @@ class AdhesiveContactResult:
         retraction; only when kept.
     facing : FacingMap or None
         A counter-surface's map facing this one, turned over: the map solved is their gap.
+    subpixel : int
+        Points k × k per pixel over which the interaction was integrated (1: the centres).
     """
 
     source: Path
@@ -177,6 +179,7 @@ class AdhesiveContactResult:
     stickiness: Stickiness
     fields: dict | None = field(default=None, repr=False)
     facing: FacingMap | None = None
+    subpixel: int = 1
 
     def __repr__(self) -> str:
         """A few lines, as in a notebook: the map, the law, the exact and GW's pull-offs."""
@@ -282,7 +285,7 @@ class AdhesiveContactResult:
                 "level": self.level, "dx": self.dx, "dy": self.dy, "periodic": self.periodic,
                 "periodic_reason": self.periodic_reason, "E_star": self.E_star,
                 "interaction": self.law_name, "w": law.w, "range": law.range,
-                "summary": json.dumps(self.summary()),
+                "subpixel": self.subpixel, "summary": json.dumps(self.summary()),
             })  # fmt: skip
             if self.facing is not None:
                 f.attrs.update({"counter_surface": str(self.facing.source),
@@ -358,7 +361,7 @@ def tensile_work(surface: Surface, material: Material, law: str, turn: float):
     return float(-scale * np.sum((half * w).ravel() * np.minimum(load, 0.0))), h, load
 
 
-def _refined_pull_off(cycle, start, z, pixels, E_star, law, periodic, tol, max_iter):
+def _refined_pull_off(cycle, start, z, pixels, E_star, law, periodic, tol, max_iter, subpixel=1):
     """The most tensile retraction pressure (Pa, > 0; 0 if none) and its position (m), with
     :data:`REFINE` solves between the neighbours of the most tensile step, warm-started from
     the displacement ``start`` of the step below it (module docstring)."""
@@ -371,7 +374,7 @@ def _refined_pull_off(cycle, start, z, pixels, E_star, law, periodic, tol, max_i
     if 0 < k < len(steps) - 1 and start is not None:
         fine = np.linspace(steps[k - 1].position, steps[k + 1].position, REFINE + 2)[1:-1]
         for s in adhesivebem.follow(z, pixels, E_star, law, fine, periodic=periodic, tol=tol,
-                                    max_iter=max_iter, initial=start):  # fmt: skip
+                                    max_iter=max_iter, initial=start, subpixel=subpixel):  # fmt: skip
             if not s.converged:
                 raise ParameterError(f"the pull-off's refinement did not converge at d = "
                                      f"{s.position:.4g} m; no answer is given for it")  # fmt: skip
@@ -405,9 +408,10 @@ def positions(z: np.ndarray, law: Interaction, deepest: float, steps: int) -> np
 
 def exact_cycle(z, pixels, E_star: float, law: Interaction, pressure: float, *,
                 periodic: bool, steps: int = STEPS, tol: float = adhesivebem.TOL,
-                max_iter: int = adhesivebem.MAX_ITER, on_step=None):  # fmt: skip
+                max_iter: int = adhesivebem.MAX_ITER, subpixel: int = 1, on_step=None):  # fmt: skip
     """The exact adhesive cycle of heights ``z`` (m, about their mean) down to where the
-    non-adhesive contact carries ``pressure`` (Pa) and back (module docstring).
+    non-adhesive contact carries ``pressure`` (Pa) and back (module docstring); ``subpixel``
+    points k × k per pixel integrate the interaction (:func:`mcsim.physics.adhesivebem.solve_gap`).
 
     Returns
     -------
@@ -439,11 +443,11 @@ def exact_cycle(z, pixels, E_star: float, law: Interaction, pressure: float, *,
 
     try:
         cycle = adhesivecycle.cycle(z, pixels, E_star, law, heights, periodic=periodic, tol=tol,
-                                    max_iter=max_iter, on_step=track)  # fmt: skip
+                                    max_iter=max_iter, on_step=track, subpixel=subpixel)  # fmt: skip
     except adhesivecycle.ConvergenceError as err:
         raise ParameterError(f"{err}; no answer is given for it") from None
     pull_off, where = _refined_pull_off(cycle, below[1][1], z, pixels, E_star, law, periodic,
-                                        tol, max_iter)  # fmt: skip
+                                        tol, max_iter, subpixel)  # fmt: skip
     return cycle, pull_off, where
 
 
@@ -463,6 +467,7 @@ def adhesive_contact(
     periodic: bool | None = None,
     tol: float = adhesivebem.TOL,
     max_iter: int = adhesivebem.MAX_ITER,
+    subpixel: int = 1,
     keep_fields: bool = False,
     progress: bool = False,
     counter: str | Path | None = None,
@@ -488,6 +493,10 @@ def adhesive_contact(
         Positions of the flat on approach (the retraction revisits them), >= 2.
     unit, pixel_size, channel, level, periodic
         As for :func:`mcsim.studies.contact.contact_map`.
+    subpixel : int, optional
+        k: the interaction integrated over k × k points of each pixel (bilinear gap), which
+        resolves a Dugdale zone narrower than a pixel (docs/contact.md); 1, the default, at
+        the pixel centres.
     tol, max_iter : float, int
         Solver tolerance and most iterations of one solve
         (:func:`mcsim.physics.adhesivebem.solve_gap`).
@@ -553,7 +562,8 @@ def adhesive_contact(
     try:
         result, pull_off, where = exact_cycle(z, pixels, material.E_star, law_, p,
                                               periodic=periodic, steps=steps, tol=tol,
-                                              max_iter=max_iter, on_step=on_step)  # fmt: skip
+                                              max_iter=max_iter, subpixel=subpixel,
+                                              on_step=on_step)  # fmt: skip
     except ParameterError as err:
         raise ParameterError(f"{path}: {err}") from None
     finally:
@@ -569,5 +579,5 @@ def adhesive_contact(
         pull_off_position=where, gw=gw, surface=ingested.surface,
         stickiness=diagnostics,
         fields={k: np.stack(v) for k, v in kept.items()} if keep_fields else None,
-        facing=ingested.facing,
+        facing=ingested.facing, subpixel=subpixel,
     )  # fmt: skip

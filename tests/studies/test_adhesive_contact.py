@@ -100,6 +100,27 @@ def test_json_gives_rows_summary_gw_and_stickiness(capsys, scan):
     assert data["units"]["pressure"].startswith("Pa")
 
 
+def test_subpixel_integrates_the_interaction_and_is_recorded(capsys, scan, tmp_path):
+    # The Maugis-Dugdale law at a range of 0.5 nm: its zone is narrower than a pixel of 20 nm
+    args = (scan, *MAP, "--adhesion", "--w", "0.05J/m^2", "--range", "0.5nm", "--pressure",
+            "200MPa", "--interaction", "maugis-dugdale", "--steps", "6", "--quiet")  # fmt: skip
+    code, out, err = run_cli(capsys, "contact", *args, "--subpixel", "2", "--format", "json",
+                             "--out", str(tmp_path / "k2.h5"))  # fmt: skip
+    assert code == 0, err
+    data = json.loads(out)
+    study = adhesive_contact(scan, SILICON, 200e6, law="maugis-dugdale", w=0.05, range_=5e-10,
+                             steps=6, unit="m", pixel_size=2e-8, subpixel=2)  # fmt: skip
+    assert data["subpixel"] == study.subpixel == 2
+    assert data["summary"]["pull_off"] == study.summary()["pull_off"]
+    with h5py.File(tmp_path / "k2.h5") as f:
+        assert f.attrs["subpixel"] == 2
+    plain = adhesive_contact(scan, SILICON, 200e6, law="maugis-dugdale", w=0.05, range_=5e-10,
+                             steps=6, unit="m", pixel_size=2e-8)  # fmt: skip
+    assert plain.subpixel == 1 and plain.summary()["pull_off"] != study.summary()["pull_off"]
+    code, out, _ = run_cli(capsys, "contact", *args, "--subpixel", "2")
+    assert "the interaction over 2 x 2 points a pixel" in out
+
+
 def test_table_prints_the_exact_pull_off_beside_gw_s(capsys, scan):
     code, out, _ = run_cli(capsys, "contact", scan, *MAP, *ADHESION, "--steps", "8", "--quiet")
     assert code == 0
@@ -130,6 +151,8 @@ def test_out_keeps_every_steps_fields_with_units_and_plot_draws_the_loop(tmp_pat
         (("--pressure", "1MPa,2MPa"), "one pressure"),
         (("--hamaker", "1e-19J"), "not available yet"),
         (("--interaction", "lj"), "interaction"),
+        (("--subpixel", "0"), "--subpixel"),
+        (("--subpixel", "2.5"), "--subpixel"),
     ],
 )
 def test_bad_input_is_one_line_and_writes_nothing(tmp_path, capsys, scan, extra, message):
