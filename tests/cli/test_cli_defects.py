@@ -241,3 +241,14 @@ def test_pads_shows_a_progress_bar_over_the_pads_on_a_terminal(capsys, tmp_path,
     assert code == 0 and "/3 [" in err and "pads/s" in err  # tqdm over the 3 pads
     code, quiet_out, err = run_cli(capsys, "pads", run, "--quiet")
     assert code == 0 and "/3 [" not in err and quiet_out == out
+
+
+def test_adhesive_contact_prints_one_line_warnings_only_and_bounds_its_steps(capsys):
+    code, _, err = run_cli(capsys, "contact", SCAN, "--unit", "m", "--pixel-size", "10nm",
+                           "--pressure", "1MPa", "--adhesion", "--steps", "4", "--quiet")  # fmt: skip
+    assert code == 0
+    assert "Warning:" not in err and all(line.startswith("mcsim: ") for line in err.splitlines())
+    assert "mcsim: warning: the grid does not resolve the interaction" in err
+    err = one_line_error(capsys, "contact", SCAN, "--pressure", "1MPa", "--adhesion", "--steps",
+                         "1000000000")  # fmt: skip
+    assert "--steps" in err and "from 2 to 10000" in err
