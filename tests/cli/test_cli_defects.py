@@ -252,3 +252,14 @@ def test_adhesive_contact_prints_one_line_warnings_only_and_bounds_its_steps(cap
     err = one_line_error(capsys, "contact", SCAN, "--pressure", "1MPa", "--adhesion", "--steps",
                          "1000000000")  # fmt: skip
     assert "--steps" in err and "from 2 to 10000" in err
+
+
+def test_pads_against_a_huge_restoring_force_is_quiet_and_never_sticks(capsys, tmp_path):
+    run = tmp_path / "c.h5"
+    code, _, _ = run_cli(capsys, *CYCLE, "--h=4:-1:26", "--realizations", "3", "--quiet",
+                         "--out", run)  # fmt: skip
+    assert code == 0
+    code, out, err = run_cli(capsys, "pads", run, "--restoring-force", "1e300N", "--format", "json")
+    assert code == 0 and "RuntimeWarning" not in err and "overflow" not in err
+    report = json.loads(out)
+    assert report["p_stick"] == 0 and report["p_stick_model"] == 0
