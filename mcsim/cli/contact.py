@@ -60,6 +60,10 @@ def run_adhesion(args) -> int:
         "range_": positive_quantity(args.range, "length", "--range"),
         "pixel_size": positive_quantity(args.pixel_size, "length", "--pixel-size"),
     }  # fmt: skip
+    if quantity["w"] is not None:  # refused by name, before the solves
+        from mcsim.studies.adhesioncalibration import check_inputs
+
+        check_inputs(quantity["w"], quantity["range_"])
     with warnings.catch_warnings():  # the mesh's said once below (result.warnings()); the GW
         warnings.simplefilter("ignore", UserWarning)  # law sets' regimes are compared, not used
         result = adhesive_contact(

@@ -263,3 +263,13 @@ def test_pads_against_a_huge_restoring_force_is_quiet_and_never_sticks(capsys, t
     assert code == 0 and "RuntimeWarning" not in err and "overflow" not in err
     report = json.loads(out)
     assert report["p_stick"] == 0 and report["p_stick_model"] == 0
+
+
+def test_an_absurd_work_of_adhesion_is_refused_by_name_before_any_solve(capsys, tmp_path):
+    err = one_line_error(capsys, "ingest", SCAN, "--unit", "m", "--pixel-size", "10nm",
+                         "--calibrate", "--w", "1e300J/m^2", "--out", tmp_path / "s.toml")  # fmt: skip
+    assert err.startswith("mcsim: error: w = 1e+300 J/m^2 is out of range (allowed: 0 < w <= 100")
+    assert not any(tmp_path.iterdir())
+    err = one_line_error(capsys, "contact", SCAN, "--unit", "m", "--pixel-size", "10nm",
+                         "--pressure", "1MPa", "--adhesion", "--w", "1e300J/m^2")  # fmt: skip
+    assert err.startswith("mcsim: error: w = 1e+300 J/m^2 is out of range (allowed: 0 < w <= 100")
