@@ -273,3 +273,12 @@ def test_an_absurd_work_of_adhesion_is_refused_by_name_before_any_solve(capsys, 
     err = one_line_error(capsys, "contact", SCAN, "--unit", "m", "--pixel-size", "10nm",
                          "--pressure", "1MPa", "--adhesion", "--w", "1e300J/m^2")  # fmt: skip
     assert err.startswith("mcsim: error: w = 1e+300 J/m^2 is out of range (allowed: 0 < w <= 100")
+
+
+def test_an_option_of_other_commands_says_which_instead_of_suggesting_itself(capsys, tmp_path):
+    err = one_line_error(capsys, "pads", tmp_path / "run.h5", "--rh", "0.5")
+    assert "did you mean '--rh'" not in err
+    assert (
+        "--rh is an option of mcsim analytic, adhesion, simulate, sweep, contact, not of mcsim pads"
+        in err
+    )
