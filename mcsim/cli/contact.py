@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import warnings
 
 from mcsim.cli.display import announce, print_lines, print_rows
 from mcsim.cli.options import (
@@ -59,13 +60,20 @@ def run_adhesion(args) -> int:
         "range_": positive_quantity(args.range, "length", "--range"),
         "pixel_size": positive_quantity(args.pixel_size, "length", "--pixel-size"),
     }  # fmt: skip
-    result = adhesive_contact(
-        args.file, material, pressure[0], law=args.interaction, steps=args.steps,
-        counter=args.counter_surface,
-        unit=args.unit, channel=args.channel, level=args.level, periodic=args.periodic,
-        keep_fields=bool(args.out), progress=not args.quiet, subpixel=args.subpixel, **quantity,
-        **({} if args.tol is None else {"tol": args.tol}),
-    )  # fmt: skip
+    if quantity["w"] is not None:  # refused by name, before the solves
+        from mcsim.studies.adhesioncalibration import check_inputs
+
+        check_inputs(quantity["w"], quantity["range_"])
+    with warnings.catch_warnings():  # the mesh's said once below (result.warnings()); the GW
+        warnings.simplefilter("ignore", UserWarning)  # law sets' regimes are compared, not used
+        result = adhesive_contact(
+            args.file, material, pressure[0], law=args.interaction, steps=args.steps,
+            counter=args.counter_surface,
+            unit=args.unit, channel=args.channel, level=args.level, periodic=args.periodic,
+            keep_fields=bool(args.out), progress=not args.quiet, subpixel=args.subpixel,
+            **quantity,
+            **({} if args.tol is None else {"tol": args.tol}),
+        )  # fmt: skip
     table = result.columns()
     rows = [{c: (v[i].item() if hasattr(v[i], "item") else v[i]) for c, v in table.items()}
             for i in range(table["position"].size)]  # fmt: skip
@@ -234,9 +242,15 @@ def run(args) -> int:
     return _write(args, result, contact_figure)
 
 
+#: Most positions of ``--steps`` (a cycle needs tens; each is an exact solve of the map).
+MAX_STEPS = 10_000
+
+
 def _steps(text: str) -> int:
-    if not text.isdigit() or int(text) < 2:
-        raise argparse.ArgumentTypeError(f"--steps = {text!r} must be a whole number >= 2")
+    if not text.isdigit() or not 2 <= int(text) <= MAX_STEPS:
+        raise argparse.ArgumentTypeError(
+            f"--steps = {text!r} is out of range (allowed: a whole number from 2 to {MAX_STEPS})"
+        )
     return int(text)
 
 

@@ -23,6 +23,11 @@ def run(args) -> int:
     def length(value, option):
         return positive_quantity(value, "length", option)
 
+    def quantity(value, dimension, option):
+        from mcsim.model.units import parse_quantity
+
+        return None if value is None else parse_quantity(value, dimension, option)
+
     default = Path(args.file).stem
     if args.counter_surface is not None:
         default = f"{default}-on-{Path(args.counter_surface).stem}"
@@ -57,8 +62,8 @@ def run(args) -> int:
         eta=positive_quantity(args.eta, "density", "--eta"),
         channel=args.channel, periodic=args.periodic,
         calibrate=material if args.calibrate else None, radius_by_height=args.radius_by_height,
-        adhesion_w=positive_quantity(args.w, "energy_per_area", "--w"),
-        adhesion_range=length(args.range, "--range"), counter=args.counter_surface,
+        adhesion_w=quantity(args.w, "energy_per_area", "--w"),  # checked > 0 by the study
+        adhesion_range=quantity(args.range, "length", "--range"), counter=args.counter_surface,
         progress=not args.quiet and sys.stderr.isatty(),
     )  # fmt: skip
     for line in result.summary_lines():

@@ -67,12 +67,34 @@ class _Parser(argparse.ArgumentParser):
 
         if m := re.match(r"unrecognized arguments: (\S+)", text):
             word, known = m[1].split("=")[0], self._option_strings()
+            others = self._commands_with(word)
+            if others:  # an option of other commands, not of this one
+                command = self._command()
+                return (f"; {word} is an option of mcsim {', '.join(others)}"
+                        + (f", not of mcsim {command}" if command else ""))  # fmt: skip
         elif m := re.search(r"invalid choice: '([^']*)' \(choose from (.*)\)$", text):
             word, known = m[1], re.findall(r"'([^']*)'", m[2])
         else:
             return ""
         close = difflib.get_close_matches(word, known, n=1)
         return f"; did you mean {close[0]!r}?" if close else ""
+
+    def _command_parsers(self) -> dict:
+        """The commands' parsers by name (none for a command's own parser)."""
+        for action in self._actions:
+            if isinstance(action, argparse._SubParsersAction):
+                return dict(action.choices)
+        return {}
+
+    def _commands_with(self, option: str) -> list[str]:
+        """The commands that have ``option``."""
+        return [name for name, p in self._command_parsers().items()
+                if any(option in a.option_strings for a in p._actions)]  # fmt: skip
+
+    def _command(self) -> str | None:
+        """The command named in the arguments being parsed (:attr:`argv`), if any."""
+        names = self._command_parsers()
+        return next((a for a in getattr(self, "argv", None) or sys.argv[1:] if a in names), None)
 
     def _option_strings(self) -> list[str]:
         """Every option of this parser and of its commands (argparse reports an unknown
@@ -100,6 +122,7 @@ def build_parser() -> argparse.ArgumentParser:
 
 def main(argv: list[str] | None = None) -> int:
     parser = build_parser()
+    parser.argv = argv
     try:
         args = parser.parse_args(argv)
     except SystemExit as done:  # --help, --version or a one-line usage error: its status

@@ -311,8 +311,15 @@ class AdhesionCalibration:
                    periodic=bool(t["periodic"]), steps=int(t["steps"]))  # fmt: skip
 
 
+#: Largest work of adhesion, J/m² (100): far above any solid pair's, 2γ ≲ 7 J/m² for the
+#: metals of highest surface energy (Tyson & Miller 1977); a larger one is a unit mistake, and
+#: its law's curvature w/ρ² overflows the exact solves.
+MAX_W = 100.0
+
+
 def check_inputs(w: float, range_: float | None) -> None:
-    """Refuse a work of adhesion or a range that is not a finite number > 0 (one line naming it)."""
+    """Refuse a work of adhesion or a range that is not a finite number > 0, or a work above
+    :data:`MAX_W` (one line naming it)."""
     for name, value, unit in (("w", w, "J/m^2"), ("range", range_, "m")):
         if value is None and name == "range":
             continue
@@ -320,6 +327,9 @@ def check_inputs(w: float, range_: float | None) -> None:
             raise ParameterError(
                 f"{name} = {value!r} {unit} is out of range (allowed: a number > 0)"
             )
+    if w > MAX_W:
+        raise ParameterError(f"w = {w!r} J/m^2 is out of range (allowed: 0 < w <= {MAX_W:g} "
+                             "J/m^2)")  # fmt: skip
 
 
 def exact_pull_off(z, pixels, E_star: float, law: Exponential, pressure: float, *,

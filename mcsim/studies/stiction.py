@@ -108,7 +108,8 @@ def _lugannani_rice(g: np.ndarray, w: np.ndarray, y0: float) -> float:
         hi *= 2
     t = brentq(lambda x: moments(x)[1] - y0, lo, hi, xtol=1e-14 * scale, rtol=1e-12)
     k, _, kpp = moments(t)
-    wv = math.copysign(math.sqrt(max(2 * (t * y0 - k), 0.0)), t)
+    with np.errstate(over="ignore"):  # t y0 past any float (a huge F_r): w -> inf, the tail's 1
+        wv = math.copysign(math.sqrt(max(2 * (t * y0 - k), 0.0)), t)
     u = t * math.sqrt(kpp)
     return float(min(1.0, max(0.0, norm.cdf(wv) + norm.pdf(wv) * (1 / wv - 1 / u))))
 

@@ -3,6 +3,7 @@
 
 import json
 import sys
+import warnings
 
 import numpy as np
 import pytest
@@ -241,3 +242,47 @@ def test_pads_shows_a_progress_bar_over_the_pads_on_a_terminal(capsys, tmp_path,
     assert code == 0 and "/3 [" in err and "pads/s" in err  # tqdm over the 3 pads
     code, quiet_out, err = run_cli(capsys, "pads", run, "--quiet")
     assert code == 0 and "/3 [" not in err and quiet_out == out
+
+
+def test_adhesive_contact_prints_one_line_warnings_only_and_bounds_its_steps(capsys):
+    code, _, err = run_cli(capsys, "contact", SCAN, "--unit", "m", "--pixel-size", "10nm",
+                           "--pressure", "1MPa", "--adhesion", "--steps", "4", "--quiet")  # fmt: skip
+    assert code == 0
+    assert "Warning:" not in err and all(line.startswith("mcsim: ") for line in err.splitlines())
+    assert "mcsim: warning: the grid does not resolve the interaction" in err
+    err = one_line_error(capsys, "contact", SCAN, "--pressure", "1MPa", "--adhesion", "--steps",
+                         "1000000000")  # fmt: skip
+    assert "--steps" in err and "from 2 to 10000" in err
+
+
+def test_pads_against_a_huge_restoring_force_is_quiet_and_never_sticks(capsys, tmp_path):
+    run = tmp_path / "c.h5"  # pads of 30 um^2: ~500 summits each, the model's saddlepoint
+    code, _, _ = run_cli(capsys, *CYCLE, "--h=4:-1:26", "--realizations", "3", "--quiet",
+                         "--area", "30um^2", "--out", run)  # fmt: skip
+    assert code == 0
+    with warnings.catch_warnings():  # the CLI would print it as a raw Python warning
+        warnings.simplefilter("error", RuntimeWarning)
+        code, out, _ = run_cli(capsys, "pads", run, "--restoring-force", "1e300N", "--format",
+                               "json")  # fmt: skip
+    assert code == 0
+    report = json.loads(out)
+    assert report["p_stick"] == 0 and report["p_stick_model"] == 0
+
+
+def test_an_absurd_work_of_adhesion_is_refused_by_name_before_any_solve(capsys, tmp_path):
+    err = one_line_error(capsys, "ingest", SCAN, "--unit", "m", "--pixel-size", "10nm",
+                         "--calibrate", "--w", "1e300J/m^2", "--out", tmp_path / "s.toml")  # fmt: skip
+    assert err.startswith("mcsim: error: w = 1e+300 J/m^2 is out of range (allowed: 0 < w <= 100")
+    assert not any(tmp_path.iterdir())
+    err = one_line_error(capsys, "contact", SCAN, "--unit", "m", "--pixel-size", "10nm",
+                         "--pressure", "1MPa", "--adhesion", "--w", "1e300J/m^2")  # fmt: skip
+    assert err.startswith("mcsim: error: w = 1e+300 J/m^2 is out of range (allowed: 0 < w <= 100")
+
+
+def test_an_option_of_other_commands_says_which_instead_of_suggesting_itself(capsys, tmp_path):
+    err = one_line_error(capsys, "pads", tmp_path / "run.h5", "--rh", "0.5")
+    assert "did you mean '--rh'" not in err
+    assert (
+        "--rh is an option of mcsim analytic, adhesion, simulate, sweep, contact, not of mcsim pads"
+        in err
+    )
