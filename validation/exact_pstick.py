@@ -73,7 +73,7 @@ from mcsim.physics.interactions import Exponential, mesh_parameter
 from mcsim.physics.stickiness import MESH_LIMIT
 from mcsim.store.config import load_surface
 from mcsim.studies.ingest import ingest_file
-from mcsim.studies.pads import clopper_pearson
+from mcsim.studies.intervals import clopper_pearson
 from mcsim.studies.simulation import simulate
 from mcsim.studies.synthpads import read_pads, synthesize_pads
 from mcsim.topography.summits import summit_heights

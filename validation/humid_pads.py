@@ -65,7 +65,7 @@ from mcsim.model.params import Surface
 from mcsim.model.presets import MATERIALS
 from mcsim.physics.adhesion import maugis_parameter
 from mcsim.physics.environment import Environment
-from mcsim.studies.pads import clopper_pearson
+from mcsim.studies.intervals import clopper_pearson
 
 RQ = (3e-9, 5e-9, 8e-9)
 #: The spectrum: Hurst exponent, roll-off, the summits' shortest and the nanoscale

@@ -33,7 +33,7 @@ from mcsim.engine.spec import MonteCarloSpec
 from mcsim.model.presets import MATERIALS, SURFACES
 from mcsim.physics.adhesion import adhesion_summary
 from mcsim.physics.loadcontrol import preload_turn
-from mcsim.studies.pads import clopper_pearson
+from mcsim.studies.intervals import clopper_pearson
 from mcsim.studies.stiction import p_stick_model
 
 #: Turn d/σ of the pads without a preload (a common turn, no force control).

@@ -101,7 +101,7 @@ def friction_statistics(static_friction, normal_load, tangential_force=None,
     ParameterError
         No pads, a non-finite or negative T_s, a bad F or interval.
     """
-    from mcsim.studies.pads import INTERVALS, clopper_pearson, wilson
+    from mcsim.studies.intervals import INTERVALS, clopper_pearson, wilson
 
     if interval not in INTERVALS:
         raise ParameterError(f"interval = {interval!r}: allowed {', '.join(INTERVALS)}")
@@ -178,7 +178,7 @@ def tail_p_slip(spec, statistics: FrictionStatistics, *, turn: float, preload: f
     ParameterError
         ``tail`` True with fewer than MIN_TAIL_PADS pads or a fixed summit count.
     """
-    from mcsim.studies.pads import rare_event
+    from mcsim.studies.tail import rare_event
 
     def score(s):  # slips when −T_s > −F
         return -pad_static_friction(spec, s, turn=turn, preload=preload)

@@ -36,15 +36,13 @@ from dataclasses import dataclass
 import numpy as np
 
 from mcsim.model.errors import ParameterError
-
-#: Confidence level of the interval for the probability of sticking.
-CONFIDENCE = 0.95
+from mcsim.studies.intervals import INTERVALS, clopper_pearson, wilson
+from mcsim.studies.tail import (
+    rare_event,
+)
 
 #: Quantiles reported, as fractions.
 QUANTILES = (0.05, 0.5, 0.95)
-
-#: Intervals of the probability of sticking, by name.
-INTERVALS = ("clopper-pearson", "wilson")
 
 
 @dataclass(frozen=True)
@@ -88,60 +86,6 @@ class PadStatistics:
         if self.restoring_force is not None:
             out |= {"p_stick": self.p_stick, "p_stick_ci": list(self.p_stick_ci)}
         return out
-
-
-def _check_counts(k, n, confidence) -> None:
-    if not (isinstance(n, int | np.integer) and n >= 1):
-        raise ParameterError(f"n = {n!r}: the number of trials must be an integer >= 1")
-    if not (isinstance(k, int | np.integer) and 0 <= k <= n):
-        raise ParameterError(
-            f"k = {k!r}: the number of successes must be an integer in [0, n = {n}]"
-        )
-    if not 0 < confidence < 1:
-        raise ParameterError(f"confidence = {confidence!r}: allowed 0 < confidence < 1")
-
-
-def clopper_pearson(k: int, n: int, confidence: float = CONFIDENCE) -> tuple[float, float]:
-    """Clopper–Pearson exact interval of a binomial proportion from k successes in n trials.
-
-    Lower bound: the α/2 quantile of Beta(k, n − k + 1) (0 for k = 0); upper: the
-    1 − α/2 quantile of Beta(k + 1, n − k) (1 for k = n), α = 1 − confidence
-    (Clopper & Pearson 1934).
-
-    Raises
-    ------
-    ParameterError
-        Unless 0 ≤ k ≤ n, n ≥ 1 and 0 < confidence < 1.
-    """
-    from scipy.stats import beta
-
-    _check_counts(k, n, confidence)
-    alpha = 1 - confidence
-    lower = 0.0 if k == 0 else float(beta.ppf(alpha / 2, k, n - k + 1))
-    upper = 1.0 if k == n else float(beta.ppf(1 - alpha / 2, k + 1, n - k))
-    return lower, upper
-
-
-def wilson(k: int, n: int, confidence: float = CONFIDENCE) -> tuple[float, float]:
-    """Wilson score interval of a binomial proportion from k successes in n trials.
-
-    (p̂ + z²/(2n) ± z √(p̂(1 − p̂)/n + z²/(4n²))) / (1 + z²/n), p̂ = k/n, z the
-    1 − α/2 standard normal quantile, α = 1 − confidence (Wilson 1927; Brown,
-    Cai & DasGupta 2001, Sect. 4.1.1). Clipped to [0, 1] against rounding.
-
-    Raises
-    ------
-    ParameterError
-        Unless 0 ≤ k ≤ n, n ≥ 1 and 0 < confidence < 1.
-    """
-    from scipy.stats import norm
-
-    _check_counts(k, n, confidence)
-    z = float(norm.ppf(1 - (1 - confidence) / 2))
-    p = k / n
-    centre = (p + z * z / (2 * n)) / (1 + z * z / n)
-    half = z * math.sqrt(p * (1 - p) / n + z * z / (4 * n * n)) / (1 + z * z / n)
-    return max(0.0, centre - half), min(1.0, centre + half)
 
 
 def pad_statistics(
@@ -241,36 +185,6 @@ def moment_std(run) -> float:
 FEW_CONTACTS = 10
 
 
-#: Fewer pads than this on the rarer side (sticking or not) switch p_stick to importance
-#: sampling by itself (``tail=None``): on the few-summit pads of issue 31 its intervals (the
-#: three-part defensive mixture, 2000 final pads) held brute force in 30 of 30 runs of
-#: validation/tail_benchmark.py at p ≈ 1e-2 (Clopper–Pearson 95 %: 0.88–1) and in 63 of 64
-#: runs on other seeds.
-SWITCH = 10
-#: Fewest plain pads with which importance sampling runs: fewer than SWITCH of fewer pads on
-#: one side does not say that side is rare (its own stages hold TAIL_PILOT pads).
-MIN_TAIL_PADS = 100
-
-#: Fewest final pads of importance sampling (more where more plain pads were simulated): at
-#: 100 its effective sample size stays below MIN_ESS (measured: 6 to 12 in four cases); at
-#: 1000 the two-part mixture's intervals held brute force in 43 of 48 runs on the few-summit
-#: pads at p ≈ 1e-2, at 2000 the three-part one's in 30 of 30 (validation/README.md).
-TAIL_PADS = 2000
-
-#: Fewest pads of a cross-entropy stage (more where more plain pads were simulated): 30 elite
-#: pads fit the tilt's 16 bins.
-TAIL_PILOT = 300
-
-#: Smallest effective sample size of importance sampling that replaces the fraction: below
-#: it a few heavy weights decide p̂ and its interval does not cover (measured: 100
-#: pads of σ = 1.5 nm gave 1 − p̂ = 0.003 [0.0006, 0.0054] at an ESS of 5.9, against a
-#: brute-force 18 of 2000 = 0.009 and 0.010–0.013 from 1000 pads at an ESS of ~50).
-MIN_ESS = 30
-
-#: How p_stick was estimated: the fraction of plain pads, or importance sampling.
-METHODS = ("pads", "importance")
-
-
 def finite_pads(spec, restoring_force: float | None, *, preload: float | None = None, turn: float,
                 h_pull_off: float, tail: bool | None = None, friction: bool = False,
                 tangential_force: float | None = None) -> dict:  # fmt: skip
@@ -298,7 +212,7 @@ def finite_pads(spec, restoring_force: float | None, *, preload: float | None = 
         model estimate ``p_stick_model`` (:func:`mcsim.studies.stiction.p_stick_model`).
     tail : bool, optional
         p_stick (and p_slip) by importance sampling (:func:`tail_p_stick`): True always, None
-        where the pads see fewer than :data:`SWITCH` on the rarer side, False never.
+        where the pads see fewer than :data:`~mcsim.studies.tail.SWITCH` on the rarer side, False never.
     friction : bool
         Also each pad's static friction at its turn and μ_s (:mod:`mcsim.studies.padfriction`):
         the keys of :data:`mcsim.store.sweepvariables.FRICTION`.
@@ -310,7 +224,7 @@ def finite_pads(spec, restoring_force: float | None, *, preload: float | None = 
     -------
     dict
         The keys of :data:`mcsim.store.sweepvariables.PADS` (floats, SI) and ``p_stick_method``
-        (one of :data:`METHODS`; those of p_stick only with a restoring force), and the
+        (one of :data:`~mcsim.studies.tail.METHODS`; those of p_stick only with a restoring force), and the
         friction's.
 
     Raises
@@ -378,13 +292,13 @@ def tail_p_stick(spec, statistics: PadStatistics, restoring_force: float, *, tur
     """p_stick of the pads of ``spec``: the plain pads' fraction, or importance sampling.
 
     Importance sampling (:func:`mcsim.studies.tail.importance_p_stick`, max(n,
-    :data:`TAIL_PADS`) final pads, cross-entropy stages of max(:data:`TAIL_PILOT`, n/10)
+    :data:`~mcsim.studies.tail.TAIL_PADS`) final pads, cross-entropy stages of max(:data:`~mcsim.studies.tail.TAIL_PILOT`, n/10)
     pads after the n plain pads as stage 0, or its own with fewer than TAIL_PILOT) replaces the
-    fraction where the plain pads see fewer than :data:`SWITCH` pads on the rarer side
+    fraction where the plain pads see fewer than :data:`~mcsim.studies.tail.SWITCH` pads on the rarer side
     (``tail`` None) or always (``tail`` True), not
-    with fewer than :data:`MIN_TAIL_PADS` pads or a fixed summit count (``tail`` None: the
+    with fewer than :data:`~mcsim.studies.tail.MIN_TAIL_PADS` pads or a fixed summit count (``tail`` None: the
     fraction stays; True: an error), nor where its effective sample size stays below
-    :data:`MIN_ESS` or its two chains' estimates disagree (the fraction stays: it cannot tell).
+    :data:`~mcsim.studies.tail.MIN_ESS` or its two chains' estimates disagree (the fraction stays: it cannot tell).
 
     Parameters
     ----------
@@ -398,7 +312,7 @@ def tail_p_stick(spec, statistics: PadStatistics, restoring_force: float, *, tur
         Mean-field turn (d/σ) and the nominal pressure (Pa, or None), as :func:`finite_pads`.
     tail : bool or None
         None: automatic (importance sampling where the plain pads see fewer than
-        :data:`SWITCH` on the rarer side); True: importance sampling; False: the plain fraction.
+        :data:`~mcsim.studies.tail.SWITCH` on the rarer side); True: importance sampling; False: the plain fraction.
     start : tuple, optional
         The plain pads as stage 0: their heights above :func:`mcsim.studies.tail.cut` (σ)
         and pull-off (N); else the tail draws its own.
@@ -409,51 +323,16 @@ def tail_p_stick(spec, statistics: PadStatistics, restoring_force: float, *, tur
         ``p_stick``, ``p_stick_low``, ``p_stick_high`` (95 %), ``p_stick_ess`` (the effective
         number of pads on the rarer side, n*·p̂ with n* = p̂(1 − p̂)/se², the one its interval
         takes, :attr:`mcsim.studies.tail.TailEstimate.ess`; for plain pads their count) and
-        ``p_stick_method`` (one of :data:`METHODS`).
+        ``p_stick_method`` (one of :data:`~mcsim.studies.tail.METHODS`).
 
     Raises
     ------
     ParameterError
-        ``tail`` True with fewer than :data:`MIN_TAIL_PADS` pads or a fixed summit count.
+        ``tail`` True with fewer than :data:`~mcsim.studies.tail.MIN_TAIL_PADS` pads or a fixed summit count.
     """
     return rare_event(spec, "p_stick", statistics.pads, statistics.p_stick,
                       statistics.p_stick_ci, restoring_force, turn=turn, preload=preload,
                       tail=tail, start=start)  # fmt: skip
-
-
-def rare_event(spec, name: str, n: int, p: float, ci, threshold: float, *, turn: float,
-               preload: float | None, tail: bool | None, start=None, score=None) -> dict:  # fmt: skip
-    """The probability ``name`` (``p_stick``, ``p_slip``) of the pads of ``spec`` whose score
-    (their pull-off, or ``score``) exceeds ``threshold``: the plain fraction ``p`` of ``n`` pads
-    with its interval ``ci``, or importance sampling, by the rules of :func:`tail_p_stick`.
-
-    Returns
-    -------
-    dict
-        ``name``, ``name_low``, ``name_high`` (95 %), ``name_ess`` and ``name_method``.
-    """
-    from mcsim.studies.tail import importance_p_stick
-
-    k = round(p * n)
-    rare = min(k, n - k)
-    plain = {name: p, f"{name}_low": ci[0], f"{name}_high": ci[1], f"{name}_ess": float(rare),
-             f"{name}_method": "pads"}  # fmt: skip
-    if tail is True and n < MIN_TAIL_PADS:
-        raise ParameterError(f"pads = {n}: importance sampling (tail) needs at least "
-                             f"{MIN_TAIL_PADS} pads")  # fmt: skip
-    if tail is False or (
-        tail is None and (rare >= SWITCH or n < MIN_TAIL_PADS or spec.count != "poisson")
-    ):
-        return plain
-    estimate = importance_p_stick(spec, threshold, turn=turn, preload=preload,
-                                  pads=max(n, TAIL_PADS), pilot=max(TAIL_PILOT, n // 10),
-                                  start=start if n >= TAIL_PILOT else None,
-                                  event="stick" if k <= n - k else "release",
-                                  give_up=tail is None, score=score)  # fmt: skip
-    if estimate.ess < MIN_ESS or not estimate.agree:
-        return plain
-    return {name: estimate.p_stick, f"{name}_low": estimate.low, f"{name}_high": estimate.high,
-            f"{name}_ess": estimate.ess, f"{name}_method": "importance"}  # fmt: skip
 
 
 @dataclass(frozen=True)
@@ -547,7 +426,7 @@ def pad_report(
     tail : bool, optional
         With F_r: p_stick by importance sampling (:func:`tail_p_stick`, with pads of its own
         streams of the run's seed): True always, None where the pads see fewer than
-        :data:`SWITCH` on the rarer side, False never. The same for p_slip with F.
+        :data:`~mcsim.studies.tail.SWITCH` on the rarer side, False never. The same for p_slip with F.
     friction : bool
         Also the pads' static friction T_s at their turns and μ_s
         (:mod:`mcsim.studies.padfriction`).

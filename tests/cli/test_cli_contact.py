@@ -140,7 +140,8 @@ def test_the_documented_run_and_its_ratios_are_current(capsys):
     # docs/contact.md shows one run and quotes GW's area over the exact one and the mean gaps'
     # ratio at the top load: rerun here, the table compared line by line, the ratios to 2 digits.
     text = (ROOT / "docs" / "contact.md").read_text()
-    block = text.split("```console\n")[1].split("```")[0].splitlines()
+    block = text.split("```text\n$ mcsim contact")[1].split("```")[0].splitlines()
+    block[0] = "$ mcsim contact" + block[0]
     argv = block[0].removeprefix("$ mcsim ").split()
     code, out, _ = run_cli(capsys, *argv)
     lines, shown = out.splitlines(), block[1:]

@@ -20,7 +20,7 @@ from mcsim.model.presets import MATERIALS, SURFACES
 from mcsim.physics.environment import Environment
 from mcsim.physics.friction import gw_static_friction
 from mcsim.studies import padfriction as study
-from mcsim.studies.pads import clopper_pearson
+from mcsim.studies.intervals import clopper_pearson
 
 SILICON = MATERIALS["silicon"]
 SMOOTH = SURFACES["smooth"]

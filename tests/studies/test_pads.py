@@ -11,7 +11,8 @@ from tolerances import ROUNDING_FEW, ROUNDING_FORMULA
 from mcsim.cli.main import main
 from mcsim.model.errors import MCSimError, ParameterError, UnitError
 from mcsim.model.units import parse_quantity
-from mcsim.studies.pads import CONFIDENCE, analytic_pad_pull_off, clopper_pearson, pad_statistics
+from mcsim.studies.intervals import CONFIDENCE, clopper_pearson
+from mcsim.studies.pads import analytic_pad_pull_off, pad_statistics
 
 KEYS = ["pads", "mean", "se", "std", "q05", "q50", "q95"]
 
@@ -280,7 +281,7 @@ def test_wilson_interval_reproduces_the_closed_form_and_a_textbook_value():
     # DasGupta 2001; Newcombe 1998, method 3).
     from scipy.stats import norm
 
-    from mcsim.studies.pads import wilson
+    from mcsim.studies.intervals import wilson
 
     z = norm.ppf(0.975)
     # the closed form, a few roundings and norm.ppf's own: ROUNDING_FORMULA
@@ -296,7 +297,7 @@ def test_wilson_interval_reproduces_the_closed_form_and_a_textbook_value():
 
 
 def test_wilson_is_shorter_than_clopper_pearson_and_both_contain_the_estimate():
-    from mcsim.studies.pads import wilson
+    from mcsim.studies.intervals import wilson
 
     for k, n in [(1, 40), (5, 40), (20, 40), (3, 300)]:
         w, c = wilson(k, n), clopper_pearson(k, n)
@@ -306,7 +307,7 @@ def test_wilson_is_shorter_than_clopper_pearson_and_both_contain_the_estimate():
 
 def test_pads_interval_wilson_replaces_the_interval_and_names_it(cycle_run, capsys):
     from mcsim.store.runfile import read_run
-    from mcsim.studies.pads import wilson
+    from mcsim.studies.intervals import wilson
 
     force = read_run(cycle_run).pull_off().force
     fr = float(np.median(force))

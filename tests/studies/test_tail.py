@@ -18,25 +18,21 @@ from scipy.stats import poisson
 from mcsim.engine.spec import MonteCarloSpec
 from mcsim.model.errors import ParameterError
 from mcsim.model.presets import MATERIALS, SURFACES
-from mcsim.studies.pads import (
-    MIN_ESS,
-    MIN_TAIL_PADS,
-    SWITCH,
-    clopper_pearson,
-    finite_pads,
-    pad_statistics,
-    rare_event,
-    tail_p_stick,
-)
+from mcsim.studies.intervals import clopper_pearson
+from mcsim.studies.pads import finite_pads, pad_statistics, tail_p_stick
 from mcsim.studies.tail import (
     CHAINS,
+    MIN_ESS,
+    MIN_TAIL_PADS,
     STAGES,
+    SWITCH,
     Tilt,
     _Law,
     cut,
     effective_clopper_pearson,
     importance_p_stick,
     mixture,
+    rare_event,
 )
 
 #: The few-summit case of the issue: smooth at σ = 3 nm, 30 µm² (λ = 510 summits).

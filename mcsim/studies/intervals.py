@@ -1,0 +1,74 @@
+"""Intervals of a binomial proportion: k of n pads stick (or slip).
+
+Clopper–Pearson's exact interval (the default: its coverage never falls below the level) and
+Wilson's score interval (shorter, its coverage near the level on average), both at
+:data:`CONFIDENCE` unless given.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from mcsim.model.errors import ParameterError
+
+#: Confidence level of the interval for the probability of sticking.
+CONFIDENCE = 0.95
+
+#: Intervals of the probability of sticking, by name.
+INTERVALS = ("clopper-pearson", "wilson")
+
+
+def _check_counts(k, n, confidence) -> None:
+    if not (isinstance(n, int | np.integer) and n >= 1):
+        raise ParameterError(f"n = {n!r}: the number of trials must be an integer >= 1")
+    if not (isinstance(k, int | np.integer) and 0 <= k <= n):
+        raise ParameterError(
+            f"k = {k!r}: the number of successes must be an integer in [0, n = {n}]"
+        )
+    if not 0 < confidence < 1:
+        raise ParameterError(f"confidence = {confidence!r}: allowed 0 < confidence < 1")
+
+
+def clopper_pearson(k: int, n: int, confidence: float = CONFIDENCE) -> tuple[float, float]:
+    """Clopper–Pearson exact interval of a binomial proportion from k successes in n trials.
+
+    Lower bound: the α/2 quantile of Beta(k, n − k + 1) (0 for k = 0); upper: the
+    1 − α/2 quantile of Beta(k + 1, n − k) (1 for k = n), α = 1 − confidence
+    (Clopper & Pearson 1934).
+
+    Raises
+    ------
+    ParameterError
+        Unless 0 ≤ k ≤ n, n ≥ 1 and 0 < confidence < 1.
+    """
+    from scipy.stats import beta
+
+    _check_counts(k, n, confidence)
+    alpha = 1 - confidence
+    lower = 0.0 if k == 0 else float(beta.ppf(alpha / 2, k, n - k + 1))
+    upper = 1.0 if k == n else float(beta.ppf(1 - alpha / 2, k + 1, n - k))
+    return lower, upper
+
+
+def wilson(k: int, n: int, confidence: float = CONFIDENCE) -> tuple[float, float]:
+    """Wilson score interval of a binomial proportion from k successes in n trials.
+
+    (p̂ + z²/(2n) ± z √(p̂(1 − p̂)/n + z²/(4n²))) / (1 + z²/n), p̂ = k/n, z the
+    1 − α/2 standard normal quantile, α = 1 − confidence (Wilson 1927; Brown,
+    Cai & DasGupta 2001, Sect. 4.1.1). Clipped to [0, 1] against rounding.
+
+    Raises
+    ------
+    ParameterError
+        Unless 0 ≤ k ≤ n, n ≥ 1 and 0 < confidence < 1.
+    """
+    from scipy.stats import norm
+
+    _check_counts(k, n, confidence)
+    z = float(norm.ppf(1 - (1 - confidence) / 2))
+    p = k / n
+    centre = (p + z * z / (2 * n)) / (1 + z * z / n)
+    half = z * math.sqrt(p * (1 - p) / n + z * z / (4 * n * n)) / (1 + z * z / n)
+    return max(0.0, centre - half), min(1.0, centre + half)
