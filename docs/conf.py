@@ -61,6 +61,8 @@ _SITE_LINKS = {
     "](validation/README.md": "](validation.md",
     "](../ARCHITECTURE.md": "](architecture.md",
     "](ARCHITECTURE.md": "](architecture.md",
+    "](CHANGELOG.md": "](changelog.md",
+    "](../CHANGELOG.md": "](changelog.md",
 }
 
 

@@ -126,8 +126,9 @@ def _p_stick_notes(report, n: int, asked: bool) -> None:
     elif rare < SWITCH or asked:
         why = (f"importance sampling needs at least {MIN_TAIL_PADS} pads" if n < MIN_TAIL_PADS
                else f"importance sampling's effective sample size stayed below {MIN_ESS} "
-               "(more pads raise it; it stays 0 where no pad reaches the restoring force), or the "
-               "summit count is fixed")  # fmt: skip
+               "(more pads raise it; it stays 0 where no pad reaches the restoring force), its two "
+               "independent searches disagreed (it cannot tell which holds), or the summit count "
+               "is fixed")  # fmt: skip
         print(f"mcsim: note: fewer than {SWITCH} of the {n} pads lie on the rarer side (sticking or "
               f"not), or --tail, but p_stick is their fraction, not importance sampling: {why}",
               file=sys.stderr)  # fmt: skip
@@ -222,7 +223,7 @@ def add_parser(sub) -> None:
     p.add_argument(
         "--plot",
         metavar="FILE.png",
-        help="histogram and CDF of the pad pull-off with the analytic mean",
+        help="histogram of the pad pull-off with the analytic mean, and the fraction of pads whose pull-off exceeds each force (p_stick marked)",
     )
     p.add_argument("--overwrite", action="store_true", help="replace an existing --plot file")
     p.add_argument("--quiet", action="store_true", help="no progress bar, no 'wrote FILE' line")

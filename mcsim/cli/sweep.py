@@ -144,7 +144,8 @@ def _p_stick_notes(result) -> None:
     if plain.any() and asked != "pads":
         why = (f"importance sampling needs at least {MIN_TAIL_PADS} pads (--pads)" if n < MIN_TAIL_PADS
                else f"importance sampling's effective sample size stayed below {MIN_ESS} "
-               "(more --pads raise it; it stays 0 where no pad reaches the restoring force)")  # fmt: skip
+               "(more --pads raise it; it stays 0 where no pad reaches the restoring force), or its "
+               "two independent searches disagreed (it cannot tell which holds)")  # fmt: skip
         print(f"mcsim: note: at {int(plain.sum())} of {plain.size} points fewer than {SWITCH} of "
               f"the {n} pads lie on the rarer side (sticking or not), or --tail, but p_stick is "
               f"their fraction (Clopper-Pearson), not importance sampling: {why}", file=sys.stderr)  # fmt: skip

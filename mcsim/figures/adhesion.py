@@ -6,7 +6,7 @@ from collections.abc import Mapping
 
 import numpy as np
 
-from mcsim.figures.style import _COLOURS, _LINESTYLES, X_LABEL
+from mcsim.figures.style import _COLOURS, _LINESTYLES, X_LABEL, number
 
 
 def adhesion_figure(surface, material, law, summary=None, *, points: int = 400):
@@ -36,7 +36,7 @@ def adhesion_figure(surface, material, law, summary=None, *, points: int = 400):
     import warnings
 
     from matplotlib.figure import Figure
-    from matplotlib.ticker import FuncFormatter
+    from matplotlib.ticker import ScalarFormatter
 
     from mcsim.physics.adhesion import RegimeWarning, adhesion_summary, top_separation
     from mcsim.physics.analytic import gw_curves
@@ -63,14 +63,14 @@ def adhesion_figure(surface, material, law, summary=None, *, points: int = 400):
     ax.axhline(0, color="0.6", lw=0.8, zorder=1)
     ax.plot(h, approach * mpa, color="#0072B2", lw=1.8, label="approach (loading)")
     ax.plot(h, retract * mpa, color="#D55E00", lw=1.8, ls="--",
-            label=f"retraction from $h_{{turn}}$ = {turn:.3g}")  # fmt: skip
+            label=f"retraction from $h_{{turn}} = {turn:.3g}$")  # fmt: skip
     ax.fill_between(h, np.minimum(retract, 0) * mpa, 0, color="#D55E00", alpha=0.15, lw=0,
                     label=f"work of separation {summary.work_of_separation * 1e3:.3g} mJ/m$^2$")  # fmt: skip
     ax.axvline(turn, color="0.45", lw=0.8, ls=":")
     if summary.pull_off > 0:
         p = summary.pull_off_pressure / 1e6
         ax.plot(summary.h_pull_off, -p, "o", color="k", ms=7, zorder=5,
-                label=f"pull-off {p:.3g} MPa at h = {summary.h_pull_off:.3g}")  # fmt: skip
+                label=f"pull-off {p:.3g} MPa at $h = {summary.h_pull_off:.3g}$")  # fmt: skip
         ax.annotate("pull-off", (summary.h_pull_off, -p), xytext=(8, -14),
                     textcoords="offset points", fontsize=9)  # fmt: skip
     ax.set_xlim(h.max(), h.min())
@@ -79,14 +79,22 @@ def adhesion_figure(surface, material, law, summary=None, *, points: int = 400):
     top = ax.secondary_xaxis(
         "top", functions=(lambda x: x * sigma * 1e9, lambda d: d / (sigma * 1e9))
     )
-    top.set_xlabel("Mean separation d (nm)")
-    right = ax.secondary_yaxis("right", functions=(lambda y: y / mpa, lambda v: v * mpa))
-    right.set_ylabel(r"Load $P/(A_n K)$")
-    right.yaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:.2g}"))
+    top.set_xlabel("Mean separation $d$ (nm)")
+    # in units of 10^e, named in the label: plain tick labels with minus signs (U+2212), no
+    # "-5e-06" and no offset text over the top axis
+    e = int(np.floor(np.log10(np.max(np.abs([*approach, *retract]))))) if np.any(both) else 0
+    unit = 10.0**e
+    right = ax.secondary_yaxis(
+        "right", functions=(lambda y: y / mpa / unit, lambda v: v * unit * mpa)
+    )
+    right.set_ylabel(rf"Load $P/(A_n\,K)$ (units of $10^{{{e}}}$)")
+    right.yaxis.set_major_formatter(ScalarFormatter(useOffset=False))
     ax.grid(True, alpha=0.4)
-    ax.legend(fontsize=8, loc="upper left")
+    # below the axes: inside, it covers the curves near the approach's start
+    fig.legend(*ax.get_legend_handles_labels(), loc="outside lower center", ncols=2, fontsize=8,
+               frameon=False)  # fmt: skip
     noise = abs(summary.hysteresis) < 1e-9 * max(summary.work_of_separation, 1e-300)
-    hysteresis = "0 (none)" if noise else f"{summary.hysteresis * 1e3:.3g} mJ/m$^2$"
+    hysteresis = "0 (none)" if noise else f"{number(summary.hysteresis * 1e3)} mJ/m$^2$"
     numbers = [f"law set {laws.name}", f"hysteresis {hysteresis}"]
     if summary.maugis_lambda is not None:
         numbers.append(

@@ -26,15 +26,16 @@ def contact_figure(result):
 
     fig = Figure(figsize=(10, 4.2), layout="constrained")
     left, right = fig.subplots(1, 2)
-    field = result.pressure_fields[-1] / 1e6
+    factor, unit = _pressure_scale(result.pressure_fields[-1])
+    field = result.pressure_fields[-1] / factor
     ny, nx = result.shape
     extent = (0, nx * result.dx * 1e6, 0, ny * result.dy * 1e6)
     image = left.imshow(np.ma.masked_equal(field, 0.0), origin="lower", extent=extent,
                         cmap="viridis", interpolation="nearest")  # fmt: skip
-    fig.colorbar(image, ax=left, label="Contact pressure (MPa)")
+    fig.colorbar(image, ax=left, label=f"Contact pressure ({unit})")
     left.set_xlabel(r"$x$ (µm)")
     left.set_ylabel(r"$y$ (µm)")
-    left.set_title(f"p = {result.pressure[-1] / 1e6:.3g} MPa, A$_r$/A$_n$ = "
+    left.set_title(f"$p$ = {_pressure_text(result.pressure[-1])}, $A_r/A_n$ = "
                    f"{result.area_fraction[-1]:.3g}", fontsize="medium")  # fmt: skip
     x = result.pressure / result.E_star
     pixel = f"{result.dx * 1e9:.3g} nm pixels, {'periodic' if result.periodic else 'zero-padded'}"
@@ -45,6 +46,16 @@ def contact_figure(result):
     right.legend(fontsize="small")
     fig.suptitle(f"{result.source.name}: exact elastic contact and GW", fontsize="medium")
     return fig
+
+
+def _pressure_text(value: float) -> str:
+    """A pressure (Pa) to 3 significant digits in the largest unit that needs no exponent
+    (1e9 Pa: "1 GPa", not "1e+03 MPa")."""
+    for factor, unit in ((1e9, "GPa"), (1e6, "MPa"), (1e3, "kPa"), (1.0, "Pa")):
+        text = f"{value / factor:.3g}"
+        if abs(float(text)) >= 1 and "e" not in text:
+            return f"{text} {unit}"
+    return f"{value:.3g} Pa"
 
 
 def _pressure_scale(values) -> tuple[float, str]:

@@ -125,8 +125,8 @@ def curve_figure(
         ax.set_ylim(bottom=0)
     if quantity == "mu":
         limit = _single_summit_mu_limit(curves)
-        if limit is not None:  # thin, black, dashed and above the curves: super-smooth lies on it
-            handles.append(ax.axhline(limit, color="k", lw=0.9, linestyle=(0, (6, 3)), zorder=3,
+        if limit is not None:  # a broad pale band under the curves: super-smooth runs along it
+            handles.append(ax.axhline(limit, color="0.8", lw=5, solid_capstyle="butt", zorder=1,
                                       label=f"single-summit limit $(2/\\sqrt{{3}})\\sqrt{{G/K}}$ = {limit:.3f}"))  # fmt: skip
             ax.set_ylim(0, max(ax.get_ylim()[1], 1.15 * limit))
     ax.set_xlabel(X_LABEL)

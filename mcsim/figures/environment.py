@@ -19,7 +19,10 @@ The regimes are shaded and named (above the ceiling, where no curve runs) only w
 sweep crosses from one to another; a sweep inside one regime says so in its title, as it
 names a part that is 0 at every RH, or nowhere positive (the contacts' part of the work,
 −∫ load dd, is negative where the attraction presses the summits harder than they pull),
-neither drawn on the log axis. The legend sits below.
+neither drawn on the log axis; a part's points that are not drawn (≤ 0, or below the axis)
+are counted in its legend entry. The title says from which RH on the capillary work is the
+largest part: "dry" compares the menisci with their ceiling, not with the other parts. The
+legend sits below.
 """
 
 from __future__ import annotations
@@ -44,6 +47,28 @@ PARTS = {
     "work_of_separation_vdw": ("van der Waals (gaps)", {"color": "#009E73", "ls": "-."}),
     "work_of_separation_capillary": ("capillary (menisci)", {"color": "#D55E00", "ls": ":"}),
 }
+
+
+#: What each regime's name means here.
+REGIME_MEANING = {
+    "dry": f"capillary work < {100 * DRY_BELOW:.0f} % of the ceiling",
+    "transition": "capillary work between "
+    f"{100 * DRY_BELOW:.0f} % and {100 * SATURATED_ABOVE:.0f} % of the ceiling",
+    "saturated": f"capillary work > {100 * SATURATED_ABOVE:.0f} % of the ceiling",
+}
+
+
+def _capillary_largest(rh: np.ndarray, data: dict) -> float | None:
+    """The RH from which on the capillary work is the largest of the positive parts; None
+    where it is not so at the sweep's last RH."""
+    capillary = data["work_of_separation_capillary"]
+    others = np.max([data[k] for k in PARTS if k not in ("work_of_separation",
+                     "work_of_separation_capillary")], axis=0)  # fmt: skip
+    largest = capillary > np.maximum(others, 0)
+    if not largest[-1]:
+        return None
+    start = largest.size - np.argmin(largest[::-1]) if not largest.all() else 0
+    return float(rh[start])
 
 
 def regime_bounds(rh: np.ndarray, capillary: np.ndarray, ceiling: float) -> tuple[float, float]:
@@ -107,7 +132,13 @@ def humidity_figure(sweep):
         if not np.any(y > 0):  # nothing to draw on a log axis: said in the title instead
             (given_back if np.any(y < 0) else absent).append(label)
             continue
-        ax.plot(100 * rh, np.where(y > 0, y, np.nan), marker="o", ms=3, label=label, **style)
+        shown = (y >= low / 2) & (y > 0)  # the axis' range, below
+        if not shown.all():  # every point not drawn is counted, in the legend
+            zero, below = int(np.sum(y <= 0)), int(np.sum((y > 0) & ~shown))
+            label += "".join((f"; {zero} of {y.size} RH ≤ 0" if zero else "",
+                              f"; {below} of {y.size} RH below the axis" if below else ""))  # fmt: skip
+            label += " (not drawn)"
+        ax.plot(100 * rh, np.where(shown, y, np.nan), marker="o", ms=3, label=label, **style)
     ax.axhline(
         ceiling, color="0.4", lw=1, label=rf"ceiling $2\gamma_L\cos\theta$ = {ceiling:.3g} J/m$^2$"
     )
@@ -143,7 +174,10 @@ def humidity_figure(sweep):
              f"capillary work at 10 % of the ceiling {bound(dry)},",
              f"at 90 % {bound(saturated)}"]  # fmt: skip
     if len(spans) == 1:
-        lines.append(f"regime: {spans[0][2]} over the whole sweep")
+        lines.append(f"regime: {spans[0][2]} ({REGIME_MEANING[spans[0][2]]}) over the whole sweep")
+    largest = _capillary_largest(rh, data)
+    if largest is not None:  # "dry" measures the menisci against flat surfaces, not the total
+        lines.append(f"capillary the largest part of the work from RH = {100 * largest:.0f} %")
     if absent:
         lines.append(f"{', '.join(absent)}: 0 at every RH (not drawn on a log axis)")
     if given_back:  # the work is −∫ F dd: pressed contacts give back their elastic energy

@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from mcsim.figures.sweeps import _scaled, _squeezed, axis_label, is_log_grid
+from mcsim.figures.sweeps import _scaled, axis_label, is_log_grid, pads_title, pads_varied
 
 #: z of the two-sided 95 % interval of the mean.
 Z95 = 1.959963984540054
@@ -35,13 +35,7 @@ def friction_figure(sweep):
     """
     from matplotlib.figure import Figure
 
-    from mcsim.model.errors import ParameterError
-
-    dims = [d for d in sweep.grid if sweep.coords[d].size > 1]
-    if not dims or len(dims) > 2:
-        raise ParameterError(f"plot: a friction sweep is drawn against one or two varied inputs, "
-                             f"this one varies {len(dims)} ({', '.join(sweep.grid)})")  # fmt: skip
-    sweep = _squeezed(sweep, dims)
+    sweep, dims = pads_varied(sweep, "a friction sweep")
     slip = "p_slip" in sweep.data
     fig = Figure(figsize=(7, 7.5 if slip else 4.5), layout="constrained")
     axes = fig.subplots(2 if slip else 1, 1, sharex=True, squeeze=False)[:, 0]
@@ -90,12 +84,8 @@ def friction_figure(sweep):
 
 
 def _title(sweep) -> str:
-    import json
-
     a = sweep.attrs
-    name = json.loads(a["surface"]).get("name") if isinstance(a.get("surface"), str) else None
-    text = ", ".join(x for x in (name and f"surface {name}", f"law {a.get('law')}") if x)
-    text += f"\n{a['pads']} pads of {a['area'] * 1e12:.4g} µm²"
+    text = pads_title(sweep)
     if "preload" in a:
         text += f", preload {a['preload'] / 1e6:.4g} MPa"
     if "tangential_force" in a:

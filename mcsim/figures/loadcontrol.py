@@ -55,14 +55,15 @@ def load_control_figure(result):
     kappa = (
         float(light_load_ratio(curves.surface, [result.h[ok][np.argmin(x)]])[0]) if x.size else 0
     )
-    light = f"GW light load, Hertz without adhesion: A_r/A_n = {kappa:.3g} p/E*"
+    light = f"GW light load, Hertz without adhesion: $A_r/A_n$ = {kappa:.3g} $p/E^*$"
     fig = Figure(figsize=(10, 4.2), layout="constrained")
     left, right = fig.subplots(1, 2)
     left.loglog(x, y, "o-", ms=3, label=curves.law + (" (Hertz area, GW Eq. 9)" if seed else ""))
     if x.size:
         left.loglog(x, kappa * x, "k--", lw=1, label=light)
-    left.set_xlabel("nominal pressure over contact modulus p/E*")
-    left.set_ylabel("real contact area fraction A_r/A_n")
+    left.set_xlabel(P_OVER_E)
+    left.set_ylabel(AREA_LABEL)
+    _limits_to(left, y)  # the light-load line runs on below the curve: cut at the axis
     left.legend(fontsize="small")
     name = "T" if seed else "friction"
     if name in curves.values:
@@ -71,18 +72,35 @@ def load_control_figure(result):
         right.plot(p_mpa, friction, "o-", ms=3, label=curves.law)
         if not seed and x.size:
             right.plot(p_mpa, material.tau * kappa * x / 1e6, "k--", lw=1,
-                       label=f"GW light load: tau A_r = {material.tau * kappa / material.E_star:.3g} p")  # fmt: skip
+                       label=f"GW light load: $\\tau A_r/A_n$ = {material.tau * kappa / material.E_star:.3g} $p$")  # fmt: skip
         jumped = result.jump[ok]
         if jumped.any():  # a legend entry only for what is drawn
             right.plot(p_mpa[jumped], friction[jumped], "o", mfc="none",
                        ms=8, color="k", label="reached through a jump")  # fmt: skip
         right.legend(fontsize="small")
     else:
-        right.text(0.5, 0.5, "no friction (give tau)", ha="center", transform=right.transAxes)
-    right.set_xlabel("applied load per nominal area p (MPa)")
-    right.set_ylabel("friction force per nominal area (MPa)")
+        right.text(0.5, 0.5, "no friction (give $\\tau$)", ha="center", transform=right.transAxes)
+    right.set_xlabel(P_LABEL)
+    right.set_ylabel(FRICTION_LABEL)
     fig.suptitle(f"{curves.surface.name or 'surface'}, law set {curves.law}: load control")
     return fig
+
+
+#: Axis labels of the load-control figures.
+P_OVER_E = r"Nominal pressure over contact modulus $p/E^*$"
+AREA_LABEL = r"Real contact area fraction $A_r/A_n$"
+P_LABEL = r"Applied load per nominal area $p$ (MPa)"
+FRICTION_LABEL = r"Friction force per nominal area $T/A_n$ (MPa)"
+
+
+def _limits_to(ax, values) -> None:
+    """Log y limits around the positive ``values`` (a factor 1.5 beyond each end): a reference
+    line (the GW light-load line) is cut at the axis rather than stretch it over decades where
+    no point lies."""
+    v = np.asarray(values, dtype=float)
+    v = v[np.isfinite(v) & (v > 0)]
+    if v.size:
+        ax.set_ylim(v.min() / 1.5, v.max() * 1.5)
 
 
 #: Length, in decades, of a bar on a log axis whose lower end is ≤ 0 (drawn with an arrowhead).
@@ -139,13 +157,12 @@ def load_run_figure(run):
     mean, se = run.summary.mean, run.summary.se
     fig = Figure(figsize=(10, 4.4), layout="constrained")
     left, right = fig.subplots(1, 2)
-    panels = [(left, area_q, material.E_star, 1.0, "nominal pressure over contact modulus p/E*",
-               "fraction of summits in contact N_c/N" if seed else "real contact area fraction A_r/A_n")]  # fmt: skip
+    panels = [(left, area_q, material.E_star, 1.0, P_OVER_E,
+               r"Fraction of summits in contact $N_c/N$" if seed else AREA_LABEL)]  # fmt: skip
     if friction_q in run.quantities:
-        panels.append((right, friction_q, 1e6, material.K / 1e6,
-                       "applied load per nominal area p (MPa)", "friction force per nominal area (MPa)"))  # fmt: skip
+        panels.append((right, friction_q, 1e6, material.K / 1e6, P_LABEL, FRICTION_LABEL))
     else:
-        right.text(0.5, 0.5, "no friction (give tau)", ha="center", transform=right.transAxes)
+        right.text(0.5, 0.5, "no friction (give $\\tau$)", ha="center", transform=right.transAxes)
     for ax, q, x_unit, y_scale, x_label, y_label in panels:
         log = ax is left
         x = run.realizations[load_q] * material.K / x_unit
@@ -156,7 +173,7 @@ def load_run_figure(run):
         shown = (x > 0) & (y > 0) if log else np.isfinite(x) & np.isfinite(y)
         hidden = int(np.count_nonzero(~shown))
         label = f"{spec.realizations} patches × {spec.h.size} loads" + (
-            f" ({hidden} with p ≤ 0 not shown)" if hidden else "")  # fmt: skip
+            f" ({hidden} with $p \\leq 0$ not shown)" if hidden else "")  # fmt: skip
         ax.plot(x[shown], y[shown], ".", ms=3, color="C0", alpha=0.35, label=label)
         keep = (xa > 0) & (ya > 0) if log else np.isfinite(ya)
         ax.plot(xa[keep], ya[keep], "-", color="0.2", lw=1.2, label="analytic GW (approach)")
@@ -178,11 +195,15 @@ def load_run_figure(run):
                 kappa = float(light_load_ratio(spec.surface, [spec.h.max()])[0])
                 grid = np.geomspace(xa[keep].min(), xa[keep].max(), 50)
                 ax.plot(grid, kappa * grid, "k--", lw=1,
-                        label=f"GW light load, Hertz without adhesion: A_r/A_n = {kappa:.3g} p/E*")  # fmt: skip
+                        label=f"GW light load, Hertz without adhesion: $A_r/A_n$ = {kappa:.3g} $p/E^*$")  # fmt: skip
+            _limits_to(
+                ax,
+                np.concatenate([y[shown], ya[keep], ym + ye, np.where(ycut, ym * short, ym - ye)]),
+            )
         ax.set_xlabel(x_label)
         ax.set_ylabel(y_label)
         ax.legend(fontsize="small")
     name = run.path.name if run.path else "(not saved)"
     fig.suptitle(f"{name}: {spec.surface.name or 'surface'}, law set {spec.law}, patch "
-                 f"A_n = {spec.area * 1e12:.4g} µm², {spec.realizations} realizations")  # fmt: skip
+                 f"$A_n$ = {spec.area * 1e12:.4g} µm², {spec.realizations} realizations")  # fmt: skip
     return fig

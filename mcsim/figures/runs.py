@@ -138,7 +138,7 @@ def run_figure(run):
 #: Axis labels of the law sets' quantities (the seed's are :data:`LABELS`).
 BRANCH_LABELS = {
     "contact_fraction": LABELS["contact_fraction"],
-    "load": r"Net load $W/(A_n K)$ (compressive > 0)",
+    "load": r"Net load $W/(A_n\,K)$ (compressive > 0)",
     "area": r"Real contact area $A_r/A_n$",
     "friction": r"Friction $\tau A_r/(A_n K)$ (Bowden–Tabor)",
     "mu": r"Friction coefficient $\mu$ = friction/load",
@@ -203,20 +203,27 @@ def branch_runs_figure(runs):
             *inputs_text(spec.surface, spec.material, spec.law),
             f"patch $A$ = {spec.area * 1e12:.4g} µm$^2$, N ~ {spec.count}, E[N] = {spec.expected_summits:.4g}",
             f"{spec.realizations} realization(s), seed entropy {spec.entropy}",
-            *([f"cycle: approach, then retraction from h = {spec.turn:g}"] if spec.cycle else []),
+            *([f"cycle: approach, then retraction from $h = {spec.turn:g}$"] if spec.cycle else []),
         ]
     for ax, q in zip(axes, names):
         ax.set_xlim(hi + pad, lo - pad)
         if _log_worthy(drawn[q]):
             ax.set_yscale("log")
+            # around the curves and means: a bar whose lower end nears 0 is cut at the axis
+            # (drawn to 0.999 of its mean, it would stretch the axis over decades)
+            v = np.concatenate([np.ravel(np.asarray(x, dtype=float)) for x in drawn[q]])
+            v = v[np.isfinite(v) & (v > 0)]
+            ax.set_ylim(v.min() / 2, v.max() * 2)
         elif q == "load":
             ax.axhline(0.0, color="0.4", lw=0.8, zorder=0.5)
         ax.set_xlabel(X_LABEL, fontsize=8)
         ax.set_ylabel(BRANCH_LABELS.get(q, f"{q} = {runs[0].normalisation(q)}"), fontsize=8)
         ax.grid(True, alpha=0.4)
-    axes[0].legend(fontsize=7)
     for ax in axes[len(names) :]:
         ax.axis("off")
+    # the spare panel holds the inputs and the legend: no curve hidden
     axes[-1].text(0, 1, "\n".join(info), va="top", fontsize=8 if len(runs) > 1 else 9,
                   transform=axes[-1].transAxes)  # fmt: skip
+    axes[-1].legend(*axes[0].get_legend_handles_labels(), fontsize=8, loc="lower left",
+                    frameon=False)  # fmt: skip
     return fig

@@ -1,10 +1,11 @@
 """Figures of a pads sweep (``mcsim sweep --pads``): the probability that a pad sticks.
 
 * One varied input: p_stick (points) with its 95 % interval (bars) and the model estimate
-  ``p_stick_model`` (line) against the input, p on a log axis down to the smallest p or
-  interval end drawn (1e-6 and below with importance sampling): circles for the fraction
-  of the pads (Clopper-Pearson), squares for importance sampling (Clopper-Pearson on the
-  effective sample size; ``p_stick_method``).
+  ``p_stick_model`` (line, a × on it where fewer than 10 summits touch: the model is then
+  unreliable) against the input, p on a log axis from half the smallest p, interval end or
+  model value drawn (1e-6 and below with importance sampling) to 1.5: circles for the
+  fraction of the pads (Clopper-Pearson), squares for importance sampling (Clopper-Pearson
+  on the effective sample size; ``p_stick_method``).
 * Two: p_stick over the map in log colour, with the contours of :data:`LEVELS` (1e-6, 1e-3,
   and 0.5: the stiction boundary) that its range holds; hatched where the interval
   straddles a level, i.e. where the data cannot tell on which side of it the point lies.
@@ -14,7 +15,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from mcsim.figures.sweeps import _edges, _scaled, _squeezed, axis_label, is_log_grid
+from mcsim.figures.sweeps import _edges, _scaled, axis_label, is_log_grid, pads_title, pads_varied
 
 #: Probabilities drawn as contours on a 2-D map.
 LEVELS = (1e-6, 1e-3, 0.5)
@@ -33,26 +34,14 @@ def stiction_figure(sweep):
     matplotlib.figure.Figure
         Built without pyplot (headless).
     """
-    from mcsim.model.errors import ParameterError
-
-    dims = [d for d in sweep.grid if sweep.coords[d].size > 1]
-    if not dims or len(dims) > 2:
-        raise ParameterError(f"plot: a pads sweep is drawn against one or two varied inputs, this one "
-                             f"varies {len(dims)} ({', '.join(sweep.grid)})")  # fmt: skip
-    sweep = _squeezed(sweep, dims)
+    sweep, dims = pads_varied(sweep, "a pads sweep")
     return _line(sweep, dims[0]) if len(dims) == 1 else _map(sweep, dims)
 
 
 def _title(sweep) -> str:
-    import json
-
     a = sweep.attrs
     force = a.get("restoring_force")  # absent where varied
-    name = json.loads(a["surface"]).get("name") if isinstance(a.get("surface"), str) else None
-    law = f"law {a['law']}" if "law" in a else ""
-    text = ", ".join(x for x in (name and f"surface {name}", law) if x)
-    text = (text + "\n" if text else "") + f"{a['pads']} pads of {a['area'] * 1e12:.4g} µm²" + (
-        "" if force is None else f", restoring force {force * 1e6:.4g} µN")  # fmt: skip
+    text = pads_title(sweep) + ("" if force is None else f", restoring force {force * 1e6:.4g} µN")
     if "preload" in a:
         text += f", preload {a['preload'] / 1e6:.4g} MPa (force control)"
     return text
@@ -77,25 +66,23 @@ def _line(sweep, dim: str):
             low = np.maximum(d["p_stick_low"][mask], bottom)
             ax.errorbar(x[mask], p[mask], yerr=[p[mask] - low, d["p_stick_high"][mask] - p[mask]],
                         fmt=fmt, color="k", capsize=3, label=f"Monte Carlo p_stick, {label}")  # fmt: skip
-    if "p_stick_model" in d and np.any(np.isfinite(d["p_stick_model"])):
-        ax.plot(x, np.clip(d["p_stick_model"], 1e-12, None), color="C3",
-                label="model (compound Poisson, saddlepoint)")  # fmt: skip
+    drawn = [p, np.maximum(d["p_stick_low"], bottom)]  # the points and their bars' lower ends
+    model = np.clip(d.get("p_stick_model", np.full(p.shape, np.nan)), 1e-12, None)
+    if np.any(np.isfinite(model)):
+        ax.plot(x, model, color="C3", label="model (compound Poisson, saddlepoint)")
+        # the model is what is unreliable there: the cross sits on its line
+        few = (d["contacting_summits"] < 10) & np.isfinite(model)
+        if few.any():
+            ax.plot(x[few], model[few], "x", color="C1", ms=10,
+                    label="< 10 contacting summits: model unreliable")  # fmt: skip
+        drawn.append(model)
     elif "p_stick_model" in d:  # NaN everywhere: pads with an environment
         ax.plot([], [], " ", label="no model estimate with an environment")
-    few = d["contacting_summits"] < 10
-    if few.any():
-        ax.plot(
-            x[few],
-            p[few],
-            "x",
-            color="C1",
-            ms=10,
-            label="< 10 contacting summits: model unreliable",
-        )
     for level in LEVELS:
         ax.axhline(level, color="0.6", ls=":", lw=1)
     ax.set_yscale("log")
-    ax.set_ylim(min(bottom, np.nanmin(p) / 2), 1.5)
+    low = np.concatenate([np.ravel(v) for v in drawn])  # from half the lowest value drawn
+    ax.set_ylim(np.nanmin(np.where(low > 0, low, np.nan)) / 2, 1.5)
     if is_log_grid(sweep.coords[dim]):
         ax.set_xscale("log")
     ax.set_xlabel(axis_label(sweep, dim))
@@ -160,8 +147,9 @@ def _map(sweep, dims: list[str]):
 def pads_figure(force, analytic_mean: float | None = None, *, restoring_force: float | None = None,
                 p_stick: float | None = None, interval: tuple[float, float] | None = None,
                 interval_name: str = "", title: str | None = None):  # fmt: skip
-    """Histogram and empirical CDF of per-pad pull-off forces (µN), analytic mean marked and,
-    with a restoring force, the probability of sticking and its interval.
+    """Histogram and survival function (1 − empirical CDF) of per-pad pull-off forces (µN),
+    analytic mean marked and, with a restoring force, the probability of sticking and its
+    interval.
 
     Parameters
     ----------
@@ -172,8 +160,9 @@ def pads_figure(force, analytic_mean: float | None = None, *, restoring_force: f
     restoring_force : float, optional
         F_r, N: a dotted line (pads to its right stick).
     p_stick, interval : float and (float, float), optional
-        P(pull-off > F_r) and its interval: drawn on the CDF panel at F_r as 1 − p_stick
-        with the interval as an error bar, and written in its legend.
+        P(pull-off > F_r) and its interval: drawn on the right panel (the fraction of pads
+        with a pull-off above F) at F_r, with the interval as an error bar, and written in
+        the legend.
     interval_name : str
         Name of the interval (e.g. "Clopper-Pearson 95 %").
     title : str, optional
@@ -192,8 +181,10 @@ def pads_figure(force, analytic_mean: float | None = None, *, restoring_force: f
     hist.hist(f, bins=max(10, min(60, int(np.sqrt(f.size)))), density=True, color="0.7",
               edgecolor="0.4", label=f"Monte Carlo, {f.size} pads")  # fmt: skip
     hist.set_ylabel("density (1/µN)")
-    ecdf.step(f, np.arange(1, f.size + 1) / f.size, where="post", color="k", label="empirical CDF")
-    ecdf.set_ylabel("fraction of pads with pull-off ≤ F")
+    # the fraction of pads that hold on against a restoring force F: p_stick at F = F_r
+    ecdf.step(f, 1 - np.arange(1, f.size + 1) / f.size, where="post", color="k",
+              label="fraction of pads with pull-off > F (1 − empirical CDF)")  # fmt: skip
+    ecdf.set_ylabel("fraction of pads with pull-off > F")
     for ax in (hist, ecdf):
         ax.axvline(np.mean(f), color="C0", label=f"mean {np.mean(f):.4g} µN")
         if analytic_mean is not None:
@@ -205,7 +196,7 @@ def pads_figure(force, analytic_mean: float | None = None, *, restoring_force: f
         ax.set_xlabel("pad pull-off force F (µN)")
     if restoring_force is not None and p_stick is not None:
         low, high = interval if interval is not None else (p_stick, p_stick)
-        ecdf.errorbar([restoring_force * 1e6], [1 - p_stick], yerr=[[high - p_stick], [p_stick - low]],
+        ecdf.errorbar([restoring_force * 1e6], [p_stick], yerr=[[p_stick - low], [high - p_stick]],
                       color="C2", marker="o", capsize=3,
                       label=f"$p_{{stick}}$ = {p_stick:.3g} [{low:.3g}, {high:.3g}] {interval_name}")  # fmt: skip
     # one legend for both panels (the lines are the same), below them: it covers no bar and no step

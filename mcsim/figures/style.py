@@ -82,6 +82,12 @@ def surface_label(name: str, curves: AnalyticCurves) -> str:
     )
 
 
+def number(value: float, spec: str = ".3g") -> str:
+    """``value`` formatted by ``spec`` with a true minus sign (U+2212), as tick labels have it
+    (``axes.unicode_minus``): for numbers written into a text outside mathtext."""
+    return format(value, spec).replace("-", "\u2212")
+
+
 def save(fig, path, *, overwrite: bool = False, inputs=()) -> Path:
     """Write ``fig`` as a PNG at 150 dpi, with the mcsim version in its metadata.
 

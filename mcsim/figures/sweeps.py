@@ -27,7 +27,9 @@
   ψ = 1 (Greenwood & Williamson 1966) where it is defined.
 
 Axes carry units; an input whose grid is log-spaced gets a log axis. Failed points
-(the ``error`` variable) are gaps in the curves and grey cells in the maps.
+(the ``error`` variable) are gaps in the curves and grey cells in the maps. A log axis shows
+:data:`DECADES` below its largest value: smaller values are marked ▼ at its edge and counted
+above the panel, as are the zeros it cannot show.
 """
 
 from __future__ import annotations
@@ -72,7 +74,7 @@ LABELS = {
     "pull_off_pressure": "Pull-off force per nominal area $F_{po}/A_n$ (Pa)",
     "work_of_separation": r"Work of separation $\Delta\gamma$ (J/m$^2$)",
     "mu": r"Friction coefficient $\mu$ (blank: load $\leq$ 0)",
-    "load": r"Net load $W/(A_n K)$ (compressive > 0)",
+    "load": r"Net load $W/(A_n\,K)$ (compressive > 0)",
     "F": r"Adhesion term $\bar F = F/(A_n K)$ (Eq. 5)",
     "T": r"Friction force $\bar T = T/(A_n K)$ (Eq. 7)",
     "contact_fraction": r"Contact fraction $N_c/N$",
@@ -163,6 +165,31 @@ def _squeezed(sweep, dims: list[str]):
     return dataclasses.replace(sweep, coords=coords, data=data, dims=var_dims, attrs=attrs)
 
 
+def pads_varied(sweep, what: str):
+    """A pads sweep squeezed to its one or two varied inputs: (sweep, their names).
+
+    Raises
+    ------
+    ParameterError
+        No input, or more than two, varied over more than one value (``what`` names the
+        sweep in the message, e.g. "a pads sweep").
+    """
+    dims = [d for d in sweep.grid if sweep.coords[d].size > 1]
+    if not dims or len(dims) > 2:
+        raise ParameterError(f"plot: {what} is drawn against one or two varied inputs, this one "
+                             f"varies {len(dims)} ({', '.join(sweep.grid)})")  # fmt: skip
+    return _squeezed(sweep, dims), dims
+
+
+def pads_title(sweep) -> str:
+    """First lines of a pads figure's title: the surface and law set, then the pads."""
+    a = sweep.attrs
+    name = json.loads(a["surface"]).get("name") if isinstance(a.get("surface"), str) else None
+    law = f"law {a['law']}" if "law" in a else ""
+    text = ", ".join(x for x in (name and f"surface {name}", law) if x)
+    return (text + "\n" if text else "") + f"{a['pads']} pads of {a['area'] * 1e12:.4g} µm²"
+
+
 def is_log_grid(values) -> bool:
     """Whether grid values are log-spaced: positive, at least 3, with a constant ratio
     (and not a constant step); two positive values a decade or more apart count too."""
@@ -185,10 +212,11 @@ def axis_label(sweep, dim: str) -> str:
     return text + (f" ({unit})" if unit else "")
 
 
-def _number(v: float) -> str:
-    """A tick label: plain between 1e-3 and 1e4, else m×10^e."""
+def _number(v: float, digits: int = 6) -> str:
+    """A tick label (or a bound, to ``digits`` significant digits): plain between 1e-3 and
+    1e4, else m×10^e."""
     if v <= 0 or 1e-3 <= v < 1e4:
-        return f"{v:g}"
+        return f"{v:.{digits}g}"
     e = math.floor(math.log10(v))
     m = v / 10**e
     return f"$10^{{{e}}}$" if round(m, 6) == 1 else f"${m:.3g}\\times 10^{{{e}}}$"
@@ -242,7 +270,8 @@ def _label(key: str, h: float | None) -> str:
     return LABELS.get(key, key) + ("" if h is None else f" at $d/\\sigma$ = {h:.3g}")
 
 
-def _title(sweep, name: str) -> str:
+def _title(sweep, name: str, diamonds: bool = True) -> str:
+    """The figure's title; ``diamonds``: the figure marks Table-1 σ that are grid points."""
     a = sweep.attrs
     law = a.get("law", "?")
     surface = json.loads(a["surface"]) if "surface" in a else {}
@@ -256,10 +285,9 @@ def _title(sweep, name: str) -> str:
     if sigma is not None and any(
         sigma.min() <= SURFACES[s].sigma <= sigma.max() for s in PAPER_SURFACES
     ):
-        title += (
-            "\ndotted lines: σ of the paper's Table-1 surfaces (at this R and η); "
-            "◆ where that σ is a grid point"
-        )
+        title += "\ndotted lines: σ of the paper's Table-1 surfaces (at this R and η)"
+        if diamonds and _table1_points(sigma.astype(float)):
+            title += "; ◆ where that σ is a grid point"
     if not sweep.attrs.get("complete", True):
         title += "\nincomplete sweep (checkpoint): the points not yet computed are blank"
     errors = [str(e) for e in np.asarray(sweep.data["error"]).ravel() if e]
@@ -314,15 +342,21 @@ def _lines_figure(sweep, dims: list[str], rows: list[int], name: str):
             ax.set_xscale("log")
         if categorical:
             ax.set_xlim(-0.5, x.size - 0.5)
+        notes, total = [], sum(y.size for _, y, _, _ in lines)
         if log_y and zeros:  # the surfaces rest apart there: nothing pulls off (above the panel)
-            total = sum(y.size for _, y, _, _ in lines)
-            ax.set_title(f"0 at {zeros} of {total} points (not drawn on a log axis):\n"
-                         "no adhesive contact at rest", fontsize=8)  # fmt: skip
+            notes.append(f"0 at {zeros} of {total} points (not drawn on a log axis):\n"
+                         "no adhesive contact at rest")  # fmt: skip
         if log_y:
             ax.set_yscale("log")
             top = ax.dataLim.y1
             if np.isfinite(top) and ax.dataLim.y0 < top / 10**DECADES:
                 ax.set_ylim(top / 10**DECADES, top * 3)
+                below = _mark_below(ax, x, lines, shades, sweep, other)
+                if below:
+                    notes.append(f"{below} of {total} points below the axis "
+                                 f"(< {_number(top / 10**DECADES, 3)}): ▼ at its edge")  # fmt: skip
+        if notes:
+            ax.set_title("\n".join(notes), fontsize=8)
         if x_dim == "sigma":
             _mark_table1(ax, sweep, lines, log_y)
         h_shown = float(h_grid[rows[0]]) if per_h and other is not None else None
@@ -341,6 +375,24 @@ def _lines_figure(sweep, dims: list[str], rows: list[int], name: str):
                       loc="lower left")  # fmt: skip
     fig.suptitle(_title(sweep, name), fontsize=9)
     return fig
+
+
+def _mark_below(ax, x, lines, shades, sweep, other) -> int:
+    """The positive values of ``lines`` below the log axis' lower limit: a ▼ each at the axis'
+    edge, in its line's colour (gid ``below-axis``); returns how many."""
+    bottom = ax.get_ylim()[0]
+    count = 0
+    for i, (_, y, _, index) in enumerate(lines):
+        low = (y > 0) & (y < bottom)
+        if not low.any():
+            continue
+        count += int(low.sum())
+        colour = _COLOURS[i % len(_COLOURS)] if shades is None else shades.to_rgba(
+            _scaled(sweep, other)[index])  # fmt: skip
+        (mark,) = ax.plot(x[low], np.full(low.sum(), bottom), "v", color=colour, ms=6,
+                          clip_on=False, zorder=6, label="_below")  # fmt: skip
+        mark.set_gid("below-axis")
+    return count
 
 
 #: Most lines of one panel told apart by a legend; beyond, a colour scale and a colour bar.
@@ -404,16 +456,24 @@ def _mark_table1(ax, sweep, lines, log_y: bool) -> None:
     sigma = sweep.coords["sigma"].astype(float)
     lo, hi = sigma.min(), sigma.max()
     _, y, *_ = lines[0]
+    points = _table1_points(sigma)
     for name in PAPER_SURFACES:
         s = SURFACES[name].sigma
-        if not lo <= s <= hi:
-            continue
-        xs = s * 1e9
-        ax.axvline(xs, color="0.55", lw=0.7, ls=":", zorder=0.5)
-        at = np.flatnonzero(np.isclose(sigma, s, rtol=1e-9, atol=0.0))
-        if at.size and np.isfinite(y[at[0]]) and (y[at[0]] > 0 or not log_y):
-            ax.plot(xs, y[at[0]], "D", color="k", ms=5, zorder=5)
+        if lo <= s <= hi:
+            ax.axvline(s * 1e9, color="0.55", lw=0.7, ls=":", zorder=0.5)
+        if name in points and np.isfinite(y[points[name]]) and (y[points[name]] > 0 or not log_y):
+            ax.plot(s * 1e9, y[points[name]], "D", color="k", ms=5, zorder=5, label="_table1")
     _table1_names(ax, [n for n in PAPER_SURFACES if lo <= SURFACES[n].sigma <= hi])
+
+
+def _table1_points(sigma: np.ndarray) -> dict[str, int]:
+    """The paper's Table-1 surfaces whose σ is a point of the grid ``sigma`` (m): its index."""
+    found = {}
+    for name in PAPER_SURFACES:
+        at = np.flatnonzero(np.isclose(sigma, SURFACES[name].sigma, rtol=1e-9, atol=0.0))
+        if at.size:
+            found[name] = int(at[0])
+    return found
 
 
 # --- maps -----------------------------------------------------------------------------------
@@ -479,18 +539,14 @@ def _map_figure(sweep, dims: list[str], row: int, name: str):
             ax.set_yscale("log")
         ax.set_xlim(xe[0], xe[-1])
         ax.set_ylim(ye[0], ye[-1])
-        _regimes(ax, sweep, x, y, grid_values)
+        _regimes(ax, sweep, x, y, grid_values, blank=~np.isfinite(shown) & ~failed)
         _readable_log_ticks(ax.xaxis)
         _readable_log_ticks(ax.yaxis)
         ax.set_xlabel(axis_label(sweep, x_dim), fontsize=9)
         ax.set_ylabel(axis_label(sweep, y_dim), fontsize=9)
         if x_dim == "sigma":
             _table1_axis(ax, x)
-    title = (
-        _title(sweep, name)
-        .replace("◆ and dotted lines", "dotted lines, top axis")
-        .replace("left blank", "grey")
-    )
+    title = _title(sweep, name, diamonds=False).replace("left blank", "grey")
     title += ("\nregime boundaries: Johnson-Greenwood (1997) adhesion map (Maugis $\\lambda$ = "
               f"{DMT_BELOW:g}, {JKR_ABOVE:g}), plasticity index $\\psi$ = 1")  # fmt: skip
     if zeros:
@@ -524,9 +580,10 @@ REGIONS = (
 )
 
 
-def _regimes(ax, sweep, x, y, grid_values) -> None:
+def _regimes(ax, sweep, x, y, grid_values, blank=None) -> None:
     """Contours of Maugis' λ at the map's thresholds (gid ``regime-boundaries``), the
-    regions named, and ψ = 1 (gid ``plasticity-boundary``) where ψ is defined."""
+    regions named (in blank cells of the map where the region has some, so that no name
+    covers a value), and ψ = 1 (gid ``plasticity-boundary``) where ψ is defined."""
     if _finite(sweep, "maugis_lambda"):
         lam = grid_values("maugis_lambda")
         levels = [v for v in (DMT_BELOW, JKR_ABOVE) if np.nanmin(lam) < v < np.nanmax(lam)]
@@ -536,7 +593,7 @@ def _regimes(ax, sweep, x, y, grid_values) -> None:
             _contour_labels(ax, cs, {v: f"λ = {v:g}" for v in levels})
         for label, low, high in REGIONS:
             inside = np.isfinite(lam) & (lam >= (low or -np.inf)) & (lam < (high or np.inf))
-            _region_label(ax, x, y, inside, label)
+            _region_label(ax, x, y, inside, label, blank=blank)
     if _finite(sweep, "plasticity_index"):
         psi = grid_values("plasticity_index")
         if np.nanmin(psi) < 1 < np.nanmax(psi):
@@ -567,9 +624,31 @@ def _contour_labels(ax, cs, fmt: dict) -> None:
 
 
 def _region_label(ax, x, y, inside: np.ndarray, label: str, colour: str = "k",
-                  right: bool = False) -> None:  # fmt: skip
-    """Name a region of the map at a cell near its middle (``right``: its right edge)."""
+                  right: bool = False, blank=None) -> None:  # fmt: skip
+    """Name a region of the map at a cell near its middle (``right``: its right edge); where
+    ``blank`` cells (no value drawn) lie in the region, in the middle of its longest row of
+    them instead, without a background: the name then covers no value."""
     if not inside.any():
+        return
+    if blank is not None and (inside & blank).any():
+        free = inside & blank
+        middle = np.median(np.nonzero(inside)[0])
+        best = (0, 0.0, 0, 0)  # (run length, -distance to the middle row, row, first column)
+        for i in np.unique(np.nonzero(free)[0]):
+            j = 0
+            while j < free.shape[1]:
+                if free[i, j]:
+                    k = j
+                    while k + 1 < free.shape[1] and free[i, k + 1]:
+                        k += 1
+                    best = max(best, (k - j + 1, -abs(i - middle), int(i), j))
+                    j = k + 1
+                else:
+                    j += 1
+        n, _, i, j = best
+        ends = x[j], x[j + n - 1]
+        at = math.sqrt(ends[0] * ends[1]) if ax.get_xscale() == "log" else (ends[0] + ends[1]) / 2
+        ax.text(at, y[i], label, ha="center", va="center", fontsize=9, weight="bold", color=colour)
         return
     rows, cols = np.nonzero(inside)
     i, j = int(np.median(rows)), int(cols.max() if right else np.median(cols))

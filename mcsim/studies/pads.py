@@ -384,7 +384,7 @@ def tail_p_stick(spec, statistics: PadStatistics, restoring_force: float, *, tur
     (``tail`` None) or always (``tail`` True), not
     with fewer than :data:`MIN_TAIL_PADS` pads or a fixed summit count (``tail`` None: the
     fraction stays; True: an error), nor where its effective sample size stays below
-    :data:`MIN_ESS` (the fraction stays).
+    :data:`MIN_ESS` or its two chains' estimates disagree (the fraction stays: it cannot tell).
 
     Parameters
     ----------
@@ -407,7 +407,8 @@ def tail_p_stick(spec, statistics: PadStatistics, restoring_force: float, *, tur
     -------
     dict
         ``p_stick``, ``p_stick_low``, ``p_stick_high`` (95 %), ``p_stick_ess`` (the effective
-        number of pads on the rarer side; for plain pads their count) and
+        number of pads on the rarer side, n*·p̂ with n* = p̂(1 − p̂)/se², the one its interval
+        takes, :attr:`mcsim.studies.tail.TailEstimate.ess`; for plain pads their count) and
         ``p_stick_method`` (one of :data:`METHODS`).
 
     Raises
@@ -449,7 +450,7 @@ def rare_event(spec, name: str, n: int, p: float, ci, threshold: float, *, turn:
                                   start=start if n >= TAIL_PILOT else None,
                                   event="stick" if k <= n - k else "release",
                                   give_up=tail is None, score=score)  # fmt: skip
-    if estimate.ess < MIN_ESS:
+    if estimate.ess < MIN_ESS or not estimate.agree:
         return plain
     return {name: estimate.p_stick, f"{name}_low": estimate.low, f"{name}_high": estimate.high,
             f"{name}_ess": estimate.ess, f"{name}_method": "importance"}  # fmt: skip

@@ -26,15 +26,20 @@ the event; q only sets the variance.
   summit that carries the preload (a pad that does not stick); a shifted normal for every
   summit could not do both (measured at p ≈ 6e-6, σ = 3 nm, 2000 pads: relative standard
   error 12 % against 19 %).
-* **The tilt, by the cross-entropy method** (Rubinstein & Kroese, *The cross-entropy
-  method*, 2004, ch. 3, the multilevel algorithm for rare events). Under force control the pull-off is not monotone in the
-  heights (a taller summit turns the pad higher and weakens it), so the tilt is found, not
-  assumed: stage 0 draws pads from the nominal law (or takes the plain pads already
-  evaluated), each stage keeps its elite, the :data:`RHO` fraction of pads nearest the
-  event (all pads in the event once they are that many), and sets r_k to the elite's
-  weighted mean count in bin k over m_k (the maximum-likelihood intensity of a Poisson
-  process, weights L), smoothed by :data:`SMOOTHING` (Rubinstein & Kroese's smoothed
-  updating) and kept above :data:`RATIO_FLOOR`. At most :data:`STAGES` stages.
+* **The tilts, by the cross-entropy method** (Rubinstein & Kroese, *The cross-entropy
+  method*, 2004, ch. 3, the multilevel algorithm for rare events). Under force control the
+  pull-off is not monotone in the heights (a taller summit turns the pad higher and weakens
+  it), so the tilt is found, not assumed, by :data:`CHAINS` independent chains: each starts
+  from its own stage 0 from the nominal law (its own ``pilot`` pads, or its share of the
+  plain pads already evaluated, dealt in turn), and each stage sets a level, the margin to
+  F_r of the :data:`RHO` fraction of the stage's new pads nearest the event (the event itself
+  once that many are in it), and fits r_k to the elite: every pad of *all* the chain's stages
+  at or above the level, r_k its weighted mean count in bin k over m_k (the
+  maximum-likelihood intensity of a Poisson process), each pad weighted by the balance
+  heuristic over the laws the chain has drawn from (below; stage 0's nominal law among
+  them), smoothed by :data:`SMOOTHING` (Rubinstein & Kroese's smoothed updating) and kept
+  above :data:`RATIO_FLOOR`. At most :data:`STAGES` stages. Reusing the stages' pads gives
+  each fit the elite of every stage, not only the last one's thirty.
 * **The estimate: a defensive mixture** (Hesterberg, *Technometrics* 37, 185, 1995; Owen,
   ch. 9.11). The last tilt alone gives every pad in the event the weight L, unbounded: a
   sticking pad with a summit in a bin the tilt thins to r_k = 0.03 weighs ×33 per summit, and
@@ -42,11 +47,12 @@ the event; q only sets the variance.
   E_q[L²·1], a relative standard deviation per pad of 13–48 against 9.9 for plain pads, which
   a run of 1000 pads seldom sees: its p̂ lies low, its standard error too small, and its
   interval covered brute force in 23 of 28 runs (validation/README.md). So the
-  ``pads`` final pads are drawn from three laws: n₀ = ⌈:data:`DEFENSIVE` · pads⌉ from the
-  nominal law q₀ = p, n₁ = ⌈:data:`HALF_WAY` · pads⌉ from the tilt half-way q₁ (ratios √r_k,
-  :func:`half`: between the two in log) and n₂ = pads − n₀ − n₁ from the last tilt q₂ = q
-  (:func:`mixture`), and every pad, whichever law drew it, is weighted by the balance
-  heuristic of the mixture (Veach & Guibas, SIGGRAPH 1995; Owen, ch. 9.12),
+  ``pads`` final pads are drawn from 1 + 2 :data:`CHAINS` laws: n₀ = ⌈:data:`DEFENSIVE` ·
+  pads⌉ from the nominal law q₀ = p and, for each chain, ⌈:data:`HALF_WAY` · pads/CHAINS⌉
+  from its tilt half-way (ratios √r_k, :func:`half`: between the two in log) and the rest of
+  its share from its last tilt (:func:`mixture`), and every pad, whichever law drew it, is
+  weighted by the balance heuristic of the mixture (Veach & Guibas, SIGGRAPH 1995; Owen,
+  ch. 9.12),
 
       w = p/Σ_j c_j q_j = 1/Σ_j (c_j/L_j),   c_j = n_j/pads,   L_j = p/q_j,
 
@@ -61,22 +67,34 @@ the event; q only sets the variance.
   1/c₁·L₁ instead of 1/c₀). p̂ = mean(w·1{event}); its standard error is the pooled
   sample standard deviation of w·1 (ddof = 1) over √pads, which for the fixed allocation
   overstates the variance by the spread of the two laws' means (Owen, ch. 9.12):
-  conservative. The 95 % interval is Clopper–Pearson's on the effective sample size
-  n* = p̂(1 − p̂)/se² with x* = n* p̂ events (Korn & Graubard, *Survey Methodology* 24, 193,
-  1998; not capped at ``pads``, since importance sampling beats plain pads): skewed upwards
-  as the sum of a few large weights is, where the normal interval p̂ ± 1.96 se covered in
-  fewer runs (41 against 43 of 48 runs of the mixture of 1000 pads; 46 of 48 both with
-  2000; validation/README.md). The effective sample size reported is Kish's of the weights in the event, (Σ w·1)²/Σ (w·1)² (Owen, ch. 9): the pads
-  outside the event do not enter p̂. The event is sticking when sticking is rare, and not
+  conservative. **One effective sample size**, n* = p̂(1 − p̂)/se² (the plain pads that would
+  give the same standard error); the reported ``ess`` is n*·p̂, the effective number of pads
+  in the event (for plain pads exactly their count of events), which
+  :func:`mcsim.studies.pads.rare_event` gates on and the interval takes: Clopper–Pearson's
+  of x* = n*·p̂ events in n* trials (Korn & Graubard, *Survey Methodology* 24, 193, 1998; not
+  capped at ``pads``, since importance sampling beats plain pads), skewed upwards as the sum
+  of a few large weights is, where the normal interval p̂ ± 1.96 se covered in fewer runs
+  (41 against 43 of 48 runs of the two-part mixture of 1000 pads; validation/README.md).
+  Where n* is undefined (no pad in the event, or all weights alike) the interval is
+  Clopper–Pearson's of the n₀ nominal pads alone: they are plain pads, so it holds whatever
+  the tilts drew; with none in the event [0, 1 − 0.025^(1/n₀)] ≈ [0, 3.7/(DEFENSIVE · pads)]
+  (:func:`effective_clopper_pearson`). The event is sticking when sticking is rare, and not
   sticking (p = 1 − P(not sticking)) when that is the rarer one.
+* **The chains' check.** Each chain also estimates p from its own half-way and tilted pads
+  and its half of the nominal ones (the balance heuristic of those three laws), independently
+  of the other; where they differ by more than :data:`AGREE` = 3.29 of their combined
+  standard error √(se₁² + se₂²) (for two correct normal estimates a chance of 0.1 %) the
+  tilts have found different ways into the event and ``agree`` is False: :func:`mcsim.studies.pads.rare_event` then keeps the plain
+  fraction. The pooled mixture holds both tilts, so a way in that one chain finds and the
+  other misses is in the estimate; a way in that both miss is not detected (docs/physics.md).
 
 Each pad is evaluated by :func:`mcsim.engine.padcurves.force_turn` and
 :func:`~mcsim.engine.padcurves.pull_off` with the run's spec, as plain pads are, so every
-law set (and its environment) of the spec applies unchanged. Stage k draws from its own
-stream ``SeedSequence(spec.entropy, spawn_key=(STREAM, k))``, apart from the plain pads'
-(realization r: keys (r, 0), (r, 1 + b)), the final pads from the nominal law, the
-half-way tilt and the tilt on keys STAGES + 1, + 2 and + 3; all of a stage is drawn before any pad is
-evaluated, so the estimate is bit-identical for any ``workers``.
+law set (and its environment) of the spec applies unchanged. Stage k of chain c draws from
+its own stream ``SeedSequence(spec.entropy, spawn_key=(STREAM, c, k))``, apart from the plain
+pads' (realization r: keys (r, 0), (r, 1 + b)), the final pads of law j (:func:`mixture`'s
+order) on keys (STREAM, CHAINS, j); all of a stage is drawn before any pad is evaluated, so
+the estimate is bit-identical for any ``workers``.
 """
 
 from __future__ import annotations
@@ -112,6 +130,13 @@ DEFENSIVE = 0.2
 #: 0.3 (and 0.5 from the tilt) the intervals held brute force in 63 of 64 runs at p ≈ 1e-2,
 #: against 60 of 64 with the two-part mixture on the same seeds (validation/README.md).
 HALF_WAY = 0.3
+#: Independent cross-entropy chains, each with its own tilt in the final mixture: where their
+#: own estimates' intervals do not overlap the event has a way in that one tilt misses
+#: (module docstring), and the estimate is not trusted.
+CHAINS = 2
+#: Largest |z| = |p̂₁ − p̂₂|/√(se₁² + se₂²) of the chains' own estimates that agree: the two-sided
+#: normal 0.1 % point, so two correct chains disagree by chance in about one run of 1000.
+AGREE = 3.29
 #: First element of the tail's stream keys (module docstring): above any realization index.
 STREAM = 2**63
 
@@ -141,8 +166,9 @@ class TailEstimate:
     low, high : float
         Its 95 % interval (:func:`effective_clopper_pearson`), in [0, 1].
     ess : float
-        Effective number of final pads in the event: (Σ w·1)²/Σ (w·1)² over the pads, 1 the
-        event's indicator (Kish's effective sample size of the weights that make p̂).
+        Effective number of final pads in the sampled event, n*·p̂ with n* = p̂(1 − p̂)/se²
+        (p̂ of the sampled side): the one effective sample size, which the interval takes
+        (module docstring); 0 where n* is undefined.
     hits : int
         Final pads in the event (sticking, or not sticking where that is the rare side).
     pads : int
@@ -157,10 +183,17 @@ class TailEstimate:
         F_r after :data:`STAGES` stages: the estimate is unbiased still, its variance larger).
     event : str
         ``"stick"`` or ``"release"``: which side was sampled.
-    tilt : Tilt
-        The last tilt.
+    tilts : tuple of Tilt
+        Each chain's last tilt.
     cut : float
         The cut s_c, in σ.
+    agree : bool
+        Whether the chains' own estimates agree within :data:`AGREE` combined standard errors
+        (module docstring); True where no final pads were drawn.
+    chains : tuple of tuple of float
+        Each chain's own estimate and 95 % interval (p, low, high) of the sampled side (the
+        event, before ``"release"`` takes the complement), from its tilts' pads and its share
+        of the nominal pads.
     """
 
     p_stick: float
@@ -174,8 +207,10 @@ class TailEstimate:
     stages: int
     reached: bool
     event: str
-    tilt: Tilt
+    tilts: tuple[Tilt, ...]
     cut: float
+    agree: bool
+    chains: tuple[tuple[float, float, float], ...] = ()
 
 
 def cut(spec, turn: float) -> float:
@@ -221,12 +256,20 @@ class _Law:
         high = _split(s[np.argsort(pad, kind="stable")], counts.sum(axis=1))
         return [np.concatenate([a[a <= self.cut], b]) for a, b in zip(low, high)], high
 
-    def log_ratio(self, tilt: Tilt | None, highs: list) -> np.ndarray:
-        """log L of each pad whose summits above the cut are ``highs`` (module docstring)."""
+    def log_ratio(self, tilt: Tilt | None, counts: np.ndarray) -> np.ndarray:
+        """log L of each pad from its summits per bin above the cut, ``counts`` (module docstring)."""
         if tilt is None:
-            return np.zeros(len(highs))
+            return np.zeros(len(counts))
         r = np.asarray(tilt.ratio)
-        return np.sum(self.mass * (r - 1)) - self.bins(highs) @ np.log(r)
+        return np.sum(self.mass * (r - 1)) - counts @ np.log(r)
+
+    def weight(self, laws: list, sizes: list, counts: np.ndarray) -> np.ndarray:
+        """The balance heuristic w = 1/Σ_j c_j/L_j, c_j = n_j/Σ n, of pads drawn from ``laws``
+        (None: nominal) in numbers ``sizes``, from their summits per bin (module docstring)."""
+        total = sum(sizes)
+        with np.errstate(over="ignore"):
+            return 1.0 / sum(n / total * np.exp(-self.log_ratio(q, counts))
+                             for q, n in zip(laws, sizes, strict=True))  # fmt: skip
 
 
 def _split(values: np.ndarray, counts: np.ndarray) -> list:
@@ -234,10 +277,9 @@ def _split(values: np.ndarray, counts: np.ndarray) -> list:
     return np.split(values, np.cumsum(counts)[:-1])
 
 
-def _fit(law: _Law, previous: Tilt, highs: list, weights: np.ndarray) -> Tilt:
-    """The smoothed cross-entropy tilt from elite pads' summits above the cut and their weights:
-    each bin's weighted mean count over its nominal count (module docstring)."""
-    counts = law.bins(highs)
+def _fit(law: _Law, previous: Tilt, counts: np.ndarray, weights: np.ndarray) -> Tilt:
+    """The smoothed cross-entropy tilt from elite pads' summits per bin above the cut and their
+    weights: each bin's weighted mean count over its nominal count (module docstring)."""
     with np.errstate(invalid="ignore", divide="ignore"):
         fit = (weights @ counts) / (np.sum(weights) * law.mass)
     fit = np.where(law.mass > 0, fit, 1.0)
@@ -261,18 +303,59 @@ def pad_pull_off(spec, s: np.ndarray, *, turn: float, preload: float | None) -> 
     return padcurves.pull_off(spec, z, d_turn)[0]
 
 
-def _stage(law: _Law, tilt: Tilt | None, n: int, key: int, evaluate, workers: int):
-    """``n`` pads drawn from ``tilt`` (nominal: None) on stream ``key``: their summits above
-    the cut, log L and pull-off (N)."""
-    rng = np.random.default_rng(np.random.SeedSequence(law.spec.entropy, spawn_key=(STREAM, key)))
-    pads, highs = law.draw(tilt, n, rng)  # all drawn before any is evaluated
-    log_l = law.log_ratio(tilt, highs)
+def _stage(law: _Law, tilt: Tilt | None, n: int, key: tuple, evaluate, workers: int):
+    """``n`` pads drawn from ``tilt`` (nominal: None) on stream ``key``: their summits per bin
+    above the cut and their scores (pull-off, N)."""
+    seed = np.random.SeedSequence(law.spec.entropy, spawn_key=(STREAM, *key))
+    pads, highs = law.draw(
+        tilt, n, np.random.default_rng(seed)
+    )  # all drawn before any is evaluated
     if workers > 1:
         with ThreadPoolExecutor(workers) as pool:
             force = np.array(list(pool.map(evaluate, pads)))
     else:
         force = np.array([evaluate(s) for s in pads])
-    return highs, log_l, force
+    return law.bins(highs), force
+
+
+@dataclass(frozen=True)
+class _Chain:
+    """One chain's cross-entropy stages: its tilt, stages after stage 0, pads evaluated, and
+    whether its last stage reached the event."""
+
+    tilt: Tilt
+    stages: int
+    evaluations: int
+    reached: bool
+
+
+def _cross_entropy(law, c, counts, force, *, pilot, margin, hit, evaluate, workers, give_up):
+    """Chain ``c``'s tilt from its stage 0 (summits per bin, scores) by the multilevel
+    cross-entropy method, every stage's pads reused in every fit (module docstring)."""
+    laws, sizes, new = [None], [len(force)], force
+    fitted, previous, stage, evaluations = Tilt((1.0,) * BINS), -math.inf, 0, 0
+    while True:
+        elite_size = math.ceil(RHO * new.size)
+        reached = int(np.count_nonzero(hit(new))) >= elite_size
+        if reached:
+            elite = hit(force)
+        else:
+            level = np.sort(margin(new))[-elite_size]
+            # stalled, or too slow to reach F_r in the stages left at its latest pace
+            # (Rubinstein & Kroese 2004, ch. 3: a level that stops rising ends the method)
+            if give_up and (level <= previous or -level > (level - previous) * (STAGES - stage)):
+                break
+            previous, elite = level, margin(force) >= level
+        weights = law.weight(laws, sizes, counts[elite])
+        fitted = _fit(law, fitted, counts[elite], weights)
+        if reached or stage == STAGES:
+            break
+        stage += 1
+        more, new = _stage(law, fitted, pilot, (c, stage), evaluate, workers)
+        laws.append(fitted), sizes.append(pilot)
+        counts, force = np.vstack([counts, more]), np.concatenate([force, new])
+        evaluations += pilot
+    return _Chain(fitted, stage, evaluations, reached)
 
 
 def importance_p_stick(spec, restoring_force: float, *, turn: float, preload: float | None = None,
@@ -330,9 +413,9 @@ def importance_p_stick(spec, restoring_force: float, *, turn: float, preload: fl
                              "Poisson summit count")  # fmt: skip
     if event not in ("stick", "release"):
         raise ParameterError(f"event = {event!r}: allowed stick, release")
-    if pads < 2 or pilot * RHO < 1:
+    if pads < 4 * CHAINS or pilot * RHO < 1:
         raise ParameterError(f"pads = {pads!r}, pilot = {pilot!r}: importance sampling needs "
-                             f"pads >= 2 and pilot >= {math.ceil(1 / RHO)}")  # fmt: skip
+                             f"pads >= {4 * CHAINS} and pilot >= {math.ceil(1 / RHO)}")  # fmt: skip
     law = _Law(spec, cut(spec, turn))
     fr = float(restoring_force)
     sign = 1.0 if event == "stick" else -1.0
@@ -345,58 +428,60 @@ def importance_p_stick(spec, restoring_force: float, *, turn: float, preload: fl
     def hit(force):  # the event: sticking, or its complement
         return (force > fr) if event == "stick" else ~(force > fr)
 
-    tilt, evaluations = None, 0
-    if start is None:
-        highs, log_l, force = _stage(law, None, pilot, 0, evaluate, workers)
-        evaluations += pilot
-    else:
-        highs, force = start
-        log_l = np.zeros(len(highs))
-    fitted = Tilt((1.0,) * BINS)  # the nominal law
-    reached, stage, previous = False, 0, -math.inf
-    while True:
-        margin = sign * (force - fr)
-        hits = hit(force)
-        elite_size = math.ceil(RHO * margin.size)
-        reached = int(np.count_nonzero(hits)) >= elite_size
-        if reached:
-            elite = hits
-        else:
-            level = np.sort(margin)[-elite_size]
-            elite = margin >= level
-            # stalled, or too slow to reach F_r in the stages left at its latest pace
-            # (Rubinstein & Kroese 2004, ch. 3: a level that stops rising ends the method)
-            if give_up and (level <= previous or -level > (level - previous) * (STAGES - stage)):
-                break
-            previous = level
-        weights = np.exp(log_l[elite] - np.max(log_l[elite]))  # L up to a common factor
-        fitted = _fit(law, fitted, [h for h, e in zip(highs, elite) if e], weights)
-        tilt = fitted
-        if reached or stage == STAGES:
-            break
-        stage += 1
-        highs, log_l, force = _stage(law, tilt, pilot, stage, evaluate, workers)
-        evaluations += pilot
+    def margin(force):  # how far into the event
+        return sign * (force - fr)
+
+    evaluations = 0
+    if start is None:  # each chain's own stage 0 from the nominal law
+        zero = [_stage(law, None, pilot, (c, 0), evaluate, workers) for c in range(CHAINS)]
+        evaluations += CHAINS * pilot
+    else:  # the given pads, dealt to the chains in turn
+        counts, force = law.bins(start[0]), np.asarray(start[1], dtype=float)
+        zero = [(counts[c::CHAINS], force[c::CHAINS]) for c in range(CHAINS)]
+    chains = [_cross_entropy(law, c, *zero[c], pilot=pilot, margin=margin, hit=hit,
+                             evaluate=evaluate, workers=workers, give_up=give_up)
+              for c in range(CHAINS)]  # fmt: skip
+    evaluations += sum(c.evaluations for c in chains)
+    tilts = tuple(c.tilt for c in chains)
+    stages, reached = max(c.stages for c in chains), all(c.reached for c in chains)
     if give_up and not reached:
-        return TailEstimate(math.nan, math.nan, 0.0, 1.0, 0.0, 0, 0, evaluations, stage, False,
-                            event, tilt, law.cut)  # fmt: skip
-    laws = (None, half(tilt), tilt)  # nominal, half-way, tilted
-    n = mixture(pads)
-    parts = [_stage(law, q, k, STAGES + 1 + j, evaluate, workers)
-             for j, (q, k) in enumerate(zip(laws, n, strict=True)) if k]  # fmt: skip
+        return TailEstimate(math.nan, math.nan, 0.0, 1.0, 0.0, 0, 0, evaluations, stages, False,
+                            event, tilts, law.cut, True)  # fmt: skip
+    sizes = mixture(pads)
+    laws = (None, *(q for t in tilts for q in (half(t), t)))
+    parts = [_stage(law, q, n, (CHAINS, j), evaluate, workers)
+             for j, (q, n) in enumerate(zip(laws, sizes, strict=True))]  # fmt: skip
     evaluations += pads
-    highs = [h for part in parts for h in part[0]]
-    # the balance heuristic w = p / Σ c_j q_j = 1 / Σ c_j / L_j (at most 1/c_0)
-    mix = sum(k / pads * np.exp(-law.log_ratio(q, highs)) for q, k in zip(laws, n, strict=True))
-    y = hit(np.concatenate([part[2] for part in parts])) / mix
-    q, se = float(np.mean(y)), float(np.std(y, ddof=1) / math.sqrt(pads))
-    low, high = effective_clopper_pearson(q, se, pads)
+    counts = np.vstack([part[0] for part in parts])
+    y = hit(np.concatenate([part[1] for part in parts])) * law.weight(laws, sizes, counts)
+    q, se, low, high = _estimate(y, sizes[0])
+    # each chain's own estimate from its tilts' pads and its share of the nominal pads
+    # (independent of the other chain's): they agree within AGREE standard errors unless the
+    # tilts found different ways into the event
+    own = []
+    for c in range(CHAINS):
+        nominal = slice(c * sizes[0] // CHAINS, (c + 1) * sizes[0] // CHAINS)
+        mine = [(parts[0][0][nominal], parts[0][1][nominal]), parts[1 + 2 * c], parts[2 + 2 * c]]
+        n = [len(part[1]) for part in mine]
+        w = law.weight([None, *laws[1 + 2 * c : 3 + 2 * c]], n, np.vstack([m[0] for m in mine]))
+        own.append(_estimate(hit(np.concatenate([m[1] for m in mine])) * w, n[0]))
+    chain = tuple((o[0], o[2], o[3]) for o in own)
+    (qa, sa, *_), (qb, sb, *_) = own
+    agree = abs(qa - qb) <= AGREE * math.hypot(sa, sb)
+    ess = q * q * (1 - q) / se**2 if se > 0 and 0 < q < 1 else 0.0
     if event == "release":
         q, low, high = 1.0 - q, 1.0 - high, 1.0 - low
-    ess = float(np.sum(y) ** 2 / np.sum(y**2)) if np.any(y) else 0.0
     return TailEstimate(min(max(q, 0.0), 1.0), se, max(low, 0.0), min(high, 1.0), ess,
-                        int(np.count_nonzero(y)), pads, evaluations, stage, reached, event,
-                        tilt, law.cut)  # fmt: skip
+                        int(np.count_nonzero(y)), pads, evaluations, stages, reached, event,
+                        tilts, law.cut, agree, chain)  # fmt: skip
+
+
+def _estimate(y: np.ndarray, n0: int) -> tuple[float, float, float, float]:
+    """p̂ = mean(y) of the weighted indicators ``y`` (the first ``n0`` from the nominal law),
+    its standard error and 95 % interval (:func:`effective_clopper_pearson`)."""
+    q, se = float(np.mean(y)), float(np.std(y, ddof=1) / math.sqrt(y.size))
+    k0 = int(np.count_nonzero(y[:n0]))
+    return (q, se, *effective_clopper_pearson(q, se, k0, n0))
 
 
 def half(tilt: Tilt) -> Tilt:
@@ -404,22 +489,30 @@ def half(tilt: Tilt) -> Tilt:
     return Tilt(tuple(math.sqrt(r) for r in tilt.ratio))
 
 
-def mixture(pads: int) -> tuple[int, int, int]:
-    """Final pads from the nominal law, the half-way tilt and the tilt (module docstring)."""
+def mixture(pads: int) -> tuple[int, ...]:
+    """Final pads from the nominal law, then from each chain's half-way tilt and its tilt
+    (module docstring)."""
     n0 = math.ceil(DEFENSIVE * pads)
-    n1 = math.ceil(HALF_WAY * pads)
-    return n0, n1, pads - n0 - n1
+    n1 = math.ceil(HALF_WAY * pads / CHAINS)
+    n2 = (pads - n0 - CHAINS * n1) // CHAINS
+    out = [n0, *(n1, n2) * CHAINS]
+    out[-1] += pads - sum(out)
+    return tuple(out)
 
 
-def effective_clopper_pearson(q: float, se: float, pads: int) -> tuple[float, float]:
-    """95 % interval of a weighted estimate ``q`` of a probability with standard error ``se``.
+def effective_clopper_pearson(q: float, se: float, k0: int, n0: int) -> tuple[float, float]:
+    """95 % interval of a weighted estimate ``q`` of a probability with standard error ``se``,
+    of which ``n0`` pads from the nominal law saw ``k0`` events.
 
     Clopper–Pearson's (Clopper & Pearson 1934) on the effective sample size
     n* = q(1 − q)/se² with x* = n* q events, non-integer (Korn & Graubard, *Survey
     Methodology* 24, 193, 1998): the 0.025 quantile of Beta(x*, n* − x* + 1) and the 0.975
     one of Beta(x* + 1, n* − x*); for 0/1 values (se² = q(1 − q)/n) it is the plain
-    Clopper–Pearson interval of n trials. Where q is 0 or at least 1, or se is 0, the plain
-    one of 0 or ``pads`` events in ``pads`` trials, e.g. [0, 1 − 0.025^(1/pads)].
+    Clopper–Pearson interval of n trials. Where n* is undefined (q is 0 or at least 1, or se
+    is 0: no pad in the event, or all weights alike) the plain Clopper–Pearson interval of
+    the nominal pads alone, ``k0`` events in ``n0`` trials: they are plain pads, so it holds
+    whatever the other laws drew (with no event, [0, 1 − 0.025^(1/n0)] ≈ [0, 3.7/n0], n0 =
+    ⌈DEFENSIVE · pads⌉; module docstring).
     """
     from scipy.stats import beta
 
@@ -427,6 +520,5 @@ def effective_clopper_pearson(q: float, se: float, pads: int) -> tuple[float, fl
         n = q * (1 - q) / se**2
         x = q * n
         return float(beta.ppf(0.025, x, n - x + 1)), float(beta.ppf(0.975, x + 1, n - x))
-    if q >= 1:
-        return 0.025 ** (1 / pads), 1.0
-    return 0.0, 1 - 0.025 ** (1 / pads)
+    low = 0.0 if k0 == 0 else float(beta.ppf(0.025, k0, n0 - k0 + 1))
+    return low, 1.0 if k0 == n0 else float(beta.ppf(0.975, k0 + 1, n0 - k0))

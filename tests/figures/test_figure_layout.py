@@ -41,7 +41,7 @@ def test_simulate_help_states_the_defaults_of_count_and_chunk_size(capsys):
     assert f"summits per task (default: {DEFAULT_CHUNK};" in text
 
 
-def test_fig6_draws_the_single_summit_limit_above_the_curves_in_a_colour_of_its_own():
+def test_fig6_draws_the_single_summit_limit_as_a_broad_band_under_the_curves():
     from mcsim.figures.curves import curve_figure
 
     h = np.linspace(4, -1, 11)
@@ -51,10 +51,11 @@ def test_fig6_draws_the_single_summit_limit_above_the_curves_in_a_colour_of_its_
     (limit,) = [v for k, v in lines.items() if k.startswith("single-summit limit")]
     surfaces = [v for k, v in lines.items() if not k.startswith("single-summit limit")]
     assert len(surfaces) == 4
-    # super-smooth runs along the limit (mu within 1 % of it): the limit must stay visible
-    assert limit.get_zorder() > max(line.get_zorder() for line in surfaces)
+    # super-smooth runs along the limit (mu within 1 % of it): drawn over it, it stays
+    # visible (issue 44), and the limit shows on both sides of it, in a colour of its own
+    assert limit.get_zorder() < min(line.get_zorder() for line in surfaces)
+    assert limit.get_linewidth() >= 2.5 * max(line.get_linewidth() for line in surfaces)
     assert limit.get_color() not in {line.get_color() for line in surfaces}
-    assert limit.get_linestyle() == "--"
 
 
 def test_load_control_legend_names_no_jump_where_no_point_jumped():
@@ -172,7 +173,7 @@ def test_humidity_figure_draws_no_empty_part_no_single_regime_and_no_cut_title_o
     assert texts[0] == "total" and "contact (summits)" not in texts
     title = ax.title.get_text()
     assert "contact (summits): <= 0 at every RH" in title
-    assert "regime: dry over the whole sweep" in title
+    assert "regime: dry (capillary work < 10 % of the ceiling) over the whole sweep" in title
     assert len(ax.patches) == len(ax.texts) == 0  # no shading, no regime name, for one regime
     box = ax.title.get_window_extent(renderer)
     assert fig.bbox.x0 <= box.x0 and box.x1 <= fig.bbox.x1 and box.y1 <= fig.bbox.y1

@@ -52,11 +52,13 @@ def test_the_pads_figure_shows_p_stick_and_its_interval_at_the_restoring_force()
     ecdf = fig.axes[1]
     (bars,) = ecdf.containers
     x, y = bars.lines[0].get_data()
-    # the plotted numbers: N to µN, one rounding; probabilities absolute (they reach 0)
-    assert x[0] == pytest.approx(5.5, rel=ROUNDING_FEW) and y[0] == pytest.approx(
-        1 - stats.p_stick, abs=ROUNDING_FEW
-    )  # µN, CDF
+    # the plotted numbers: N to µN, one rounding; the probability itself, not 1 − p
+    assert x[0] == pytest.approx(5.5, rel=ROUNDING_FEW) and y[0] == stats.p_stick
     (segment,) = bars.lines[2][0].get_segments()
-    assert sorted(segment[:, 1]) == pytest.approx([1 - high, 1 - low], abs=ROUNDING_FEW)
+    assert sorted(segment[:, 1]) == pytest.approx([low, high], abs=ROUNDING_FEW)
+    # and it lies on the drawn fraction of pads with a pull-off above F, at F = F_r
+    (step,) = [line for line in ecdf.get_lines() if line.get_drawstyle() == "steps-post"]
+    xs, ys = step.get_data()
+    assert ys[np.searchsorted(xs, 5.5, side="right") - 1] == pytest.approx(stats.p_stick, abs=1e-12)
     assert any("p_{stick}" in t.get_text() for t in fig.legends[0].get_texts())
     assert ecdf.get_xlabel() == "pad pull-off force F (µN)"

@@ -336,7 +336,7 @@ def test_plot_of_a_load_controlled_run_shows_each_patch_and_both_standard_errors
     x, y = patches.get_data()
     load, area = run.realizations["load"].ravel(), run.realizations["area"].ravel()
     tensile = int(np.count_nonzero(load <= 0))  # one of the 10 patches at 1 MPa (seed 2)
-    assert f"({tensile} with p ≤ 0 not shown)" in patches.get_label() and tensile == 1
+    assert f"({tensile} with $p \\leq 0$ not shown)" in patches.get_label() and tensile == 1
     expected_x = np.sort(load[load > 0] * SILICON.K / SILICON.E_star)
     np.testing.assert_allclose(np.sort(x), expected_x, rtol=1e-12)
     np.testing.assert_allclose(np.sort(y), np.sort(area[load > 0]), rtol=1e-12)

@@ -636,6 +636,21 @@ def test_lim_et_al_inputs_are_the_validation_scripts():
                 module.PRESSURES[0] / 1e3, module.PRESSURES[-1] / 1e3)  # fmt: skip
 
 
+def test_tail_reach_point_is_the_validation_scripts():
+    import importlib.util
+
+    path = README.parent / "validation" / "tail_benchmark.py"
+    sys.path.insert(0, str(path.parent))
+    try:
+        spec = importlib.util.spec_from_file_location("tail_benchmark", path)
+        module = importlib.util.module_from_spec(spec)
+        spec.loader.exec_module(module)
+    finally:
+        sys.path.remove(str(path.parent))
+    check_exact(r"point at\s+p ≈ 1e-6 draws (\d+) final pads and stages of (\d+) in each search",
+                module.REACH_PADS, module.REACH_PILOT)  # fmt: skip
+
+
 @pytest.mark.slow
 def test_force_control_against_a_common_turn():
     # "Force control matters": 400 jkr pads of 30 µm² at σ = 2.5 nm (seed 1, the sweep's

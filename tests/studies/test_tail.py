@@ -25,15 +25,18 @@ from mcsim.studies.pads import (
     clopper_pearson,
     finite_pads,
     pad_statistics,
+    rare_event,
     tail_p_stick,
 )
 from mcsim.studies.tail import (
+    CHAINS,
     STAGES,
     Tilt,
     _Law,
     cut,
     effective_clopper_pearson,
     importance_p_stick,
+    mixture,
 )
 
 #: The few-summit case of the issue: smooth at σ = 3 nm, 30 µm² (λ = 510 summits).
@@ -74,7 +77,8 @@ def test_likelihood_ratio_has_mean_one_under_the_tilted_law():
     spec = _spec(1)
     law = _Law(spec, cut(spec, TURN))
     tilt = Tilt(tuple(np.linspace(0.8, 1.25, 16)))
-    weights = np.exp(law.log_ratio(tilt, law.draw(tilt, 4000, np.random.default_rng(5))[1]))
+    highs = law.draw(tilt, 4000, np.random.default_rng(5))[1]
+    weights = np.exp(law.log_ratio(tilt, law.bins(highs)))
     se = weights.std(ddof=1) / math.sqrt(weights.size)
     assert abs(weights.mean() - 1) < 5 * se, (weights.mean(), se)
 
@@ -99,10 +103,34 @@ def test_effective_clopper_pearson_is_the_plain_one_for_unweighted_pads():
     # 0/1 values: se² = q(1 − q)/n gives n* = n and x* = k, Clopper–Pearson of k in n.
     for k, n in ((3, 100), (57, 2000), (1, 10)):
         q = k / n
-        got = effective_clopper_pearson(q, math.sqrt(q * (1 - q) / n), n)
+        got = effective_clopper_pearson(q, math.sqrt(q * (1 - q) / n), 0, 1)
         np.testing.assert_allclose(got, clopper_pearson(k, n), rtol=1e-9)
-    np.testing.assert_allclose(effective_clopper_pearson(0.0, 0.0, 100), clopper_pearson(0, 100))
-    np.testing.assert_allclose(effective_clopper_pearson(1.0, 0.0, 100), clopper_pearson(100, 100))
+
+
+def test_without_an_effective_sample_size_the_interval_is_the_nominal_pads_own():
+    # No pad in the event, or all weights alike: Clopper–Pearson of the nominal pads alone,
+    # plain pads whatever the tilts drew; with none in the event [0, 1 − 0.025^(1/n0)] ≈ 3.7/n0
+    # with n0 = ⌈0.2 n⌉, not the 3.7/n of n plain pads.
+    n0 = mixture(2000)[0]
+    assert n0 == 400
+    assert effective_clopper_pearson(0.0, 0.0, 0, n0) == clopper_pearson(0, n0)
+    assert effective_clopper_pearson(0.0, 0.0, 0, n0)[1] == pytest.approx(3.69 / n0, rel=0.01)
+    assert effective_clopper_pearson(1.2, 0.0, 400, n0) == clopper_pearson(400, n0)
+
+
+def test_the_reported_effective_sample_size_is_the_one_the_interval_takes():
+    # ESS = n*·p̂ with n* = p̂(1 − p̂)/se²: the interval is Clopper–Pearson's of x* = ESS in n*.
+    e = _estimate(3, 19, pads=400, pilot=200)
+    n = e.p_stick * (1 - e.p_stick) / e.se**2
+    assert e.ess == pytest.approx(n * e.p_stick, rel=1e-12)
+    np.testing.assert_allclose((e.low, e.high), effective_clopper_pearson(e.p_stick, e.se, 0, 1))
+
+
+def test_mixture_shares_the_final_pads_between_the_nominal_law_and_each_chain():
+    for pads in (8, 400, 2001, 12_000):
+        n = mixture(pads)
+        assert len(n) == 1 + 2 * CHAINS and sum(n) == pads and min(n) >= 1
+        assert n[0] == math.ceil(0.2 * pads)
 
 
 def test_estimate_is_unbiased_for_an_exact_event_near_1e_2():
@@ -322,7 +350,29 @@ def test_the_automatic_switch_gives_up_where_the_stages_cannot_reach_the_event()
     quick = importance_p_stick(_spec(3), far, turn=TURN, pads=400, pilot=100, score=count,
                                give_up=True)  # fmt: skip
     assert math.isnan(quick.p_stick) and quick.ess == 0 and quick.pads == 0
-    assert not quick.reached and quick.evaluations < 100 * (STAGES + 1)
+    assert not quick.reached and quick.evaluations < CHAINS * 100 * (STAGES + 1)
     full = importance_p_stick(_spec(3), far, turn=TURN, pads=400, pilot=100, score=count)
-    assert full.pads == 400 and full.evaluations == 100 * (STAGES + 1) + 400
+    assert full.pads == 400 and full.evaluations == CHAINS * 100 * (STAGES + 1) + 400
     assert full.p_stick == 0 and full.ess == 0
+    # no pad in the event: the nominal pads' own bound, 0 in ⌈0.2 · 400⌉ = 80
+    assert (full.low, full.high) == clopper_pearson(0, 80)
+
+
+def test_where_the_chains_disagree_the_plain_fraction_stays(monkeypatch):
+    # rare_event keeps the plain fraction (it cannot tell) where the two tilts' own estimates
+    # disagree, however large the effective sample size.
+    import mcsim.studies.tail as tail
+
+    real = tail.importance_p_stick
+
+    def disagreeing(*args, **kwargs):
+        return dataclasses.replace(real(*args, **kwargs), agree=False)
+
+    plain = ("p_stick", 100, 0.03, clopper_pearson(3, 100), 18.5)
+    options = dict(turn=TURN, preload=None, tail=True, score=_band_score)
+    out = rare_event(_spec(2), *plain, **options)
+    assert out["p_stick_method"] == "importance" and out["p_stick_ess"] >= MIN_ESS
+    monkeypatch.setattr(tail, "importance_p_stick", disagreeing)
+    out = rare_event(_spec(2), *plain, **options)
+    assert out["p_stick_method"] == "pads" and out["p_stick"] == 0.03
+    assert (out["p_stick_low"], out["p_stick_high"]) == clopper_pearson(3, 100)
