@@ -1,9 +1,9 @@
-"""The figures in docs/ are current: made by ``make docs`` from today's code and commands.
+"""The figures in docs/ are current: made by ``make figures`` from today's code and commands.
 
 ``docs/figures.json`` (written by ``docs/make_figures.py``) records each figure's commands
 and a digest of the numbers it plots. Here the digests are recomputed: the analytic
 figures and the pads run always (a few seconds), the other Monte Carlo runs and the large
-sweeps (minutes in all) with ``MCSIM_DOCS_FIGURES=1``, as ``make docs`` itself takes.
+sweeps (minutes in all) with ``MCSIM_DOCS_FIGURES=1``, as ``make figures`` itself takes.
 """
 
 from __future__ import annotations
@@ -34,14 +34,14 @@ def test_every_figure_in_docs_is_made_by_make_docs():
 @pytest.mark.parametrize("name", sorted(make_figures.FIGURES))
 def test_manifest_records_the_current_commands(name):
     assert MANIFEST[name]["commands"] == make_figures.commands(name), (
-        f"docs/{name} is stale: its commands changed; run make docs"
+        f"docs/{name} is stale: its commands changed; run make figures"
     )
 
 
 def _check_inputs(name: str, work: Path) -> None:
     (work / "paper").mkdir()
     digest = make_figures.compute_inputs(name, work)
-    assert digest == MANIFEST[name]["inputs_sha256"], f"docs/{name} is stale: run make docs"
+    assert digest == MANIFEST[name]["inputs_sha256"], f"docs/{name} is stale: run make figures"
 
 
 @pytest.mark.parametrize("name", sorted(n for n, f in make_figures.FIGURES.items() if not f.slow))

@@ -11,6 +11,7 @@ import mcsim
 from mcsim.cli.main import main
 from mcsim.model.errors import ParameterError
 from mcsim.model.presets import MATERIALS, SURFACES
+from mcsim.model.units import parse_quantity
 from mcsim.physics.adhesion import adhesion_summary
 from mcsim.physics.environment import Environment, as_environment
 from mcsim.store.runfile import read_run
@@ -32,7 +33,10 @@ def test_a_bad_seed_is_refused_naming_it_before_any_file_is_claimed(tmp_path, se
 @pytest.mark.filterwarnings("ignore::mcsim.physics.adhesion.RegimeWarning")  # jkr at lambda 1.5
 def test_an_environment_may_be_given_as_a_mapping_of_its_fields_as_in_a_toml_file():
     fields = {"hamaker": "1.6e-19 J", "rh": "60%", "contact_angle": "17 deg"}
-    env = Environment(hamaker=1.6e-19, rh=0.6, contact_angle=np.radians(17))
+    # "17 deg" is the decimal product rounded once (mcsim.model.units), not np.radians(17)
+    angle = parse_quantity("17 deg", "angle", "contact_angle")
+    assert angle == pytest.approx(np.radians(17), rel=1e-15)
+    env = Environment(hamaker=1.6e-19, rh=0.6, contact_angle=angle)
     by_map = mcsim.gw_curves(SMOOTH, SILICON, [2.0, 0.5], law="jkr", environment=fields)
     by_obj = mcsim.gw_curves(SMOOTH, SILICON, [2.0, 0.5], law="jkr", environment=env)
     assert np.array_equal(by_map.load, by_obj.load) and by_map.environment == env
