@@ -18,7 +18,7 @@ Tests check the two against each other on random populations.
 The kernel is plain numba code, as the design map's (:mod:`mcsim.engine.mapkernel`): one
 sweep (:func:`_kernel`) specialised for a law set by the compiled functions it closes over:
 the laws, each called through an adapter that reads its parameters from the argument
-tuples (:func:`_outputs`, :data:`_CALLS`), and the sums of the moments as a tuple
+tuple (:func:`_outputs`, :data:`_STATELESS`), and the sums of the moments as a tuple
 (:func:`_accumulate`); numba inlines all of them into the sweep's loop, which LLVM then
 vectorises. It is compiled once per process and law set, and cached on disk, stamped with
 the laws' sources (:func:`_cache`).
@@ -191,108 +191,115 @@ def _sweep_options(legacy: bool) -> dict:
             "error_model": "numpy"}  # fmt: skip
 
 
-def _picks(outputs: tuple[Output, ...], legacy: bool) -> tuple[tuple[tuple[int, int], ...], ...]:
-    """Where each output's parameters are read in the kernel's argument tuples: (output,
-    position) pairs. The legacy kernel passes each output its own tuple whole; otherwise a
-    parameter several outputs take is read from the first output's tuple, so that LLVM
-    sees the same value and computes the work the outputs share once (the JKR inversion
-    behind both load and area)."""
-    first: dict[str, tuple[int, int]] = {}
+@functools.cache
+def _parameters(outputs: tuple[Output, ...], legacy: bool):
+    """The kernel's parameters: the (output, position) in the argument tuples of each, and
+    for each output the indices of its own among them. The legacy kernel takes every
+    output's tuple whole; otherwise a parameter several outputs take is passed once, so
+    that LLVM sees the same value and computes the work the outputs share once (the JKR
+    inversion behind both load and area)."""
+    where: dict[object, int] = {}
+    positions, indices = [], []
     for i, o in enumerate(outputs):
+        own = []
         for j, p in enumerate(o.parameter_names):
-            first.setdefault(p, (i, j))
-    return tuple(
-        tuple((i, j) if legacy else first[p] for j, p in enumerate(o.parameter_names))
-        for i, o in enumerate(outputs)
-    )
+            key = (i, j) if legacy else p
+            if key not in where:
+                where[key] = len(positions)
+                positions.append((i, j))
+            own.append(where[key])
+        indices.append(tuple(own))
+    return tuple(positions), tuple(indices)
 
 
 def _terms(k: int) -> tuple[tuple[int, int], ...]:
     """The summands of the moments of ``k`` outputs o, in the order of :func:`sum_columns`
-    after ``n_contact``: (i, -1) for o_i, (i, j) for o_i·o_j."""
+    after ``n_contact``: o_i·o_j for each (i, j), where o_k = 1 (the sum of o_i itself)."""
     pairs = [(i, j) for i in range(k) for j in range(i + 1, k)]
-    return (*((i, -1) for i in range(k)), *((i, i) for i in range(k)), *pairs)
+    return (*((i, k) for i in range(k)), *((i, i) for i in range(k)), *pairs)
 
 
-def _argument(i: int, j: int):
-    """Compiled ``get(delta, delta_max, a)``: δ for (-2, 0), δ_max for (-1, 0), else ``a[i][j]``."""
-    import numba
-
-    inline = numba.njit(inline="always")
-    if i == -2:
-        return inline(lambda delta, delta_max, a: delta)
-    if i == -1:
-        return inline(lambda delta, delta_max, a: delta_max)
-    return inline(lambda delta, delta_max, a: a[i][j])
-
-
-#: ``call(f, *g)``: a function of (δ, δ_max, a) that calls ``f`` with the values of the
-#: getters ``g`` (:func:`_argument`), one for each number of arguments: numba inlines no
-#: call with ``*args``, and the laws are inlined into the kernel.
-_CALLS = (
-    lambda f, g0: lambda x, y, a: f(g0(x, y, a)),
-    lambda f, g0, g1: lambda x, y, a: f(g0(x, y, a), g1(x, y, a)),
-    lambda f, g0, g1, g2: lambda x, y, a: f(g0(x, y, a), g1(x, y, a), g2(x, y, a)),
-    lambda f, g0, g1, g2, g3: lambda x, y, a: f(g0(x, y, a), g1(x, y, a), g2(x, y, a),
-                                                g3(x, y, a)),
-    lambda f, g0, g1, g2, g3, g4: lambda x, y, a: f(g0(x, y, a), g1(x, y, a), g2(x, y, a),
-                                                    g3(x, y, a), g4(x, y, a)),
-    lambda f, g0, g1, g2, g3, g4, g5: lambda x, y, a: f(g0(x, y, a), g1(x, y, a), g2(x, y, a),
-                                                        g3(x, y, a), g4(x, y, a), g5(x, y, a)),
-    lambda f, g0, g1, g2, g3, g4, g5, g6: lambda x, y, a: f(
-        g0(x, y, a), g1(x, y, a), g2(x, y, a), g3(x, y, a), g4(x, y, a), g5(x, y, a),
-        g6(x, y, a)),
-    lambda f, g0, g1, g2, g3, g4, g5, g6, g7: lambda x, y, a: f(
-        g0(x, y, a), g1(x, y, a), g2(x, y, a), g3(x, y, a), g4(x, y, a), g5(x, y, a),
-        g6(x, y, a), g7(x, y, a)),
-    lambda f, g0, g1, g2, g3, g4, g5, g6, g7, g8: lambda x, y, a: f(
-        g0(x, y, a), g1(x, y, a), g2(x, y, a), g3(x, y, a), g4(x, y, a), g5(x, y, a),
-        g6(x, y, a), g7(x, y, a), g8(x, y, a)),
-    lambda f, g0, g1, g2, g3, g4, g5, g6, g7, g8, g9: lambda x, y, a: f(
-        g0(x, y, a), g1(x, y, a), g2(x, y, a), g3(x, y, a), g4(x, y, a), g5(x, y, a),
-        g6(x, y, a), g7(x, y, a), g8(x, y, a), g9(x, y, a)),
-    lambda f, g0, g1, g2, g3, g4, g5, g6, g7, g8, g9, g10: lambda x, y, a: f(
-        g0(x, y, a), g1(x, y, a), g2(x, y, a), g3(x, y, a), g4(x, y, a), g5(x, y, a),
-        g6(x, y, a), g7(x, y, a), g8(x, y, a), g9(x, y, a), g10(x, y, a)),
-    lambda f, g0, g1, g2, g3, g4, g5, g6, g7, g8, g9, g10, g11: lambda x, y, a: f(
-        g0(x, y, a), g1(x, y, a), g2(x, y, a), g3(x, y, a), g4(x, y, a), g5(x, y, a),
-        g6(x, y, a), g7(x, y, a), g8(x, y, a), g9(x, y, a), g10(x, y, a), g11(x, y, a)),
+#: ``call(f, *k)``: a function of (δ, δ_max, u) that calls law ``f`` with δ and its
+#: parameters ``u[k]``, one for each number of parameters (numba inlines no call with
+#: ``*args``, and the laws are inlined into the kernel); ``_STATEFUL`` the same with δ_max.
+_STATELESS = (
+    lambda f: lambda x, y, u: f(x),
+    lambda f, k0: lambda x, y, u: f(x, u[k0]),
+    lambda f, k0, k1: lambda x, y, u: f(x, u[k0], u[k1]),
+    lambda f, k0, k1, k2: lambda x, y, u: f(x, u[k0], u[k1], u[k2]),
+    lambda f, k0, k1, k2, k3: lambda x, y, u: f(x, u[k0], u[k1], u[k2], u[k3]),
+    lambda f, k0, k1, k2, k3, k4: lambda x, y, u: f(x, u[k0], u[k1], u[k2], u[k3], u[k4]),
+    lambda f, k0, k1, k2, k3, k4, k5: lambda x, y, u: f(x, u[k0], u[k1], u[k2], u[k3], u[k4],
+                                                        u[k5]),
+    lambda f, k0, k1, k2, k3, k4, k5, k6: lambda x, y, u: f(x, u[k0], u[k1], u[k2], u[k3],
+                                                            u[k4], u[k5], u[k6]),
+    lambda f, k0, k1, k2, k3, k4, k5, k6, k7: lambda x, y, u: f(x, u[k0], u[k1], u[k2], u[k3],
+                                                                u[k4], u[k5], u[k6], u[k7]),
+    lambda f, k0, k1, k2, k3, k4, k5, k6, k7, k8: lambda x, y, u: f(
+        x, u[k0], u[k1], u[k2], u[k3], u[k4], u[k5], u[k6], u[k7], u[k8]),
+    lambda f, k0, k1, k2, k3, k4, k5, k6, k7, k8, k9: lambda x, y, u: f(
+        x, u[k0], u[k1], u[k2], u[k3], u[k4], u[k5], u[k6], u[k7], u[k8], u[k9]),
+)  # fmt: skip
+_STATEFUL = (
+    lambda f: lambda x, y, u: f(x, y),
+    lambda f, k0: lambda x, y, u: f(x, y, u[k0]),
+    lambda f, k0, k1: lambda x, y, u: f(x, y, u[k0], u[k1]),
+    lambda f, k0, k1, k2: lambda x, y, u: f(x, y, u[k0], u[k1], u[k2]),
+    lambda f, k0, k1, k2, k3: lambda x, y, u: f(x, y, u[k0], u[k1], u[k2], u[k3]),
+    lambda f, k0, k1, k2, k3, k4: lambda x, y, u: f(x, y, u[k0], u[k1], u[k2], u[k3], u[k4]),
+    lambda f, k0, k1, k2, k3, k4, k5: lambda x, y, u: f(x, y, u[k0], u[k1], u[k2], u[k3],
+                                                        u[k4], u[k5]),
+    lambda f, k0, k1, k2, k3, k4, k5, k6: lambda x, y, u: f(x, y, u[k0], u[k1], u[k2], u[k3],
+                                                            u[k4], u[k5], u[k6]),
+    lambda f, k0, k1, k2, k3, k4, k5, k6, k7: lambda x, y, u: f(
+        x, y, u[k0], u[k1], u[k2], u[k3], u[k4], u[k5], u[k6], u[k7]),
+    lambda f, k0, k1, k2, k3, k4, k5, k6, k7, k8: lambda x, y, u: f(
+        x, y, u[k0], u[k1], u[k2], u[k3], u[k4], u[k5], u[k6], u[k7], u[k8]),
+    lambda f, k0, k1, k2, k3, k4, k5, k6, k7, k8, k9: lambda x, y, u: f(
+        x, y, u[k0], u[k1], u[k2], u[k3], u[k4], u[k5], u[k6], u[k7], u[k8], u[k9]),
 )  # fmt: skip
 
 
-def _outputs(laws, stateful: tuple[bool, ...], picks):
-    """Compiled ``outputs(delta, delta_max, a)``: the tuple of the outputs' values, each
-    law called with δ (and δ_max) and its parameters read from the argument tuples ``a``
-    (:func:`_picks`)."""
+def _outputs(laws, outputs: tuple[Output, ...], indices):
+    """Compiled ``outputs(delta, delta_max, u)``: the tuple of the outputs' values, each
+    law called with δ (and δ_max) and its parameters ``u[k]`` (:func:`_parameters`)."""
     import numba
 
     inline = numba.njit(inline="always")
-    arguments = [(-2, 0), *([(-1, 0)] if stateful[-1] else []), *picks[-1]]
-    if len(arguments) > len(_CALLS):
-        name = getattr(laws[-1], "py_func", laws[-1]).__name__
-        raise ValueError(f"law {name} takes {len(arguments)} arguments (δ, δ_max, parameters); "
-                         f"the kernel calls at most {len(_CALLS)}")  # fmt: skip
-    last = inline(_CALLS[len(arguments) - 1](laws[-1], *(_argument(*p) for p in arguments)))
+    calls, o = _STATEFUL if outputs[-1].stateful else _STATELESS, outputs[-1]
+    if len(indices[-1]) >= len(calls):
+        raise ValueError(f"law {o.law.__name__} takes {len(indices[-1])} parameters; "
+                         f"the kernel passes at most {len(calls) - 1}")  # fmt: skip
+    last = inline(calls[len(indices[-1])](laws[-1], *indices[-1]))
     if len(laws) == 1:
-        return inline(lambda delta, delta_max, a: (last(delta, delta_max, a),))
-    head = _outputs(laws[:-1], stateful[:-1], picks[:-1])
-    return inline(
-        lambda delta, delta_max, a: (*head(delta, delta_max, a), last(delta, delta_max, a))
-    )
+        return inline(lambda x, y, u: (last(x, y, u),))
+    head = _outputs(laws[:-1], outputs[:-1], indices[:-1])
+    return inline(lambda x, y, u: (*head(x, y, u), last(x, y, u)))
 
 
 def _accumulate(terms: tuple[tuple[int, int], ...]):
-    """Compiled ``accumulate(acc, o)``: the sums ``acc`` with the summands (:func:`_terms`)
-    of the outputs ``o`` added, one each."""
+    """Compiled ``accumulate(acc, o)``: the sums ``acc`` with the summands o_i·o_j of the
+    outputs ``o`` added (:func:`_terms`), up to four by each of the nested functions."""
     import numba
 
     inline = numba.njit(inline="always")
     if not terms:
-        return inline(lambda acc, o: ())
-    head, (i, j), c = _accumulate(terms[:-1]), terms[-1], len(terms) - 1
-    if j < 0:
-        return inline(lambda acc, o: (*head(acc, o), acc[c] + o[i]))
-    return inline(lambda acc, o: (*head(acc, o), acc[c] + o[i] * o[j]))
+        return inline(lambda s, o: ())
+    chunk = terms[-((len(terms) - 1) % 4 + 1) :]
+    head, c = _accumulate(terms[: len(terms) - len(chunk)]), len(terms) - len(chunk)
+    (i0, j0), *rest = chunk
+    if not rest:
+        return inline(lambda s, o: (*head(s, o), s[c] + o[i0] * o[j0]))
+    (i1, j1), *rest = rest
+    if not rest:
+        return inline(lambda s, o: (*head(s, o), s[c] + o[i0] * o[j0], s[c + 1] + o[i1] * o[j1]))
+    (i2, j2), *rest = rest
+    if not rest:
+        return inline(lambda s, o: (*head(s, o), s[c] + o[i0] * o[j0], s[c + 1] + o[i1] * o[j1],
+                                    s[c + 2] + o[i2] * o[j2]))  # fmt: skip
+    ((i3, j3),) = rest
+    return inline(lambda s, o: (*head(s, o), s[c] + o[i0] * o[j0], s[c + 1] + o[i1] * o[j1],
+                                s[c + 2] + o[i2] * o[j2], s[c + 3] + o[i3] * o[j3]))  # fmt: skip
 
 
 @functools.cache
@@ -312,11 +319,11 @@ def _kernel(outputs: tuple[Output, ...], legacy: bool, counting: bool, linear_ro
     for h in {h: None for o in outputs for h in helpers(o.law)}:
         _register_helper(h)
     laws = tuple(numba.njit(o.law, **({} if legacy else LAW_OPTIONS)) for o in outputs)
-    outputs_of = _outputs(laws, tuple(o.stateful for o in outputs), _picks(outputs, legacy))
+    outputs_of = _outputs(laws, outputs, _parameters(outputs, legacy)[1])
     accumulate = _accumulate(_terms(len(outputs)))
     zero = (0.0,) * len(_terms(len(outputs)))
 
-    def sweep(z, d, d_turn, thr_desc, order, out, jump_in, break_off, *a):
+    def sweep(z, d, d_turn, thr_desc, order, out, jump_in, break_off, *u):
         """Summits are first bucketed by the first row (in descending order of the rows'
         thresholds) at which they can carry force (a counting sort), so that for the k-th
         row the summits to evaluate are a prefix of the bucketed array. The loop over that
@@ -362,7 +369,7 @@ def _kernel(outputs: tuple[Output, ...], legacy: bool, counting: bool, linear_ro
                 zi = bucketed[i]
                 delta = zi - dj
                 delta_max = zi - dtj
-                acc = accumulate(acc, outputs_of(delta, delta_max, a))
+                acc = accumulate(acc, (*outputs_of(delta, delta_max, u), 1.0))
                 if counting:
                     nc += (delta_max > jump_in) * (delta > break_off)
             row = out[j]
@@ -547,6 +554,7 @@ def prepared(law: LawSet, args, edges: Edges | None = None):
     set many times on a few rows (a pad's search: the lookup costs as much as the sums)."""
     edges = _TOUCHING if edges is None else edges
     kernel = _compiled(law, _counting(law, edges))
+    parameters = tuple(args[i][j] for i, j in _parameters(law.outputs, law.legacy_kernel)[0])
     columns = len(sum_columns(law))
     jump_in, break_off = float(edges.jump_in), float(edges.break_off)
 
@@ -555,7 +563,7 @@ def prepared(law: LawSet, args, edges: Edges | None = None):
         order = np.argsort(-threshold, kind="stable")
         out = np.zeros((d.size, columns))
         kernel(z, d, d_turn, np.ascontiguousarray(threshold[order]), order, out, jump_in,
-               break_off, *args)  # fmt: skip
+               break_off, *parameters)  # fmt: skip
         return out
 
     return sums

@@ -160,27 +160,27 @@ def test_fused_kernel_matches_the_reference_for_every_registered_law_set(name, b
 
 
 def test_the_seed_kernel_passes_each_law_its_tuple_and_other_law_sets_count_contacts():
-    """The seed's kernel is mcsim 0.1's (each law its own parameter tuple, no δ_max, no
-    contact test), which keeps its vectorised summation order and so its bits; a law set
-    with edges counts."""
-    from mcsim.engine.kernels import _counting, _picks
+    """The seed's kernel is mcsim 0.1's (each law its own parameter tuple, no contact
+    test), which keeps its vectorised summation order and so its bits; a law set with
+    edges counts."""
+    from mcsim.engine.kernels import _counting, _parameters
 
-    assert _picks(SEED.outputs, legacy=True) == (
-        ((0, 0), (0, 1)), ((1, 0), (1, 1), (1, 2)), ((2, 0), (2, 1), (2, 2), (2, 3)))  # fmt: skip
+    positions, indices = _parameters(SEED.outputs, legacy=True)
+    assert positions == ((0, 0), (0, 1), (1, 0), (1, 1), (1, 2), (2, 0), (2, 1), (2, 2), (2, 3))
+    assert indices == ((0, 1), (2, 3, 4), (5, 6, 7, 8))
     assert not _counting(SEED, SEED.edges_for(SMOOTH, MATERIAL))
     assert _counting(TOY, TOY.edges_for(SMOOTH, MATERIAL))
 
 
-def test_outputs_sharing_a_parameter_read_it_from_one_tuple_so_shared_work_is_computed_once():
+def test_outputs_sharing_a_parameter_read_it_once_so_shared_work_is_computed_once():
     """Outside the legacy (seed) kernel, a parameter that several outputs take (TOY: R
-    and c) is passed from the first output's tuple: the same value to LLVM, which then
-    computes identical subexpressions of the outputs once."""
-    from mcsim.engine.kernels import _picks
+    and c) is passed once: the same value to LLVM, which then computes identical
+    subexpressions of the outputs once."""
+    from mcsim.engine.kernels import _parameters
 
-    load, area, friction = _picks(TOY.outputs, legacy=False)
-    assert load == ((0, 0), (0, 1), (0, 2), (0, 3))
-    assert area == ((0, 0), (0, 2))
-    assert friction == ((0, 0), (2, 1))
+    positions, (load, area, grip) = _parameters(TOY.outputs, legacy=False)
+    assert positions == ((0, 0), (0, 1), (0, 2), (0, 3), (2, 1))  # R, K, c, table, gamma
+    assert (load, area, grip) == ((0, 1, 2, 3), (0, 2), (0, 4))
 
 
 @pytest.mark.parametrize("name", ["seed", "jkr"])
