@@ -334,7 +334,7 @@ def _kernel(outputs: tuple[Output, ...], legacy: bool, counting: bool, linear_ro
         """
         n, m = z.size, thr_desc.size
         first = np.empty(n, np.int64)  # index of the first row at which the summit counts
-        offsets = np.zeros(m + 2, np.int64)
+        offsets = np.zeros(m + 3, np.int64)  # [lo + 2]: lo = m (never counts) included
         for i in range(n):  # first k with thr_k < z_i, i.e. the number of thr_k >= z_i
             zi = z[i]
             if m <= linear_rows:  # count: branch-free and vectorised, 3-6x faster than bisection
