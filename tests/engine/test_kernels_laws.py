@@ -84,33 +84,28 @@ def test_a_law_calling_helpers_compiles_them_into_the_kernel_and_matches_the_ref
     assert_sums_close(fast, ref)
 
 
-def test_the_kernels_cache_key_follows_the_source_of_every_helper(monkeypatch):
-    """Editing a helper (here: overlap, called through pressed) names a new kernel
-    module, so numba's on-disk cache never serves a kernel built from the old helper."""
+def test_the_kernels_cache_stamp_follows_the_source_of_every_helper(monkeypatch, tmp_path):
+    """Editing a helper (here: overlap, called through pressed) changes the stamp of the
+    kernel's on-disk cache, so numba never serves a kernel built from the old helper."""
     import inspect
-    import types
 
     from lawset_toy import overlap
 
     from mcsim.engine import kernels
 
-    names = []
-
-    def record(name, text):
-        names.append(name)
-        return types.SimpleNamespace(kernel=None)
-
-    monkeypatch.setattr(kernels, "generated_module", record)
+    monkeypatch.setenv("MCSIM_CACHE_DIR", str(tmp_path))
+    stamps = []
     original = inspect.getsource
     for edited in (False, True):
         suffix = "# edited\n" if edited else ""
         monkeypatch.setattr(
             inspect, "getsource", lambda f, s=suffix: original(f) + (s if f is overlap else "")
         )
-        kernels._generate.cache_clear()
-        kernels._generate(TOY, True)
-    kernels._generate.cache_clear()
-    assert len(names) == 2 and names[0] != names[1]
+        kernels._kernel.cache_clear()
+        stamps.append(kernels._compiled(TOY, True).py_func.mcsim_cache)
+    kernels._kernel.cache_clear()
+    assert stamps[0][0] != stamps[1][0], "the stamp follows the helper"
+    assert stamps[0][1] == stamps[1][1], "one index file: the new kernel replaces the old"
 
 
 def test_reference_counts_contacts_and_attraction_by_the_edges():
@@ -164,27 +159,28 @@ def test_fused_kernel_matches_the_reference_for_every_registered_law_set(name, b
         assert_sums_close(fast, ref)
 
 
-def test_the_seed_kernel_is_the_plain_prefix_loop_and_other_law_sets_count_contacts():
-    """The seed's generated loop is mcsim 0.1's (no δ_max, no contact test), which keeps
-    its vectorised summation order and so its bits; a law set with edges counts."""
-    from mcsim.engine.kernels import _sweep_source
+def test_the_seed_kernel_passes_each_law_its_tuple_and_other_law_sets_count_contacts():
+    """The seed's kernel is mcsim 0.1's (each law its own parameter tuple, no contact
+    test), which keeps its vectorised summation order and so its bits; a law set with
+    edges counts."""
+    from mcsim.engine.kernels import _counting, _parameters
 
-    seed_loop = _sweep_source(SEED, counting=False)
-    assert "delta_max" not in seed_loop and "nc = n_eval" in seed_loop
-    assert "law0(delta, *a0)" in seed_loop and "law2(delta, *a2)" in seed_loop
-    toy_loop = _sweep_source(TOY, counting=True)
-    assert "law0(delta, delta_max, a0[0], a0[1], a0[2], a0[3])" in toy_loop
+    positions, indices = _parameters(SEED.outputs, legacy=True)
+    assert positions == ((0, 0), (0, 1), (1, 0), (1, 1), (1, 2), (2, 0), (2, 1), (2, 2), (2, 3))
+    assert indices == ((0, 1), (2, 3, 4), (5, 6, 7, 8))
+    assert not _counting(SEED, SEED.edges_for(SMOOTH, MATERIAL))
+    assert _counting(TOY, TOY.edges_for(SMOOTH, MATERIAL))
 
 
-def test_outputs_sharing_a_parameter_read_it_from_one_tuple_so_shared_work_is_computed_once():
+def test_outputs_sharing_a_parameter_read_it_once_so_shared_work_is_computed_once():
     """Outside the legacy (seed) kernel, a parameter that several outputs take (TOY: R
-    and c) is passed from the first output's tuple: the same value to LLVM, which then
-    computes identical subexpressions of the outputs once."""
-    from mcsim.engine.kernels import _sweep_source
+    and c) is passed once: the same value to LLVM, which then computes identical
+    subexpressions of the outputs once."""
+    from mcsim.engine.kernels import _parameters
 
-    toy_loop = _sweep_source(TOY, counting=True)
-    assert "law1(delta, delta_max, a0[0], a0[2])" in toy_loop
-    assert "law2(delta, a0[0], a2[1])" in toy_loop
+    positions, (load, area, grip) = _parameters(TOY.outputs, legacy=False)
+    assert positions == ((0, 0), (0, 1), (0, 2), (0, 3), (2, 1))  # R, K, c, table, gamma
+    assert (load, area, grip) == ((0, 1, 2, 3), (0, 2), (0, 4))
 
 
 @pytest.mark.parametrize("name", ["seed", "jkr"])
@@ -204,11 +200,8 @@ def test_counting_and_bisection_find_the_same_first_rows_so_the_sums_are_bit_ide
     counted = block_sums(z, d, law, args, d_turn=turn, edges=edges)
     mp = pytest.MonkeyPatch()
     try:
-        mp.setattr(kernels, "LINEAR_ROWS", 0)
-        kernels._generate.cache_clear()
-        assert "m <= 0" in kernels._sweep_source(law, kernels._counting(law, edges))
+        mp.setattr(kernels, "LINEAR_ROWS", 0)  # a kernel of its own, in memory and on disk
         bisected = block_sums(z, d, law, args, d_turn=turn, edges=edges)
     finally:
         mp.undo()
-        kernels._generate.cache_clear()
     np.testing.assert_array_equal(counted, bisected)
