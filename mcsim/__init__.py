@@ -35,6 +35,8 @@ _LAZY = {
     "Sweep": "store.sweepfile",
     "sweep": "studies.sweeps",
     "read_run": "store.runfile",
+    "Report": "studies.report",
+    "report": "studies.report",
 }
 
 #: Submodules reachable as attributes after a plain ``import mcsim`` (``mcsim.laws.jkr``), by

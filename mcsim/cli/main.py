@@ -22,6 +22,7 @@ from mcsim.cli import (
     pads,
     paper,
     plot,
+    report,
     show,
     simulate,
     sweep,
@@ -29,7 +30,8 @@ from mcsim.cli import (
 from mcsim.model.errors import MCSimError
 
 #: The commands, in the order of ``mcsim --help``.
-COMMANDS = (analytic, adhesion, paper, simulate, sweep, compare, show, plot, pads, ingest, contact)
+COMMANDS = (analytic, adhesion, paper, simulate, sweep, compare, show, plot, pads, ingest, contact,
+            report)  # fmt: skip
 
 
 # --- commands ----------------------------------------------------------------------------

@@ -384,10 +384,11 @@ def parse_preload(text: str) -> float:
     return pressure
 
 
-def add_environment(p) -> None:
+def add_environment(p, rh: bool = True) -> None:
     """The environment's options (van der Waals across the gaps, capillary condensation),
     named as the keys of an ``[environment]`` table in kebab case
-    (:data:`mcsim.store.config.ENVIRONMENT_KEYS`)."""
+    (:data:`mcsim.store.config.ENVIRONMENT_KEYS`); without ``--rh`` where ``rh`` is False (a
+    command that takes several)."""
     g = p.add_argument_group(
         "environment", "van der Waals attraction across the gaps and capillary condensation "
         "(proximity model over the height distribution); also an [environment] table in the "
@@ -401,8 +402,9 @@ def add_environment(p) -> None:
                    "the van der Waals attraction, > 0 (m unless a unit is given: '100nm'), or "
                    "'none' (non-retarded); the flats' energy A/(12 pi D^2) falls by "
                    "1/(1 + 5.32 D/LAMBDA) (Gregory 1981; default 100 nm)")  # fmt: skip
-    g.add_argument("--rh", metavar="RH", help="relative humidity of the vapour, 0 <= RH < 1 "
-                   "(default 0: dry)")  # fmt: skip
+    if rh:
+        g.add_argument("--rh", metavar="RH", help="relative humidity of the vapour, 0 <= RH < 1 "
+                       "(default 0: dry)")  # fmt: skip
     g.add_argument("--contact-angle", metavar="THETA", help="contact angle of the liquid, in "
                    "[0, 180) deg: degrees when bare ('20'), or with a unit ('0.35 rad'); >= 90 deg: "
                    "no condensation (default 0)")  # fmt: skip

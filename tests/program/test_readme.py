@@ -65,6 +65,9 @@ SMALLER = (
     ("--pads 2000 \\\n    --area 30um^2 --restoring-force 83uN --tail", "--pads 300 \\\n    --area 30um^2 --restoring-force 83uN --tail"),
     # the humid sweep (test_humid_p_stick_table) dry and at its most humid point
     ("--vary rh=0,0.3,0.4,0.45,0.5,0.55,0.7,0.9 ", "--vary rh=0,0.9 "),
+    # the stiction report at two of its humidities, 20 pads each (tests/studies/test_report.py
+    # checks a report's numbers)
+    ("--rh 0,0.3,0.5,0.7,0.9 --devices 1000", "--rh 0,0.5 --pads 20 --devices 1000"),
 )  # fmt: skip
 
 _BLOCK = re.compile(r"^```(bash|python)\n(.*?)^```", re.MULTILINE | re.DOTALL)
