@@ -35,7 +35,7 @@ def site(tmp_path_factory) -> Path:
 @pytest.mark.slow
 def test_every_page_is_built(site):
     for page in ["index", "guide", "physics", "contact", "validation", "api", "architecture",
-                 "tutorials/humid_pads"]:  # fmt: skip
+                 "tutorials/humid_pads", "tutorials/scan_to_stiction"]:  # fmt: skip
         assert (site / f"{page}.html").is_file(), page
 
 
