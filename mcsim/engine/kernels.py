@@ -403,7 +403,20 @@ def _cache(kernel, outputs: tuple[Output, ...], *options) -> None:
     key = "-".join(o.name for o in outputs) + "-" + hashlib.sha256(names.encode()).hexdigest()[:12]
     sources = [numba.__version__, inspect.getsource(sys.modules[__name__]), *map(law_source, laws)]
     stamp = hashlib.sha256("\n".join(sources).encode()).hexdigest()
-    kernel.py_func.mcsim_cache = stamp, key
+    stamped_cache(kernel, "kernels", stamp, key)
+
+
+def stamped_cache(kernel, folder: str, stamp: str, key: str) -> None:
+    """Cache the compiled ``kernel`` (a numba dispatcher) on disk with numba's own machinery,
+    but located and stamped by mcsim: in ``<cache_dir()>/folder``, its index file named by the
+    function and ``key``, valid while ``stamp`` (a hash of what the kernel is compiled from)
+    is unchanged. numba's ``cache=True`` stamps a function by its file's time alone, and keys a
+    closure by a pickle of the functions it closes over, which differs in every process; here
+    the stamp and the key say which kernel, and the index holds one entry per signature.
+
+    Where the cache folder cannot be written, nothing is cached.
+    """
+    kernel.py_func.mcsim_cache = folder, stamp, key
     try:
         kernel._cache = _cache_class()(kernel.py_func)
     except RuntimeError:  # no locator: the cache folder cannot be written
@@ -412,15 +425,15 @@ def _cache(kernel, outputs: tuple[Output, ...], *options) -> None:
 
 @functools.cache
 def _cache_class():
-    """numba's cache of compiled functions, located and stamped as :func:`_cache` says
-    (the stamp and the file name's key read from the function's ``mcsim_cache``)."""
+    """numba's cache of compiled functions, located and stamped as :func:`stamped_cache`
+    says (the folder, stamp and key read from the function's ``mcsim_cache``)."""
     from numba.core import caching
 
     class Locator(caching._CacheLocator):
         def __init__(self, py_func, py_file):
             self._py_file = py_file  # where numba's warnings point
-            self._path = str(cache_dir() / "kernels")
-            self._stamp, self._key = py_func.mcsim_cache
+            folder, self._stamp, self._key = py_func.mcsim_cache
+            self._path = str(cache_dir() / folder)
 
         def get_cache_path(self):
             return self._path
@@ -447,7 +460,7 @@ def _cache_class():
         _impl_class = Impl
 
         def _index_key(self, sig, codegen):
-            # the stamp and the file name say which kernel: no pickle of the closure
+            # the stamp and the file name say which kernel: no pickle of a closure
             return sig, codegen.magic_tuple()
 
     return Cache

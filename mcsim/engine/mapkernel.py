@@ -56,10 +56,9 @@ import types
 
 import numba
 import numpy as np
-from numba.core import caching
 from numba.core.dispatcher import Dispatcher
 
-from mcsim.engine.kernels import cache_dir, compile_law
+from mcsim.engine.kernels import compile_law, stamped_cache
 from mcsim.engine.mapstatus import NO_REST, OK, REFERENCE
 from mcsim.physics.adhesion import GAUSSIAN_TOP, GRID, PANELS
 from mcsim.physics.laws.jkr import jkr_area, jkr_load
@@ -444,44 +443,6 @@ def fingerprint(fn) -> str:
     return digest.hexdigest()
 
 
-class _Locator(caching._CacheLocator):
-    """Where numba caches a kernel function (``<cache_dir()>/designmap``), and its stamp
-    (:func:`fingerprint`; module docstring)."""
-
-    def __init__(self, py_func, py_file):
-        self._py_file = py_file  # where numba's warnings point
-        self._path = str(cache_dir() / "designmap")
-        self._stamp = fingerprint(py_func.__globals__[py_func.__name__])
-
-    def get_cache_path(self):
-        return self._path
-
-    def get_source_stamp(self):
-        return self._stamp
-
-    def get_disambiguator(self):
-        return "0"  # the qualified name is unique in its module: no line number
-
-    @classmethod
-    def from_function(cls, py_func, py_file):
-        locator = cls(py_func, py_file)
-        try:
-            locator.ensure_cache_path()
-        except OSError:  # not writable: no cache
-            return None
-        return locator
-
-
-class _CacheImpl(caching.CompileResultCacheImpl):
-    _locator_classes = (_Locator,)
-
-
-class _Cache(caching.FunctionCache):
-    """numba's cache of compiled functions, located and stamped by :class:`_Locator`."""
-
-    _impl_class = _CacheImpl
-
-
 def enable_cache(*entries) -> None:
     """Cache on disk every compiled function that ``entries`` are made of (module docstring).
 
@@ -490,8 +451,6 @@ def enable_cache(*entries) -> None:
     """
     for entry in entries:
         for f in _closure(entry)[0]:
-            if isinstance(f, Dispatcher) and not isinstance(f._cache, _Cache):
-                try:
-                    f._cache = _Cache(f.py_func)
-                except RuntimeError:  # no locator: the cache folder cannot be written
-                    return
+            if isinstance(f, Dispatcher) and not hasattr(f.py_func, "mcsim_cache"):
+                # the qualified name is unique in its module: the key needs no line number
+                stamped_cache(f, "designmap", fingerprint(f), "0")

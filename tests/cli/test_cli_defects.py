@@ -283,6 +283,6 @@ def test_an_option_of_other_commands_says_which_instead_of_suggesting_itself(cap
     err = one_line_error(capsys, "pads", tmp_path / "run.h5", "--rh", "0.5")
     assert "did you mean '--rh'" not in err
     assert (
-        "--rh is an option of mcsim analytic, adhesion, simulate, sweep, contact, not of mcsim pads"
+        "--rh is an option of mcsim analytic, adhesion, simulate, sweep, contact, report, not of mcsim pads"
         in err
     )

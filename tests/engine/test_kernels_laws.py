@@ -104,8 +104,11 @@ def test_the_kernels_cache_stamp_follows_the_source_of_every_helper(monkeypatch,
         kernels._kernel.cache_clear()
         stamps.append(kernels._compiled(TOY, True).py_func.mcsim_cache)
     kernels._kernel.cache_clear()
-    assert stamps[0][0] != stamps[1][0], "the stamp follows the helper"
-    assert stamps[0][1] == stamps[1][1], "one index file: the new kernel replaces the old"
+    (folder, stamp, key), (folder_edited, stamp_edited, key_edited) = stamps
+    assert stamp != stamp_edited, "the stamp follows the helper"
+    assert key == key_edited and folder == folder_edited == "kernels", (
+        "one index file: the new kernel replaces the old"
+    )
 
 
 def test_reference_counts_contacts_and_attraction_by_the_edges():

@@ -16,7 +16,7 @@ import pytest
 
 import mcsim
 from mcsim.model.errors import MCSimError, ParameterError
-from mcsim.studies.pads import clopper_pearson
+from mcsim.studies.intervals import clopper_pearson
 from mcsim.studies.report import lot
 
 SCAN = Path(__file__).resolve().parents[2] / "examples" / "scan.npy"
