@@ -73,6 +73,21 @@ def check_exact(pattern: str, *values: float) -> None:
 # Inputs and constants ---------------------------------------------------------------------
 
 
+def validation_script(name: str):
+    """The module of ``validation/<name>.py`` (its inputs and criteria, which the README quotes)."""
+    import importlib.util
+
+    path = README.parent / "validation" / f"{name}.py"
+    sys.path.insert(0, str(path.parent))
+    try:
+        spec = importlib.util.spec_from_file_location(name, path)
+        module = importlib.util.module_from_spec(spec)
+        spec.loader.exec_module(module)
+    finally:
+        sys.path.remove(str(path.parent))
+    return module
+
+
 def test_silicon_preset():
     check_exact(
         r"E = (\S+) GPa, ν = (\S+), H = (\S+) GPa, γ = (\S+) J/m², and an assumed equilibrium "
@@ -424,16 +439,7 @@ def test_more_constants_of_the_code():
 
 
 def test_the_coverage_asked_of_importance_sampling_is_the_benchmarks():
-    import importlib.util
-
-    path = README.parent / "validation" / "tail_benchmark.py"
-    sys.path.insert(0, str(path.parent))
-    try:
-        spec = importlib.util.spec_from_file_location("tail_benchmark", path)
-        module = importlib.util.module_from_spec(spec)
-        spec.loader.exec_module(module)
-    finally:
-        sys.path.remove(str(path.parent))
+    module = validation_script("tail_benchmark")
     check_exact(r"95 % interval in at least (\d+) % of the runs, the coverage asked of them",
                 module.COVERAGE * 100)  # fmt: skip
 
@@ -616,16 +622,7 @@ def test_friction_slip_table(tmp_path):
 
 
 def test_lim_et_al_inputs_are_the_validation_scripts():
-    import importlib.util
-
-    path = README.parent / "validation" / "pad_friction.py"
-    sys.path.insert(0, str(path.parent))
-    try:
-        spec = importlib.util.spec_from_file_location("pad_friction", path)
-        module = importlib.util.module_from_spec(spec)
-        spec.loader.exec_module(module)
-    finally:
-        sys.path.remove(str(path.parent))
+    module = validation_script("pad_friction")
     poly, nitride = (
         module.MEASURED["polysilicon/polysilicon"],
         module.MEASURED["nitride/polysilicon"],
@@ -637,16 +634,7 @@ def test_lim_et_al_inputs_are_the_validation_scripts():
 
 
 def test_tail_reach_point_is_the_validation_scripts():
-    import importlib.util
-
-    path = README.parent / "validation" / "tail_benchmark.py"
-    sys.path.insert(0, str(path.parent))
-    try:
-        spec = importlib.util.spec_from_file_location("tail_benchmark", path)
-        module = importlib.util.module_from_spec(spec)
-        spec.loader.exec_module(module)
-    finally:
-        sys.path.remove(str(path.parent))
+    module = validation_script("tail_benchmark")
     check_exact(r"point at\s+p ≈ 1e-6 draws (\d+) final pads and stages of (\d+) in each search",
                 module.REACH_PADS, module.REACH_PILOT)  # fmt: skip
 
