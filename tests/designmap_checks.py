@@ -1,7 +1,7 @@
 """The design-map kernel in a process of its own, and how close two runs of it must agree.
 
 ``python tests/designmap_checks.py IN.npz OUT.npz [IN2.npz OUT2.npz ...] [--from-cache]``
-runs :func:`mcsim.engine.designmap.jkr_summaries` on the inputs of each ``IN.npz`` in turn
+runs :func:`mcsim.engine.maps.designmap.jkr_summaries` on the inputs of each ``IN.npz`` in turn
 (:func:`inputs`; with an environment where they hold ``hamaker``) and saves its outputs to
 the ``OUT.npz`` after it; ``--from-cache`` then asserts that every function of the kernel
 came from numba's on-disk cache. tests/engine/test_designmap.py and
@@ -51,7 +51,7 @@ def inputs(points, h, environments=None) -> dict[str, np.ndarray]:
 
 def summaries(arguments: dict) -> dict[str, np.ndarray]:
     """``jkr_summaries`` at ``arguments`` (:func:`inputs`), in this process."""
-    from mcsim.engine.designmap import jkr_summaries
+    from mcsim.engine.maps.designmap import jkr_summaries
     from mcsim.physics.environment import Environment
 
     environment = None
@@ -103,7 +103,7 @@ def main() -> None:
     for source, target in zip(files[::2], files[1::2], strict=True):
         np.savez(target, **summaries(dict(np.load(source))))
     if "--from-cache" in sys.argv[1:]:
-        from mcsim.engine.designmap import _kernels
+        from mcsim.engine.maps.designmap import _kernels
 
         # a function compiled here, not loaded, counts a miss
         assert not any(k.stats.cache_misses for k in _kernels()), "compiled again"

@@ -25,7 +25,7 @@ van der Waals share A/(12πD0²) lies within w; 'One interface, one law'), Grego
 van der Waals, water at 25 °C with its adsorbed films (the isotherm), θ = 0. Pads of 100 µm²
 under no preload (each pad turns where its own net load first turns compressive), the same
 summits at every RH (common random numbers). Γ is the mean over the pads of each pad's work
-of separation, −∫ F_net dd / A from its own turn (mcsim.engine.padcurves.pad_work); D_ave the
+of separation, −∫ F_net dd / A from its own turn (mcsim.engine.pads.curves.pad_work); D_ave the
 mean-plane gap at the turn, averaged over the pads.
 
 Criteria (PASS/FAIL lines, exit status 1 on a FAIL), as the issue on humid air sets them:
@@ -58,7 +58,8 @@ import numpy as np
 from reporting import Checks, parser, save_figure, write_summary
 from scipy import integrate
 
-from mcsim.engine import padcurves, padload
+from mcsim.engine.pads import curves as padcurves
+from mcsim.engine.pads import load as padload
 from mcsim.engine.spec import MonteCarloSpec
 from mcsim.model.counterface import combine, combined_rms, summits_of
 from mcsim.model.params import Surface

@@ -33,7 +33,11 @@ import warnings
 import numpy as np
 from reporting import Checks, parser, write_summary
 
-from mcsim.engine import kernels, padbounds, padcurves, padfriction, padload
+from mcsim.engine import kernels
+from mcsim.engine.pads import bounds as padbounds
+from mcsim.engine.pads import curves as padcurves
+from mcsim.engine.pads import friction as padfriction
+from mcsim.engine.pads import load as padload
 from mcsim.engine.spec import MonteCarloSpec
 from mcsim.model.presets import MATERIALS, SURFACES
 from mcsim.physics.environment import Environment

@@ -50,7 +50,9 @@ import numpy as np
 from reporting import Checks, parser, write_summary
 
 import mcsim
-from mcsim.engine import padcurves, padfriction, padload
+from mcsim.engine.pads import curves as padcurves
+from mcsim.engine.pads import friction as padfriction
+from mcsim.engine.pads import load as padload
 from mcsim.engine.spec import MonteCarloSpec
 from mcsim.model.presets import MATERIALS, SURFACES
 from mcsim.physics.environment import Environment

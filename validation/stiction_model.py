@@ -28,7 +28,8 @@ import warnings
 import numpy as np
 from reporting import Checks, parser, write_summary
 
-from mcsim.engine import padcurves, padload
+from mcsim.engine.pads import curves as padcurves
+from mcsim.engine.pads import load as padload
 from mcsim.engine.spec import MonteCarloSpec
 from mcsim.model.presets import MATERIALS, SURFACES
 from mcsim.physics.adhesion import adhesion_summary

@@ -13,7 +13,7 @@ Cases, each in its own Python process (``--case``) so that its peak resident mem
 * **environment** (issue 22): ``mcsim.sweep`` of the intermediate surface on silicon, jkr,
   with van der Waals (A = 1.6e-19 J) and capillary condensation (water, θ = 0) over
   RH = 0.05–0.95 × σ = 1–10 nm, 40 × 50 points by default, on threads (``workers=`` all
-  cores): the compiled fast path (:func:`mcsim.engine.designmap.jkr_summaries` with the
+  cores): the compiled fast path (:func:`mcsim.engine.maps.designmap.jkr_summaries` with the
   environment). The reference path (``adhesion_summary`` and ``gw_curves`` with the
   environment, :func:`mcsim.studies.sweeppoint.evaluate`) is timed on 6 points of the same
   grid, serially, for the per-point ratio. Then the same sweep as a whole ``mcsim sweep``

@@ -53,7 +53,8 @@ import numpy as np
 from reporting import Checks, child_seeds, parser, write_summary
 from scipy.stats import beta, poisson
 
-from mcsim.engine import padcurves, padload
+from mcsim.engine.pads import curves as padcurves
+from mcsim.engine.pads import load as padload
 from mcsim.engine.spec import MonteCarloSpec
 from mcsim.model.presets import MATERIALS, SURFACES
 from mcsim.physics.environment import Environment

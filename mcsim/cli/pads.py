@@ -145,7 +145,7 @@ def _p_stick_notes(report, n: int, asked: bool) -> None:
 
 def _friction_notes(report, spec) -> None:
     """What T_s and μ_s are, and how p_slip was found."""
-    from mcsim.engine.padfriction import check_friction
+    from mcsim.engine.pads.friction import check_friction
 
     rule = {"savkoor-briggs": "Savkoor-Briggs (Eq. 6) of each touching summit's load",
             "shear": "tau x each touching summit's contact area"}[check_friction(spec)]  # fmt: skip

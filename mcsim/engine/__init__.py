@@ -1,1 +1,3 @@
-"""The Monte Carlo engine: compiled kernels, sampling and summation, the GPU backend, Dask clusters, interrupts, estimates from sums."""
+"""The Monte Carlo engine: compiled kernels, sampling and summation, one pad's own curves
+(``pads/``), whole design maps at once (``maps/``), the GPU backend, Dask clusters,
+interrupts, estimates from sums."""

@@ -15,7 +15,7 @@ contract:
 
 Tests check the two against each other on random populations.
 
-The kernel is plain numba code, as the design map's (:mod:`mcsim.engine.mapkernel`): one
+The kernel is plain numba code, as the design map's (:mod:`mcsim.engine.maps.kernel`): one
 sweep (:func:`_kernel`) specialised for a law set by the compiled functions it closes over:
 the laws, each called through an adapter that reads its parameters from the argument
 tuple (:func:`_outputs`, :data:`_STATELESS`), and the sums of the moments as a tuple

@@ -17,7 +17,7 @@ Which per-summit law applies (:func:`friction_rule`):
 * Any other combination has no friction: :func:`friction_rule` raises, naming the law sets
   that have it.
 
-The functions here are pure and vectorised; :mod:`mcsim.engine.padfriction` sums them over a
+The functions here are pure and vectorised; :mod:`mcsim.engine.pads.friction` sums them over a
 pad's summits at its turn.
 """
 

@@ -58,7 +58,7 @@ class PullOff:
     force : ndarray, shape (R,)
         Magnitude of the most tensile total load of each patch on retraction, N (0 where
         it is nowhere tensile): exact, the minimum of the pad's own curve in continuous h
-        (:func:`mcsim.engine.padcurves.pull_off`, to 1e-7 in h, retracted until every
+        (:func:`mcsim.engine.pads.curves.pull_off`, to 1e-7 in h, retracted until every
         summit has let go), or where ``exact`` is False the minimum over the run's grid.
     normalised : ndarray, shape (R,)
         The same divided by A K (the ``load`` normalisation).
@@ -73,7 +73,7 @@ class PullOff:
         The grid's largest separation d/σ.
     h_turn : ndarray, shape (R,)
         Each pad's closest approach d/σ: the run's min(h), a given common turn, or under
-        force control the pad's own (:func:`mcsim.engine.padcurves.force_turn`).
+        force control the pad's own (:func:`mcsim.engine.pads.curves.force_turn`).
     turn_load : ndarray, shape (R,) or None
         Under force control, the approach load each pad reached at its turn, N.
     preload : float or None
@@ -82,11 +82,11 @@ class PullOff:
         False for a GPU run (its heights cannot be drawn again): ``force`` is the grid's.
     static_friction : ndarray, shape (R,) or None
         With ``friction``: each pad's static friction T_s at its turn, N
-        (:func:`mcsim.engine.padfriction.static_friction`).
+        (:func:`mcsim.engine.pads.friction.static_friction`).
     normal_load : ndarray, shape (R,) or None
         With ``friction``: the normal load W its μ_s = T_s/W is taken on, N (P·A under force
         control, else the pad's net approach load at the turn; where that is not positive,
-        the environment's pull; NaN dry: :func:`mcsim.engine.padfriction.normal_load`).
+        the environment's pull; NaN dry: :func:`mcsim.engine.pads.friction.normal_load`).
     """
 
     force: np.ndarray
@@ -335,16 +335,18 @@ class Run:
                  progress: bool = False) -> PullOff:  # fmt: skip
         """Per-patch pull-off of a cycle run (the law set must have a signed ``load``).
 
-        Each pad's summits are drawn again from the seed (:mod:`mcsim.engine.padcurves`;
+        Each pad's summits are drawn again from the seed (:mod:`mcsim.engine.pads.curves`;
         checked against the stored approach sums) and its pull-off located on its own
         curve. The closest approach: ``turn`` (d/σ, common to all pads, ≥ min(h)) if
         given; else each pad's own under force control where the run was pressed with a
         preload (attribute ``preload``, Pa); else the run's min(h). With ``friction`` also
         each pad's static friction at that turn and the normal load of its μ_s
-        (:mod:`mcsim.engine.padfriction`; a ParameterError for a law set without friction).
+        (:mod:`mcsim.engine.pads.friction`; a ParameterError for a law set without friction).
         With ``progress`` a progress bar over the pads on stderr.
         """
-        from mcsim.engine import padcurves, padfriction, padload
+        from mcsim.engine.pads import curves as padcurves
+        from mcsim.engine.pads import friction as padfriction
+        from mcsim.engine.pads import load as padload
 
         spec = self.spec
         if not spec.cycle or "load" not in spec.law_set.names:
@@ -443,7 +445,7 @@ class Run:
 
 def _check_regenerated(spec: MonteCarloSpec, r: int, z: np.ndarray, stored: np.ndarray) -> None:
     """Refuse heights drawn again that do not give the run's own approach sums (1e-9 relative)."""
-    from mcsim.engine.padload import pad_load
+    from mcsim.engine.pads.load import pad_load
 
     again = pad_load(spec, z, spec.d)
     scale = np.max(np.abs(stored), initial=0.0)

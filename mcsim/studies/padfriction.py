@@ -3,7 +3,7 @@
 See docs/physics.md, section 'Friction of pads'.
 
 Each pad's static friction T_s at its own turn and the normal load W of its μ_s = T_s/W come
-from :mod:`mcsim.engine.padfriction`. Over n pads :func:`friction_statistics` reports, for T_s
+from :mod:`mcsim.engine.pads.friction`. Over n pads :func:`friction_statistics` reports, for T_s
 (N) and μ_s, the mean, its standard error s/√n, the standard deviation (ddof = 1) and the
 5/50/95 % quantiles (as :func:`mcsim.studies.pads.pad_statistics` does for the pull-off; μ_s
 over the pads where it is defined), and with a tangential force F the probability that a pad
@@ -132,9 +132,10 @@ def variables(statistics: FrictionStatistics) -> dict:
 
 def pad_static_friction(spec, s: np.ndarray, *, turn: float, preload: float | None) -> float:
     """One pad's T_s (N) from its summit heights ``s`` (σ), at its turn as plain pads take it:
-    under a ``preload`` (Pa) its own (:func:`mcsim.engine.padcurves.force_turn`), else ``turn``
+    under a ``preload`` (Pa) its own (:func:`mcsim.engine.pads.curves.force_turn`), else ``turn``
     (d/σ)."""
-    from mcsim.engine import padcurves, padfriction
+    from mcsim.engine.pads import curves as padcurves
+    from mcsim.engine.pads import friction as padfriction
 
     z = s * spec.surface.sigma
     d_turn = turn * spec.surface.sigma

@@ -233,7 +233,9 @@ def finite_pads(spec, restoring_force: float | None, *, preload: float | None = 
         A turn below the spec's lowest separation (no summit below it is drawn), or a pad
         whose approach load stays below P·A down to it.
     """
-    from mcsim.engine import padcurves, padfriction, padload
+    from mcsim.engine.pads import curves as padcurves
+    from mcsim.engine.pads import friction as padfriction
+    from mcsim.engine.pads import load as padload
     from mcsim.studies import padfriction as friction_study
     from mcsim.studies import tail as sampling
     from mcsim.studies.stiction import p_stick_model

@@ -16,7 +16,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from mcsim.engine.designmap import REFERENCE, jkr_summaries
+from mcsim.engine.maps.designmap import REFERENCE, jkr_summaries
 from mcsim.model import units
 from mcsim.model.distributions import GAUSSIAN, Gaussian
 from mcsim.model.errors import MCSimError, ParameterError
@@ -294,7 +294,7 @@ BATCH = 64
 
 
 def _fast(point: Point, config: Config) -> bool:
-    """Whether :func:`mcsim.engine.designmap.jkr_summaries` computes this point: the jkr law
+    """Whether :func:`mcsim.engine.maps.designmap.jkr_summaries` computes this point: the jkr law
     set on Gaussian summit heights, without Monte Carlo, pads or a preload, and either
     without an environment or with one over Gaussian heights about the mean plane (not a
     measured height histogram, which the compiled kernel does not know), with one radius."""
@@ -328,7 +328,7 @@ def evaluate_batch(points: list[Point], config: Config) -> list[dict]:
     """:func:`evaluate` of each point; fast-path points (:func:`_fast`) in one compiled call.
 
     The fast path gives the approach curves and the adhesion summary of
-    :func:`mcsim.engine.designmap.jkr_summaries`: the same quantities as
+    :func:`mcsim.engine.maps.designmap.jkr_summaries`: the same quantities as
     :func:`mcsim.physics.adhesion.adhesion_summary` and :func:`mcsim.gw_curves` (with the
     environment's curves and works where the points have one), equal to them within that
     module's stated tolerances (not bit for bit). A point the fast path leaves to the

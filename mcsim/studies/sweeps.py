@@ -17,7 +17,7 @@ last varies fastest). Every point is one independent task: the GW curves of
 :mod:`mcsim.physics.adhesion` and, for a law set with a net load and a retraction branch,
 :func:`mcsim.physics.adhesion.adhesion_summary` (the numbers ``mcsim analytic`` and ``mcsim
 adhesion`` give for the same inputs, bit for bit; for the ``jkr`` law set without ``mc``
-they come from the compiled batch of :mod:`mcsim.engine.designmap`, equal to them within its
+they come from the compiled batch of :mod:`mcsim.engine.maps.designmap`, equal to them within its
 stated tolerances, many times faster); with ``mc``, one Monte Carlo run
 (:func:`mcsim.simulate`, in memory) whose seed derives from (``seed``, point index)
 alone. Points run on threads or on Dask; the numbers do not depend on where or in what

@@ -294,7 +294,7 @@ def pad_pull_off(spec, s: np.ndarray, *, turn: float, preload: float | None) -> 
     (:func:`mcsim.engine.padcurves.force_turn`), else at ``turn`` (d/σ); its pull-off is
     :func:`mcsim.engine.padcurves.pull_off` after that turn.
     """
-    from mcsim.engine import padcurves
+    from mcsim.engine.pads import curves as padcurves
 
     z = s * spec.surface.sigma
     d_turn = turn * spec.surface.sigma

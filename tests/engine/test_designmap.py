@@ -1,4 +1,4 @@
-"""The compiled design-map path (``mcsim.engine.designmap``) against the reference:
+"""The compiled design-map path (``mcsim.engine.maps.designmap``) against the reference:
 ``adhesion_summary`` and ``gw_curves`` of ``mcsim.physics``, point by point, on surfaces
 drawn at random (not the ones the rule was checked on while it was written).
 
@@ -30,7 +30,7 @@ import numpy as np
 import pytest
 from designmap_checks import assert_agree, inputs, run_each_elsewhere, run_elsewhere, summaries
 
-from mcsim.engine.designmap import NO_REST, OK, jkr_summaries
+from mcsim.engine.maps.designmap import NO_REST, OK, jkr_summaries
 from mcsim.model.presets import MATERIALS, SURFACES
 from mcsim.physics.adhesion import RegimeWarning, adhesion_summary
 from mcsim.physics.analytic import gw_curves
@@ -190,7 +190,7 @@ def test_stale_modules_are_removed_and_the_kernel_compiled_once_is_loaded_after(
     """In a fresh cache, the first call removes the generated modules of earlier mcsim
     versions (and numba's files of them), and compiles the kernel into the cache; a later
     process loads every function from there. The first process's numbers differ from the
-    later one's by rounding (the module docstring of ``mcsim.engine.designmap``), within
+    later one's by rounding (the module docstring of ``mcsim.engine.maps.designmap``), within
     ``AGREE`` (tests/designmap_checks.py), dry and with an environment (each process runs
     both, dry first)."""
     from mcsim.physics.environment import Environment
@@ -213,9 +213,7 @@ def test_stale_modules_are_removed_and_the_kernel_compiled_once_is_loaded_after(
     first = run_each_elsewhere([dry, wet], tmp_path, "first", **environ)
     assert not any(path.exists() for path in stale) and kept.exists()
     cache = tmp_path / "cache" / "designmap"
-    assert [*cache.glob("mapkernel.batch-*.nbi")] and [
-        *cache.glob("mapenvironment.batch_net-*.nbi")
-    ]
+    assert [*cache.glob("kernel.batch-*.nbi")] and [*cache.glob("environment.batch_net-*.nbi")]
     later = run_each_elsewhere([dry, wet], tmp_path, "later", "--from-cache", **environ)
     for got, expected in zip(later, first, strict=True):
         assert_agree(got, expected)
@@ -235,7 +233,7 @@ def _toy_kernel(doc="One line.", scale="2.0", offset=1.0, options=""):
 
 
 def test_the_cache_stamp_follows_the_code_constants_and_options_not_the_docstrings():
-    from mcsim.engine.mapkernel import fingerprint
+    from mcsim.engine.maps.kernel import fingerprint
 
     base = fingerprint(_toy_kernel())
     assert fingerprint(_toy_kernel()) == base

@@ -33,7 +33,7 @@ import numpy as np
 import pytest
 from designmap_checks import assert_agree, inputs, run_elsewhere, summaries
 
-from mcsim.engine.designmap import NO_REST, OK, jkr_summaries
+from mcsim.engine.maps.designmap import NO_REST, OK, jkr_summaries
 from mcsim.model.presets import MATERIALS, SURFACES
 from mcsim.physics.adhesion import RegimeWarning, adhesion_summary
 from mcsim.physics.analytic import gw_curves

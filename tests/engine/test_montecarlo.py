@@ -435,7 +435,7 @@ def test_pull_off_of_each_patch_is_its_most_tensile_retraction_load(toy):
     np.testing.assert_array_equal(po.grid_force, np.maximum(-load.min(axis=1), 0))
     np.testing.assert_array_equal(po.grid_h, s.h[load.argmin(axis=1)])
     assert np.all(po.grid_force > 0)
-    # the exact minimum of each patch's own curve (engine.padcurves) is at least as tensile
+    # the exact minimum of each patch's own curve (engine.pads.curves) is at least as tensile
     assert np.all(po.force >= po.grid_force)
     np.testing.assert_allclose(po.normalised, po.force / (s.area * toy.K), rtol=1e-15)
     assert po.resolution == 2.0  # the widest step of the grid -0.5, 0, 2, 3

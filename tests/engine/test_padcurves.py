@@ -1,4 +1,4 @@
-"""Exact per-pad curves from heights drawn again (issue 23): mcsim.engine.padcurves, Run.pull_off."""
+"""Exact per-pad curves from heights drawn again (issue 23): mcsim.engine.pads.curves, Run.pull_off."""
 
 import dataclasses
 import math
@@ -6,8 +6,10 @@ import math
 import numpy as np
 import pytest
 
-from mcsim.engine import padbounds, padcurves, padload
 from mcsim.engine.montecarlo import run_sums
+from mcsim.engine.pads import bounds as padbounds
+from mcsim.engine.pads import curves as padcurves
+from mcsim.engine.pads import load as padload
 from mcsim.engine.spec import MonteCarloSpec
 from mcsim.model.presets import MATERIALS, SURFACES
 from mcsim.store.results import assemble

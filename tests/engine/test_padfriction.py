@@ -1,4 +1,4 @@
-"""A pad's static friction at its own turn (issue 42, mcsim.engine.padfriction): a pad of
+"""A pad's static friction at its own turn (issue 42, mcsim.engine.pads.friction): a pad of
 identical summits reproduces the single-summit law; the normal load of μ_s."""
 
 import dataclasses
@@ -7,7 +7,9 @@ import math
 import numpy as np
 import pytest
 
-from mcsim.engine import padcurves, padfriction, padload
+from mcsim.engine.pads import curves as padcurves
+from mcsim.engine.pads import friction as padfriction
+from mcsim.engine.pads import load as padload
 from mcsim.engine.spec import MonteCarloSpec
 from mcsim.model.errors import ParameterError
 from mcsim.model.presets import MATERIALS, SURFACES

@@ -12,8 +12,9 @@ from scipy import integrate
 
 import mcsim
 from mcsim.cli.main import main
-from mcsim.engine import padcurves, padload
 from mcsim.engine.montecarlo import run_sums
+from mcsim.engine.pads import curves as padcurves
+from mcsim.engine.pads import load as padload
 from mcsim.engine.spec import MonteCarloSpec
 from mcsim.model.errors import ParameterError
 from mcsim.model.params import RadiusByHeight, combine_surfaces

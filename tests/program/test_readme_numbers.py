@@ -375,7 +375,8 @@ def test_design_map_stiction_boundary():
 
 
 def test_engine_and_file_constants():
-    from mcsim.engine import montecarlo, padload, spec
+    from mcsim.engine import montecarlo, spec
+    from mcsim.engine.pads import load as padload
     from mcsim.model import distributions
     from mcsim.store.schema import MAX_EXPANSION
     from mcsim.studies.ingest import BYTES_PER_PIXEL
@@ -646,7 +647,8 @@ def test_force_control_against_a_common_turn():
     # (about 5 s of CPU)
     import dataclasses
 
-    from mcsim.engine import padcurves, padload
+    from mcsim.engine.pads import curves as padcurves
+    from mcsim.engine.pads import load as padload
     from mcsim.engine.spec import MonteCarloSpec
     from mcsim.physics.loadcontrol import preload_turn
     from mcsim.studies.pads import pad_statistics

@@ -13,7 +13,9 @@ from conftest import run_cli
 from scipy.stats import poisson
 
 import mcsim
-from mcsim.engine import padcurves, padfriction, padload
+from mcsim.engine.pads import curves as padcurves
+from mcsim.engine.pads import friction as padfriction
+from mcsim.engine.pads import load as padload
 from mcsim.engine.spec import MonteCarloSpec
 from mcsim.model.errors import MCSimError, ParameterError
 from mcsim.model.presets import MATERIALS, SURFACES

@@ -375,7 +375,7 @@ def preload_run(tmp_path_factory):
 
 
 def test_each_pad_turns_where_its_own_approach_load_reaches_the_preload(preload_run):
-    from mcsim.engine import padload
+    from mcsim.engine.pads import load as padload
     from mcsim.store.runfile import read_run
 
     run = read_run(preload_run)

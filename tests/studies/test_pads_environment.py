@@ -13,7 +13,8 @@ import dataclasses
 import numpy as np
 import pytest
 
-from mcsim.engine import padcurves, padload
+from mcsim.engine.pads import curves as padcurves
+from mcsim.engine.pads import load as padload
 from mcsim.engine.spec import MonteCarloSpec
 from mcsim.model.presets import MATERIALS, SURFACES
 from mcsim.physics.environment import Environment

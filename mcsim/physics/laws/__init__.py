@@ -23,13 +23,13 @@ values for every finite input (the kernel and the quadrature evaluate them only 
 the edges say a force may act, but vectorised callers evaluate everywhere).
 
 **Pads.** A law set with a retraction and an output ``load`` (a pad's contact law,
-:mod:`mcsim.engine.padcurves`) must also have, on each branch, a *quasiconvex* load: as δ
+:mod:`mcsim.engine.pads.curves`) must also have, on each branch, a *quasiconvex* load: as δ
 grows it is 0 up to the branch's lowest edge (``reach`` on approach, min(``reach``,
 ``break_off``) on retraction), then does not rise (it may jump down and fall) to its
 minimum, then does not fall. On retraction a summit in contact at the turn (δ_max >
 ``jump_in``) follows a branch that does not depend on δ_max, and one out of contact keeps
 its approach load. A humid pad's search bounds its load on these
-(:func:`mcsim.engine.padbounds.branches`); tests/engine/test_padcurves.py checks them for
+(:func:`mcsim.engine.pads.bounds.branches`); tests/engine/test_padcurves.py checks them for
 every registered law set.
 
 Law functions are restricted to a small vocabulary so that the same source also

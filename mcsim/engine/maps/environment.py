@@ -2,7 +2,7 @@
 
 With an environment (``jkr_summaries(..., environment=...)``: van der Waals attraction and
 capillary condensation across the gaps of Gaussian heights about the mean plane,
-:mod:`mcsim.physics.environment`) the steps of :mod:`mcsim.engine.mapkernel` run on the net
+:mod:`mcsim.physics.environment`) the steps of :mod:`mcsim.engine.maps.kernel` run on the net
 load, as ``adhesion_summary(..., environment=...)`` does (:func:`batch_net`, a kernel of
 its own: the dry one is untouched and gives the same bits as without this part). Like the
 dry kernel, these are plain numba functions that the interpreter also runs:
@@ -24,7 +24,7 @@ dry kernel, these are plain numba functions that the interpreter also runs:
   (:func:`_moments`): one exponential per node and point. The 96 nodes agree with the
   reference's 144 to 7e-14 relative at worst, alone or shared, for Rq/D0 = 1–1000 and a
   from −30 to 30 (both ~1e-14 from the integral);
-* **the contact load**: the dry kernel's GW integrals (:func:`mcsim.engine.mapkernel.gw_load`)
+* **the contact load**: the dry kernel's GW integrals (:func:`mcsim.engine.maps.kernel.gw_load`)
   with :data:`S_NODES_NET` nodes instead of 32: the attraction pulls the turn deep, and
   below h ≈ −4 the 32-node rule, whose one panel in u then holds the Gaussian's whole
   width far from its lower end, loses accuracy (measured against mpmath: 5e-12 relative at
@@ -46,7 +46,7 @@ Against ``adhesion_summary`` and ``gw_curves`` with the environment
 draws of nine seeds and its corners; turns down to h = −6.3): curves to 6e-15 of their
 scale, the turn to 6e-13 in h, pull-off, work of separation and its parts and hysteresis to
 2e-11 relative, Kelvin radius, Rq and y_s equal. The dry kernel's root finder and minimiser
-(:func:`~mcsim.engine.mapkernel._root`, :func:`~mcsim.engine.mapkernel._minimum`) run on the
+(:func:`~mcsim.engine.maps.kernel._root`, :func:`~mcsim.engine.maps.kernel._minimum`) run on the
 net load (:func:`_net_load`) given as their first argument.
 """
 
@@ -57,7 +57,7 @@ import math
 import numba
 import numpy as np
 
-from mcsim.engine.mapkernel import (
+from mcsim.engine.maps.kernel import (
     _SQRT_2PI,
     H_TOLERANCE,
     OPTIONS,
@@ -68,13 +68,13 @@ from mcsim.engine.mapkernel import (
     gauss_rule,
     gw_load,
 )
-from mcsim.engine.mapstatus import NO_REST, OK, REFERENCE
+from mcsim.engine.maps.status import NO_REST, OK, REFERENCE
 from mcsim.physics.adhesion import GAUSSIAN_TOP, GRID, PANELS, environment_top_separation
 from mcsim.physics.environment import _TAIL as _GAP_TAIL
 from mcsim.physics.surfaceenvironment import environment_works
 
 #: Gauss–Legendre nodes of the contact's one-panel rule in u (as
-#: :data:`mcsim.engine.mapkernel.S_NODES`, which has 32): the attraction pulls the turn deep
+#: :data:`mcsim.engine.maps.kernel.S_NODES`, which has 32): the attraction pulls the turn deep
 #: (h < −4), where 32 nodes lose accuracy (module docstring).
 S_NODES_NET = 64
 #: Panels of :data:`VDW_NODES` Gauss–Legendre nodes of the van der Waals moment's rule

@@ -2,13 +2,13 @@
 
 In humid air every summit within the caps' band edge attracts at every separation, and the
 attraction turns the pad deeper (hundreds of summits touch), so sampling every interval
-between every summit's edges, as :mod:`mcsim.engine.padcurves` does for a dry pad, costs the
+between every summit's edges, as :mod:`mcsim.engine.pads.curves` does for a dry pad, costs the
 square of the summits. Bounds on the net load over a whole range of separations, proven
 summit by summit from the shape of each branch of the contact law (:func:`branches`,
 :meth:`_Curve.bounds`), leave only the ranges that can hold the turn (:func:`humid_turn`) or
 the pull-off (:func:`humid_pull_off`) to be split; the same tolerance
-(:data:`~mcsim.engine.padload.XTOL`) and, for the pull-off, the same sampling and zoom of the
-intervals left (:func:`mcsim.engine.padcurves.pull_off`). With one summit radius only
+(:data:`~mcsim.engine.pads.load.XTOL`) and, for the pull-off, the same sampling and zoom of the
+intervals left (:func:`mcsim.engine.pads.curves.pull_off`). With one summit radius only
 (:func:`bounded`): with a radius by height each band has its own law, and those pads keep
 the sampling of every interval.
 """
@@ -21,7 +21,7 @@ from typing import NamedTuple
 import numpy as np
 
 from mcsim.engine.kernels import prepared
-from mcsim.engine.padload import (
+from mcsim.engine.pads.load import (
     EDGE,
     SUB,
     XTOL,
@@ -233,10 +233,10 @@ class _Curve:
         rise with δ: :mod:`mcsim.physics.laws.attraction`), so they lie between their sums
         at the two ends; the open gaps' term between the mean of its ends ∓ the spline's
         steepest slope times half the gap (:func:`_open_gap_table`).
-        Compiled: :func:`mcsim.engine.padgaps.environment_bounds` and
-        :func:`~mcsim.engine.padgaps.branch_bounds`.
+        Compiled: :func:`mcsim.engine.pads.gaps.environment_bounds` and
+        :func:`~mcsim.engine.pads.gaps.branch_bounds`.
         """
-        from mcsim.engine import padgaps
+        from mcsim.engine.pads import gaps as padgaps
 
         x, s, setup = self.x, self.sums, self.setup
         upper, lower = np.empty(x.size - 1), np.empty(x.size - 1)
@@ -252,15 +252,15 @@ class _Curve:
     def split(self, gaps, ends=(), force=None, sides=2):
         """New points splitting each gap ``gaps`` (indices; or the range ``ends``): at up to
         :data:`PARTS` − 1 of the cuts inside it, just on either side
-        (:data:`~mcsim.engine.padload.EDGE`; ``sides`` = 1: just below, enough for the
+        (:data:`~mcsim.engine.pads.load.EDGE`; ``sides`` = 1: just below, enough for the
         retraction, whose load jumps up where a summit breaks off, and for its bounds, which
         hold for any points); with none, evenly into :data:`EVEN` parts, or, where the net
         load crosses ``force`` (N) between the gap's ends, on a ladder: at x ± 0.45·XTOL
         σ·r^k about where the straight line between its ends crosses it, r (within
         :data:`LADDER`) from how fast the load changes against how much its parts do, so
         that the gaps of the ladder can be bounded away from the force. Compiled:
-        :func:`mcsim.engine.padgaps.split_points`."""
-        from mcsim.engine import padgaps
+        :func:`mcsim.engine.pads.gaps.split_points`."""
+        from mcsim.engine.pads import gaps as padgaps
 
         side, tol = EDGE * self.setup.sigma, XTOL * self.setup.sigma
         if len(ends):
@@ -300,14 +300,14 @@ def _cuts(z: np.ndarray, low: float, high: float, in_delta) -> np.ndarray:
 
 
 def humid_turn(spec, z, force, bottom, top, reaches):
-    """:func:`~mcsim.engine.padcurves.force_turn` in humid air: the largest d in [bottom, top]
+    """:func:`~mcsim.engine.pads.curves.force_turn` in humid air: the largest d in [bottom, top]
     (m) whose net load ``reaches`` the force, and the load there (N).
 
     Branch and bound: evaluate points, and split every gap above the highest point that
     reaches whose upper bound (:meth:`_Curve.bounds`) still reaches, at the approach's cuts
     while it holds some (jump-in, reach, breakpoints: the caps' forces are continuous), then
     evenly, or on a ladder about the crossing (:meth:`_Curve.split`), down to
-    :data:`~mcsim.engine.padload.XTOL`. Every d above the returned point lies in a gap whose
+    :data:`~mcsim.engine.pads.load.XTOL`. Every d above the returned point lies in a gap whose
     bound stays below the force, or in one narrower than XTOL (tests/engine/test_padcurves.py
     checks both against a dense evaluation).
     """
@@ -365,7 +365,7 @@ def bracket_floors(curve: _Curve, lo, hi) -> np.ndarray:
 def humid_pull_off(spec, z, d_turn, top):
     """The curve of a humid pad's retraction (a :class:`_Curve`, for :func:`bracket_floors`),
     the intervals of it that may hold its pull-off: their points and values as
-    :func:`~mcsim.engine.padload._points` gives them and the lower bound of their values
+    :func:`~mcsim.engine.pads.load._points` gives them and the lower bound of their values
     (N), and the lowest value met (N) and where (m).
 
     Branch and bound on the retraction's cuts (break-off, reach, breakpoints for a summit in
@@ -373,7 +373,7 @@ def humid_pull_off(spec, z, d_turn, top):
     every gap whose lower bound (:meth:`_Curve.bounds`) lies above the lowest value met,
     split the others just below their cuts, until none is left; the intervals left between
     the cuts are then sampled and zoomed on as on the dry path
-    (:func:`~mcsim.engine.padcurves.pull_off`), a zoomed bracket dropped once its own bound
+    (:func:`~mcsim.engine.pads.curves.pull_off`), a zoomed bracket dropped once its own bound
     (:func:`bracket_floors`) lies above the lowest value met.
     """
     setup = _setup(spec)

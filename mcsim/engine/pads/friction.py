@@ -2,8 +2,8 @@
 
 See docs/physics.md, section 'Friction of pads'.
 
-A pad's summits (:func:`mcsim.engine.padload.patch_heights`) stand still at the pad's closest
-approach d_t (under force control its own turn, :func:`mcsim.engine.padcurves.force_turn`).
+A pad's summits (:func:`mcsim.engine.pads.load.patch_heights`) stand still at the pad's closest
+approach d_t (under force control its own turn, :func:`mcsim.engine.pads.curves.force_turn`).
 Its static friction is the sum over the summits in contact there of each one's friction on
 approach (δ_i = z_i − d_t), by the law set's rule (:func:`mcsim.physics.friction.friction_rule`:
 Savkoor–Briggs or τ·area): T_s = Σ T_a(δ_i). With an environment the menisci and van der
@@ -26,7 +26,7 @@ import math
 
 import numpy as np
 
-from mcsim.engine.padload import _band, contact_load, pad_load
+from mcsim.engine.pads.load import _band, contact_load, pad_load
 from mcsim.engine.spec import MonteCarloSpec
 from mcsim.physics.friction import friction_rule, summit_friction
 from mcsim.physics.laws import LawSet, get_law_set

@@ -1,5 +1,5 @@
-"""Status of a design map's point, set by its kernels (:mod:`mcsim.engine.mapkernel`,
-:mod:`mcsim.engine.mapenvironment`) and read by :mod:`mcsim.engine.designmap` and the sweeps.
+"""Status of a design map's point, set by its kernels (:mod:`mcsim.engine.maps.kernel`,
+:mod:`mcsim.engine.maps.environment`) and read by :mod:`mcsim.engine.maps.designmap` and the sweeps.
 
 * :data:`OK`: summarised by the kernel;
 * :data:`NO_REST`: the approach load is never tensile: the surfaces rest apart (zero pull-off,

@@ -30,7 +30,7 @@ Each function follows a step of :func:`mcsim.physics.adhesion.adhesion_summary`:
 
 The root finder and the minimiser take the load they work on as their first argument, a
 compiled function (the contact's :func:`_load` here, the net load with an environment in
-:mod:`mcsim.engine.mapenvironment`), and numba inlines them into each caller
+:mod:`mcsim.engine.maps.environment`), and numba inlines them into each caller
 (``inline="always"``), so the load is resolved where it is compiled: a function passed
 to a function compiled on its own would be passed as the address of its Python object,
 which numba cannot cache on disk.
@@ -59,7 +59,7 @@ import numpy as np
 from numba.core.dispatcher import Dispatcher
 
 from mcsim.engine.kernels import compile_law, stamped_cache
-from mcsim.engine.mapstatus import NO_REST, OK, REFERENCE
+from mcsim.engine.maps.status import NO_REST, OK, REFERENCE
 from mcsim.physics.adhesion import GAUSSIAN_TOP, GRID, PANELS
 from mcsim.physics.laws.jkr import jkr_area, jkr_load
 

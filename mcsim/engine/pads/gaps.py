@@ -1,13 +1,13 @@
 """The bookkeeping of a humid pad's branch and bound, compiled: each gap's bounds and the
-points that split it (:class:`mcsim.engine.padbounds._Curve`), and the open gaps' spline.
+points that split it (:class:`mcsim.engine.pads.bounds._Curve`), and the open gaps' spline.
 
 A humid pad's search evaluates a few hundred points in a handful of rounds, and between
 rounds bounds every gap between two points and splits those that may still hold the turn
 or the pull-off. Written with NumPy, each round is some hundred small array operations,
 which cost more than the kernel's sums; here each is one loop over the gaps, compiled by
 numba (plain functions, no fast-math: the same arithmetic in the same order as the
-formulas of :meth:`~mcsim.engine.padbounds._Curve.bounds` and
-:meth:`~mcsim.engine.padbounds._Curve.split`, where they are proven and documented). This
+formulas of :meth:`~mcsim.engine.pads.bounds._Curve.bounds` and
+:meth:`~mcsim.engine.pads.bounds._Curve.split`, where they are proven and documented). This
 module is imported at a humid pad's first search, so that importing mcsim loads no numba.
 """
 
@@ -48,8 +48,8 @@ def branch_bounds(
     contact load ``whole`` at the points ``x`` (m) and the part ``below_a`` of the summits
     between the branch's lowest edge and its falling point ``a``; ``zs`` their sorted
     heights (m); ``r`` the rising point, ``m`` the least value, ``top`` = max(f(a), f(r)),
-    ``fb`` = f(r) (:class:`~mcsim.engine.padbounds._Branch`). The classes of summits and
-    their bounds are those of :meth:`~mcsim.engine.padbounds._Curve.bounds`; the counts are
+    ``fb`` = f(r) (:class:`~mcsim.engine.pads.bounds._Branch`). The classes of summits and
+    their bounds are those of :meth:`~mcsim.engine.pads.bounds._Curve.bounds`; the counts are
     differences of the numbers of summits at or below x + a and x + r."""
     ra = np.searchsorted(zs, x + a, side="right")
     rr = np.searchsorted(zs, x + r, side="right")
@@ -75,7 +75,7 @@ def split_points(
     a, b, fa, fb, change, cuts, side, sides, force, tol, parts, even, ladder
 ):  # pragma: no cover
     """The points that split each gap [``a``, ``b``] (m), as
-    :meth:`~mcsim.engine.padbounds._Curve.split` describes: at up to ``parts`` − 1 of the
+    :meth:`~mcsim.engine.pads.bounds._Curve.split` describes: at up to ``parts`` − 1 of the
     sorted ``cuts`` (m) more than 2·``side`` (m) inside it, evenly by rank, ``side`` below
     each (``sides`` = 1) or on either side of each (2); with none, where the net load
     (``fa``, ``fb`` at its ends, N) crosses ``force`` (N; NaN: no force), on a ladder about
@@ -131,7 +131,7 @@ def _rungs(width, tol, ratio):  # pragma: no cover
 def piecewise(grid, c, h):  # pragma: no cover
     """The piecewise polynomial of knots ``grid`` and coefficients ``c`` (one row per piece,
     highest power first, in t = h − knot) at each ``h`` (1-D), by Horner's rule; below and
-    above the knots, the end pieces (:func:`mcsim.engine.padload.open_gaps`)."""
+    above the knots, the end pieces (:func:`mcsim.engine.pads.load.open_gaps`)."""
     out = np.empty(h.size)
     inner = grid[1:-1]
     for i in range(h.size):

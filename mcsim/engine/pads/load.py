@@ -12,7 +12,7 @@ per-summit ``load`` (:func:`mcsim.engine.kernels.block_sums`) over those heights
 air less its summits' caps and the open gaps (:func:`open_gaps`). The curve is smooth
 between the separations where a summit crosses an edge of its law set (break-off, jump-in,
 reach, breakpoints: d = z_i − e, :func:`_intervals`), which the searches of
-:mod:`mcsim.engine.padcurves` and :mod:`mcsim.engine.padbounds` sample (:func:`_points`).
+:mod:`mcsim.engine.pads.curves` and :mod:`mcsim.engine.pads.bounds` sample (:func:`_points`).
 """
 
 from __future__ import annotations
@@ -206,10 +206,10 @@ def _gap_work(table: _GapTable, sigma: float, h_t) -> np.ndarray:
 
 def _piecewise(grid: np.ndarray, c: np.ndarray, h: np.ndarray) -> np.ndarray:
     """The piecewise polynomial of knots ``grid`` and coefficients ``c`` (one row per piece,
-    highest power first) at ``h`` (:func:`mcsim.engine.padgaps.piecewise`, compiled: a pad's
+    highest power first) at ``h`` (:func:`mcsim.engine.pads.gaps.piecewise`, compiled: a pad's
     search calls it hundreds of times on a few points, where a
     :class:`scipy.interpolate.PPoly` call costs ten times more)."""
-    from mcsim.engine import padgaps
+    from mcsim.engine.pads import gaps as padgaps
 
     return padgaps.piecewise(grid, c, np.ascontiguousarray(h).ravel()).reshape(np.shape(h))
 

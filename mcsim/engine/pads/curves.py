@@ -1,16 +1,16 @@
 """One pad's turn, pull-off and work of separation, exactly, on its own load curve
-(:mod:`mcsim.engine.padload`).
+(:mod:`mcsim.engine.pads.load`).
 
 * :func:`pull_off`: the pad's pull-off after the closest approach d_t, −min over d ≥ d_t
   of F_r(d) = Σ f_r(z_i − d; z_i − d_t) (docs/physics.md, section 'Finite pads'). The curve is
   smooth between the separations where a summit crosses an edge of its law set
-  (:func:`~mcsim.engine.padload._intervals`). Every such interval is evaluated at its two
-  one-sided ends (:data:`~mcsim.engine.padload.EDGE` inside it: the load jumps there, e.g.
+  (:func:`~mcsim.engine.pads.load._intervals`). Every such interval is evaluated at its two
+  one-sided ends (:data:`~mcsim.engine.pads.load.EDGE` inside it: the load jumps there, e.g.
   JKR's break-off at δ_c, where the most tensile value is the limit from inside) and at
-  :data:`~mcsim.engine.padload.SUB` interior points; the lowest interior points of the
+  :data:`~mcsim.engine.pads.load.SUB` interior points; the lowest interior points of the
   :data:`REFINE` lowest intervals are refined, all at once, by zooming: :data:`ZOOM` points
   between the lowest point's neighbours, the lowest of them, and again, until the bracket
-  is within :data:`~mcsim.engine.padload.XTOL` in h. The retraction runs until every summit
+  is within :data:`~mcsim.engine.pads.load.XTOL` in h. The retraction runs until every summit
   has left the range of its law, whatever the run's grid.
 * :func:`force_turn`: the pad's own closest approach under force control, the largest d
   with Σ f_a(z_i − d) ≥ F (an actuator pressing the pad with F = P·A from far away),
@@ -19,7 +19,7 @@
 * :func:`pad_work`: its work of separation, the integral of its net force, summit by summit.
 
 In humid air (an environment; one summit radius) the turn and the pull-off's intervals come
-from a branch and bound instead (:mod:`mcsim.engine.padbounds`). The dry path keeps its own
+from a branch and bound instead (:mod:`mcsim.engine.pads.bounds`). The dry path keeps its own
 points: its results are bit-identical to what they were (its sums, summed in other batches,
 would move in their last bits).
 """
@@ -31,8 +31,8 @@ import math
 
 import numpy as np
 
-from mcsim.engine import padbounds
-from mcsim.engine.padload import (
+from mcsim.engine.pads import bounds as padbounds
+from mcsim.engine.pads.load import (
     XTOL,
     _band,
     _caps_parts,
@@ -122,7 +122,7 @@ def pad_work(spec: MonteCarloSpec, z: np.ndarray, d_turn: float) -> float:
     (:func:`mcsim.physics.laws.attraction.vdw_summit_work`,
     :func:`~mcsim.physics.laws.attraction.capillary_summit_work`) and the open gaps from the
     turn, the integral of the pressure the curve subtracts
-    (:func:`~mcsim.engine.padload.open_gap_work`).
+    (:func:`~mcsim.engine.pads.load.open_gap_work`).
     """
     work = -float(np.sum(contact_works(spec, z, d_turn))) / spec.area
     if spec.environment is not None:

@@ -9,17 +9,17 @@ Python), with the same law functions (:mod:`mcsim.physics.laws.jkr`). The kernel
 numba functions in two modules, each with its steps, rules and measured accuracy in its
 docstring:
 
-* :mod:`mcsim.engine.mapkernel`: the contact alone (``batch``): the GW integrals, the
+* :mod:`mcsim.engine.maps.kernel`: the contact alone (``batch``): the GW integrals, the
   zero-load turn, the work of separation and hysteresis, the pull-off;
-* :mod:`mcsim.engine.mapenvironment`: with an environment (``batch_net``; van der Waals
+* :mod:`mcsim.engine.maps.environment`: with an environment (``batch_net``; van der Waals
   attraction and capillary condensation on the summits' caps and across the open gaps
   between them, over Gaussian heights, :mod:`mcsim.physics.environment`), the same steps on the net load, and the parameters
-  and outputs of the environment (:func:`~mcsim.engine.mapenvironment.environment_params`).
+  and outputs of the environment (:func:`~mcsim.engine.maps.environment.environment_params`).
 
 This module runs them. They are imported, and their on-disk cache enabled, at the first
 call (:func:`_kernels`; numba compiles them once, 10–40 s, then every process loads them
 from ``<mcsim.engine.kernels.cache_dir()>/designmap``, see
-:func:`mcsim.engine.mapkernel.enable_cache`), so that importing this module loads no numba.
+:func:`mcsim.engine.maps.kernel.enable_cache`), so that importing this module loads no numba.
 The same first call removes what earlier versions left in the cache: the kernel as
 generated modules, ``kernels/mcsim_designmap_jkr_*``, and numba's files of them
 (:func:`_remove_generated_modules`).
@@ -45,7 +45,7 @@ import threading
 import numpy as np
 
 from mcsim.engine.kernels import cache_dir
-from mcsim.engine.mapstatus import NO_REST, OK, REFERENCE
+from mcsim.engine.maps.status import NO_REST, OK, REFERENCE
 from mcsim.model.params import Surface
 from mcsim.physics.adhesion import NODES
 from mcsim.physics.environment import Environment
@@ -68,8 +68,8 @@ def _kernels():
 
 @functools.cache
 def _first_use():
-    from mcsim.engine.mapenvironment import batch_net
-    from mcsim.engine.mapkernel import batch, enable_cache
+    from mcsim.engine.maps.environment import batch_net
+    from mcsim.engine.maps.kernel import batch, enable_cache
 
     _remove_generated_modules()
     enable_cache(batch, batch_net)
@@ -126,8 +126,8 @@ def jkr_summaries(sigma, R, eta, E_star, K, gamma, h, turn=None, environment=Non
         ``work_of_separation_capillary`` (J/m²; with the surfaces in contact at rest their
         sum is ``work_of_separation``), ``kelvin_radius``, ``rq`` and ``summit_offset`` (m).
     """
-    from mcsim.engine.mapenvironment import S_NODES_NET, environment_outputs, environment_params
-    from mcsim.engine.mapkernel import S_NODES, gauss_rule
+    from mcsim.engine.maps.environment import S_NODES_NET, environment_outputs, environment_params
+    from mcsim.engine.maps.kernel import S_NODES, gauss_rule
     from mcsim.physics.laws.jkr import reduced_constants
 
     sigma, R, eta, E_star, K, gamma = np.broadcast_arrays(
