@@ -93,7 +93,7 @@ def use(numpy_baseline: bool) -> None:
     padload.prepared = padbounds.prepared = (
         kernels.prepared_numpy if numpy_baseline else kernels.prepared
     )
-    padload._split_laws.cache_clear()
+    padload.split_laws.cache_clear()
     padbounds._setup.cache_clear()
 
 

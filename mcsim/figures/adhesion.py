@@ -6,7 +6,7 @@ from collections.abc import Mapping
 
 import numpy as np
 
-from mcsim.figures.style import _COLOURS, _LINESTYLES, X_LABEL, number
+from mcsim.figures.style import COLOURS, LINESTYLES, X_LABEL, number
 
 
 def adhesion_figure(surface, material, law, summary=None, *, points: int = 400):
@@ -136,8 +136,8 @@ def fuller_tabor_figure(theta, pull_off: Mapping[str, np.ndarray], *, title: str
     ax = fig.add_subplot()
     for position, (label, values) in enumerate(pull_off.items()):
         ax.plot(theta, values, marker="o", ms=3.5, lw=1.6, label=label,
-                color=_COLOURS[position % len(_COLOURS)],
-                linestyle=_LINESTYLES[position % len(_LINESTYLES)])  # fmt: skip
+                color=COLOURS[position % len(COLOURS)],
+                linestyle=LINESTYLES[position % len(LINESTYLES)])  # fmt: skip
     ax.set_xscale("log")
     ax.set_ylim(0, 1.05)
     ax.set_xlabel(r"Adhesion parameter $\theta = E^* \sigma^{3/2} / (R^{1/2} w)$")

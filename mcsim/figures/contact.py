@@ -22,7 +22,7 @@ def contact_figure(result):
     """
     from matplotlib.figure import Figure
 
-    from mcsim.figures.style import _COLOURS
+    from mcsim.figures.style import COLOURS
 
     fig = Figure(figsize=(10, 4.2), layout="constrained")
     left, right = fig.subplots(1, 2)
@@ -39,8 +39,8 @@ def contact_figure(result):
                    f"{result.area_fraction[-1]:.3g}", fontsize="medium")  # fmt: skip
     x = result.pressure / result.E_star
     pixel = f"{result.dx * 1e9:.3g} nm pixels, {'periodic' if result.periodic else 'zero-padded'}"
-    right.loglog(x, result.area_fraction, "o-", color=_COLOURS[0], label=f"exact ({pixel})")
-    right.loglog(x, result.gw_area_fraction, "s--", color=_COLOURS[1], label="GW (Hertz summits)")
+    right.loglog(x, result.area_fraction, "o-", color=COLOURS[0], label=f"exact ({pixel})")
+    right.loglog(x, result.gw_area_fraction, "s--", color=COLOURS[1], label="GW (Hertz summits)")
     right.set_xlabel(r"Nominal pressure over contact modulus $p/E^*$")
     right.set_ylabel(r"Real contact area $A_r/A_n$")
     right.legend(fontsize="small")
@@ -86,7 +86,7 @@ def adhesion_figure(result):
     """
     from matplotlib.figure import Figure
 
-    from mcsim.figures.style import _COLOURS
+    from mcsim.figures.style import COLOURS
 
     cycle = result.cycle
     fig = Figure(figsize=(10, 4.4), layout="constrained")
@@ -97,9 +97,9 @@ def adhesion_figure(result):
     for ax, values in ((left, np.concatenate([approach[:, 1], retract[:, 1]])),
                        (right, [summary["pull_off"], *(g.pull_off for g in result.gw)])):  # fmt: skip
         factor, unit = _pressure_scale(values)
-        ax.plot(approach[:, 0] * 1e9, approach[:, 1] / factor, "v-", ms=3, color=_COLOURS[0],
+        ax.plot(approach[:, 0] * 1e9, approach[:, 1] / factor, "v-", ms=3, color=COLOURS[0],
                 label="exact, approach")  # fmt: skip
-        ax.plot(retract[:, 0] * 1e9, retract[:, 1] / factor, "^-", ms=3, color=_COLOURS[1],
+        ax.plot(retract[:, 0] * 1e9, retract[:, 1] / factor, "^-", ms=3, color=COLOURS[1],
                 label="exact, retraction")  # fmt: skip
         for j in cycle.jumps:
             ax.plot([j.position_before * 1e9, j.position_after * 1e9],
@@ -113,7 +113,7 @@ def adhesion_figure(result):
                         mfc="none", ms=10, color="k",
                         label=f"exact pull-off {summary['pull_off'] / factor:.3g} {unit}")  # fmt: skip
             for k, g in enumerate(result.gw):
-                ax.plot(g.position * 1e9, g.pressure / factor, "--", color=_COLOURS[2 + k],
+                ax.plot(g.position * 1e9, g.pressure / factor, "--", color=COLOURS[2 + k],
                         label=f"GW {g.law} (retraction), pull-off {g.pull_off / factor:.3g} {unit}")  # fmt: skip
             pulling = retract[retract[:, 1] < -0.01 * summary["pull_off"], 0]
             if pulling.size:  # where the exact loop pulls by more than 1 % of its pull-off

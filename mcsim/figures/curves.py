@@ -26,8 +26,8 @@ from mcsim.figures.style import (
     LABELS,
     LOG_QUANTITIES,
     X_LABEL,
-    _errorbars,
-    _mc_legend,
+    errorbars,
+    mc_legend,
     surface_label,
     surface_style,
 )
@@ -110,7 +110,7 @@ def curve_figure(
         if name in mc:
             h_all.append(_overlay(ax, mc[name], quantity, style["color"], log))
     if mc:
-        handles += _mc_legend(any(np.any(r.get("few", False)) for r in mc.values()))
+        handles += mc_legend(any(np.any(r.get("few", False)) for r in mc.values()))
 
     h_all = np.concatenate([np.ravel(x) for x in h_all])
     # h decreasing, left to right: the surfaces approach; a margin keeps end markers whole
@@ -164,7 +164,7 @@ def _overlay(ax, result: Mapping, quantity: str, colour: str, log: bool) -> np.n
             f"Monte Carlo {quantity!r}: `h`, `mean` and `se` must have one shape, "
             f"got {h.shape}, {mean.shape} and {np.shape(se)}."
         )
-    _errorbars(ax, h, mean, se, log, colour, few=result.get("few"))
+    errorbars(ax, h, mean, se, log, colour, few=result.get("few"))
     return h
 
 

@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from mcsim.figures.sweeps import _scaled, axis_label, is_log_grid, pads_title, pads_varied
+from mcsim.figures.sweeps import axis_label, display_values, is_log_grid, pads_title, pads_varied
 
 #: z of the two-sided 95 % interval of the mean.
 Z95 = 1.959963984540054
@@ -39,10 +39,10 @@ def friction_figure(sweep):
     slip = "p_slip" in sweep.data
     fig = Figure(figsize=(7, 7.5 if slip else 4.5), layout="constrained")
     axes = fig.subplots(2 if slip else 1, 1, sharex=True, squeeze=False)[:, 0]
-    x = _scaled(sweep, dims[0])
+    x = display_values(sweep, dims[0])
     lines = [(slice(None), "")]
     if len(dims) == 2:
-        values = _scaled(sweep, dims[1])
+        values = display_values(sweep, dims[1])
         lines = [((slice(None), j), f"{dims[1]} = {v:.4g}") for j, v in enumerate(values)]
     n = sweep.attrs["pads"]
     d = sweep.data

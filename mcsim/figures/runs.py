@@ -8,13 +8,13 @@ import numpy as np
 
 from mcsim.engine.statistics import MIN_CONTACTS
 from mcsim.figures.style import (
-    _COLOURS,
+    COLOURS,
     LABELS,
     LOG_QUANTITIES,
     MC_LABEL,
     X_LABEL,
-    _errorbars,
-    _mc_legend,
+    errorbars,
+    mc_legend,
 )
 from mcsim.model.errors import MCSimError
 
@@ -51,7 +51,7 @@ def panel_figure(lines, runs, info: list[str]):
         for run, colour, label in runs:
             few = run.summary.expected_contacts < MIN_CONTACTS
             few_any |= bool(np.any(few))
-            _errorbars(
+            errorbars(
                 ax, run.h, run.summary.mean[q], run.summary.se[q], log, colour, label=label, few=few
             )
         if not any(np.any(np.isfinite(np.asarray(v[q], dtype=float))) for _, v, *_ in lines):
@@ -66,7 +66,7 @@ def panel_figure(lines, runs, info: list[str]):
         ax.grid(True, alpha=0.4)
     handles, _ = axes[0].get_legend_handles_labels()
     if few_any:
-        handles += _mc_legend(True)[1:]
+        handles += mc_legend(True)[1:]
     axes[5].axis("off")  # the spare panel holds the inputs and the legend: no curve hidden
     axes[5].text(0, 1, "\n".join(info), va="top", fontsize=9, transform=axes[5].transAxes)
     axes[5].legend(handles=handles, fontsize=8, loc="lower left", frameon=False)
@@ -114,7 +114,7 @@ def run_figure(run):
         name = r.path.name if r.path else "(not saved)"
         fine = np.linspace(spec.h.max(), spec.h.min(), 200)
         curves = expected_values(spec, gw_curves(spec.surface, spec.material, fine, spec.law))
-        colour = _COLOURS[i % len(_COLOURS)]
+        colour = COLOURS[i % len(COLOURS)]
         if len(runs) == 1:
             lines.append((fine, curves, {"color": "0.2"}, "analytic GW"))
             overlays.append((r, colour, MC_LABEL))
@@ -185,18 +185,18 @@ def branch_runs_figure(runs):
         fine = np.linspace(spec.h.max(), spec.h.min(), 200)
         curves = analytic_curves(spec, fine)
         few = run.summary.expected_contacts < MIN_CONTACTS
-        colour = _COLOURS[i % len(_COLOURS)]
+        colour = COLOURS[i % len(COLOURS)]
         who = "" if len(runs) == 1 else f"{run.path.name if run.path else f'run {i + 1}'}, "
         M = spec.h.size
         for k, branch in enumerate(spec.branches):
             analytic = expected_values(spec, curves[k])
             rows = slice(k * M, (k + 1) * M)
-            style = {"color": colour if len(runs) > 1 else _COLOURS[k], "ls": ("-", "--")[k]}
+            style = {"color": colour if len(runs) > 1 else COLOURS[k], "ls": ("-", "--")[k]}
             for ax, q in zip(axes, names):
                 mean, se = run.summary.mean[q][rows], run.summary.se[q][rows]
                 drawn[q] += [analytic[q], mean]
                 ax.plot(fine, analytic[q], lw=1.6, label=f"analytic GW, {who}{branch}", **style)
-                _errorbars(ax, spec.h, mean, se, False, style["color"],
+                errorbars(ax, spec.h, mean, se, False, style["color"],
                            label=f"Monte Carlo mean ± 2 SE, {who}{branch}", few=few[rows])  # fmt: skip
         info += [
             f"run: {run.path.name if run.path else '(not saved)'}",

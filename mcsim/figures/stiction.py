@@ -15,7 +15,14 @@ from __future__ import annotations
 
 import numpy as np
 
-from mcsim.figures.sweeps import _edges, _scaled, axis_label, is_log_grid, pads_title, pads_varied
+from mcsim.figures.sweeps import (
+    axis_label,
+    cell_edges,
+    display_values,
+    is_log_grid,
+    pads_title,
+    pads_varied,
+)
 
 #: Probabilities drawn as contours on a 2-D map.
 LEVELS = (1e-6, 1e-3, 0.5)
@@ -50,7 +57,7 @@ def _title(sweep) -> str:
 def _line(sweep, dim: str):
     from matplotlib.figure import Figure
 
-    x = _scaled(sweep, dim)
+    x = display_values(sweep, dim)
     d = sweep.data
     floor = _floor(sweep)  # p = 0 drawn at the floor, marked as an upper bound
     p = np.maximum(d["p_stick"], floor)
@@ -112,14 +119,14 @@ def _map(sweep, dims: list[str]):
     from matplotlib.figure import Figure
 
     (xd, yd), d = dims, sweep.data
-    x, y = _scaled(sweep, xd), _scaled(sweep, yd)
+    x, y = display_values(sweep, xd), display_values(sweep, yd)
     floor = _floor(sweep)
     p = np.maximum(d["p_stick"], floor).T  # rows: y
     fig = Figure(figsize=(7.5, 5.5), layout="constrained")
     ax = fig.subplots()
     logx, logy = is_log_grid(sweep.coords[xd]), is_log_grid(sweep.coords[yd])
-    mesh = ax.pcolormesh(_edges(x, logx), _edges(y, logy), p, norm=LogNorm(vmin=floor, vmax=1),
-                         cmap="viridis", shading="flat")  # fmt: skip
+    mesh = ax.pcolormesh(cell_edges(x, logx), cell_edges(y, logy), p,
+                         norm=LogNorm(vmin=floor, vmax=1), cmap="viridis", shading="flat")  # fmt: skip
     fig.colorbar(mesh, ax=ax, label="probability that a pad sticks, p_stick (Monte Carlo)")
     if x.size > 1 and y.size > 1:
         names = {1e-6: "1e-6", 1e-3: "1e-3", 0.5: "0.5: stiction boundary"}

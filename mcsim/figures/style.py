@@ -39,12 +39,12 @@ X_LABEL = r"Dimensionless mean separation $h = d/\sigma$"
 LOG_QUANTITIES = frozenset({"P", "F", "total", "T"})
 
 
-# Colour-blind-safe colours (Okabe & Ito 2008) and line styles: the paper's surfaces
-# first, in its order, so each keeps its colour in every figure; others follow.
-_COLOURS = ("#0072B2", "#E69F00", "#009E73", "#CC79A7", "#D55E00", "#56B4E9", "#000000")
+#: Colour-blind-safe colours (Okabe & Ito 2008): the paper's surfaces
+#: first, in its order, so each keeps its colour in every figure; others follow.
+COLOURS = ("#0072B2", "#E69F00", "#009E73", "#CC79A7", "#D55E00", "#56B4E9", "#000000")
 
-
-_LINESTYLES = ("-", "--", "-.", ":")
+#: Line styles, cycled with :data:`COLOURS` (:func:`surface_style`).
+LINESTYLES = ("-", "--", "-.", ":")
 
 
 def surface_style(name: str, position: int = 0) -> dict[str, str]:
@@ -68,8 +68,8 @@ def surface_style(name: str, position: int = 0) -> dict[str, str]:
     else:
         index = len(PAPER_SURFACES) + position
     return {
-        "color": _COLOURS[index % len(_COLOURS)],
-        "linestyle": _LINESTYLES[index % len(_LINESTYLES)],
+        "color": COLOURS[index % len(COLOURS)],
+        "linestyle": LINESTYLES[index % len(LINESTYLES)],
     }
 
 
@@ -126,7 +126,9 @@ MC_LABEL = "Monte Carlo mean ± 2 SE"
 FEW_LABEL = f"Monte Carlo, < {MIN_CONTACTS} contacts expected: no z-score"
 
 
-def _mc_legend(few: bool) -> list:
+def mc_legend(few: bool) -> list:
+    """Legend handles of the Monte Carlo markers of :func:`errorbars`: open circles, and
+    with ``few`` the crosses of points with too few expected contacts for a z-score."""
     from matplotlib.lines import Line2D
 
     style = {"color": "0.3", "linestyle": "none", "markerfacecolor": "none"}
@@ -136,7 +138,7 @@ def _mc_legend(few: bool) -> list:
     return handles
 
 
-def _errorbars(ax, h, mean, se, log: bool, colour: str, label: str | None = None, few=None) -> None:
+def errorbars(ax, h, mean, se, log: bool, colour: str, label: str | None = None, few=None) -> None:
     """Monte Carlo means as open markers with ±2 SE bars; undefined (and, on a log
     axis, zero) means are left out, and bars are clipped above zero on a log axis.
     Points flagged in ``few`` (too few expected contacts for a normal z-score) are

@@ -41,7 +41,7 @@ import math
 
 import numpy as np
 
-from mcsim.figures.style import _COLOURS, _LINESTYLES, _errorbars
+from mcsim.figures.style import COLOURS, LINESTYLES, errorbars
 from mcsim.model.errors import ParameterError
 from mcsim.model.presets import PAPER_SURFACES, SURFACES
 from mcsim.physics.adhesion import DMT_BELOW, JKR_ABOVE
@@ -235,7 +235,9 @@ def _readable_log_ticks(axis) -> None:
     axis.set_minor_formatter(NullFormatter())
 
 
-def _scaled(sweep, dim: str) -> np.ndarray:
+def display_values(sweep, dim: str) -> np.ndarray:
+    """The grid values of ``dim`` in its display unit (:data:`DISPLAY`); text (a law set's
+    name) as strings."""
     values = sweep.coords[dim]
     if values.dtype.kind in "US" or values.dtype == object:
         return values.astype(str)
@@ -307,7 +309,7 @@ def _lines_figure(sweep, dims: list[str], rows: list[int], name: str):
     other = next((d for d in dims if d != x_dim), None)
     panels = _panels(sweep, name)
     h_grid = sweep.coords["h"]
-    x = _scaled(sweep, x_dim)
+    x = display_values(sweep, x_dim)
     categorical = x.dtype.kind in "US"
     log_x = not categorical and is_log_grid(sweep.coords[x_dim])
     fig = Figure(figsize=(4.2 * len(panels) + 0.6, 4.6), layout="constrained")
@@ -321,11 +323,14 @@ def _lines_figure(sweep, dims: list[str], rows: list[int], name: str):
         shades = _shades(sweep, other) if len(lines) > MAX_LEGEND_LINES else None
         for i, (label, y, row, index) in enumerate(lines):
             style = {
-                "color": _COLOURS[i % len(_COLOURS)],
-                "linestyle": _LINESTYLES[i % len(_LINESTYLES)],
+                "color": COLOURS[i % len(COLOURS)],
+                "linestyle": LINESTYLES[i % len(LINESTYLES)],
             }
             if shades is not None:  # many lines: one colour scale, a colour bar for a legend
-                style = {"color": shades.to_rgba(_scaled(sweep, other)[index]), "linestyle": "-"}
+                style = {
+                    "color": shades.to_rgba(display_values(sweep, other)[index]),
+                    "linestyle": "-",
+                }
                 label = None
             y = np.where(y > 0, y, np.nan) if log_y else y
             marker = "o" if categorical or x.size <= 12 else None
@@ -336,7 +341,7 @@ def _lines_figure(sweep, dims: list[str], rows: list[int], name: str):
             if per_h and mc in sweep.data:
                 mean = _take(sweep, mc, x_axis, index)[:, row]
                 se = _take(sweep, f"{mc}_se", x_axis, index)[:, row]
-                _errorbars(ax, x, mean, se, log_y, style["color"],
+                errorbars(ax, x, mean, se, log_y, style["color"],
                            label="Monte Carlo mean ± 2 SE" if i == 0 else None)  # fmt: skip
         if log_x:
             ax.set_xscale("log")
@@ -387,8 +392,8 @@ def _mark_below(ax, x, lines, shades, sweep, other) -> int:
         if not low.any():
             continue
         count += int(low.sum())
-        colour = _COLOURS[i % len(_COLOURS)] if shades is None else shades.to_rgba(
-            _scaled(sweep, other)[index])  # fmt: skip
+        colour = COLOURS[i % len(COLOURS)] if shades is None else shades.to_rgba(
+            display_values(sweep, other)[index])  # fmt: skip
         (mark,) = ax.plot(x[low], np.full(low.sum(), bottom), "v", color=colour, ms=6,
                           clip_on=False, zorder=6, label="_below")  # fmt: skip
         mark.set_gid("below-axis")
@@ -404,7 +409,7 @@ def _shades(sweep, other):
     for a log grid; None for a categorical input (law sets: a legend stays readable)."""
     from matplotlib import cm, colors
 
-    values = _scaled(sweep, other)
+    values = display_values(sweep, other)
     if values.dtype.kind in "US":
         return None
     log = is_log_grid(sweep.coords[other])
@@ -420,7 +425,7 @@ def _line_set(sweep, key, x_axis, other, rows, per_h):
             return [(None, y, None, None)]
         h = sweep.coords["h"]
         return [(f"$d/\\sigma$ = {h[r]:.3g}", y[:, r], r, None) for r in rows]
-    values = _scaled(sweep, other)
+    values = display_values(sweep, other)
     scale_unit = DISPLAY.get(other, (1.0, ""))[1]
     out = []
     for j, v in enumerate(values):
@@ -479,7 +484,7 @@ def _table1_points(sigma: np.ndarray) -> dict[str, int]:
 # --- maps -----------------------------------------------------------------------------------
 
 
-def _edges(values: np.ndarray, log: bool) -> np.ndarray:
+def cell_edges(values: np.ndarray, log: bool) -> np.ndarray:
     """Cell edges around grid values: midpoints (geometric on a log axis)."""
     v = np.log(values) if log else values.astype(float)
     if v.size == 1:
@@ -501,9 +506,9 @@ def _map_figure(sweep, dims: list[str], row: int, name: str):
     x_dim, y_dim = dims
     panels = _panels(sweep, name)[:2]
     h = float(sweep.coords["h"][row])
-    x, y = _scaled(sweep, x_dim), _scaled(sweep, y_dim)
+    x, y = display_values(sweep, x_dim), display_values(sweep, y_dim)
     log_x, log_y = is_log_grid(sweep.coords[x_dim]), is_log_grid(sweep.coords[y_dim])
-    xe, ye = _edges(x, log_x), _edges(y, log_y)
+    xe, ye = cell_edges(x, log_x), cell_edges(y, log_y)
     transpose = sweep.grid.index(x_dim) < sweep.grid.index(y_dim)
 
     def grid_values(key):  # rows over y, columns over x (as pcolormesh takes them)

@@ -7,7 +7,7 @@ import math
 import numpy as np
 
 from mcsim.figures.runs import inputs_text, panel_figure
-from mcsim.figures.style import _COLOURS, MC_LABEL
+from mcsim.figures.style import COLOURS, MC_LABEL
 from mcsim.model.errors import MCSimError
 
 #: Most bars a histogram figure draws; finer histograms are drawn merged (same probability).
@@ -77,9 +77,9 @@ def histogram_figure(empirical, gaussian_sigma: float, *, title: str | None = No
     )
     fig = Figure(figsize=(10, 4), layout="constrained")
     for ax, log in zip(fig.subplots(1, 2), (False, True)):
-        ax.stairs(density_nm, edges_nm, fill=True, color=_COLOURS[0], alpha=0.45,
+        ax.stairs(density_nm, edges_nm, fill=True, color=COLOURS[0], alpha=0.45,
                   label=f"measured ({empirical.densities.size} bins{shown})")  # fmt: skip
-        ax.plot(z, gauss, color=_COLOURS[4], lw=1.5, label=f"Gaussian, $\\sigma$ = {s_nm:.4g} nm")
+        ax.plot(z, gauss, color=COLOURS[4], lw=1.5, label=f"Gaussian, $\\sigma$ = {s_nm:.4g} nm")
         ax.set_xlabel("Height above the mean plane $z$ (nm)")
         ax.set_ylabel("Probability density (1/nm)")
         ax.grid(True, alpha=0.4)
@@ -120,9 +120,9 @@ def comparison_figure(surface_measured, surface_gaussian, material, h, run=None)
 
     h = np.sort(np.atleast_1d(np.asarray(h, dtype=float)))[::-1]
     lines = [
-        (h, gw_curves(surface_measured, material, h).columns(), {"color": _COLOURS[0], "linestyle": "-"},
+        (h, gw_curves(surface_measured, material, h).columns(), {"color": COLOURS[0], "linestyle": "-"},
          "measured heights (analytic)"),
-        (h, gw_curves(surface_gaussian, material, h).columns(), {"color": _COLOURS[4], "linestyle": "--"},
+        (h, gw_curves(surface_gaussian, material, h).columns(), {"color": COLOURS[4], "linestyle": "--"},
          "Gaussian GW, same ($\\sigma$, $R$, $\\eta$)"),
     ]  # fmt: skip
     info = [
@@ -130,5 +130,5 @@ def comparison_figure(surface_measured, surface_gaussian, material, h, run=None)
         "forces divided by $A_n K$ (Eqs. 3, 5, 7)",
         "h = d/$\\sigma$, d from the mean summit height",
     ]
-    overlay = [] if run is None else [(run, _COLOURS[0], MC_LABEL)]
+    overlay = [] if run is None else [(run, COLOURS[0], MC_LABEL)]
     return panel_figure(lines, overlay, info)

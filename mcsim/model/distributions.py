@@ -145,7 +145,7 @@ class Gaussian:
         return scale, integral
 
 
-def _panels(breaks: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
+def panel_edges(breaks: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
     """Panel edges per row: ``lo``, the breakpoints strictly inside (lo, hi), ``hi``.
 
     Breakpoints outside the range are clipped onto its ends (empty panels), so every
@@ -168,7 +168,7 @@ def _piecewise_gaussian(g: LawIntegrand, h: np.ndarray, breaks) -> tuple[np.ndar
     peak = np.maximum(s_lo, 0.0)
     lo = np.maximum(s_lo, -np.sqrt(2 * _TAIL)) - h
     hi = np.sqrt(peak**2 + 2 * _TAIL) - h
-    edges = _panels(breaks, lo, hi)
+    edges = panel_edges(breaks, lo, hi)
     a = edges[:, :-1, None]
     span = np.sqrt(edges[:, 1:] - edges[:, :-1])[..., None]
     u = span * _U_NODES

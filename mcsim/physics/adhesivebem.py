@@ -199,7 +199,7 @@ def check_inputs(heights, pixel_size, E_star: float, law: Interaction) -> np.nda
         raise ParameterError(f"`E_star` must be positive and finite, Pa, got {E_star!r}")
     if not isinstance(law, MaugisDugdale | Exponential):
         raise ParameterError(f"`law` must be MaugisDugdale or Exponential, got {law!r}")
-    dx = max(bem._pixels(pixel_size))
+    dx = max(bem.pixel_sides(pixel_size))
     if law.range < MIN_RANGE_PER_PIXEL * dx:
         raise ParameterError(
             f"`range` = {law.range:.4g} m is below {MIN_RANGE_PER_PIXEL:g} of the pixel size "
@@ -294,7 +294,7 @@ class Problem:
                  subpixel: int = 1):  # fmt: skip
         z = check_inputs(heights, pixel_size, E_star, law)
         check_subpixel(subpixel)
-        dx, dy = bem._pixels(pixel_size)
+        dx, dy = bem.pixel_sides(pixel_size)
         self.law, self.periodic, self.shape = law, periodic, z.shape
         self.subpixel = int(subpixel)
         self.length, self.traction = law.range, law.max_traction

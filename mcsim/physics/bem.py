@@ -78,7 +78,7 @@ class ContactSolution:
     converged: bool
 
 
-def _pixels(pixel_size) -> tuple[float, float]:
+def pixel_sides(pixel_size) -> tuple[float, float]:
     """``(dx, dy)``, m, from a scalar or a pair; refused unless finite and positive."""
     dx, dy = np.broadcast_to(np.asarray(pixel_size, dtype=float), (2,))
     if not (np.isfinite(dx) and np.isfinite(dy) and dx > 0 and dy > 0):
@@ -103,7 +103,7 @@ def periodic_response(shape: tuple[int, int], pixel_size, E_star: float) -> np.n
     ndarray
         Multiplier of the ``scipy.fft.rfft2`` of the pressure, m/Pa; zero at q = 0.
     """
-    dx, dy = _pixels(pixel_size)
+    dx, dy = pixel_sides(pixel_size)
     ny, nx = shape
     qy = 2 * np.pi * fft.fftfreq(ny, dy)
     qx = 2 * np.pi * fft.rfftfreq(nx, dx)
@@ -144,7 +144,7 @@ def padded_response(shape: tuple[int, int], pixel_size, E_star: float) -> np.nda
     ndarray
         ``scipy.fft.rfft2`` of the kernel on the (2 ny, 2 nx) grid, m/Pa.
     """
-    dx, dy = _pixels(pixel_size)
+    dx, dy = pixel_sides(pixel_size)
     ny, nx = shape
     iy, ix = np.arange(2 * ny), np.arange(2 * nx)
     y = (np.where(iy < ny, iy, iy - 2 * ny) * dy)[:, None]

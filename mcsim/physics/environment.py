@@ -92,8 +92,10 @@ MAX_HAMAKER = 1e-16
 # _PANELS equal panels of _NODES_PER_PANEL nodes in the mapped variable ξ = τ + ln τ.
 _PANELS = 12
 _NODES_PER_PANEL = 12
-# The Gaussian weight is cut where it has fallen by e^-_TAIL (≈ 1e-26) from its peak.
-_TAIL = 60.0
+#: The van der Waals moments' Gaussian weight is cut where it has fallen by e^-VDW_TAIL
+#: (≈ 1e-26) from its peak (here and in the design map's kernel,
+#: :mod:`mcsim.engine.maps.environment`).
+VDW_TAIL = 60.0
 
 
 def _unit_rule() -> tuple[np.ndarray, np.ndarray]:
@@ -566,9 +568,12 @@ def _gaussian_gap_moment(D, rq, cutoff, n: int, b):
     """
     a = (D - cutoff) / rq
     shift = cutoff / rq
-    t_lo = np.maximum(a - math.sqrt(2 * _TAIL), 0.0)
-    # Above a the weight φ(a − t) falls by e^-_TAIL at t² − 2 a t = 2 _TAIL (a < 0: steeply).
-    t_hi = np.where(a >= 0, a + math.sqrt(2 * _TAIL), 2 * _TAIL / (np.sqrt(a * a + 2 * _TAIL) - a))
+    t_lo = np.maximum(a - math.sqrt(2 * VDW_TAIL), 0.0)
+    # Above a the weight φ(a − t) falls by e^-VDW_TAIL at t² − 2 a t = 2 VDW_TAIL
+    # (a < 0: steeply).
+    t_hi = np.where(
+        a >= 0, a + math.sqrt(2 * VDW_TAIL), 2 * VDW_TAIL / (np.sqrt(a * a + 2 * VDW_TAIL) - a)
+    )
     tau_lo, tau_hi = t_lo + shift, t_hi + shift
     xi_lo = tau_lo + np.log(tau_lo)
     span = tau_hi + np.log(tau_hi) - xi_lo

@@ -55,10 +55,10 @@ from mcsim.physics.adhesivecycle import AdhesiveCycle
 from mcsim.physics.interactions import Exponential, Interaction, MaugisDugdale
 from mcsim.physics.stickiness import Stickiness, stickiness
 from mcsim.studies.ingest import (
-    _is_histogram_file,
     decide_periodic,
     default_level,
     ingest_file,
+    is_histogram_file,
     read_map,
 )
 from mcsim.studies.ingested import LEVELS, FacingMap
@@ -527,7 +527,7 @@ def adhesive_contact(
         raise ParameterError(f"pressure = {pressure!r} Pa is out of range (allowed: (0, E* = "
                              f"{material.E_star:g}) Pa)")  # fmt: skip
     law_ = interaction(law, w, range_)
-    if _is_histogram_file(Path(path)):
+    if is_histogram_file(Path(path)):
         raise ParameterError(f"{path}: a height histogram has no map to press: give a height map")
     hmap = read_map(path, unit=unit, pixel_size=pixel_size, channel=channel, counter=counter)
     periodic, reason = decide_periodic(hmap.heights, periodic)

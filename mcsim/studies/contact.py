@@ -72,10 +72,10 @@ from mcsim.physics.analytic import hertz_area_fraction
 from mcsim.physics.environment import Environment, as_environment, vdw_flat_pressure
 from mcsim.physics.loadcontrol import load_control
 from mcsim.studies.ingest import (
-    _is_histogram_file,
     decide_periodic,
     default_level,
     ingest_file,
+    is_histogram_file,
     read_map,
 )
 from mcsim.studies.ingested import LEVELS, FacingMap
@@ -350,7 +350,7 @@ def contact_map(
     if p[-1] >= material.E_star:  # linear elasticity (small strains) ends long before
         raise ParameterError(f"pressure = {p[-1]:g} Pa is out of range (allowed: below E* = "
                              f"{material.E_star:g} Pa, where small-strain elasticity holds)")  # fmt: skip
-    if _is_histogram_file(Path(path)):
+    if is_histogram_file(Path(path)):
         raise ParameterError(f"{path}: a height histogram has no map to press: give a height map")
     hmap = read_map(path, unit=unit, pixel_size=pixel_size, channel=channel, counter=counter)
     periodic, reason = decide_periodic(hmap.heights, periodic)

@@ -101,7 +101,7 @@ _FORMAT_NAMES = {
 _SPLIT = re.compile(r"[,;\s]+")
 
 
-def _is_histogram_file(path: Path) -> bool:
+def is_histogram_file(path: Path) -> bool:
     """A text histogram: ``.hist``/``.tsv``, or a text file with at most 3 numeric columns."""
     suffix = path.suffix.lower()
     if suffix in (".hist", ".tsv"):
@@ -256,10 +256,10 @@ def ingest_file(
     if counter is not None and calibrate is not None:
         raise ParameterError(f"{path}: --calibrate solves the map file itself: not with a "
                              "counter-surface (ingest the gap without --calibrate)")  # fmt: skip
-    if counter is not None and _is_histogram_file(path):
+    if counter is not None and is_histogram_file(path):
         raise ParameterError(f"{path}: a text histogram has no map: a counter-surface combines "
                              "two height maps")  # fmt: skip
-    if _is_histogram_file(path):
+    if is_histogram_file(path):
         if channel is not None:
             raise ParameterError(
                 f"{path}: a text histogram has no channels: --channel does not apply"
@@ -455,7 +455,7 @@ def read_counter_map(
         raise ParameterError(f"{where}: a Gaussian GW surface does not combine with a measured "
                              "map (its histogram and radii have no spectral moments to add): "
                              "give the counter-surface's height map")  # fmt: skip
-    if counter.is_file() and _is_histogram_file(counter):
+    if counter.is_file() and is_histogram_file(counter):
         raise ParameterError(f"{where}: a text histogram, not a height map: a counter-surface "
                              "combines two height maps")  # fmt: skip
     try:

@@ -135,9 +135,9 @@ def read_pads(path: str | Path) -> SynthesizedPads:
 def check_pads(n, pixels, seed=None, path=None) -> None:
     """Refuse a bad number of pads (≥ 1), pad side (≥ 8 pixels), seed (≥ 0) or a histogram
     file as the source (it has no spectrum), one line naming the field."""
-    from mcsim.studies.ingest import _is_histogram_file
+    from mcsim.studies.ingest import is_histogram_file
 
-    if path is not None and _is_histogram_file(Path(path)):
+    if path is not None and is_histogram_file(Path(path)):
         raise ParameterError(
             f"`path` = {str(path)!r}: a histogram has no spectrum; give a height map"
         )

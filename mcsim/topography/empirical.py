@@ -29,7 +29,7 @@ from typing import Any
 
 import numpy as np
 
-from mcsim.model.distributions import LawIntegrand, _panels
+from mcsim.model.distributions import LawIntegrand, panel_edges
 from mcsim.model.errors import MCSimError, ParameterError
 
 #: Schema of :meth:`Empirical.to_dict`; bump when the stored keys change.
@@ -390,7 +390,7 @@ class Empirical:
         a, b = self.edges[:-1], self.edges[1:]
         lo = breaks[:, 0]
         hi = np.maximum(b[-1] - h, lo)
-        cuts = _panels(breaks, lo, hi)  # (h, m + 2), in Δ
+        cuts = panel_edges(breaks, lo, hi)  # (h, m + 2), in Δ
         # Active (h, bin, break interval) triples, each clipped to the bin and interval.
         ih, ik = np.nonzero((b[None, :] - h[:, None] > lo[:, None]) & (self.densities > 0))
         p_lo = np.maximum((a[ik] - h[ih])[:, None], cuts[ih, :-1])

@@ -120,7 +120,7 @@ def test_the_contact_laws_work_summed_summit_by_summit_is_the_integral_of_the_pa
         z = padload.patch_heights(spec, r)
         d_t = padcurves.force_turn(spec, z, 1e6 * spec.area)[0]
         e = padload.contact_edges(spec)
-        cuts = padload._intervals(spec, z, d_t, z.max() - min(e.reach, e.break_off, 0.0), e)
+        cuts = padload.smooth_intervals(spec, z, d_t, z.max() - min(e.reach, e.break_off, 0.0), e)
         x, w = np.polynomial.legendre.leggauss(40)
         half = np.diff(cuts)[:, None] / 2
         nodes = ((cuts[:-1, None] + cuts[1:, None]) / 2 + half * x).ravel()
@@ -190,7 +190,7 @@ def test_every_pad_law_is_quasiconvex_on_each_branch_and_retracts_independently_
 @pytest.mark.parametrize("law", PAD_LAWS)
 def test_the_branches_bracket_their_minimum_and_jkr_gives_johnsons_forces(law):
     spec = humid(law)
-    part = padload._split_laws(spec).contact
+    part = padload.split_laws(spec).contact
     out, args = part.law.outputs[part.law.names.index("load")], part.args[0]
     for b, retract in zip(padbounds.branches(spec), (False, True)):
         x = np.linspace(b.low, b.rising + (b.rising - b.low), 200001)[1:]

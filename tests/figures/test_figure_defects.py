@@ -157,13 +157,13 @@ def design_map():
 
 
 def test_the_region_names_of_a_design_map_cover_no_coloured_cell(design_map):
-    from mcsim.figures.sweeps import REGIONS, _edges, is_log_grid, sweep_figure
+    from mcsim.figures.sweeps import REGIONS, cell_edges, is_log_grid, sweep_figure
 
     fig = sweep_figure(design_map, kind="map")
     renderer = _renderer(fig)
     sigma, w = design_map.coords["sigma"] * 1e9, design_map.coords["gamma"]
-    xe = _edges(sigma, is_log_grid(design_map.coords["sigma"]))
-    ye = _edges(w, is_log_grid(w))
+    xe = cell_edges(sigma, is_log_grid(design_map.coords["sigma"]))
+    ye = cell_edges(w, is_log_grid(w))
     names = {name for name, *_ in REGIONS}
     checked = 0
     for ax, key in zip(fig.axes[:2], ("pull_off_pressure", "work_of_separation")):  # not the bars

@@ -130,7 +130,7 @@ def test_a_pads_work_is_exact_where_the_caps_kinks_fall_inside_the_contact_laws_
     z = padload.patch_heights(s, 6)
     d_t, _ = padcurves.force_turn(s, z, 1e6 * s.area)
     top = z.max() + summit_parameters(s.surface, HUMID)["band"]
-    cuts = padload._intervals(s, z, d_t, top)
+    cuts = padload.smooth_intervals(s, z, d_t, top)
     x, w = np.polynomial.legendre.leggauss(40)
     half = np.diff(cuts)[:, None] / 2
     nodes = ((cuts[:-1, None] + cuts[1:, None]) / 2 + half * x).ravel()

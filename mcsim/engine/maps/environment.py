@@ -46,8 +46,9 @@ Against ``adhesion_summary`` and ``gw_curves`` with the environment
 draws of nine seeds and its corners; turns down to h = −6.3): curves to 6e-15 of their
 scale, the turn to 6e-13 in h, pull-off, work of separation and its parts and hysteresis to
 2e-11 relative, Kelvin radius, Rq and y_s equal. The dry kernel's root finder and minimiser
-(:func:`~mcsim.engine.maps.kernel._root`, :func:`~mcsim.engine.maps.kernel._minimum`) run on the
-net load (:func:`_net_load`) given as their first argument.
+(:func:`~mcsim.engine.maps.kernel.brent_root`,
+:func:`~mcsim.engine.maps.kernel.brent_minimum`) run on the net load (:func:`_net_load`) given
+as their first argument.
 """
 
 from __future__ import annotations
@@ -58,19 +59,19 @@ import numba
 import numpy as np
 
 from mcsim.engine.maps.kernel import (
-    _SQRT_2PI,
     H_TOLERANCE,
     OPTIONS,
-    _load,
-    _minimum,
-    _retraction,
-    _root,
+    SQRT_2PI,
+    brent_minimum,
+    brent_root,
     gauss_rule,
     gw_load,
+    gw_load_only,
+    retraction_panels,
 )
 from mcsim.engine.maps.status import NO_REST, OK, REFERENCE
 from mcsim.physics.adhesion import GAUSSIAN_TOP, GRID, PANELS, environment_top_separation
-from mcsim.physics.environment import _TAIL as _GAP_TAIL
+from mcsim.physics.environment import VDW_TAIL
 from mcsim.physics.surfaceenvironment import environment_works
 
 #: Gauss–Legendre nodes of the contact's one-panel rule in u (as
@@ -81,9 +82,6 @@ S_NODES_NET = 64
 #: (:func:`_gap_moments`; module docstring).
 VDW_PANELS = 8
 VDW_NODES = 12
-#: The van der Waals moment's Gaussian weight is cut where it has fallen by e^-VDW_TAIL,
-#: as in :mod:`mcsim.physics.environment`.
-VDW_TAIL = _GAP_TAIL
 #: Consecutive points share the van der Waals moments' rule while their a = (D − D0)/Rq
 #: lie within this of each other (their window, 2√(2 VDW_TAIL) ≈ 22 wide, widens by at
 #: most this), in runs of up to BLOCK points (module docstring).
@@ -169,7 +167,7 @@ def _gap_moments(a, n, shift, scale, power, t_cap, retard, out):
             x = a[k] - t
             out[k] += weight * math.exp(-0.5 * x * x)
     for k in range(n):
-        out[k] *= span / _SQRT_2PI
+        out[k] *= span / SQRT_2PI
 
 
 @numba.njit(**OPTIONS)
@@ -240,8 +238,10 @@ def _attraction(h, sigma, p):
 
 @numba.njit(**OPTIONS)
 def _net_load(h, turn, retract, sigma, factor, p, nodes, weights):
-    """The net load: the contact load (:func:`_load`) minus the attraction."""
-    return _load(h, turn, retract, sigma, factor, p, nodes, weights) - _attraction(h, sigma, p)
+    """The net load: the contact load (:func:`gw_load_only`) minus the attraction."""
+    return gw_load_only(h, turn, retract, sigma, factor, p, nodes, weights) - _attraction(
+        h, sigma, p
+    )
 
 
 @numba.njit(**OPTIONS)
@@ -262,7 +262,7 @@ def _zero_load_turn_net(sigma, factor, p, nodes, weights):
             size = min(BLOCK, GRID - i)
             _attractions(grid[i:], size, sigma, p, vdw, capillary)
             for k in range(size):
-                contact = _load(grid[i + k], 0.0, False, sigma, factor, p, nodes, weights)
+                contact = gw_load_only(grid[i + k], 0.0, False, sigma, factor, p, nodes, weights)
                 values[i + k] = contact - (vdw[k] + capillary[k]) / p[P_K]
                 if first_tensile < 0 and values[i + k] < 0.0:
                     first_tensile = i + k
@@ -278,8 +278,8 @@ def _zero_load_turn_net(sigma, factor, p, nodes, weights):
     if after < 0:
         return math.nan, REFERENCE
     a, b = grid[after], grid[after - 1]
-    turn = _root(_net_load, a, b, values[after], values[after - 1], 1e-12, 0.0, False, sigma,
-                 factor, p, nodes, weights)  # fmt: skip
+    turn = brent_root(_net_load, a, b, values[after], values[after - 1], 1e-12, 0.0, False,
+                      sigma, factor, p, nodes, weights)  # fmt: skip
     return turn, OK
 
 
@@ -292,8 +292,8 @@ def _point_net(turn, sigma, factor, p, nodes, weights, gl_x, gl_w, out):
     every gap is open and wider than max(g_K, u_c) (``p[P_TOP]``;
     :func:`mcsim.physics.adhesion.environment_top_separation`), where the attraction alone acts.
     """
-    grid, values, top, work, hysteresis = _retraction(turn, sigma, factor, p, nodes, weights, gl_x,
-                                                      gl_w, PANELS)  # fmt: skip
+    grid, values, top, work, hysteresis = retraction_panels(turn, sigma, factor, p, nodes,
+                                                            weights, gl_x, gl_w, PANELS)  # fmt: skip
     n = grid.size - PANELS
     m = gl_x.size + 1  # a panel's edge and nodes: close separations, one rule
     vdw, capillary = np.empty(m), np.empty(m)
@@ -314,7 +314,7 @@ def _point_net(turn, sigma, factor, p, nodes, weights, gl_x, gl_w, out):
     out[0], out[1], out[2], out[3] = 0.0, math.nan, work, hysteresis
     if values[i] < 0.0:
         lo, hi = grid[max(i - 1, 0)], grid[min(i + 1, grid.size - 1)]
-        x, value = _minimum(_net_load, lo, hi, H_TOLERANCE, turn, sigma, factor, p, nodes,
+        x, value = brent_minimum(_net_load, lo, hi, H_TOLERANCE, turn, sigma, factor, p, nodes,
                             weights)  # fmt: skip
         if value > values[i]:
             x, value = grid[i], values[i]

@@ -15,7 +15,7 @@ Each function follows a step of :func:`mcsim.physics.adhesion.adhesion_summary`:
   magnitude (measured for σ = 0.3–10 nm, w = 0.05–1 J/m², both branches);
 * **the zero-load turn**: the same scan as :func:`mcsim.physics.adhesion.zero_load_separation`
   (:data:`mcsim.physics.adhesion.GRID` points from the top of the summits down, extended
-  downwards while the load stays tensile), then Brent's root finder (:func:`_root`, as
+  downwards while the load stays tensile), then Brent's root finder (:func:`brent_root`, as
   ``scipy.optimize.brentq``) to 1e-12 in h;
 * **work of separation and hysteresis**: the same rule as ``adhesion_summary`` for the
   retraction load (:data:`mcsim.physics.adhesion.PANELS` panels on [turn, top], split at
@@ -23,13 +23,13 @@ Each function follows a step of :func:`mcsim.physics.adhesion.adhesion_summary`:
   to move; :data:`mcsim.physics.adhesion.NODES` Gauss–Legendre nodes each); the approach
   load, analytic in h on [turn, top], on :data:`APPROACH_PANELS` equal panels of as many
   nodes (the reference evaluates it on the retraction's nodes, four times as many);
-* **the pull-off**: Brent's bounded minimiser (:func:`_minimum`, as
+* **the pull-off**: Brent's bounded minimiser (:func:`brent_minimum`, as
   ``scipy.optimize.minimize_scalar(method="bounded")``) between the neighbours of the
   lowest of the panel edges and nodes, to :data:`H_TOLERANCE` in h (ten times finer than
   the reference's 1e-7).
 
 The root finder and the minimiser take the load they work on as their first argument, a
-compiled function (the contact's :func:`_load` here, the net load with an environment in
+compiled function (the contact's :func:`gw_load_only` here, the net load with an environment in
 :mod:`mcsim.engine.maps.environment`), and numba inlines them into each caller
 (``inline="always"``), so the load is resolved where it is compiled: a function passed
 to a function compiled on its own would be passed as the address of its Python object,
@@ -71,7 +71,8 @@ APPROACH_PANELS = 16
 #: Tolerance of the pull-off separation in h (the bounded minimiser's ``xatol``).
 H_TOLERANCE = 1e-8
 
-_SQRT_2PI = math.sqrt(2.0 * math.pi)
+#: √(2π), the normal density's normalisation.
+SQRT_2PI = math.sqrt(2.0 * math.pi)
 _TAIL = 82.0  # GAUSSIAN_TOP²: the weight above e^-41 of its peak
 
 #: numba options of the kernel's functions: a float division by zero gives inf or nan as in
@@ -114,12 +115,12 @@ def gw_load(h, turn, retract, sigma, factor, p, nodes, weights):
         delta_max = sigma * (s - turn) if retract else delta
         load += w * load_law(delta, delta_max, p[0], p[1], p[2], p[3], p[4])
         area += w * area_law(delta, delta_max, p[0], p[1], p[2], p[5])
-    scale = math.exp(-0.5 * peak * peak) * 2.0 * span / _SQRT_2PI
+    scale = math.exp(-0.5 * peak * peak) * 2.0 * span / SQRT_2PI
     return factor * scale * load, p[6] * scale * area
 
 
 @numba.njit(**FAST)
-def _load(h, turn, retract, sigma, factor, p, nodes, weights):
+def gw_load_only(h, turn, retract, sigma, factor, p, nodes, weights):
     """Load/(A_n K) alone, as :func:`gw_load` (the area's inversion is not computed)."""
     b = p[0] / sigma
     lo = max(turn - h, b) if retract else 0.0
@@ -146,12 +147,12 @@ def _load(h, turn, retract, sigma, factor, p, nodes, weights):
     for k in range(n):
         d = sigma * delta[k]
         load += w[k] * load_law(d, d + lag, p[0], p[1], p[2], p[3], p[4])
-    return factor * math.exp(-0.5 * peak * peak) * 2.0 * span / _SQRT_2PI * load
+    return factor * math.exp(-0.5 * peak * peak) * 2.0 * span / SQRT_2PI * load
 
 
 @numba.njit(inline="always", **OPTIONS)
-def _root(load, a, b, fa, fb, xtol, turn, retract, sigma, factor, p, nodes, weights):
-    """Zero of ``load`` (:func:`_load` or the net load) in [a, b] (fa·fb < 0) by Brent's
+def brent_root(load, a, b, fa, fb, xtol, turn, retract, sigma, factor, p, nodes, weights):
+    """Zero of ``load`` (:func:`gw_load_only` or the net load) in [a, b] (fa·fb < 0) by Brent's
     method, as ``scipy.optimize.brentq`` (Brent 1973, ch. 4), to ``xtol`` + 4ε|x| in h."""
     rtol = 4.0 * 2.220446049250313e-16
     pre, fpre, cur, fcur = a, fa, b, fb
@@ -190,11 +191,12 @@ def _root(load, a, b, fa, fb, xtol, turn, retract, sigma, factor, p, nodes, weig
 
 
 @numba.njit(inline="always", **OPTIONS)
-def _minimum(load, a, b, xatol, turn, sigma, factor, p, nodes, weights):
-    """Minimum of the retraction ``load`` (:func:`_load` or the net load) on [a, b] by Brent's bounded method (golden section
-    and parabolic steps), as ``scipy.optimize.minimize_scalar(method="bounded")``, in the
-    distance from ``a`` (so that the stop rule's relative term, √ε times the abscissa,
-    is √ε times at most the bracket's width, not times |h|); returns (h, load)."""
+def brent_minimum(load, a, b, xatol, turn, sigma, factor, p, nodes, weights):
+    """Minimum of the retraction ``load`` (:func:`gw_load_only` or the net load) on [a, b] by
+    Brent's bounded method (golden section and parabolic steps), as
+    ``scipy.optimize.minimize_scalar(method="bounded")``, in the distance from ``a`` (so that
+    the stop rule's relative term, √ε times the abscissa, is √ε times at most the bracket's
+    width, not times |h|); returns (h, load)."""
     origin, a, b = a, 0.0, b - a
     golden = 0.5 * (3.0 - math.sqrt(5.0))
     sqrt_eps = 1.4901161193847656e-08
@@ -267,7 +269,7 @@ def _zero_load_turn(sigma, factor, p, nodes, weights):
         first_tensile = after = -1
         for i in range(GRID):  # from the top down, as far as the first compressive point
             grid[i] = top + (bottom - top) * i / (GRID - 1) if i < GRID - 1 else bottom
-            values[i] = _load(grid[i], 0.0, False, sigma, factor, p, nodes, weights)
+            values[i] = gw_load_only(grid[i], 0.0, False, sigma, factor, p, nodes, weights)
             if first_tensile < 0 and values[i] < 0.0:
                 first_tensile = i
             elif first_tensile >= 0 and values[i] > 0.0:
@@ -281,13 +283,13 @@ def _zero_load_turn(sigma, factor, p, nodes, weights):
     if after < 0:
         return math.nan, REFERENCE
     a, b = grid[after], grid[after - 1]
-    turn = _root(_load, a, b, values[after], values[after - 1], 1e-12, 0.0, False, sigma, factor, p,
-                 nodes, weights)  # fmt: skip
+    turn = brent_root(gw_load_only, a, b, values[after], values[after - 1], 1e-12, 0.0, False,
+                      sigma, factor, p, nodes, weights)  # fmt: skip
     return turn, OK
 
 
 @numba.njit(**OPTIONS)
-def _retraction(turn, sigma, factor, p, nodes, weights, gl_x, gl_w, extra):
+def retraction_panels(turn, sigma, factor, p, nodes, weights, gl_x, gl_w, extra):
     """The retraction's panel edges and nodes on [turn, top] with their loads (``extra``
     more slots at the end), top, and the work and hysteresis (in load·dh units)."""
     top = max(GAUSSIAN_TOP - p[0] / sigma, turn)
@@ -297,15 +299,16 @@ def _retraction(turn, sigma, factor, p, nodes, weights, gl_x, gl_w, extra):
         coarse[j] = turn + (top - turn) * j / PANELS
     coarse[PANELS] = top
     for j in range(PANELS + 1):
-        on_coarse[j] = _load(coarse[j], turn, True, sigma, factor, p, nodes, weights)
+        on_coarse[j] = gw_load_only(coarse[j], turn, True, sigma, factor, p, nodes, weights)
     cuts = np.empty(2 * PANELS + 2)
     n = 0
     for j in range(PANELS + 1):
         cuts[n] = coarse[j]
         n += 1
         if j < PANELS and on_coarse[j] * on_coarse[j + 1] < 0.0:
-            cuts[n] = _root(_load, coarse[j], coarse[j + 1], on_coarse[j], on_coarse[j + 1], 1e-13,
-                            turn, True, sigma, factor, p, nodes, weights)  # fmt: skip
+            cuts[n] = brent_root(gw_load_only, coarse[j], coarse[j + 1], on_coarse[j],
+                                 on_coarse[j + 1], 1e-13, turn, True, sigma, factor, p, nodes,
+                                 weights)  # fmt: skip
             n += 1
     kink = turn - p[0] / sigma
     if turn < kink < top:
@@ -324,14 +327,16 @@ def _retraction(turn, sigma, factor, p, nodes, weights, gl_x, gl_w, extra):
             values[j * (m + 1)] = on_coarse[c]
             c += 1
         else:
-            values[j * (m + 1)] = _load(cuts[j], turn, True, sigma, factor, p, nodes, weights)
+            values[j * (m + 1)] = gw_load_only(
+                cuts[j], turn, True, sigma, factor, p, nodes, weights
+            )
         if j == n - 1:
             break
         half = 0.5 * (cuts[j + 1] - cuts[j])
         mid = 0.5 * (cuts[j + 1] + cuts[j])
         for k in range(m):
             x = mid + half * gl_x[k]
-            retract = _load(x, turn, True, sigma, factor, p, nodes, weights)
+            retract = gw_load_only(x, turn, True, sigma, factor, p, nodes, weights)
             grid[j * (m + 1) + 1 + k] = x
             values[j * (m + 1) + 1 + k] = retract
             work -= half * gl_w[k] * retract  # −∫ F dd, signed (as adhesion_summary)
@@ -342,20 +347,24 @@ def _retraction(turn, sigma, factor, p, nodes, weights, gl_x, gl_w, extra):
         mid = turn + (2 * j + 1) * half
         for k in range(m):
             x = mid + half * gl_x[k]
-            hysteresis += half * gl_w[k] * _load(x, 0.0, False, sigma, factor, p, nodes, weights)
+            hysteresis += (
+                half * gl_w[k] * gw_load_only(x, 0.0, False, sigma, factor, p, nodes, weights)
+            )
     return grid, values, top, work, hysteresis
 
 
 @numba.njit(**OPTIONS)
 def _point(turn, sigma, factor, p, nodes, weights, gl_x, gl_w, out):
     """Pull-off, its separation, work and hysteresis (in load·dh units) after ``turn``."""
-    grid, values, _, work, hysteresis = _retraction(turn, sigma, factor, p, nodes, weights, gl_x,
-                                                    gl_w, 0)  # fmt: skip
+    grid, values, _, work, hysteresis = retraction_panels(turn, sigma, factor, p, nodes, weights,
+                                                          gl_x, gl_w, 0)  # fmt: skip
     i = int(np.argmin(values))
     out[0], out[1], out[2], out[3] = 0.0, math.nan, work, hysteresis
     if values[i] < 0.0:
         lo, hi = grid[max(i - 1, 0)], grid[min(i + 1, grid.size - 1)]
-        x, value = _minimum(_load, lo, hi, H_TOLERANCE, turn, sigma, factor, p, nodes, weights)
+        x, value = brent_minimum(
+            gw_load_only, lo, hi, H_TOLERANCE, turn, sigma, factor, p, nodes, weights
+        )
         if value > values[i]:
             x, value = grid[i], values[i]
         out[0], out[1] = -value, x

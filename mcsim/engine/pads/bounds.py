@@ -25,12 +25,12 @@ from mcsim.engine.pads.load import (
     EDGE,
     SUB,
     XTOL,
-    _GapTable,
-    _open_gap_table,
-    _Split,
-    _split_laws,
+    GapTable,
+    Split,
+    open_gap_table,
     open_gaps,
     pad_load,
+    split_laws,
 )
 from mcsim.engine.spec import MonteCarloSpec
 from mcsim.model.errors import ParameterError
@@ -97,7 +97,7 @@ def branches(spec: MonteCarloSpec) -> tuple[_Branch, _Branch]:
     """
     from scipy.optimize import minimize_scalar
 
-    part = _split_laws(spec).contact
+    part = split_laws(spec).contact
     e = part.edges
     i = part.law.names.index("load")
     out, args = part.law.outputs[i], part.args[i]
@@ -159,22 +159,22 @@ class _Setup(NamedTuple):
 
     sigma: float
     area: float
-    parts: _Split
+    parts: Split
     edges: Edges
     branches: tuple[_Branch, _Branch]
     gaps: object
-    table: _GapTable
+    table: GapTable
     above: dict  # a branch's ``falling`` -> the contact law's sums over the summits above it
 
 
 @functools.lru_cache(maxsize=16)
 def _setup(spec: MonteCarloSpec) -> _Setup:
     """The :class:`_Setup` of ``spec``."""
-    parts = _split_laws(spec)
+    parts = split_laws(spec)
     above = {b.falling: prepared(parts.contact.law, parts.contact.args, Edges(*[b.falling] * 3))
              for b in branches(spec) if b.falling > b.low}  # fmt: skip
     return _Setup(spec.surface.sigma, spec.area, parts, parts.contact.edges, branches(spec),
-                  open_gaps(spec), _open_gap_table(spec), above)  # fmt: skip
+                  open_gaps(spec), open_gap_table(spec), above)  # fmt: skip
 
 
 class _Curve:
@@ -232,7 +232,7 @@ class _Curve:
         The caps attract more the closer (each summit's van der Waals and meniscus force
         rise with δ: :mod:`mcsim.physics.laws.attraction`), so they lie between their sums
         at the two ends; the open gaps' term between the mean of its ends ∓ the spline's
-        steepest slope times half the gap (:func:`_open_gap_table`).
+        steepest slope times half the gap (:func:`open_gap_table`).
         Compiled: :func:`mcsim.engine.pads.gaps.environment_bounds` and
         :func:`~mcsim.engine.pads.gaps.branch_bounds`.
         """
@@ -365,7 +365,7 @@ def bracket_floors(curve: _Curve, lo, hi) -> np.ndarray:
 def humid_pull_off(spec, z, d_turn, top):
     """The curve of a humid pad's retraction (a :class:`_Curve`, for :func:`bracket_floors`),
     the intervals of it that may hold its pull-off: their points and values as
-    :func:`~mcsim.engine.pads.load._points` gives them and the lower bound of their values
+    :func:`~mcsim.engine.pads.load.interval_points` gives them and the lower bound of their values
     (N), and the lowest value met (N) and where (m).
 
     Branch and bound on the retraction's cuts (break-off, reach, breakpoints for a summit in
@@ -384,7 +384,7 @@ def humid_pull_off(spec, z, d_turn, top):
         _, lower = curve.bounds()
         live = np.flatnonzero(lower <= curve.net.min())
         new = curve.split(live[curve.unsplit(live)], sides=1)
-    # the live gaps between cuts (not the 2·EDGE about one), sampled as _points does
+    # the live gaps between cuts (not the 2·EDGE about one), sampled as interval_points does
     x = curve.x
     live = live[np.diff(x)[live] > 2 * EDGE * setup.sigma]
     a, b = x[live, None], x[live + 1, None]

@@ -4,7 +4,7 @@
 * :func:`pull_off`: the pad's pull-off after the closest approach d_t, −min over d ≥ d_t
   of F_r(d) = Σ f_r(z_i − d; z_i − d_t) (docs/physics.md, section 'Finite pads'). The curve is
   smooth between the separations where a summit crosses an edge of its law set
-  (:func:`~mcsim.engine.pads.load._intervals`). Every such interval is evaluated at its two
+  (:func:`~mcsim.engine.pads.load.smooth_intervals`). Every such interval is evaluated at its two
   one-sided ends (:data:`~mcsim.engine.pads.load.EDGE` inside it: the load jumps there, e.g.
   JKR's break-off at δ_c, where the most tensile value is the limit from inside) and at
   :data:`~mcsim.engine.pads.load.SUB` interior points; the lowest interior points of the
@@ -34,15 +34,15 @@ import numpy as np
 from mcsim.engine.pads import bounds as padbounds
 from mcsim.engine.pads.load import (
     XTOL,
-    _band,
-    _caps_parts,
-    _contact_parts,
-    _intervals,
-    _Part,
-    _points,
+    Part,
+    caps_parts,
     contact_edges,
+    contact_parts,
+    interval_points,
     open_gap_work,
     pad_load,
+    smooth_intervals,
+    summit_bands,
 )
 from mcsim.engine.spec import MonteCarloSpec
 from mcsim.model.errors import ParameterError
@@ -69,8 +69,8 @@ def pull_off(spec: MonteCarloSpec, z: np.ndarray, d_turn: float) -> tuple[float,
         return 0.0, math.nan
     floor = None  # in humid air: a lower bound of each interval's values
     if not padbounds.bounded(spec):
-        cuts = _intervals(spec, z, d_turn, top, contact_edges(spec))
-        points = _points(cuts, sigma)
+        cuts = smooth_intervals(spec, z, d_turn, top, contact_edges(spec))
+        points = interval_points(cuts, sigma)
         values = pad_load(spec, z, points.ravel(), d_turn).reshape(points.shape)
         best = int(np.argmin(values))
         force, at = float(values.flat[best]), float(points.flat[best])
@@ -126,8 +126,8 @@ def pad_work(spec: MonteCarloSpec, z: np.ndarray, d_turn: float) -> float:
     """
     work = -float(np.sum(contact_works(spec, z, d_turn))) / spec.area
     if spec.environment is not None:
-        band = _band(spec, z)
-        for k, caps in enumerate(_caps_parts(spec)):  # each band's caps with its radius
+        band = summit_bands(spec, z)
+        for k, caps in enumerate(caps_parts(spec)):  # each band's caps with its radius
             for term, args in zip(caps.law.names, caps.args):
                 work += float(np.sum(CAP_WORKS[term](z[band == k] - d_turn, *args))) / spec.area
         work += float(open_gap_work(spec)(d_turn / spec.surface.sigma))
@@ -148,13 +148,13 @@ def contact_works(spec: MonteCarloSpec, z: np.ndarray, d_turn: float) -> np.ndar
     once, where the summit carries force (:meth:`~mcsim.physics.laws.Edges.threshold`), as
     the kernel's reference does (:func:`~mcsim.engine.kernels.block_sums_numpy`).
     """
-    band, works = _band(spec, z), np.zeros(z.shape)
-    for k, part in enumerate(_contact_parts(spec)):  # each band of heights with its radius
+    band, works = summit_bands(spec, z), np.zeros(z.shape)
+    for k, part in enumerate(contact_parts(spec)):  # each band of heights with its radius
         works[band == k] = _piece_works(part, z[band == k] - d_turn)
     return works
 
 
-def _piece_works(part: _Part, delta_turn: np.ndarray) -> np.ndarray:
+def _piece_works(part: Part, delta_turn: np.ndarray) -> np.ndarray:
     """:func:`contact_works` of summits with the law set, arguments and edges of ``part``."""
     e = part.edges
     low = min(e.reach, e.break_off, 0.0)  # below it no summit carries force on retraction
@@ -260,8 +260,8 @@ def force_turn(spec: MonteCarloSpec, z: np.ndarray, force: float) -> tuple[float
 
     if padbounds.bounded(spec):
         return padbounds.humid_turn(spec, z, force, bottom, top, reaches)
-    cuts = _intervals(spec, z, bottom, top, contact_edges(spec))
-    points = np.unique(np.concatenate([[bottom, top], _points(cuts, sigma).ravel()]))[::-1]
+    cuts = smooth_intervals(spec, z, bottom, top, contact_edges(spec))
+    points = np.unique(np.concatenate([[bottom, top], interval_points(cuts, sigma).ravel()]))[::-1]
     values = _approach_prefix(spec, z, points, reaches)
     reached = np.flatnonzero(reaches(values))
     if reached.size == 0:

@@ -26,7 +26,7 @@ import math
 
 import numpy as np
 
-from mcsim.engine.pads.load import _band, contact_load, pad_load
+from mcsim.engine.pads.load import contact_load, pad_load, summit_bands
 from mcsim.engine.spec import MonteCarloSpec
 from mcsim.physics.friction import friction_rule, summit_friction
 from mcsim.physics.laws import LawSet, get_law_set
@@ -52,7 +52,7 @@ def static_friction(spec: MonteCarloSpec, z: np.ndarray, d_turn: float) -> float
     """T_s (N): the static friction of the pad of summits ``z`` (m) at its turn ``d_turn`` (m),
     the sum of its touching summits' (module docstring)."""
     rule, law, params = _parts(spec)
-    band = _band(spec, z)
+    band = summit_bands(spec, z)
     return float(sum(np.sum(summit_friction(law, p, z[band == k] - d_turn, rule))
                      for k, p in enumerate(params)))  # fmt: skip
 

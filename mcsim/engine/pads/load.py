@@ -11,8 +11,9 @@ the pad at any separation (:func:`pad_load`) is the compiled kernel's sum of the
 per-summit ``load`` (:func:`mcsim.engine.kernels.block_sums`) over those heights; in humid
 air less its summits' caps and the open gaps (:func:`open_gaps`). The curve is smooth
 between the separations where a summit crosses an edge of its law set (break-off, jump-in,
-reach, breakpoints: d = z_i − e, :func:`_intervals`), which the searches of
-:mod:`mcsim.engine.pads.curves` and :mod:`mcsim.engine.pads.bounds` sample (:func:`_points`).
+reach, breakpoints: d = z_i − e, :func:`smooth_intervals`), which the searches of
+:mod:`mcsim.engine.pads.curves` and :mod:`mcsim.engine.pads.bounds` sample
+(:func:`interval_points`).
 """
 
 from __future__ import annotations
@@ -75,7 +76,7 @@ def pad_load(spec: MonteCarloSpec, z: np.ndarray, d, d_turn=None) -> np.ndarray:
     if spec.surface.radius_by_height is not None:  # each band's contact and caps, its radius
         turn = None if d_turn is None else np.full_like(d, d_turn)
         return net_load(spec, sums(spec, z, d, turn), d)
-    return _split_laws(spec).net(z, d, d_turn)
+    return split_laws(spec).net(z, d, d_turn)
 
 
 def contact_load(spec: MonteCarloSpec, z: np.ndarray, d, d_turn=None) -> np.ndarray:
@@ -86,25 +87,27 @@ def contact_load(spec: MonteCarloSpec, z: np.ndarray, d, d_turn=None) -> np.ndar
         turn = None if d_turn is None else np.full_like(d, d_turn)
         return sums(spec, z, d, turn)[:, sum_columns(spec.law_set).index("load")]
     if spec.environment is None:
-        return _load(_Part(spec.law_set, spec.arguments, spec.edges), z, d, d_turn)
-    return _load(_split_laws(spec).contact, z, d, d_turn)
+        return _load(Part(spec.law_set, spec.arguments, spec.edges), z, d, d_turn)
+    return _load(split_laws(spec).contact, z, d, d_turn)
 
 
-class _Part(NamedTuple):
+class Part(NamedTuple):
+    """A law set with its arguments and edges for one band of heights."""
+
     law: LawSet
     args: tuple
     edges: Edges
 
 
-def _load(contact: _Part, z: np.ndarray, d: np.ndarray, d_turn) -> np.ndarray:
+def _load(contact: Part, z: np.ndarray, d: np.ndarray, d_turn) -> np.ndarray:
     """The sum of ``contact``'s output ``load`` (N) over summits ``z`` at separations ``d``."""
     turn = None if d_turn is None else np.full_like(d, d_turn)
     sums = block_sums(z, d, contact.law, contact.args, d_turn=turn, edges=contact.edges)
     return sums[:, sum_columns(contact.law).index("load")]
 
 
-class _Split:
-    """A humid pad's net load (one summit radius: the first of :func:`_contact_parts`) as two
+class Split:
+    """A humid pad's net load (one summit radius: the first of :func:`contact_parts`) as two
     sums over its summits, each evaluated only where it acts: the contact law set's
     (``contact``, with its arguments and edges) over those that can touch, and the
     environment's caps' (``caps``: a law set of the outputs ``vdw`` and ``capillary``) over
@@ -113,7 +116,7 @@ class _Split:
     sums them hundreds of times on a few rows."""
 
     def __init__(self, spec: MonteCarloSpec):
-        self.contact, self.caps = _contact_parts(spec)[0], _caps_parts(spec)[0]
+        self.contact, self.caps = contact_parts(spec)[0], caps_parts(spec)[0]
         self.contact_sums = prepared(*self.contact)
         self.caps_sums = prepared(*self.caps)
         self.load = sum_columns(self.contact.law).index("load")
@@ -137,9 +140,9 @@ class _Split:
 
 
 @functools.lru_cache(maxsize=16)
-def _split_laws(spec: MonteCarloSpec) -> _Split:
-    """The :class:`_Split` of a humid pad of ``spec``, built once."""
-    return _Split(spec)
+def split_laws(spec: MonteCarloSpec) -> Split:
+    """The :class:`Split` of a humid pad of ``spec``, built once."""
+    return Split(spec)
 
 
 def net_load(spec: MonteCarloSpec, sums: np.ndarray, d) -> np.ndarray:
@@ -173,11 +176,11 @@ def open_gaps(spec: MonteCarloSpec):
     smooth function of h (a Gaussian average), and the spline is within 1e-9 of its largest
     value (tests/engine/test_padcurves.py).
     """
-    table = _open_gap_table(spec)
+    table = open_gap_table(spec)
     return functools.partial(_gap_pressure, table)
 
 
-def _gap_pressure(table: _GapTable, h) -> np.ndarray:
+def _gap_pressure(table: GapTable, h) -> np.ndarray:
     """:func:`open_gaps` of ``table`` at ``h`` (Pa)."""
     h = np.asarray(h, dtype=float)
     value = _piecewise(table.grid, table.c, h)
@@ -193,10 +196,10 @@ def open_gap_work(spec: MonteCarloSpec):
     :func:`mcsim.physics.surfaceenvironment.open_gap_works` from there outward (outside the
     table, that function itself). Within 4e-9 of its largest value (the spline's bound
     integrated; measured 1e-13: tests/studies/test_pads_environment.py)."""
-    return functools.partial(_gap_work, _open_gap_table(spec), spec.surface.sigma)
+    return functools.partial(_gap_work, open_gap_table(spec), spec.surface.sigma)
 
 
-def _gap_work(table: _GapTable, sigma: float, h_t) -> np.ndarray:
+def _gap_work(table: GapTable, sigma: float, h_t) -> np.ndarray:
     """:func:`open_gap_work` of ``table`` at ``h_t`` (J/m²)."""
     h_t = np.asarray(h_t, dtype=float)
     value = sigma * (table.w_top - _piecewise(table.grid, table.w, h_t)) + table.tail
@@ -214,8 +217,8 @@ def _piecewise(grid: np.ndarray, c: np.ndarray, h: np.ndarray) -> np.ndarray:
     return padgaps.piecewise(grid, c, np.ascontiguousarray(h).ravel()).reshape(np.shape(h))
 
 
-class _GapTable(NamedTuple):
-    """:func:`_open_gap_table`: the spline's knots (h), its cubics' coefficients (Pa) and its
+class GapTable(NamedTuple):
+    """:func:`open_gap_table`: the spline's knots (h), its cubics' coefficients (Pa) and its
     antiderivative's from the first knot (Pa, per unit h: :func:`_piecewise`) and that at the
     last knot; its range [lo, hi] in h; the work from hi outward (J/m²); the functions
     themselves (pressure and work); the spline's steepest |slope| (Pa per unit h)."""
@@ -233,7 +236,7 @@ class _GapTable(NamedTuple):
 
 
 @functools.lru_cache(maxsize=16)
-def _open_gap_table(spec: MonteCarloSpec) -> _GapTable:
+def open_gap_table(spec: MonteCarloSpec) -> GapTable:
     """The spline of :func:`open_gaps` and its antiderivative, its range [lo, hi] in h, the
     functions themselves, and the spline's largest |dp/dh| (Pa) on the range: its derivative
     is a quadratic on each piece, so the largest magnitude lies at a knot or where the
@@ -268,7 +271,7 @@ def _open_gap_table(spec: MonteCarloSpec) -> _GapTable:
     vertex = np.where(np.isfinite(vertex), vertex, 0.0)
     steepest = max(np.max(np.abs(slope(grid))), np.max(np.abs(slope(grid[:-1] + vertex))))
     anti = spline.antiderivative()
-    return _GapTable(grid, np.ascontiguousarray(c.T), np.ascontiguousarray(anti.c.T),
+    return GapTable(grid, np.ascontiguousarray(c.T), np.ascontiguousarray(anti.c.T),
                      float(anti(hi)), lo, hi, float(exact_work(np.float64(hi))), exact,
                      exact_work, float(steepest))  # fmt: skip
 
@@ -277,10 +280,10 @@ def contact_edges(spec: MonteCarloSpec) -> Edges:
     """The edges of the contact law alone: where a pad's load can jump or turn sharply.
     The environment's caps add kinks only (their forces are continuous): the search for a
     pad's pull-off and turn samples their intervals inside and does not cut at them."""
-    return spec.edges if spec.environment is None else _split_laws(spec).contact.edges
+    return spec.edges if spec.environment is None else split_laws(spec).contact.edges
 
 
-def _intervals(spec: MonteCarloSpec, z: np.ndarray, low: float, high: float,
+def smooth_intervals(spec: MonteCarloSpec, z: np.ndarray, low: float, high: float,
                edges: Edges | None = None) -> np.ndarray:  # fmt: skip
     """Sorted separations (m) cutting [low, high] where a summit crosses an edge of its law
     (of ``edges``; by default the spec's, the environment's caps included; with a radius by
@@ -298,7 +301,7 @@ def _intervals(spec: MonteCarloSpec, z: np.ndarray, low: float, high: float,
     return np.unique(np.concatenate([[low, high], cuts[(cuts > low) & (cuts < high)]]))
 
 
-def _points(cuts: np.ndarray, sigma: float) -> np.ndarray:
+def interval_points(cuts: np.ndarray, sigma: float) -> np.ndarray:
     """Per interval of ``cuts``: its two one-sided ends and :data:`SUB` interior points."""
     a, b = cuts[:-1, None], cuts[1:, None]
     inside = np.minimum(EDGE * sigma, (b - a) / 4)
@@ -306,7 +309,7 @@ def _points(cuts: np.ndarray, sigma: float) -> np.ndarray:
     return np.hstack([a + inside, a + (b - a) * frac, b - inside])  # (intervals, SUB + 2)
 
 
-def _band(spec: MonteCarloSpec, z: np.ndarray) -> np.ndarray:
+def summit_bands(spec: MonteCarloSpec, z: np.ndarray) -> np.ndarray:
     """The band of heights of each summit (all 0 with one radius)."""
     if spec.surface.radius_by_height is None:
         return np.zeros(z.shape, dtype=np.intp)
@@ -314,7 +317,7 @@ def _band(spec: MonteCarloSpec, z: np.ndarray) -> np.ndarray:
 
 
 @functools.lru_cache(maxsize=16)
-def _contact_parts(spec: MonteCarloSpec) -> tuple[_Part, ...]:
+def contact_parts(spec: MonteCarloSpec) -> tuple[Part, ...]:
     """The contact law alone (its adhesion less the environment's van der Waals share,
     :func:`~mcsim.physics.surfaceenvironment.contact_law`), with its arguments and edges, for
     each band of heights."""
@@ -322,15 +325,15 @@ def _contact_parts(spec: MonteCarloSpec) -> tuple[_Part, ...]:
 
 
 @functools.lru_cache(maxsize=16)
-def _caps_parts(spec: MonteCarloSpec) -> tuple[_Part, ...]:
+def caps_parts(spec: MonteCarloSpec) -> tuple[Part, ...]:
     """The environment's caps alone (a law set of the outputs ``vdw`` and ``capillary``) for
     each band of heights."""
     caps = with_environment(LawSet("caps", "the environment's caps", ()), spec.environment)
     return _per_band(spec, caps)
 
 
-def _per_band(spec: MonteCarloSpec, law: LawSet) -> tuple[_Part, ...]:
+def _per_band(spec: MonteCarloSpec, law: LawSet) -> tuple[Part, ...]:
     """``law`` with its arguments and edges for each of the surface's components."""
     m = spec.material
-    return tuple(_Part(law, law.arguments(part, m), law.edges_for(part, m))
+    return tuple(Part(law, law.arguments(part, m), law.edges_for(part, m))
                  for part in spec.surface.components())  # fmt: skip
