@@ -42,16 +42,11 @@ from scipy import integrate, stats
 
 from mcsim.model.presets import MATERIALS, PAPER_SURFACES, SURFACES
 from mcsim.physics.analytic import gw_curves
-from mcsim.physics.environment import (
-    Environment,
-    capillary_pressure,
-    capillary_work,
-    kelvin_radius,
-    vdw_pressure,
-    vdw_work,
-)
+from mcsim.physics.capillary import capillary_pressure, capillary_work
+from mcsim.physics.environment import Environment, kelvin_radius
 from mcsim.physics.gapheights import nayak_heights
 from mcsim.physics.surfaceenvironment import environment_curves
+from mcsim.physics.vanderwaals import vdw_pressure, vdw_work
 from mcsim.topography.empirical import Empirical
 
 A, D0, GAMMA = 1.6e-19, 0.2e-9, 0.072

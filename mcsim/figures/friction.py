@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from mcsim.figures.sweeps import axis_label, display_values, is_log_grid, pads_title, pads_varied
+from mcsim.figures.grid import axis_label, display_values, is_log_grid, pads_title, pads_varied
 
 #: z of the two-sided 95 % interval of the mean.
 Z95 = 1.959963984540054

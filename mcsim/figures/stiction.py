@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from mcsim.figures.sweeps import (
+from mcsim.figures.grid import (
     axis_label,
     cell_edges,
     display_values,

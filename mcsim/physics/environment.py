@@ -1,41 +1,25 @@
-"""The environment: van der Waals attraction across the gaps and capillary condensation.
+"""The environment: the medium between the surfaces, van der Waals and a condensing vapour.
 
 See docs/physics.md, sections 'The environment' and 'The environment: summits and open gaps'.
 
-The medium (:class:`Environment`) and the local laws below (the proximity model over a
-height distribution) are the building blocks. mcsim applies them in two parts that never
-count one area twice, each summit's cap and the open gaps between the caps:
+The medium (:class:`Environment`: its Hamaker constant, cutoff and retardation, the vapour's
+humidity and the liquid's constants, the adsorbed films), as users write it
+(:func:`environment_fields`, :func:`as_environment`), with the Kelvin radius of its menisci
+(:func:`kelvin_radius`) and the retardation of its van der Waals attraction
+(:func:`retardation`). The local laws over a height distribution build on it: van der Waals
+attraction across the gaps (:mod:`mcsim.physics.vanderwaals`) and capillary condensation
+(:mod:`mcsim.physics.capillary`). mcsim applies them in two parts that never count one area
+twice, each summit's cap and the open gaps between the caps:
 :mod:`mcsim.physics.surfaceenvironment`.
 
-Proximity (pixel-by-pixel Derjaguin) model over the height distribution of the combined
-rough surface (DelRio et al., Nature Materials 4, 629, 2005; DelRio et al., Appl. Phys.
-Lett. 90, 163104, 2007). Heights z about the mean plane are
-Gaussian with rms Rq, or a measured height histogram (:class:`~mcsim.empirical.Empirical`,
-a piecewise-constant density). At mean-plane gap D the local gap is g = D − z; where
-g < D0 (the cutoff) the surfaces touch and the contact law rules, elsewhere, per nominal
-area and positive when attractive:
-
-* van der Waals between locally flat regions, retarded (:func:`vdw_flat_energy`,
-  :func:`vdw_flat_pressure`): the energy per area of two flats at gap g,
-  W(g) = A/(12π g²) · 1/(1 + b g), b = 5.32/λ (Gregory, J. Colloid Interface Sci. 83,
-  138, 1981: his flat-plate expression), and its pressure p(g) = −dW/dg; b = 0 (λ None)
-  is the non-retarded A/(12π g²), A/(6π g³) (Israelachvili, *Intermolecular and Surface
-  Forces*, 3rd ed., Eq. 13.11). Over the heights:
-  p_vdW(D) = E[p(g); g ≥ D0], and its work from D_t outward
-  W_vdW(D_t) = E[W(max(D_t − z, D0))];
-* capillary condensation in equilibrium with the vapour: Kelvin radius
-  r_K = γ_L V_m / (R_g T ln(1/RH)) (Kelvin equation, Israelachvili Eq. 17.19); each face
-  carries an adsorbed film of thickness t (:mod:`mcsim.physics.films`), liquid bridges the
-  films across the gaps g < g_K = 2 r_K cos θ + 2t and pulls with the Laplace pressure
-  γ_L/r_K where f ≤ g < g_K, above the wet floor f = max(D0, 2t) (below it the two films
-  are pressed into each other and their disjoining pressure balances the pull):
-  p_cap(D) = (γ_L/r_K) P(f ≤ g < g_K), W_cap(D_t) = (γ_L/r_K) E[(g_K − max(f, D_t − z))⁺].
-
-Both works satisfy −dW/dD = p. Gaussian heights: p_cap and W_cap in closed form (normal
-CDFs and densities); the van der Waals means E[p(g); g ≥ D0] and E[W(g); g ≥ D0] by one
-fixed composite Gauss–Legendre rule, vectorised over every point (see
-:func:`_gaussian_gap_moment`). Histogram heights: every quantity is an exact integral over
-each bin (:func:`_gap_moment`).
+Both laws are a proximity (pixel-by-pixel Derjaguin) model over the height distribution of
+the combined rough surface (DelRio et al., Nature Materials 4, 629, 2005; DelRio et al.,
+Appl. Phys. Lett. 90, 163104, 2007). Heights z about the mean plane are Gaussian with rms Rq,
+or a measured height histogram (:class:`~mcsim.empirical.Empirical`, a piecewise-constant
+density: :func:`mcsim.physics.gapheights.histogram_gaps`). At mean-plane gap D the local gap
+is g = D − z; where g < D0 (the cutoff) the surfaces touch and the contact law rules,
+elsewhere each law gives a pressure p(D) and a work of separation W(D_t) per nominal area,
+positive when attractive, with −dW/dD = p.
 
 Not in this model: elastic deformation of the non-contacting surface, correlation between
 the two topographies, menisci that conserve volume, the adsorbed films' own disjoining
@@ -50,7 +34,6 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 
 import numpy as np
-from scipy import special
 
 from mcsim.model.errors import ParameterError
 from mcsim.model.params import check_range
@@ -87,26 +70,6 @@ NANO_GAP = 3.0
 #: across vacuum; Israelachvili, Intermolecular and Surface Forces, ch. 13); 1e-16 J is 200× the largest, and keeps every
 #: attraction a finite float.
 MAX_HAMAKER = 1e-16
-
-# Composite Gauss–Legendre rule on [0, 1] for the Gaussian van der Waals moments:
-# _PANELS equal panels of _NODES_PER_PANEL nodes in the mapped variable ξ = τ + ln τ.
-_PANELS = 12
-_NODES_PER_PANEL = 12
-#: The van der Waals moments' Gaussian weight is cut where it has fallen by e^-VDW_TAIL
-#: (≈ 1e-26) from its peak (here and in the design map's kernel,
-#: :mod:`mcsim.engine.maps.environment`).
-VDW_TAIL = 60.0
-
-
-def _unit_rule() -> tuple[np.ndarray, np.ndarray]:
-    """Composite Gauss–Legendre nodes and weights on [0, 1]."""
-    x, w = np.polynomial.legendre.leggauss(_NODES_PER_PANEL)
-    half = 0.5 / _PANELS
-    mid = (np.arange(_PANELS) + 0.5) / _PANELS
-    return (mid[:, None] + half * x).ravel(), np.tile(half * w, _PANELS)
-
-
-_NODES, _WEIGHTS = _unit_rule()
 
 
 @dataclass(frozen=True)
@@ -152,7 +115,8 @@ class Environment:
     retardation_wavelength : float or None
         Retardation wavelength λ of the van der Waals attraction, m, > 0 (default
         :data:`DEFAULT_RETARDATION_WAVELENGTH` = 100 nm, Gregory 1981); None: non-retarded.
-        The flats' energy A/(12πg²) is reduced by 1/(1 + 5.32 g/λ) (:func:`vdw_flat_energy`).
+        The flats' energy A/(12πg²) is reduced by 1/(1 + 5.32 g/λ)
+        (:func:`~mcsim.physics.vanderwaals.vdw_flat_energy`).
 
     Raises
     ------
@@ -395,62 +359,6 @@ def retardation(wavelength: float | None) -> float:
     return 0.0 if wavelength is None else GREGORY_B / wavelength
 
 
-def vdw_flat_energy(gap, hamaker, retardation):
-    """Retarded van der Waals energy per area of two flats, J/m² (> 0 attractive).
-
-    W(g) = A/(12π g²) · 1/(1 + b g), b = 5.32/λ: Gregory's flat plates (J. Colloid
-    Interface Sci. 83, 138, 1981); by Derjaguin (F_sphere = 2πR W) a sphere pulls with
-    A R/(6 g²) · 1/(1 + b g). b = 0: the non-retarded A/(12π g²) (Israelachvili,
-    *Intermolecular and Surface Forces*, 3rd ed., Eq. 13.11).
-
-    Parameters
-    ----------
-    gap : array_like
-        Gap g between the flats, m (> 0).
-    hamaker : array_like
-        Hamaker constant A, J.
-    retardation : array_like
-        b = 5.32/λ, m⁻¹ (:func:`retardation`); 0: non-retarded.
-
-    Returns
-    -------
-    ndarray
-        W, J/m².
-    """
-    return hamaker / (12 * math.pi) * _energy_kernel(np.asarray(gap, dtype=float), retardation)
-
-
-def vdw_flat_pressure(gap, hamaker, retardation):
-    """Retarded van der Waals pressure between two flats, Pa (> 0 attractive).
-
-    p(g) = −dW/dg of :func:`vdw_flat_energy`:
-    (A/12π) [2/(g³(1 + b g)) + b/(g²(1 + b g)²)]; b = 0: A/(6π g³) (Israelachvili Eq. 13.11).
-
-    Parameters
-    ----------
-    gap, hamaker, retardation
-        As for :func:`vdw_flat_energy`.
-
-    Returns
-    -------
-    ndarray
-        p, Pa.
-    """
-    return hamaker / (6 * math.pi) * _pressure_kernel(np.asarray(gap, dtype=float), retardation)
-
-
-def _energy_kernel(gap, b):
-    """W/(A/12π) = g⁻²/(1 + b g), m⁻² (:func:`vdw_flat_energy`)."""
-    return gap**-2 / (1 + b * gap)
-
-
-def _pressure_kernel(gap, b):
-    """p/(A/6π) = g⁻³/(1 + b g) + (b/2) g⁻²/(1 + b g)², m⁻³ (:func:`vdw_flat_pressure`;
-    minus half the derivative of :func:`_energy_kernel`)."""
-    damping = 1 / (1 + b * gap)
-    return gap**-3 * damping + b / 2 * gap**-2 * damping**2
-
-
 #: The names a mapping of the environment may give a field other than its own: the keys of
 #: an ``[environment]`` table and the command line's options (``--liquid-surface-tension``)
 #: say whose surface tension it is. Both names are read, by :func:`environment_fields`.
@@ -536,290 +444,3 @@ def kelvin_radius(rh, temperature=298.15, surface_tension=0.072, molar_volume=1.
     rh = np.asarray(rh, dtype=float)
     with np.errstate(divide="ignore"):
         return surface_tension * molar_volume / (GAS_CONSTANT * temperature * -np.log(rh))
-
-
-# -- height distributions: E over z of the four kernels ------------------------------------
-
-
-def _prob_between(lo, hi):
-    """P(lo < X <= hi) for a standard normal X, from the nearer tail (no cancellation)."""
-    upper = special.ndtr(-lo) - special.ndtr(-hi)
-    return np.where(lo > 0, upper, special.ndtr(hi) - special.ndtr(lo))
-
-
-def _gaussian_gap_moment(D, rq, cutoff, n: int, b):
-    """E[k_n(g); g >= D0] for g = D − z, z ~ N(0, Rq²), by a fixed quadrature: the retarded
-    kernels of :func:`_gap_kernel`, k_3 = p/(A/6π) (m⁻³) and k_2 = W/(A/12π) (m⁻²); with
-    b = 0, E[g⁻ⁿ; g >= D0].
-
-    With t = (g − D0)/Rq >= 0 and a = (D − D0)/Rq the integral is
-    ∫₀^∞ k_n(D0 + Rq t) φ(a − t) dt. Its two scales, the pole of k_n at g = 0, at
-    distance τ = t + D0/Rq from it, and the unit width of the Gaussian, are both resolved
-    by the map ξ = τ + ln τ (geometric near the pole, uniform far from it; inverse
-    τ = ω(ξ), the Wright omega function, analytic in a strip of half-width π). The
-    retardation's pole, at g = −1/b, lies farther from the path than g = 0 and maps to
-    Im ξ = π, the strip's edge. The Gaussian is cut where it falls by e^-60, and
-    [ξ(t_lo), ξ(t_hi)] is split into equal Gauss–Legendre panels: non-retarded ~1e-14
-    relative against 40-digit mpmath over Rq/D0 from 1e-3 to 1e3 and a from −30 to 30
-    (tests/physics/test_environment.py). Retarded, against 30-digit mpmath over λ = 1 nm,
-    100 nm and none, Rq/D0 = 1e-3, 1, 1e3 and a = −3, 0.5, 30: at worst 2.6e-13 (Rq/D0 =
-    1e-3, a = −3, the same with and without retardation), ~1e-14 elsewhere
-    (tests/physics/test_environment_retarded.py).
-    """
-    a = (D - cutoff) / rq
-    shift = cutoff / rq
-    t_lo = np.maximum(a - math.sqrt(2 * VDW_TAIL), 0.0)
-    # Above a the weight φ(a − t) falls by e^-VDW_TAIL at t² − 2 a t = 2 VDW_TAIL
-    # (a < 0: steeply).
-    t_hi = np.where(
-        a >= 0, a + math.sqrt(2 * VDW_TAIL), 2 * VDW_TAIL / (np.sqrt(a * a + 2 * VDW_TAIL) - a)
-    )
-    tau_lo, tau_hi = t_lo + shift, t_hi + shift
-    xi_lo = tau_lo + np.log(tau_lo)
-    span = tau_hi + np.log(tau_hi) - xi_lo
-    tau = special.wrightomega(xi_lo[..., None] + span[..., None] * _NODES).real
-    t = tau - shift[..., None]
-    gap = rq[..., None] * tau  # = D0 + Rq t
-    density = np.exp(-0.5 * (a[..., None] - t) ** 2) / math.sqrt(2 * math.pi)
-    kernel = _gap_kernel(gap, b[..., None], n)
-    return span * np.sum(_WEIGHTS * kernel * density * tau / (1 + tau), axis=-1)
-
-
-def _gap_kernel(gap, b, n: int):
-    """The retarded flats' pressure over A/6π (n = 3, :func:`_pressure_kernel`, m⁻³) or
-    energy over A/12π (n = 2, :func:`_energy_kernel`, m⁻²) at gap g; g⁻ⁿ for b = 0."""
-    return _pressure_kernel(gap, b) if n == 3 else _energy_kernel(gap, b)
-
-
-def _partial_mean(h):
-    """F_1(h) = E[(X − h)⁺] = φ(h) − h Q(h) for a standard normal X and h >= 0 (GW F_1,
-    docs/physics.md), as φ(h) (1 − h M(h)) with the Mills ratio M = Q/φ = √(π/2) erfcx(h/√2),
-    so the far tail keeps its relative accuracy."""
-    mills = math.sqrt(math.pi / 2) * special.erfcx(h / math.sqrt(2))
-    return np.exp(-0.5 * h * h) / math.sqrt(2 * math.pi) * (1 - h * mills)
-
-
-def _gaussian_condensate(D, rq, cutoff, gap_k):
-    """P(D0 <= g < g_K) and E[(g_K − max(D0, g))⁺], m, for Gaussian z (closed forms).
-
-    With x = z/Rq, a = (D − D0)/Rq and b = (D − g_K)/Rq < a: the filled fraction is
-    Φ(a) − Φ(b), and (g_K − max(D0, D − z))⁺ = Rq [(x − b)⁺ − (x − a)⁺], so the depth is
-    Rq [F_1(b) − F_1(a)], evaluated with F_1 at non-negative arguments only
-    (F_1(h) = −h + F_1(−h)): for a <= 0 as Rq [a − b + F_1(−b) − F_1(−a)].
-    """
-    a = (D - cutoff) / rq
-    b = (D - gap_k) / rq
-    filled = _prob_between(b, a)
-    # F_1(h) = max(−h, 0) + F_1(|h|) for either sign (F_1(h) − F_1(−h) = −h).
-    depth = np.where(
-        a <= 0,
-        a - b + _partial_mean(np.abs(b)) - _partial_mean(np.abs(a)),
-        np.maximum(-b, 0) + _partial_mean(np.abs(b)) - _partial_mean(np.abs(a)),
-    )
-    return filled, rq * depth
-
-
-def _histogram(heights) -> tuple[np.ndarray, np.ndarray]:
-    """Bin edges (m, about the mean plane) and densities (m⁻¹) of an Empirical-like object."""
-    return heights.sigma * heights.edges, heights.densities / heights.sigma
-
-
-def _histogram_bins(D, heights, cutoff):
-    """Per bin of the histogram: the gap interval [g_a, g_b] out of contact, the contact length
-    and the density (m⁻¹), with the bins on a new last axis (g_a, g_b >= D0)."""
-    edges, density = _histogram(heights)
-    D = np.asarray(D, dtype=float)[..., None]
-    g_lo, g_hi = D - edges[1:], D - edges[:-1]
-    g_a, g_b = np.maximum(g_lo, cutoff), np.maximum(g_hi, cutoff)
-    # The bin's part below the cutoff: exactly 0 for an open bin (the bin's width less its open
-    # part, g_b − g_a, would leave D's rounding there, which k(D0)/k(g) then amplifies).
-    contact = np.minimum(g_hi, cutoff) - np.minimum(g_lo, cutoff)
-    return g_a, g_b, contact, density
-
-
-def _is_histogram(heights) -> bool:
-    return hasattr(heights, "densities")
-
-
-def _gap_moment(D, heights, cutoff, n: int, b):
-    """E[k_3(g); g >= D0] (n = 3, m⁻³) or E[k_2(max(g, D0))] (n = 2, m⁻²) for g = D − z,
-    with the retarded kernels of :func:`_gap_kernel` (b, m⁻¹); g⁻ⁿ for b = 0.
-
-    Histogram: exact over each bin [g_a, g_b] of the piecewise-constant density, written as
-    products of h = g_b − g_a (no cancellation for narrow bins), plus k_2(D0) times the
-    contact length for n = 2. As −dk_2/dg = 2 k_3, ∫ k_3 dg = (k_2(g_a) − k_2(g_b))/2 =
-    h [(g_a + g_b) + b (g_a² + g_a g_b + g_b²)] / [2 g_a² g_b² (1 + b g_a)(1 + b g_b)];
-    and ∫ k_2 dg = [−1/g + b ln((1 + b g)/g)] from g_a to g_b =
-    h/(g_a g_b) − b ln(1 + h/(g_a (1 + b g_b))), which leaves only rounding, ~(1 + b g_b) ε
-    relative (the two terms cancel to 1/(1 + b g_b) of the first): 3e-14 for a bin at 1 µm
-    with λ = 100 nm. For b = 0 both are the non-retarded (g_a⁻² − g_b⁻²)/2 and 1/g_a − 1/g_b.
-    """
-    cutoff = np.asarray(cutoff, dtype=float)
-    b = np.asarray(b, dtype=float)
-    if _is_histogram(heights):
-        g_a, g_b, contact, density = _histogram_bins(D, heights, cutoff[..., None])
-        h, b = g_b - g_a, b[..., None]
-        if n == 3:
-            rise = (g_b + g_a) + b * (g_a * g_a + g_a * g_b + g_b * g_b)
-            per_bin = h * rise / (2 * g_a**2 * g_b**2 * (1 + b * g_a) * (1 + b * g_b))
-        else:
-            per_bin = h / (g_a * g_b) - b * np.log1p(h / (g_a * (1 + b * g_b)))
-            per_bin = per_bin + contact * _energy_kernel(cutoff[..., None], b)
-        return np.sum(density * per_bin, axis=-1)
-    D, rq, cutoff, b = np.broadcast_arrays(
-        *(np.asarray(x, dtype=float) for x in (D, heights, cutoff, b))
-    )
-    moment = _gaussian_gap_moment(D, rq, cutoff, n, b)
-    if n == 3:
-        return moment
-    return moment + special.ndtr(-(D - cutoff) / rq) * _energy_kernel(cutoff, b)
-
-
-def _condensate(D, heights, cutoff, gap_k):
-    """P(D0 <= g < g_K) and E[(g_K − max(D0, g))⁺] (m) for g = D − z, g_K > D0.
-
-    Histogram: exact over each bin; the filled part [g_a, g_c] (g_c = g_K clipped to the
-    bin) adds (g_c − g_a)(2 g_K − g_a − g_c)/2, the contact length times g_K − D0.
-    """
-    if not _is_histogram(heights):
-        D, rq, cutoff, gap_k = np.broadcast_arrays(
-            *(np.asarray(x, dtype=float) for x in (D, heights, cutoff, gap_k))
-        )
-        return _gaussian_condensate(D, rq, cutoff, gap_k)
-    cutoff = np.asarray(cutoff, dtype=float)[..., None]
-    gap_k = np.asarray(gap_k, dtype=float)[..., None]
-    g_a, g_b, contact, density = _histogram_bins(D, heights, cutoff)
-    g_c = np.clip(gap_k, g_a, g_b)
-    filled = np.sum(density * (g_c - g_a), axis=-1)
-    depth = (g_c - g_a) * (2 * gap_k - g_a - g_c) / 2 + contact * (gap_k - cutoff)
-    return filled, np.sum(density * depth, axis=-1)
-
-
-# -- the four terms ----------------------------------------------------------------------------
-
-
-def vdw_pressure(D, heights, hamaker, cutoff, retardation):
-    """Van der Waals attraction across the non-contacting gaps, Pa (positive: attractive).
-
-    p_vdW(D) = E[p(g); g >= D0], g = D − z, with p the retarded flat–flat pressure
-    (:func:`vdw_flat_pressure`; Gregory 1981) (DelRio et al. 2005, non-retarded: b = 0 gives
-    (A/6π) E[g⁻³; g >= D0], Israelachvili Eq. 13.11).
-
-    Parameters
-    ----------
-    D : array_like
-        Gap between the mean planes, m.
-    heights : array_like or Empirical
-        Gaussian heights: their rms Rq, m (> 0, broadcast with ``D``); or a measured
-        height histogram (an :class:`~mcsim.empirical.Empirical`: ``edges``,
-        ``densities``, ``sigma``), whose bins go on a last axis summed over.
-    hamaker : array_like
-        Hamaker constant A, J.
-    cutoff : array_like
-        Cutoff gap D0, m: smaller gaps are contact.
-    retardation : array_like
-        b = 5.32/λ, m⁻¹ (:func:`retardation`, :attr:`Environment.retardation`); 0:
-        non-retarded.
-
-    Returns
-    -------
-    ndarray
-        p_vdW, Pa, of the broadcast shape of the arguments.
-    """
-    return hamaker / (6 * math.pi) * _gap_moment(D, heights, cutoff, 3, retardation)
-
-
-def vdw_work(D_t, heights, hamaker, cutoff, retardation):
-    """Van der Waals work of separation from ``D_t`` to infinity, J/m².
-
-    W_vdW(D_t) = E[W(max(D_t − z, D0))], W the retarded flat–flat energy
-    (:func:`vdw_flat_energy`; b = 0: DelRio et al. 2005's Σ A/(12π D_i²));
-    −dW/dD = :func:`vdw_pressure`. Flat surfaces at contact: A/(12π D0²)/(1 + b D0).
-
-    Parameters
-    ----------
-    D_t : array_like
-        Mean-plane gap at the closest approach, m.
-    heights, hamaker, cutoff, retardation
-        As for :func:`vdw_pressure`.
-
-    Returns
-    -------
-    ndarray
-        W_vdW, J/m².
-    """
-    return hamaker / (12 * math.pi) * _gap_moment(D_t, heights, cutoff, 2, retardation)
-
-
-def _capillary(D, heights, cutoff, surface_tension, kelvin_radius, contact_angle, film,
-               which: int):  # fmt: skip
-    """Laplace pressure times the filled fraction (0) or the mean filled depth (1), over the
-    band max(D0, 2t) <= g < g_K = 2 r_K cos θ + 2t."""
-    r_k = np.asarray(kelvin_radius, dtype=float)
-    film = np.asarray(film, dtype=float)
-    gap_k = 2 * r_k * np.cos(contact_angle) + 2 * film
-    floor = np.maximum(cutoff, 2 * film)
-    active = gap_k > floor
-    r_safe = np.where(active, r_k, 1.0)
-    gap_safe = np.where(active, gap_k, 2 * floor)
-    value = _condensate(D, heights, floor, gap_safe)[which]
-    return np.where(active, surface_tension / r_safe * value, 0.0)
-
-
-def capillary_pressure(D, heights, cutoff, surface_tension, kelvin_radius, contact_angle, film=0.0):
-    """Capillary attraction of the condensed liquid, Pa (positive: attractive).
-
-    p_cap(D) = (γ_L/r_K) P(f <= g < g_K), g_K = 2 r_K cos θ + 2t, f = max(D0, 2t): Laplace
-    pressure on the area whose gap is bridged by liquid between the two adsorbed films of
-    thickness t (DelRio et al. 2007 with t = 0), down to the wet floor f, below which the
-    films are pressed into each other. Zero where g_K <= f (dry, θ >= 90°, or too little
-    vapour to fill any open gap).
-
-    Parameters
-    ----------
-    D : array_like
-        Gap between the mean planes, m.
-    heights : array_like or Empirical
-        As for :func:`vdw_pressure`.
-    cutoff : array_like
-        Cutoff gap D0, m.
-    surface_tension : array_like
-        γ_L, J/m².
-    kelvin_radius : array_like
-        r_K, m (:func:`kelvin_radius`; 0 when dry).
-    contact_angle : array_like
-        θ, rad.
-    film : array_like
-        Adsorbed film t on each face, m (:attr:`Environment.film`; default 0: no film, the
-        band D0 <= g < 2 r_K cos θ).
-
-    Returns
-    -------
-    ndarray
-        p_cap, Pa, of the broadcast shape of the arguments.
-    """
-    return _capillary(D, heights, cutoff, surface_tension, kelvin_radius, contact_angle, film, 0)
-
-
-def capillary_work(D_t, heights, cutoff, surface_tension, kelvin_radius, contact_angle, film=0.0):
-    """Capillary work of separation from ``D_t`` to infinity, J/m².
-
-    W_cap(D_t) = (γ_L/r_K) E[(g_K − max(f, D_t − z))⁺]; −dW/dD =
-    :func:`capillary_pressure`. Flat surfaces at contact:
-    (γ_L/r_K)(g_K − f) = 2γ_L cos θ − γ_L (D0 − 2t)⁺/r_K <= 2γ_L cos θ, the ceiling of
-    DelRio et al. 2007, reached once 2t >= D0 (and as RH → 1).
-
-    Parameters
-    ----------
-    D_t : array_like
-        Mean-plane gap at the closest approach, m.
-    heights, cutoff, surface_tension, kelvin_radius, contact_angle, film
-        As for :func:`capillary_pressure`.
-
-    Returns
-    -------
-    ndarray
-        W_cap, J/m².
-    """
-    return _capillary(D_t, heights, cutoff, surface_tension, kelvin_radius, contact_angle, film,
-                      1)  # fmt: skip

@@ -6,12 +6,17 @@ The GW summits (σ_s, R, η) measure the separation from the mean summit plane; 
 Waals and capillary attraction act across the gaps of the whole surface, measured from its
 mean plane (:mod:`mcsim.physics.environment`). This module gives the rms height Rq and the
 summit plane's offset y_s: as given (a measured map gives both, and its height histogram),
-or estimated from the summits by Nayak's (1971) and McCool's (1986) relations.
+or estimated from the summits by Nayak's (1971) and McCool's (1986) relations. A measured
+height histogram (:func:`is_histogram`: an :class:`~mcsim.empirical.Empirical`) is read by the
+environment's laws bin by bin, as the gaps of its bins at a mean-plane gap
+(:func:`histogram_gaps`).
 """
 
 from __future__ import annotations
 
 from typing import NamedTuple
+
+import numpy as np
 
 from mcsim.model.counterface import spectral_moments, summits_of
 
@@ -102,3 +107,27 @@ def gap_heights(surface) -> GapHeights:
     if shape is not None:  # a measured histogram in units of rq, made dimensional
         heights = type(shape)(shape.edges, shape.densities, sigma=rq, source=shape.source)
     return GapHeights(heights, rq, offset, source)
+
+
+def height_histogram(heights) -> tuple[np.ndarray, np.ndarray]:
+    """Bin edges (m, about the mean plane) and densities (m⁻¹) of an Empirical-like object."""
+    return heights.sigma * heights.edges, heights.densities / heights.sigma
+
+
+def histogram_gaps(D, heights, cutoff):
+    """Per bin of the histogram: the gap interval [g_a, g_b] out of contact, the contact length
+    and the density (m⁻¹), with the bins on a new last axis (g_a, g_b >= D0)."""
+    edges, density = height_histogram(heights)
+    D = np.asarray(D, dtype=float)[..., None]
+    g_lo, g_hi = D - edges[1:], D - edges[:-1]
+    g_a, g_b = np.maximum(g_lo, cutoff), np.maximum(g_hi, cutoff)
+    # The bin's part below the cutoff: exactly 0 for an open bin (the bin's width less its open
+    # part, g_b − g_a, would leave D's rounding there, which k(D0)/k(g) then amplifies).
+    contact = np.minimum(g_hi, cutoff) - np.minimum(g_lo, cutoff)
+    return g_a, g_b, contact, density
+
+
+def is_histogram(heights) -> bool:
+    """Whether ``heights`` is a measured height histogram (an Empirical-like object, with
+    ``edges``, ``densities`` and ``sigma``) rather than Gaussian heights' rms Rq (m)."""
+    return hasattr(heights, "densities")

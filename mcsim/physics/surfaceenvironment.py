@@ -17,7 +17,7 @@ caps carry its summits' fluctuations about that average. :func:`environment_curv
 **One interface, one law** (:func:`vdw_share`, :func:`contact_law`): the solids' van der Waals
 attraction is part of their interface's work of adhesion w, not an addition to it. Its share
 w_vdW = A/(12π D0²)·1/(1 + b D0) (the retarded flat–flat van der Waals energy at contact,
-:func:`mcsim.physics.environment.vdw_flat_energy`) acts through the caps and
+:func:`mcsim.physics.vanderwaals.vdw_flat_energy`) acts through the caps and
 the open gaps, and the contact law carries the rest, w − w_vdW (the short-range part), so a
 touching summit's adhesion sums to w once (docs/physics.md); :func:`interface_notes` says how
 w is shared.
@@ -31,16 +31,11 @@ import math
 import numpy as np
 
 from mcsim.model.errors import ParameterError
-from mcsim.physics.environment import (
-    Environment,
-    capillary_pressure,
-    capillary_work,
-    vdw_flat_energy,
-    vdw_pressure,
-    vdw_work,
-)
+from mcsim.physics.capillary import capillary_pressure, capillary_work
+from mcsim.physics.environment import Environment
 from mcsim.physics.gapheights import gap_heights
 from mcsim.physics.laws import Edges, LawSet, Output, attraction
+from mcsim.physics.vanderwaals import vdw_flat_energy, vdw_pressure, vdw_work
 
 
 def band_edge(R: float, eta: float, env: Environment) -> float:
@@ -100,7 +95,7 @@ def vdw_share(w: float, env: Environment | None) -> float:
     """The van der Waals part w_vdW of the interface's work of adhesion w, J/m².
 
     w_vdW = A/(12π D0²)·1/(1 + b D0), the retarded energy per unit area of two flats at the
-    cutoff gap D0 (:func:`mcsim.physics.environment.vdw_flat_energy`: Gregory 1981; b = 0,
+    cutoff gap D0 (:func:`mcsim.physics.vanderwaals.vdw_flat_energy`: Gregory 1981; b = 0,
     Israelachvili, *Intermolecular and Surface Forces*, 3rd ed., Eq. 13.11): the caps carry
     it as a sphere–flat pull of up to 2πR·w_vdW (Derjaguin), the open gaps as the flat–flat
     pressure. The contact law then carries w − w_vdW (:func:`contact_law`). With w = 0 (a

@@ -40,7 +40,7 @@ a measured topography, here on the deformed one instead of the rigid overlap), p
 area (:func:`gap_attraction`):
 
 * van der Waals: p_vdW = (1/N) Σ p(g) over the pixels with g ≥ D0, p the retarded flat-flat
-  pressure (:func:`~mcsim.physics.environment.vdw_flat_pressure`: Gregory 1981; A/(6π g³)
+  pressure (:func:`~mcsim.physics.vanderwaals.vdw_flat_pressure`: Gregory 1981; A/(6π g³)
   without retardation, Israelachvili Eq. 13.11), in the Derjaguin approximation;
 * capillary: p_cap = (γ_L/r_K) × the fraction of pixels with f ≤ g < g_K = 2 r_K cos θ + 2t
   (Laplace pressure on the area the liquid bridges between the adsorbed films t, above the wet
@@ -69,8 +69,9 @@ from mcsim.model.errors import ParameterError
 from mcsim.model.params import Material, Surface
 from mcsim.physics import bem
 from mcsim.physics.analytic import hertz_area_fraction
-from mcsim.physics.environment import Environment, as_environment, vdw_flat_pressure
+from mcsim.physics.environment import Environment, as_environment
 from mcsim.physics.loadcontrol import load_control
+from mcsim.physics.vanderwaals import vdw_flat_pressure
 from mcsim.studies.ingest import (
     decide_periodic,
     default_level,
@@ -127,7 +128,7 @@ def gap_attraction(gap: np.ndarray, environment: Environment) -> tuple[float, fl
     Returns
     -------
     (float, float)
-        p_vdW = (1/N) Σ_{g ≥ D0} p(g) (:func:`~mcsim.physics.environment.vdw_flat_pressure`;
+        p_vdW = (1/N) Σ_{g ≥ D0} p(g) (:func:`~mcsim.physics.vanderwaals.vdw_flat_pressure`;
         A/(6π g³) non-retarded) and p_cap = (γ_L/r_K) #{f ≤ g < g_K}/N, Pa, positive when
         attractive; 0 for a term the environment does not have.
     """

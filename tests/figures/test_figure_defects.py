@@ -157,7 +157,8 @@ def design_map():
 
 
 def test_the_region_names_of_a_design_map_cover_no_coloured_cell(design_map):
-    from mcsim.figures.sweeps import REGIONS, cell_edges, is_log_grid, sweep_figure
+    from mcsim.figures.grid import cell_edges, is_log_grid
+    from mcsim.figures.sweeps import REGIONS, sweep_figure
 
     fig = sweep_figure(design_map, kind="map")
     renderer = _renderer(fig)

@@ -8,8 +8,9 @@ import numpy as np
 import pytest
 from conftest import run_cli
 
+from mcsim.figures.grid import is_log_grid
 from mcsim.figures.style import save
-from mcsim.figures.sweeps import is_log_grid, sweep_figure
+from mcsim.figures.sweeps import sweep_figure
 from mcsim.model.errors import MCSimError, ParameterError
 from mcsim.model.presets import MATERIALS, SURFACES
 from mcsim.physics.adhesion import DMT_BELOW, JKR_ABOVE, maugis_parameter

@@ -15,17 +15,11 @@ from tolerances import QUAD_RTOL, ROUNDING_FEW
 
 from mcsim.model.errors import ParameterError, UnitError
 from mcsim.model.presets import SURFACES
-from mcsim.physics.environment import (
-    DEFAULT_CUTOFF,
-    Environment,
-    capillary_pressure,
-    capillary_work,
-    kelvin_radius,
-    vdw_pressure,
-    vdw_work,
-)
+from mcsim.physics.capillary import capillary_pressure, capillary_work
+from mcsim.physics.environment import DEFAULT_CUTOFF, Environment, kelvin_radius
 from mcsim.physics.gapheights import nayak_heights
 from mcsim.physics.surfaceenvironment import environment_curves, environment_works
+from mcsim.physics.vanderwaals import vdw_pressure, vdw_work
 from mcsim.topography.empirical import Empirical
 
 A = 1.6e-19  # J, silicon across air

@@ -23,18 +23,16 @@ from tolerances import QUAD_RTOL, ROUNDING_FEW, ROUNDING_FORMULA
 
 from mcsim.model.errors import ParameterError, UnitError
 from mcsim.model.presets import SURFACES
-from mcsim.physics.environment import (
-    DEFAULT_RETARDATION_WAVELENGTH,
-    Environment,
+from mcsim.physics.environment import DEFAULT_RETARDATION_WAVELENGTH, Environment, retardation
+from mcsim.physics.laws.attraction import vdw_summit, vdw_summit_work
+from mcsim.physics.surfaceenvironment import environment_curves, environment_works, vdw_share
+from mcsim.physics.vanderwaals import (
     _gap_moment,
-    retardation,
     vdw_flat_energy,
     vdw_flat_pressure,
     vdw_pressure,
     vdw_work,
 )
-from mcsim.physics.laws.attraction import vdw_summit, vdw_summit_work
-from mcsim.physics.surfaceenvironment import environment_curves, environment_works, vdw_share
 from mcsim.topography.empirical import Empirical
 
 A, D0, R = 1.6e-19, 0.2e-9, 0.5e-6

@@ -19,12 +19,8 @@ from tolerances import ROUNDING_FORMULA
 from mcsim.model.errors import ParameterError, UnitError
 from mcsim.model.presets import SURFACES
 from mcsim.physics import films
-from mcsim.physics.environment import (
-    Environment,
-    capillary_pressure,
-    capillary_work,
-    kelvin_radius,
-)
+from mcsim.physics.capillary import capillary_pressure, capillary_work
+from mcsim.physics.environment import Environment, kelvin_radius
 from mcsim.physics.laws.attraction import capillary_summit, capillary_summit_work
 from mcsim.physics.surfaceenvironment import (
     environment_curves,

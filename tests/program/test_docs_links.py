@@ -35,6 +35,8 @@ DOCUMENTED_MODULES = (
     "mcsim/physics/adhesion.py",
     "mcsim/physics/analytic.py",
     "mcsim/physics/environment.py",
+    "mcsim/physics/vanderwaals.py",
+    "mcsim/physics/capillary.py",
     "mcsim/physics/films.py",
     "mcsim/physics/surfaceenvironment.py",
     "mcsim/physics/gapheights.py",

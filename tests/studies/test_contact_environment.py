@@ -8,7 +8,9 @@ import pytest
 from tolerances import ROUNDING_SUM
 
 from mcsim.model.presets import MATERIALS
-from mcsim.physics.environment import Environment, capillary_pressure, vdw_pressure
+from mcsim.physics.capillary import capillary_pressure
+from mcsim.physics.environment import Environment
+from mcsim.physics.vanderwaals import vdw_pressure
 from mcsim.studies.contact import contact_map, gap_attraction
 
 SCAN = "examples/scan.npy"  # periodic, 100 x 100 pixels of 10 nm, heights in m

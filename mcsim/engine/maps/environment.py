@@ -71,8 +71,8 @@ from mcsim.engine.maps.kernel import (
 )
 from mcsim.engine.maps.status import NO_REST, OK, REFERENCE
 from mcsim.physics.adhesion import GAUSSIAN_TOP, GRID, PANELS, environment_top_separation
-from mcsim.physics.environment import VDW_TAIL
 from mcsim.physics.surfaceenvironment import environment_works
+from mcsim.physics.vanderwaals import VDW_TAIL
 
 #: Gauss–Legendre nodes of the contact's one-panel rule in u (as
 #: :data:`mcsim.engine.maps.kernel.S_NODES`, which has 32): the attraction pulls the turn deep
@@ -112,7 +112,7 @@ VDW_U, VDW_W = _vdw_rule()
 def _kernel(gap, retard, power):
     """The retarded flats' energy over A/12π, 1/(g²(1 + b g)) (``power`` 2, m⁻²), or pressure
     over A/6π, 1/(g³(1 + b g)) + b/(2 g²(1 + b g)²) (``power`` 3, m⁻³), as
-    :func:`mcsim.physics.environment._gap_kernel`; b = ``retard`` (m⁻¹), 0: g⁻ⁿ."""
+    :func:`mcsim.physics.vanderwaals._gap_kernel`; b = ``retard`` (m⁻¹), 0: g⁻ⁿ."""
     inverse = 1.0 / gap
     damping = 1.0 / (1.0 + retard * gap)
     if power == 2:
@@ -129,7 +129,7 @@ def _gap_moments(a, n, shift, scale, power, t_cap, retard, out):
 
     With t = (g − c)/ρ each is ∫₀^t_cap (k(c + ρt) − k(u)) φ(a − t) dt, over the t range
     where φ exceeds e^-VDW_TAIL of its peak for one of the ``a`` (as
-    :func:`mcsim.physics.environment._gaussian_gap_moment` for one), on
+    :func:`mcsim.physics.vanderwaals._gaussian_gap_moment` for one), on
     :data:`VDW_PANELS` equal Gauss–Legendre panels in u, τ = t + c/ρ = ln(1 + eᵘ)
     (``shift`` = c/ρ): geometric near the pole τ = 0, uniform far from it,
     dτ/du = 1/(1 + e⁻ᵘ), analytic in a strip of half-width π (as the reference's

@@ -15,7 +15,7 @@ positive (N):
 
 * van der Waals, the retarded flat–flat pressure p(u) = −dW/du over the open part of the
   cap, D0 ≤ u < u_c, W(u) = A/(12π u²)·1/(1 + b u) the flats' energy (Gregory, J. Colloid
-  Interface Sci. 83, 138, 1981; b = 5.32/λ, :func:`mcsim.physics.environment.vdw_flat_energy`):
+  Interface Sci. 83, 138, 1981; b = 5.32/λ, :func:`mcsim.physics.vanderwaals.vdw_flat_energy`):
   F_vdW = 2πR [W(m) − W(u_c)] = (A R/6)[k(m) − k(u_c)], k(u) = 1/(u²(1 + b u)),
   m = min(max(g, D0), u_c); b = 0 gives the non-retarded (A R/6)(m⁻² − u_c⁻²).
   u_c → ∞ with g ≥ D0 gives the sphere–flat A R/(6 g²)·1/(1 + b g) (Derjaguin;
