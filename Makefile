@@ -16,7 +16,7 @@ run: $(BIN)/.installed
 
 # -n 2: the tests spread over two worker processes (pytest-xdist); --dist worksteal lets an
 # idle worker take tests queued on the other, and tests/conftest.py starts the slow ones
-# first, so the README's minutes-long run overlaps the rest of the suite
+# first, so the runs of the README's and the guide's pages overlap the rest of the suite
 # (--durations: the 25 slowest tests, where to look when the suite grows)
 test: $(BIN)/.installed
 	$(BIN)/python -m pytest -q -n 2 --dist worksteal --durations=25

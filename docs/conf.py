@@ -53,11 +53,12 @@ def _plain_text_math(app, what, name, obj, options, lines) -> None:
         lines[i] = "``".join(parts)
 
 
-#: Links written for GitHub (between README.md, validation/README.md, ARCHITECTURE.md and
-#: docs/*.md) and the site pages those files become.
+#: Links written for GitHub (between validation/README.md, ARCHITECTURE.md, CHANGELOG.md,
+#: docs/*.md and docs/guide/*.md) and the site pages those files become.
 _SITE_LINKS = {
-    "](../README.md": "](guide.md",
     "](../validation/README.md": "](validation.md",
+    "](../../validation/README.md": "](../validation.md",
+    "](../../ARCHITECTURE.md": "](../architecture.md",
     "](validation/README.md": "](validation.md",
     "](../ARCHITECTURE.md": "](architecture.md",
     "](ARCHITECTURE.md": "](architecture.md",

@@ -1,6 +1,6 @@
 """Make every figure in docs/ (``make docs``) and record what each was made from.
 
-Each figure is made by the mcsim commands the README shows (listed in ``FIGURES``), run
+Each figure is made by the mcsim commands the guide shows (listed in ``FIGURES``), run
 from the repository root into a temporary folder; the PNG is then copied into docs/.
 ``docs/figures.json`` records, per figure, those commands and a SHA-256 digest of its
 inputs: every number in the files the commands wrote before plotting (run and sweep files'

@@ -209,6 +209,7 @@ def rows_of(out: str) -> list[dict]:
 
 def pytest_collection_modifyitems(items):
     """The slow tests first (stable order otherwise): ``make test`` spreads the suite over two
-    workers, and the README's run as written (minutes) then starts at once on one of them
-    while the other works through the rest, instead of starting last and running alone."""
+    workers, and the runs of the README's and the guide's pages as written (one test per
+    page) then start at once on both, spread by worksteal, instead of starting last and
+    running alone."""
     items.sort(key=lambda item: item.get_closest_marker("slow") is None)

@@ -1,8 +1,8 @@
 """The documentation stays inside the repository: its links resolve, and nothing points outside.
 
-* Every relative link of README.md, ARCHITECTURE.md, validation/README.md and docs/*.md names
-  a tracked file, and its ``#anchor`` (if any) a heading of that file, as GitHub makes
-  anchors from headings.
+* Every relative link of README.md, ARCHITECTURE.md, validation/README.md, docs/*.md and
+  docs/*/*.md (the guide, the tutorials) names a tracked file, and its ``#anchor`` (if any)
+  a heading of that file, as GitHub makes anchors from headings.
 * No tracked file refers to the development notes outside the repository (the shared
   folder next to a checkout, or their physics notes file): a clone does not have them.
 * Every "docs/physics.md, section 'X'" in the package names a heading of docs/physics.md,
@@ -119,6 +119,7 @@ def documents() -> list[str]:
     return [
         *DOCUMENTS,
         *sorted(p.relative_to(ROOT).as_posix() for p in (ROOT / "docs").glob("*.md")),
+        *sorted(p.relative_to(ROOT).as_posix() for p in (ROOT / "docs").glob("*/*.md")),
     ]
 
 
@@ -187,7 +188,6 @@ def test_the_module_docstring_points_to_its_section_of_the_physics_document(modu
     assert sections(docstring), f"{module}: its docstring names no section of {PHYSICS}"
 
 
-def test_the_readme_links_the_physics_document_from_the_model_section():
-    readme = (ROOT / "README.md").read_text(encoding="utf-8")
-    model = readme.split("\n## The model\n", 1)[1].split("\n## ", 1)[0]
-    assert f"]({PHYSICS})" in model or f"]({PHYSICS}#" in model
+def test_the_guide_links_the_physics_document_from_the_model_page():
+    model = (ROOT / "docs" / "guide" / "model.md").read_text(encoding="utf-8")
+    assert "](../physics.md)" in model or "](../physics.md#" in model

@@ -7,12 +7,14 @@ no git, as ``SETUPTOOLS_SCM_PRETEND_VERSION_FOR_MCSIM``), and installed with
 ``--no-deps`` into a fresh virtual environment that sees the test interpreter's
 site-packages for the dependencies only (a path in a ``.pth`` file: that folder's own
 ``.pth`` files, among them an editable install's finder of the source tree, are not
-read). The installed ``mcsim`` then runs from a folder outside the repository.
+read). The installed ``mcsim`` then runs from a folder outside the repository: ``mcsim
+ingest`` of the example scan, and the README's ``mcsim report`` of it.
 """
 
 from __future__ import annotations
 
 import email.parser
+import json
 import os
 import re
 import shutil
@@ -151,6 +153,36 @@ def test_the_installed_command_runs_outside_the_repository(installed, wheel, tmp
         assert written(installed_run, name) == written(source_run, name)
     header = (installed_run / "scan.toml").read_text().splitlines()[0]
     assert header.startswith(f"# written by mcsim {wheel[1]} (mcsim ingest)")
+
+
+@pytest.mark.slow  # half a minute of CPU: started first (tests/conftest.py)
+def test_the_installed_command_writes_a_stiction_report(installed, wheel, tmp_path):
+    """The README's ``mcsim report examples/scan.npy ...`` from the installed wheel, outside
+    the repository, at two of its humidities with 20 jkr pads each (jkr: the pads' static
+    friction too, and a faster law set than the Maugis-Dugdale that ``auto`` picks;
+    tests/studies/test_report.py checks a report's numbers): both files, the JSON naming
+    the wheel's version and the inputs, and at each RH a p_stick of the 20 pads inside its
+    95 % interval, the lot's numbers of it and the pads' static friction."""
+    bin_folder, _ = installed
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"} | {"MPLBACKEND": "Agg"}
+    _run([bin_folder / "mcsim", "report", REPO / "examples" / "scan.npy", "--unit", "m",
+          "--pixel-size", "10nm", "--pad-area", "10um^2", "--preload", "0", "--restoring-force",
+          "10uN", "--rh", "0,0.5", "--pads", "20", "--law", "jkr", "--devices", "1000",
+          "--seed", "1", "--out", "scan-report.html", "--quiet"], tmp_path, env)  # fmt: skip
+    html = (tmp_path / "scan-report.html").read_text()
+    assert html.startswith("<!DOCTYPE html>") and wheel[1] in html
+    data = json.loads((tmp_path / "scan-report.json").read_text())
+    assert data["version"] == wheel[1]
+    inputs = data["inputs"]
+    assert (inputs["pads"], inputs["devices"], inputs["seed"]) == (20, 1000, 1)
+    assert [row["rh"] for row in data["rows"]] == [0.0, 0.5]
+    for row in data["rows"]:
+        assert 0 <= row["p_stick_low"] <= row["p_stick"] <= row["p_stick_high"] <= 1, row
+        # fewer than 100 pads: the fraction of the 20 pads, never importance sampling
+        assert row["p_stick_method"] == "pads" and round(row["p_stick"] * 20, 9).is_integer()
+        assert row["expected_stuck"] == pytest.approx(1000 * row["p_stick"])
+        assert row["p_any_low"] <= row["p_any"] <= row["p_any_high"]
+        assert row["static_friction_mean"] > 0 and row["pull_off_mean"] >= 0
 
 
 def test_versions_between_and_on_tags(tmp_path):

@@ -1,11 +1,12 @@
-"""Every number README.md quotes outside "Performance" is computed here and compared.
+"""Every number README.md and the user guide (docs/guide/) quote outside "Performance" is
+computed here and compared.
 
-Each claim is a pattern that must match README.md exactly once (line breaks read as
-spaces) and a function computing the quoted numbers. Inputs and constants (presets,
+Each claim is a pattern that must match the pages exactly once, in one of them (line breaks
+read as spaces), and a function computing the quoted numbers. Inputs and constants (presets,
 ranges, defaults) must equal the code's value; results (``rounded``) must print as quoted
 at the precision quoted: "90.8" is compared with the computed value written with one
-decimal, "2.600e-5" with four significant digits. Changing the code or the README alone
-fails the test, naming the README text.
+decimal, "2.600e-5" with four significant digits. Changing the code or the pages alone
+fails the test, naming the text.
 """
 
 from __future__ import annotations
@@ -30,17 +31,21 @@ from mcsim.physics.adhesion import adhesion_summary, maugis_parameter, tabor_par
 from mcsim.physics.environment import DEFAULT_CUTOFF, Environment
 from mcsim.physics.loadcontrol import XTOL
 
-README = Path(__file__).resolve().parents[2] / "README.md"
-TEXT = " ".join(README.read_text().split())
+ROOT = Path(__file__).resolve().parents[2]
+README = ROOT / "README.md"
+#: The landing page and the guide's pages, where the numbers checked here are quoted.
+PAGES = (README, *sorted((ROOT / "docs" / "guide").glob("*.md")))
+#: Their text, whitespace collapsed; a form feed between pages (no pattern spans two).
+TEXT = "\f".join(" ".join(page.read_text().split()) for page in PAGES)
 
 SILICON = MATERIALS["silicon"]
 SMOOTH = SURFACES["smooth"]
 
 
 def quoted(pattern: str) -> tuple[str, ...]:
-    """The groups of the one match of `pattern` in the README (whitespace collapsed)."""
+    """The groups of the one match of `pattern` in the pages (whitespace collapsed)."""
     matches = list(re.finditer(pattern, TEXT))
-    assert len(matches) == 1, f"README.md: {len(matches)} matches of {pattern!r}, expected 1"
+    assert len(matches) == 1, f"the pages: {len(matches)} matches of {pattern!r}, expected 1"
     return matches[0].groups()
 
 
@@ -56,18 +61,18 @@ def at_precision(text: str, value: float) -> str:
 
 
 def check_rounded(pattern: str, *values: float) -> None:
-    """The README's numbers (groups of `pattern`) print as the computed `values`."""
+    """The pages' numbers (groups of `pattern`) print as the computed `values`."""
     texts = tuple(t.replace("−", "-") for t in quoted(pattern))
     assert len(texts) == len(values)
     computed = tuple(at_precision(t, v) for t, v in zip(texts, values, strict=True))
-    assert computed == texts, f"README.md says {texts} for {pattern!r}; the code gives {computed}"
+    assert computed == texts, f"the pages say {texts} for {pattern!r}; the code gives {computed}"
 
 
 def check_exact(pattern: str, *values: float) -> None:
-    """The README's numbers (groups of `pattern`) equal the code's inputs or constants."""
+    """The pages' numbers (groups of `pattern`) equal the code's inputs or constants."""
     texts = quoted(pattern)
     parsed = tuple(float(re.sub(r"[,\s]", "", t)) for t in texts)  # "14,700", "10 000"
-    np.testing.assert_allclose(parsed, values, rtol=1e-12, err_msg=f"README.md: {pattern!r}")
+    np.testing.assert_allclose(parsed, values, rtol=1e-12, err_msg=f"the pages: {pattern!r}")
 
 
 # Inputs and constants ---------------------------------------------------------------------
@@ -77,7 +82,7 @@ def validation_script(name: str):
     """The module of ``validation/<name>.py`` (its inputs and criteria, which the README quotes)."""
     import importlib.util
 
-    path = README.parent / "validation" / f"{name}.py"
+    path = ROOT / "validation" / f"{name}.py"
     sys.path.insert(0, str(path.parent))
     try:
         spec = importlib.util.spec_from_file_location(name, path)
@@ -264,7 +269,7 @@ def test_design_sigma_numbers():
         p2 / 1e6, p5, p1 / 1e6, p1 * 1e-10 * 1e3,
     )  # fmt: skip
     assert 6 < math.log10(p2 / p5) < 7
-    # the first σ of the README's 40-point grid (0.3 nm … 20 nm, log) with no tensile approach
+    # the first σ of the guide's 40-point grid (0.3 nm … 20 nm, log) with no tensile approach
     grid = np.geomspace(0.3e-9, 20e-9, 40)
     low, high = np.searchsorted(grid, 5e-9), len(grid) - 1  # pull-off > 0 at low, 0 at high
     assert _pull_off_pressure(grid[low]) > 0 and _pull_off_pressure(grid[high]) == 0
@@ -276,14 +281,14 @@ def test_design_sigma_numbers():
 
 @pytest.fixture(scope="module")
 def pads_run(tmp_path_factory) -> Path:
-    """The README's run of 300 pads (step 2 of "Designing against stiction"), ~3 s."""
+    """The guide's run of 300 pads (step 2 of "Designing against stiction"), ~3 s."""
     out = tmp_path_factory.mktemp("pads") / "pads.h5"
     args = (
         "simulate --surface smooth --law maugis-dugdale --cycle --h=4:0:41 --area 10um^2 "
         "--realizations 300 --seed 1"
     )
     readme = r"(--area 10um\^2 \\ --realizations 300 --seed 1 --out pads\.h5)"
-    assert quoted(r"maugis-dugdale --cycle --h=4:0:41 " + readme)  # the README's command
+    assert quoted(r"maugis-dugdale --cycle --h=4:0:41 " + readme)  # the guide's command
     mcsim_here(*args.split(), "--out", str(out), "--quiet")
     return out
 
@@ -313,7 +318,7 @@ def mcsim_here_with_stderr(*args: str) -> tuple[str, str]:
 
 
 def test_pad_statistics(pads_run):
-    # the README's `mcsim pads` commands, in this process (test_readme.py runs them as written)
+    # the guide's `mcsim pads` commands, in this process (test_readme.py runs them as written)
     cp, wilson = (
         json.loads(mcsim_here("pads", str(pads_run), "--restoring-force", "130uN", "--format",
                               "json", *extra))
@@ -414,9 +419,10 @@ def test_more_constants_of_the_code():
     from mcsim.store import files, runfile
     from mcsim.studies import adhesivecontact, ingest, simulation, tail
 
-    project = tomllib.loads((README.parent / "pyproject.toml").read_text())["project"]
-    (python,) = quoted(r"On a fresh machine with Python ≥ (\S+) \(and `make`\)")
-    assert project["requires-python"] == f">={python}"
+    project = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]
+    # the README's quick start, and the guide's installation page that repeats it
+    pythons = re.findall(r"On a fresh machine with Python ≥ (\S+) \(and `make`\)", TEXT)
+    assert len(pythons) == 2 and {f">={p}" for p in pythons} == {project["requires-python"]}
     check_exact(r"cut at D = (\S+) z0 \(the outputs report", dmt.DEFAULT_CUTOFF)
     check_exact(r"schema version (\d+), netCDF-compatible", runfile.SCHEMA_VERSION)
     check_exact(r"Datasets over (\d+) KiB \(the per-patch curves", files.COMPRESS_ABOVE / 1024)
@@ -446,7 +452,7 @@ def test_the_coverage_asked_of_importance_sampling_is_the_benchmarks():
 
 
 def test_humidity_threshold_of_the_intermediate_surface():
-    # the README's sweep, rh = 0.05 … 0.95 in 10 steps, law auto; the work of separation
+    # the guide's sweep, rh = 0.05 … 0.95 in 10 steps, law auto; the work of separation
     # grows with rh: its ends below the threshold and the two points above it suffice
     surface = SURFACES["intermediate"]
     law, _ = adhesion.choose_law(surface, SILICON)
@@ -466,7 +472,7 @@ def test_humidity_threshold_of_the_intermediate_surface():
 
 @pytest.mark.slow
 def test_p_stick_table(tmp_path):
-    # the README's sweep of "How likely is my device to stick?" (about 8 s of CPU)
+    # the guide's sweep of "How likely is my device to stick?" (about 8 s of CPU)
     import xarray as xr
 
     args = quoted(
@@ -504,7 +510,7 @@ def test_when_importance_sampling_replaces_the_fraction_of_the_pads():
 
 @pytest.mark.slow
 def test_tail_example(tmp_path):
-    # the README's sweep of "Far in the tail: importance sampling" (about 50 s of CPU)
+    # the guide's sweep of "Far in the tail: importance sampling" (about 50 s of CPU)
     import xarray as xr
 
     args = quoted(
@@ -525,7 +531,7 @@ def test_tail_example(tmp_path):
 
 @pytest.mark.slow
 def test_p_stick_model_runs_low_in_the_tail_against_importance_sampling():
-    # the README's "its tail runs low" (about 12 s of CPU): 255 summits touch, every pad
+    # the guide's "its tail runs low" (about 12 s of CPU): 255 summits touch, every pad
     # retracted from h = 0; the model lies below the importance sampling's interval
     import dataclasses
 
@@ -548,7 +554,7 @@ def test_p_stick_model_runs_low_in_the_tail_against_importance_sampling():
 
 @pytest.mark.slow
 def test_humid_p_stick_table(tmp_path):
-    # the README's sweep of "Will my device stick in humid air?" (about 15 s of CPU)
+    # the guide's sweep of "Will my device stick in humid air?" (about 15 s of CPU)
     import xarray as xr
 
     args = quoted(
@@ -581,7 +587,7 @@ def test_humid_p_stick_table(tmp_path):
 
 @pytest.mark.slow
 def test_friction_slip_table(tmp_path):
-    # the README's sweep of "Will my pad slip?" (about 20 s of CPU)
+    # the guide's sweep of "Will my pad slip?" (about 20 s of CPU)
     import xarray as xr
 
     from mcsim.studies.tail import MIN_TAIL_PADS, SWITCH
@@ -694,11 +700,11 @@ def test_paper_mu_table_separations_and_pad_summits():
     )
 
 
-def test_every_file_the_readme_names_exists():
+def test_every_file_the_pages_name_exists():
     named = set(re.findall(r"`((?:tests|validation|docs|examples|runs)/[\w./-]+\.(?:py|toml|md))`",
-                           README.read_text()))  # fmt: skip
-    missing = sorted(p for p in named if not (README.parent / p).exists())
-    assert named and not missing, f"README.md names files that do not exist: {missing}"
+                           TEXT))  # fmt: skip
+    missing = sorted(p for p in named if not (ROOT / p).exists())
+    assert named and not missing, f"the pages name files that do not exist: {missing}"
 
 
 def test_the_stickiness_thresholds_are_the_codes():
@@ -711,7 +717,7 @@ def test_the_stickiness_thresholds_are_the_codes():
 
 @pytest.mark.slow
 def test_adhesive_contact_of_the_shipped_scan():
-    # "Is GW's adhesion right on my map?": the README's command as JSON (about 10 s of CPU)
+    # "Is GW's adhesion right on my map?": the guide's command as JSON (about 10 s of CPU)
     (args,) = quoted(
         r"mcsim (contact examples/scan\.npy --unit m --pixel-size 10nm --adhesion --w "
         r"0\.1J/m\^2 --range 1nm \\ --pressure 100MPa) --plot"

@@ -32,7 +32,7 @@ GROUPS = ("realizations", "realizations/sums", "progress", "analytic", "summary"
           "summary/mean", "summary/se")  # fmt: skip
 SMOOTH, SILICON = SURFACES["smooth"], MATERIALS["silicon"]
 HUMID = Environment(hamaker=1.6e-19, cutoff=0.2e-9, rh=0.6, contact_angle=0.3)
-README = Path(__file__).parents[2] / "README.md"
+GUIDE = Path(__file__).parents[2] / "docs" / "guide"
 
 #: The units mcsim writes, in UDUNITS-2 syntax (``1``; symbols with integer powers, joined
 #: by a space or ``/``): each of "1", "m", "m^2", "m^-2", "m^4", "N", "N^2", "N m^2", "Pa",
@@ -163,11 +163,11 @@ def test_the_load_variable_is_read_as_ds_load_in_brackets_as_the_file_docs_say(w
         assert callable(ds.load) and not isinstance(ds.load, xr.DataArray)
         assert ds["load"].attrs["units"] == "1"
         assert "net normal force" in ds["load"].attrs["long_name"]
-    sections = {"Run files": "### Run files", "Parameter sweeps": "### Parameter sweeps"}
-    text = README.read_text()
-    for title, heading in sections.items():
-        section = text.split(heading, 1)[1].split("\n## ", 1)[0].split("\n### ", 1)[0]
-        assert 'ds["load"]' in section, f'README, {title}: no ds["load"]'
+    sections = {"python.md": "## Run files", "sweeps.md": "# Parameter sweeps"}
+    for page, heading in sections.items():
+        text = (GUIDE / page).read_text()
+        section = text.split(heading + "\n", 1)[1].split("\n# ", 1)[0].split("\n## ", 1)[0]
+        assert 'ds["load"]' in section, f'docs/guide/{page}, {heading}: no ds["load"]'
     for module in (mcsim.store.runfile, mcsim.store.sweepfile):
         assert 'ds["load"]' in module.__doc__, module.__name__
 

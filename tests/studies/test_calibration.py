@@ -71,7 +71,7 @@ def test_calibrated_gw_area_on_the_shipped_scan_is_within_ten_percent_at_every_f
     ratio = c.gw_area / c.exact_area
     assert np.all(np.abs(ratio - 1) <= TARGET)
     assert factors[0] > 1 > factors[-1] and np.all(np.diff(factors) < 0)  # taller is sharper
-    for doc in ("README.md", "docs/contact.md"):  # the numbers they quote
+    for doc in ("docs/guide/exact-contact.md", "docs/contact.md"):  # the numbers they quote
         text = " ".join((ROOT / doc).read_text().split())
         assert f"{c.radius_scale:.3f}" in text and f"{c.in_sample_worst * 100:.1f} %" in text, doc
         assert f"{factors[0]:.3g} R in the lowest bin to {factors[-1]:.3g} R" in text, doc
@@ -95,7 +95,8 @@ def test_out_of_sample_the_shipped_scan_is_off_by_more_and_ingest_warns(calibrat
     (warning,) = c.warnings()
     assert "out of sample by up to 10.8%" in warning and "outside the fitted range" in warning
     loo, ext = f"{c.loo_worst * 100:.1f} %", f"−{-c.extrapolated_error * 100:.1f} %"
-    for doc in ("README.md", "docs/contact.md"):  # the numbers they quote (E\* is E* in Markdown)
+    # the numbers they quote (E\* is E* in Markdown)
+    for doc in ("docs/guide/exact-contact.md", "docs/contact.md"):
         text = " ".join((ROOT / doc).read_text().replace("\\*", "*").split())
         assert f"leave-one-out {loo}" in text and f"{ext} at p/E* = 3e-2" in text, doc
     text = " ".join((ROOT / "docs" / "contact.md").read_text().split())
@@ -121,7 +122,7 @@ def test_with_one_radius_one_scale_is_off_by_more_than_ten_percent_and_says_so(o
     assert c.extrapolated_error == pytest.approx(-0.221, abs=5e-4)
     assert c.in_sample_worst > TARGET and "one radius scale cannot follow" in c.warnings()[0]
     ratio = c.gw_area / c.exact_area
-    for doc in ("README.md", "docs/contact.md"):
+    for doc in ("docs/guide/exact-contact.md", "docs/contact.md"):
         text = " ".join((ROOT / doc).read_text().split())
         assert f"{c.in_sample_worst * 100:.1f} %" in text, doc
     text = " ".join((ROOT / "docs" / "contact.md").read_text().split())
