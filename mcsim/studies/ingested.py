@@ -20,15 +20,14 @@ from mcsim.model.errors import ParameterError
 from mcsim.model.params import Surface
 from mcsim.store.outputs import check_output, write_atomic
 from mcsim.topography.empirical import Empirical
+from mcsim.topography.maps import LEVELS
+from mcsim.topography.mapsurface import ROUTES
+from mcsim.topography.readers.base import FacingMap
 from mcsim.topography.summits import TopographyResult
 
 if TYPE_CHECKING:
     from mcsim.studies.adhesioncalibration import AdhesionCalibration
     from mcsim.studies.calibration import Calibration
-
-#: Levelling choices: name → degree of the subtracted polynomial (``none``: the mean only).
-LEVELS = {"none": 0, "plane": 1, **{f"poly{n}": n for n in range(2, 6)}}
-ROUTES = ("direct", "spectral")
 
 
 @dataclass(frozen=True)
@@ -81,40 +80,6 @@ class HeightSummary:
             f"skewness {self.skewness:.3g}, kurtosis {self.kurtosis:.3g} (Gaussian: 0, 3), "
             f"min {self.minimum * 1e9:.4g} nm, max {self.maximum * 1e9:.4g} nm"
         )
-
-
-@dataclass(frozen=True)
-class FacingMap:
-    """A counter-surface's map facing the ingested one (``mcsim ingest --counter-surface``):
-    turned over (columns reversed, heights negated) and subtracted, so that the surface
-    ingested is the gap's topography.
-
-    Attributes
-    ----------
-    source : Path
-        The counter-surface's map file.
-    correlation : float
-        ρ of the two levelled maps' heights in the facing frame
-        (:func:`mcsim.topography.summits.height_correlation`).
-    rms, counter_rms : float
-        Rms of the levelled map and of the turned-over counter map over their common
-        pixels, m: the gap's rq is √(rms² + counter_rms² − 2ρ rms counter_rms).
-    """
-
-    source: Path
-    correlation: float
-    rms: float
-    counter_rms: float
-
-    def line(self) -> str:
-        """One line, for the terminal and the surface file."""
-        gap = (self.rms**2 + self.counter_rms**2
-               - 2 * self.correlation * self.rms * self.counter_rms) ** 0.5  # fmt: skip
-        return (f"{self.source} turned over to face the map (columns reversed, heights negated); "
-                f"the map analysed is their gap, map - turned-over counter; correlation of the "
-                f"levelled heights rho = {self.correlation:.4g}, rms {self.rms * 1e9:.4g} nm and "
-                f"{self.counter_rms * 1e9:.4g} nm: the gap's rms sqrt(rms1^2 + rms2^2 - 2 rho "
-                f"rms1 rms2) = {gap * 1e9:.4g} nm")  # fmt: skip
 
 
 @dataclass(frozen=True)
