@@ -260,6 +260,7 @@ def ingest_file(
         calibration=calibration,
         adhesion_calibration=adhesion,
         facing=hmap.facing,
+        height_map=hmap,
     )
 
 

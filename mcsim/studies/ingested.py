@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import datetime as dt
 import json
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -22,7 +22,7 @@ from mcsim.store.outputs import check_output, write_atomic
 from mcsim.topography.empirical import Empirical
 from mcsim.topography.maps import LEVELS
 from mcsim.topography.mapsurface import ROUTES
-from mcsim.topography.readers.base import FacingMap
+from mcsim.topography.readers.base import FacingMap, HeightMap
 from mcsim.topography.summits import TopographyResult
 
 if TYPE_CHECKING:
@@ -142,6 +142,10 @@ class IngestResult:
         ``[surface.adhesion_calibration]`` table; recorded, not applied.
     facing : FacingMap or None
         A counter-surface's map facing this one: the map analysed is their gap's topography.
+    height_map : HeightMap or None
+        The map as read once and analysed (:func:`mcsim.topography.maps.read_map`), for the
+        studies that follow on it (``mcsim report``: its exact contact and stickiness); None
+        for a histogram.
     """
 
     source: Path
@@ -170,6 +174,7 @@ class IngestResult:
     calibration: Calibration | None = None
     adhesion_calibration: AdhesionCalibration | None = None
     facing: FacingMap | None = None
+    height_map: HeightMap | None = field(default=None, repr=False)
 
     @property
     def distribution(self) -> Empirical:

@@ -323,7 +323,6 @@ def report(
     from mcsim.store.config import load_material
     from mcsim.studies.calibration import calibrate
     from mcsim.studies.ingest import ingest_file
-    from mcsim.topography.maps import read_map
 
     start = time.perf_counter()
     devices = check_devices(devices)
@@ -357,7 +356,7 @@ def report(
         raise ParameterError(f"pad_area = {area:.4g} m^2: a pad holds {summits:.3g} of the scan's "
                              f"summits (eta = {eta:.4g} m^-2): it cannot touch (allowed: an area "
                              f">= 1/eta = {1 / eta:.4g} m^2)")  # fmt: skip
-    hmap = read_map(scan, level=ingested.level, periodic=ingested.periodic, **read)
+    hmap = ingested.height_map  # the scan read once, by ingest
     calibration = calibrate(hmap, material, surface=ingested.surface)
     ingested = dataclasses.replace(ingested, calibration=calibration)
     surface = calibration.apply(ingested.surface)

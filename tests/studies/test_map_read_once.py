@@ -87,3 +87,13 @@ def test_read_options_with_a_map_read_already_are_refused(small):
     raw = read_height_map(small, unit="m", pixel_size=4e-8)
     with pytest.raises(ParameterError, match="a map as a reader returns it"):
         contact_map(raw, SILICON, [1e8])
+
+
+def test_the_ingested_map_is_the_one_analysed_and_studies_on_it_read_nothing(small, reads):
+    result = ingest_file(small, unit="m", pixel_size=4e-8)
+    hmap = result.height_map
+    assert (hmap.level, hmap.periodic, hmap.dx) == (result.level, result.periodic, result.dx)
+    on_map = contact_map(hmap, SILICON, [1e8]).surface  # GW's surface of the same map
+    assert (on_map.sigma, on_map.R, on_map.eta) == (result.surface.sigma, result.surface.R,
+                                                    result.surface.eta)  # fmt: skip
+    assert reads == [small]
