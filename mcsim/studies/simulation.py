@@ -324,12 +324,13 @@ def _run(stack, spec: MonteCarloSpec, *, workers, scheduler, chunk_size,
     notes = regime_warnings(spec.surface, spec.material, spec.law)
     for warning in notes:
         log.info("warning: %s", warning)  # once the inputs are accepted: no error follows
-    for note in interface_notes(spec.surface, spec.material, spec.environment):
-        log.info("note: %s", note)
-    for warning in environment_warnings(spec.surface, spec.environment):
-        log.info("warning: %s", warning)
-    if spec.environment is not None and spec.environment.has_capillary:
-        log.info("note: %s", EQUILIBRIUM_NOTE)
+    if spec.environment is not None:  # a dry run has no interface notes or warnings
+        for note in interface_notes(spec.surface, spec.material, spec.environment):
+            log.info("note: %s", note)
+        for warning in environment_warnings(spec.surface, spec.environment):
+            log.info("warning: %s", warning)
+        if spec.environment.has_capillary:
+            log.info("note: %s", EQUILIBRIUM_NOTE)
     n_workers = default_workers() if workers is None else workers
     summits, pairs, seconds = estimate(spec, n_workers)
     if seconds > ESTIMATE_ABOVE:

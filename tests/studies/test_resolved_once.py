@@ -19,8 +19,8 @@ from mcsim.model.params import Surface
 from mcsim.physics import environment as environments
 from mcsim.studies.simulation import simulate
 
-#: Modules whose functions a surface reaches on one simulate() with a preload (issue 44: at most
-#: 10; 11 before, with presets.as_surface called 15 times).
+#: Modules whose functions a surface reaches on one simulate() with a preload, its run file
+#: written (issue 44: at most 10; 12 before, with presets.as_surface called 15 times).
 MAX_MODULES = 10
 #: A small force-controlled run: law set with a signed load, a cycle, a preload (its turn).
 RUN = {"h": [1.0, 0.0, -1.0], "area": "100 um^2", "realizations": 1, "seed": 1, "law": "jkr",
@@ -70,8 +70,8 @@ def test_a_counter_surface_is_resolved_once_too(warm):
     assert resolved == {"as_surface": 2, "as_material": 1, "as_environment": 1}
 
 
-def test_a_surface_followed_from_simulate_touches_at_most_ten_modules(warm):
-    _, modules = traced(lambda: simulate("smooth", "silicon", **RUN))
+def test_a_surface_followed_from_simulate_touches_at_most_ten_modules(warm, tmp_path):
+    _, modules = traced(lambda: simulate("smooth", "silicon", **RUN, out=tmp_path / "run.h5"))
     assert len(modules) <= MAX_MODULES, sorted(modules)
     assert "mcsim.model.presets" not in modules  # no layer below resolves a Surface again
 
