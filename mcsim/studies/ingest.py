@@ -106,8 +106,9 @@ def ingest_file(
     route : {"direct", "spectral"}
         Summit statistics written as ``sigma``, ``R``, ``eta`` (maps only).
     level : str, optional
-        A key of :data:`LEVELS`: ``"plane"``, ``"none"`` (mean only), ``"poly2"`` ...
-        ``"poly5"``; default :func:`default_level` (``"plane"``, ``"none"`` on a periodic map).
+        A key of :data:`~mcsim.topography.maps.LEVELS`: ``"plane"``, ``"none"`` (mean only),
+        ``"poly2"`` ... ``"poly5"``; default :func:`~mcsim.topography.maps.default_level`
+        (``"plane"``, ``"none"`` on a periodic map).
     heights : {"summits", "map"}
         Histogram of the direct-route summit heights (default) or of all pixels.
     R : float, optional

@@ -110,7 +110,7 @@ class IngestResult:
         Route of ``R``, ``eta`` and ``sigma`` (``direct``, ``spectral``, or ``user``
         for a histogram input).
     level : str
-        Levelling applied to a map (a key of :data:`LEVELS`); "" for a histogram.
+        Levelling applied to a map (a key of :data:`~mcsim.topography.maps.LEVELS`); "" for a histogram.
     shape : tuple of int or None
         (rows, columns) of a map.
     dx, dy : float
