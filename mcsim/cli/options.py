@@ -55,10 +55,10 @@ def inputs_of(args, parts: bool = False):
     with ``parts`` also the keywords that give simulate() and sweep() the parts of the gap's
     surface, so that their files record them (``{}`` with a flat counter-surface)."""
     from mcsim.cli.display import counterface_notes, print_lines
-    from mcsim.model.counterface import combine
+    from mcsim.model.counterface import gap_surface
 
-    surface, counter, correlation, material = surfaces_of(args)
-    combined = combine(surface, counter, correlation)
+    surface, counter, correlation, material = surfaces_of(args)  # resolved (store/config.py)
+    combined = gap_surface(surface, counter, correlation)
     if not getattr(args, "quiet", False):
         print_lines(counterface_notes(surface, counter, correlation, combined))
     if not parts:
@@ -347,10 +347,12 @@ def turn_of(args, surface, material, law, environment=None) -> tuple[float | Non
 PRELOAD_GRID = (4.0, -1.0, 0.1)
 
 
-def preload_grid(args, surface, material, law, environment=None) -> list[float]:
+def preload_grid(args, surface, material, law, environment=None):
     """The separations of ``simulate --cycle --preload P`` when no ``--h`` is given:
     :data:`PRELOAD_GRID`, down to 1 below the preload's mean turn
     (:func:`mcsim.physics.loadcontrol.preload_turn`) if that lies below -1; said on stderr.
+    Returns them and the :class:`~mcsim.physics.loadcontrol.Preload`, whose turn simulate()
+    takes as it is (found once).
 
     Raises
     ------
@@ -362,16 +364,17 @@ def preload_grid(args, surface, material, law, environment=None) -> list[float]:
     if not (args.cycle and args.preload is not None):
         raise ParameterError("one of the arguments --h --pressure --load is required (--h may be "
                              "left out only with --cycle --preload)")  # fmt: skip
-    from mcsim.physics.loadcontrol import preload_turn
+    from mcsim.physics.loadcontrol import preload_of
 
-    turn = preload_turn(surface, material, parse_preload(args.preload), law, environment)
+    preload = preload_of(surface, material, parse_preload(args.preload), law, environment)
+    turn = preload.turn
     top, low, step = PRELOAD_GRID
     low = min(low, math.floor(turn) - 1.0)
     spec = f"{top:g}:{low:g}:{round((top - low) / step) + 1}"
     if not args.quiet:
         print(f"mcsim: no --h given: the cycle runs over --h={spec} (d/sigma; the preload's mean "
               f"turn is h = {turn:.4g}); give --h to choose another grid", file=sys.stderr)  # fmt: skip
-    return parse_h(spec)
+    return parse_h(spec), preload
 
 
 def parse_preload(text: str) -> float:

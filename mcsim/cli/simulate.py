@@ -53,12 +53,12 @@ def run(args) -> int:
             print_lines(environment_notes(surface, environment))
         # Only with an environment, so that the run is exactly as before without one.
         with_environment = {} if environment is None else {"environment": environment}
-        pressure = None
+        pressure, preload = None, args.preload
         law, notes = resolve_law(args, surface, material)
         if args.h is not None:
             h = parse_h(args.h)
         elif args.pressure is None and args.load is None:
-            h = preload_grid(args, surface, material, law, environment)
+            h, preload = preload_grid(args, surface, material, law, environment)
         else:
             h, pressure = balancing_h(args, surface, material, environment)
         extra = {} if pressure is None else {"load_control": json.dumps(
@@ -72,7 +72,7 @@ def run(args) -> int:
         try:
             run = simulate(
                 given, material, h, args.area, **pair, realizations=args.realizations, seed=args.seed, law=law,
-                count=args.count, cycle=args.cycle, preload=args.preload, device=args.device, workers=args.workers, scheduler=args.scheduler or args.dask,
+                count=args.count, cycle=args.cycle, preload=preload, device=args.device, workers=args.workers, scheduler=args.scheduler or args.dask,
                 chunk_size=args.chunk_size, keep_heights=args.keep_heights, out=out, overwrite=args.overwrite,
                 resume=args.resume, checkpoint_every=args.checkpoint_every, progress=show_progress,
                 command=cli_command(),

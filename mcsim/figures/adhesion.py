@@ -39,7 +39,7 @@ def adhesion_figure(surface, material, law, summary=None, *, points: int = 400):
     from matplotlib.ticker import ScalarFormatter
 
     from mcsim.physics.adhesion import RegimeWarning, adhesion_summary, top_separation
-    from mcsim.physics.analytic import gw_curves
+    from mcsim.physics.analytic import analytic_curves
     from mcsim.physics.laws import get_law_set
 
     laws = get_law_set(law)
@@ -49,8 +49,8 @@ def adhesion_figure(surface, material, law, summary=None, *, points: int = 400):
             summary = adhesion_summary(surface, material, laws)
     turn, K, sigma = summary.turn, material.K, surface.sigma
     h = np.linspace(turn, top_separation(surface, laws, material), points)
-    approach = gw_curves(surface, material, h, laws).load
-    retract = gw_curves(surface, material, h, laws, branch="retract", turn=turn).load
+    approach = analytic_curves(surface, material, h, laws).load
+    retract = analytic_curves(surface, material, h, laws, branch="retract", turn=turn).load
     # show the separations where either branch carries a visible load
     both = np.maximum(np.abs(approach), np.abs(retract))
     visible = np.flatnonzero(both > 1e-3 * both.max())

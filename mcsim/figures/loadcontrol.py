@@ -141,7 +141,7 @@ def load_run_figure(run):
     """
     from matplotlib.figure import Figure
 
-    from mcsim.physics.analytic import gw_curves
+    from mcsim.physics.analytic import analytic_curves
 
     spec = run.spec
     if spec.cycle:
@@ -153,7 +153,7 @@ def load_run_figure(run):
         raise MCSimError(f"{run.path or 'run'}: law set {spec.law!r} has no load to plot against")
     material = spec.material
     fine = np.linspace(spec.h.max(), spec.h.min(), 400)
-    curves = gw_curves(spec.surface, material, fine, spec.law).values
+    curves = analytic_curves(spec.surface, material, fine, spec.law).values
     mean, se = run.summary.mean, run.summary.se
     fig = Figure(figsize=(10, 4.4), layout="constrained")
     left, right = fig.subplots(1, 2)

@@ -103,7 +103,7 @@ def run_figure(run):
     matplotlib.figure.Figure
     """
     from mcsim.engine.statistics import expected_values
-    from mcsim.physics.analytic import gw_curves
+    from mcsim.physics.analytic import analytic_curves
 
     runs = [run] if hasattr(run, "spec") else list(run)
     if any(r.spec.cycle or tuple(r.quantities) != PANELS for r in runs):
@@ -113,7 +113,7 @@ def run_figure(run):
         spec = r.spec
         name = r.path.name if r.path else "(not saved)"
         fine = np.linspace(spec.h.max(), spec.h.min(), 200)
-        curves = expected_values(spec, gw_curves(spec.surface, spec.material, fine, spec.law))
+        curves = expected_values(spec, analytic_curves(spec.surface, spec.material, fine, spec.law))
         colour = COLOURS[i % len(COLOURS)]
         if len(runs) == 1:
             lines.append((fine, curves, {"color": "0.2"}, "analytic GW"))
@@ -166,7 +166,7 @@ def branch_runs_figure(runs):
     from matplotlib.figure import Figure
 
     from mcsim.engine.statistics import MIN_CONTACTS, expected_values
-    from mcsim.store.results import analytic_curves
+    from mcsim.store.results import branch_curves
 
     names = list(runs[0].quantities)
     for r in runs[1:]:
@@ -183,7 +183,7 @@ def branch_runs_figure(runs):
     for i, run in enumerate(runs):
         spec = run.spec
         fine = np.linspace(spec.h.max(), spec.h.min(), 200)
-        curves = analytic_curves(spec, fine)
+        curves = branch_curves(spec, fine)
         few = run.summary.expected_contacts < MIN_CONTACTS
         colour = COLOURS[i % len(COLOURS)]
         who = "" if len(runs) == 1 else f"{run.path.name if run.path else f'run {i + 1}'}, "

@@ -116,13 +116,13 @@ def comparison_figure(surface_measured, surface_gaussian, material, h, run=None)
     matplotlib.figure.Figure
         Contact fraction, P̄, F̄, T̄ (divided by A_n K, Eqs. 3, 5, 7) and μ versus h.
     """
-    from mcsim.physics.analytic import gw_curves
+    from mcsim.physics.analytic import analytic_curves
 
     h = np.sort(np.atleast_1d(np.asarray(h, dtype=float)))[::-1]
     lines = [
-        (h, gw_curves(surface_measured, material, h).columns(), {"color": COLOURS[0], "linestyle": "-"},
+        (h, analytic_curves(surface_measured, material, h).columns(), {"color": COLOURS[0], "linestyle": "-"},
          "measured heights (analytic)"),
-        (h, gw_curves(surface_gaussian, material, h).columns(), {"color": COLOURS[4], "linestyle": "--"},
+        (h, analytic_curves(surface_gaussian, material, h).columns(), {"color": COLOURS[4], "linestyle": "--"},
          "Gaussian GW, same ($\\sigma$, $R$, $\\eta$)"),
     ]  # fmt: skip
     info = [

@@ -236,13 +236,27 @@ def combine(
         :class:`~mcsim.model.params.Surface`.
     """
     correlation = check_correlation(correlation)
-    surface = as_surface(surface)
-    if counter is None or (isinstance(counter, str) and counter == FLAT):
+    return gap_surface(as_surface(surface), as_counter(counter), correlation)
+
+
+def as_counter(value: Surface | str | None) -> Surface | None:
+    """A counter-surface argument resolved: None for a flat one (None or ``"flat"``), else
+    :func:`~mcsim.model.presets.as_surface` (a Surface or a preset's name, the field named
+    ``counter-surface``)."""
+    if value is None or (isinstance(value, str) and value == FLAT):
+        return None
+    return as_surface(value, "counter-surface")
+
+
+def gap_surface(surface: Surface, counter: Surface | None, correlation: float = 0.0) -> Surface:
+    """:func:`combine` of surfaces resolved already (``counter`` None: flat), as every module
+    below the public boundary calls it; parameters, result and errors as :func:`combine`'s."""
+    correlation = check_correlation(correlation)
+    if counter is None:
         if correlation != 0:
             raise ParameterError(f"correlation = {correlation!r} needs a counter-surface (a flat "
                                  "one has no heights to correlate with; allowed without one: 0)")  # fmt: skip
         return surface
-    counter = as_surface(counter, "counter-surface")
     _check_plain(surface, "surface")
     _check_plain(counter, "counter-surface")
     one, two = (

@@ -52,7 +52,7 @@ import numpy as np
 
 from mcsim.model.errors import ParameterError
 from mcsim.model.params import Material, Surface, check_range, plasticity_index
-from mcsim.physics.analytic import gw_curves
+from mcsim.physics.analytic import analytic_curves
 from mcsim.physics.environment import Environment, as_environment
 from mcsim.physics.gapheights import gap_heights
 from mcsim.physics.laws import LawSet, get_law_set
@@ -332,7 +332,7 @@ def zero_load_separation(
     # (doubling its span) until the load turns compressive, or up to |h| = 1e6.
     while True:
         h = np.linspace(top, bottom, GRID)
-        load = gw_curves(surface, material, h, laws, environment=environment).load
+        load = analytic_curves(surface, material, h, laws, environment=environment).load
         tensile = np.flatnonzero(load < 0)
         if tensile.size == 0:
             raise NoAdhesiveRest(
@@ -351,7 +351,7 @@ def zero_load_separation(
     i = after[0]
 
     def f(x: float) -> float:
-        return float(gw_curves(surface, material, [x], laws, environment=environment).load[0])
+        return float(analytic_curves(surface, material, [x], laws, environment=environment).load[0])
 
     return float(optimize.brentq(f, h[i], h[i - 1], xtol=1e-12, rtol=4 * np.finfo(float).eps))
 
@@ -421,7 +421,7 @@ def adhesion_summary(
     top = max(top_separation(surface, laws, material), turn)
 
     def load(x, branch: str) -> np.ndarray:
-        return gw_curves(surface, material, np.atleast_1d(x), laws, branch=branch,
+        return analytic_curves(surface, material, np.atleast_1d(x), laws, branch=branch,
                          turn=turn if branch == "retract" else None).load  # fmt: skip
 
     # Panels on [turn, top], split where the retraction load changes sign (a kink of
@@ -522,7 +522,7 @@ def _summary(surface, material, laws, turn, turn_from, pull_off, h_pull_off, wor
     for note in notes:
         warnings.warn(note, RegimeWarning, stacklevel=3)
     contact_work = (parts or {}).get("work_of_separation_contact", work)
-    validity = tuple(gw_curves(surface, material, [turn], laws).validity_warnings()
+    validity = tuple(analytic_curves(surface, material, [turn], laws).validity_warnings()
                      + work_warnings(contact_work, material.w))  # fmt: skip
     for note in validity:
         warnings.warn(note, ValidityWarning, stacklevel=3)

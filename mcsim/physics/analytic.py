@@ -248,13 +248,13 @@ def _check_turn(laws: LawSet, branch: str, h: np.ndarray, turn) -> float | None:
 
 
 def gw_curves(
-    surface: Surface,
-    material: Material,
+    surface: Surface | str,
+    material: Material | str,
     h,
     law: str | LawSet = "seed",
     branch: str = "approach",
     turn: float | None = None,
-    environment: Environment | None = None,
+    environment: Environment | dict | None = None,
 ) -> AnalyticCurves:
     """GW curves of a surface and material at separations ``h`` (= d/σ), vectorised.
 
@@ -293,8 +293,23 @@ def gw_curves(
         Unknown law set or branch, retraction of a law set without one, a ``turn``
         above the sweep or on approach, a material field the law set needs.
     """
-    surface, material = as_surface(surface), as_material(material)
-    environment = as_environment(environment)
+    return analytic_curves(as_surface(surface), as_material(material), h, law, branch, turn,
+                           as_environment(environment))  # fmt: skip
+
+
+def analytic_curves(
+    surface: Surface,
+    material: Material,
+    h,
+    law: str | LawSet = "seed",
+    branch: str = "approach",
+    turn: float | None = None,
+    environment: Environment | None = None,
+) -> AnalyticCurves:
+    """:func:`gw_curves` of inputs resolved already (a Surface, a Material, an Environment or
+    None): what every module below the public boundary calls (docs: ARCHITECTURE.md, 'One
+    simulate'); parameters and results as :func:`gw_curves`'s.
+    """
     laws = contact_law(get_law_set(law), environment)  # one interface: w less van der Waals
     h = check_separations(h)
     turn = _check_turn(laws, branch, h, turn)
@@ -326,7 +341,8 @@ def gw_curves(
 def _mixture(surface, material, h, laws, branch, turn, environment) -> AnalyticCurves:
     """Curves of a surface whose radius depends on height: the sums of its bands' curves
     (:meth:`~mcsim.model.params.Surface.components`), μ from the sums."""
-    parts = [gw_curves(c, material, h, laws, branch, turn).values for c in surface.components()]
+    parts = [analytic_curves(c, material, h, laws, branch, turn).values
+             for c in surface.components()]  # fmt: skip
     values = {k: np.sum([p[k] for p in parts], axis=0) for k in parts[0] if k != "mu"}
     if laws.name == "seed":  # Eq. 8, as for one radius
         denominator = (values["P"] + values["F"]) * (material.gamma > 0)

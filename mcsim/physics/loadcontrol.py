@@ -26,7 +26,7 @@ zero-load rest of the super-smooth surface) one ulp of h moves it by ~1e-9 relat
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 from scipy import optimize
@@ -36,7 +36,7 @@ from mcsim.model.params import MAX_ABS_H, Material, Surface
 from mcsim.model.presets import as_material, as_surface
 from mcsim.model.units import parse_values
 from mcsim.physics.adhesion import bottom_separation, top_separation
-from mcsim.physics.analytic import AnalyticCurves, gw_curves, hertz_area_fraction
+from mcsim.physics.analytic import AnalyticCurves, analytic_curves, hertz_area_fraction
 from mcsim.physics.environment import Environment, as_environment
 from mcsim.physics.laws import LawSet, get_law_set
 from mcsim.physics.surfaceenvironment import contact_law
@@ -188,7 +188,19 @@ def load_control(
         no separation with |h| <= 1e6 reaches.
     """
     surface, material = as_surface(surface), as_material(material)
-    environment = as_environment(environment)
+    return balance(surface, material, pressure, law, as_environment(environment))
+
+
+def balance(
+    surface: Surface,
+    material: Material,
+    pressure,
+    law: str | LawSet = "seed",
+    environment: Environment | None = None,
+) -> LoadControl:
+    """:func:`load_control` of inputs resolved already (a Surface, a Material, an Environment or
+    None), as every module below the public boundary calls it; parameters, results and errors
+    as :func:`load_control`'s."""
     laws = contact_law(get_law_set(law), environment)  # one interface: w less van der Waals
     quantity = balanced_quantity(laws, environment is not None)
     if isinstance(pressure, str):
@@ -203,7 +215,7 @@ def load_control(
     targets = p / material.K
 
     def load(h):
-        return gw_curves(surface, material, h, laws, environment=environment).values[quantity]
+        return analytic_curves(surface, material, h, laws, environment=environment).values[quantity]
 
     top, bottom = top_separation(surface, laws, material), bottom_separation(surface)
     while True:
@@ -224,7 +236,9 @@ def load_control(
             "separation carries p <= 0)"
         )
     h, jump, found = solve_targets(load, grid, targets)
-    curves = gw_curves(surface, material, np.where(found, h, 0.0), laws, environment=environment)
+    curves = analytic_curves(
+        surface, material, np.where(found, h, 0.0), laws, environment=environment
+    )
     values = dict(curves.values)
     if laws.name == "seed":  # the area a load buys: Hertz summits, as the seed's load P (Eq. 2)
         values["area"] = hertz_area_fraction(surface, np.where(found, h, 0.0))
@@ -261,6 +275,41 @@ def preload_turn(
         except ParameterError as err:  # NoAdhesiveRest: nothing pulls the surfaces together
             raise ParameterError(f"preload = 0 Pa: {err}") from None
     try:
-        return float(load_control(surface, material, [p], law, environment=environment).h[0])
+        return float(balance(surface, material, [p], law, environment).h[0])
     except ParameterError as err:  # a pressure no separation carries: name the field
         raise ParameterError(f"preload: {err}") from None
+
+
+@dataclass(frozen=True)
+class Preload:
+    """A preload and the closest approach it reaches on the mean approach curve, found once
+    (:func:`preload_of`) and passed on: ``simulate(preload=...)`` takes its turn as it is when
+    the run's inputs are the very objects it was found for.
+
+    Attributes
+    ----------
+    pressure : float
+        Nominal pressure, Pa, >= 0.
+    turn : float
+        Closest approach h_turn = d/σ that balances it (:func:`preload_turn`).
+    inputs : tuple
+        The surface, material, law set and environment it was found for.
+    """
+
+    pressure: float
+    turn: float
+    inputs: tuple = field(repr=False)
+
+    def is_for(self, surface: Surface, material: Material, law, environment) -> bool:
+        """Whether ``turn`` was found for these inputs (the same objects, the same law set)."""
+        mine = self.inputs
+        return (mine[0] is surface and mine[1] is material and mine[2] == law
+                and mine[3] is environment)  # fmt: skip
+
+
+def preload_of(
+    surface: Surface, material: Material, pressure: float, law: str, environment=None
+) -> Preload:
+    """:func:`preload_turn`, kept with its pressure and inputs to pass on (:class:`Preload`)."""
+    turn = preload_turn(surface, material, pressure, law, environment)
+    return Preload(float(pressure), turn, (surface, material, law, environment))

@@ -26,7 +26,7 @@ from mcsim.engine.statistics import (
     summarize,
 )
 from mcsim.model.errors import ParameterError
-from mcsim.physics.analytic import gw_curves
+from mcsim.physics.analytic import analytic_curves
 from mcsim.physics.environment import Environment
 from mcsim.physics.gapheights import GapHeights, gap_heights
 from mcsim.physics.surfaceenvironment import active_terms, open_gap_pressures
@@ -463,23 +463,23 @@ def assemble(ens: EnsembleSums, **kwargs) -> Run:
         ensemble=ens,
         realizations=per_realization(ens),
         summary=summarize(ens),
-        analytic=expected_values(spec, analytic_curves(spec)),
+        analytic=expected_values(spec, branch_curves(spec)),
         heights=ens.heights,
         **kwargs,
     )
 
 
-def analytic_curves(spec: MonteCarloSpec, h=None) -> list:
+def branch_curves(spec: MonteCarloSpec, h=None) -> list:
     """GW curves of each branch of ``spec`` (at ``h``, by default the run's), with
     retraction after the closest approach min(spec.h).
 
-    Where :func:`mcsim.physics.analytic.gw_curves` cannot give a law set's curves (no
+    Where :func:`mcsim.physics.analytic.analytic_curves` cannot give a law set's curves (no
     branches), the values are NaN (no comparison; the table says so).
     """
     h = spec.h if h is None else np.asarray(h, dtype=float)
-    if "branch" in inspect.signature(gw_curves).parameters:
+    if "branch" in inspect.signature(analytic_curves).parameters:
         return [
-            gw_curves(
+            analytic_curves(
                 spec.surface,
                 spec.material,
                 h,
@@ -493,4 +493,4 @@ def analytic_curves(spec: MonteCarloSpec, h=None) -> list:
         nan = np.full(h.shape, np.nan)
         names = quantities(spec.law_set, spec.material)
         return [types.SimpleNamespace(**dict.fromkeys(names, nan)) for _ in spec.branches]
-    return [gw_curves(spec.surface, spec.material, h, spec.law)] * len(spec.branches)
+    return [analytic_curves(spec.surface, spec.material, h, spec.law)] * len(spec.branches)

@@ -371,12 +371,12 @@ def gw_pull_off(surface: Surface, material: Material, law: str, pressures) -> np
     most tensile one (the spacing then ~1e-3 σ; the minimum may sit on a kink, where a jump
     ends, so no smooth refinement).
     """
-    from mcsim.physics.analytic import gw_curves
+    from mcsim.physics.analytic import analytic_curves
 
     def load(h, branch, turn=None):
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
-            return gw_curves(surface, material, np.atleast_1d(h), law, branch=branch,
+            return analytic_curves(surface, material, np.atleast_1d(h), law, branch=branch,
                              turn=turn).load * material.K  # fmt: skip
 
     top = _top(surface, material, law)

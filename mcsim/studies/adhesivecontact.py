@@ -54,15 +54,10 @@ from mcsim.physics import adhesivebem, adhesivecycle, bem
 from mcsim.physics.adhesivecycle import AdhesiveCycle
 from mcsim.physics.interactions import Exponential, Interaction, MaugisDugdale
 from mcsim.physics.stickiness import Stickiness, stickiness
-from mcsim.studies.ingest import (
-    decide_periodic,
-    default_level,
-    ingest_file,
-    is_histogram_file,
-    read_map,
-)
-from mcsim.studies.ingested import LEVELS, FacingMap
-from mcsim.topography.summits import level as level_heights
+from mcsim.topography.maps import as_map
+from mcsim.topography.mapsurface import map_surface
+from mcsim.topography.readers import HeightMap
+from mcsim.topography.readers.base import FacingMap
 
 #: Interaction laws by name (``--interaction``).
 INTERACTIONS = {"exponential": Exponential, "maugis-dugdale": MaugisDugdale}
@@ -344,7 +339,7 @@ def tensile_work(surface: Surface, material: Material, law: str, turn: float):
     """−∫ min(p̄, 0) dd of GW's mean retraction load from ``turn`` (h = d/σ) to where no
     summit feels the law, J/m² (dmt's tail: 50 z0 beyond the highest summit); with the
     separations h and the loads over A_n K it was integrated on."""
-    from mcsim.physics.analytic import gw_curves
+    from mcsim.physics.analytic import analytic_curves
     from mcsim.physics.laws import get_law_set
 
     edges = get_law_set(law).edges_for(surface, material)
@@ -356,7 +351,7 @@ def tensile_work(surface: Surface, material: Material, law: str, turn: float):
     cuts = np.linspace(turn, top, WORK_PANELS + 1)
     half = np.diff(cuts)[:, None] / 2
     h = ((cuts[:-1, None] + cuts[1:, None]) / 2 + half * x).ravel()
-    load = gw_curves(surface, material, h, law, branch="retract", turn=turn).load
+    load = analytic_curves(surface, material, h, law, branch="retract", turn=turn).load
     scale = material.K * surface.sigma  # load·K is force per nominal area; dd = σ dh
     return float(-scale * np.sum((half * w).ravel() * np.minimum(load, 0.0))), h, load
 
@@ -452,7 +447,7 @@ def exact_cycle(z, pixels, E_star: float, law: Interaction, pressure: float, *,
 
 
 def adhesive_contact(
-    path: str | Path,
+    source: HeightMap | str | Path,
     material: Material,
     pressure: float,
     *,
@@ -476,8 +471,9 @@ def adhesive_contact(
 
     Parameters
     ----------
-    path : path-like
-        Height map, any format ``mcsim ingest`` reads.
+    source : HeightMap or path-like
+        A map read once (:func:`mcsim.topography.maps.read_map`), or a height map file, any
+        format ``mcsim ingest`` reads.
     material : Material
         Its contact modulus E* (Pa); its w (J/m²) and z0 (m) are the defaults of ``w`` and
         ``range_``.
@@ -492,7 +488,7 @@ def adhesive_contact(
     steps : int
         Positions of the flat on approach (the retraction revisits them), >= 2.
     unit, pixel_size, channel, level, periodic
-        As for :func:`mcsim.studies.contact.contact_map`.
+        For a file: as for :func:`mcsim.studies.contact.contact_map`.
     subpixel : int, optional
         k: the interaction integrated over k × k points of each pixel (bilinear gap), which
         resolves a Dugdale zone narrower than a pixel (docs/contact.md); 1, the default, at
@@ -527,12 +523,9 @@ def adhesive_contact(
         raise ParameterError(f"pressure = {pressure!r} Pa is out of range (allowed: (0, E* = "
                              f"{material.E_star:g}) Pa)")  # fmt: skip
     law_ = interaction(law, w, range_)
-    if is_histogram_file(Path(path)):
-        raise ParameterError(f"{path}: a height histogram has no map to press: give a height map")
-    hmap = read_map(path, unit=unit, pixel_size=pixel_size, channel=channel, counter=counter)
-    periodic, reason = decide_periodic(hmap.heights, periodic)
-    level = default_level(periodic) if level is None else level
-    z = level_heights(hmap.heights, LEVELS[level])
+    hmap = as_map(source, "press", unit=unit, pixel_size=pixel_size, channel=channel,
+                  counter=counter, level=level, periodic=periodic)  # fmt: skip
+    path, z, periodic = hmap.source, hmap.levelled, hmap.periodic
     if not np.all(np.isfinite(z)):
         raise ParameterError(
             f"{path}: the map has missing pixels: fill or crop them for a contact solve"
@@ -541,8 +534,7 @@ def adhesive_contact(
     pixels = (hmap.dx, hmap.dy)
     adhesivebem.check_inputs(z, pixels, material.E_star, law_)
     diagnostics = stickiness(z, hmap.dx, material.E_star, law_.w, law_.range, periodic)
-    ingested = ingest_file(path, unit=unit, pixel_size=pixel_size, level=level, channel=channel,
-                           periodic=periodic, counter=counter)  # fmt: skip
+    surface = map_surface(hmap).surface
     kept: dict[str, list] = {"gap": [], "pressure": []}
     bar = None
     if progress:
@@ -569,15 +561,14 @@ def adhesive_contact(
     finally:
         if bar is not None:
             bar.close()
-    gw = gw_adhesion(
-        ingested.surface, material, law_, max(s.mean_pressure for s in result.approach)
-    )
+    gw = gw_adhesion(surface, material, law_, max(s.mean_pressure for s in result.approach))
     return AdhesiveContactResult(
-        source=Path(path), channel=hmap.channel, level=level, dx=hmap.dx, dy=hmap.dy,
-        shape=z.shape, periodic=periodic, periodic_reason=reason, E_star=material.E_star,
+        source=Path(path), channel=hmap.channel, level=hmap.level, dx=hmap.dx, dy=hmap.dy,
+        shape=z.shape, periodic=periodic, periodic_reason=hmap.periodic_reason,
+        E_star=material.E_star,
         interaction=law_, pressure=p, cycle=result, pull_off=pull_off,
-        pull_off_position=where, gw=gw, surface=ingested.surface,
+        pull_off_position=where, gw=gw, surface=surface,
         stickiness=diagnostics,
         fields={k: np.stack(v) for k, v in kept.items()} if keep_fields else None,
-        facing=ingested.facing, subpixel=subpixel,
+        facing=hmap.facing, subpixel=subpixel,
     )  # fmt: skip

@@ -64,6 +64,7 @@ from mcsim.model.errors import ParameterError
 from mcsim.model.params import Material, Surface
 from mcsim.physics import bem
 from mcsim.studies.contact import contact_map, gw_hertz
+from mcsim.topography.readers import HeightMap
 
 #: Calibration loads p/E*: five, evenly spaced in log from 1e-4 to 1e-2.
 LOADS = np.logspace(-4, -2, 5)
@@ -281,7 +282,7 @@ def _minimax_scale(errors, keep: np.ndarray, start: float) -> float:
 
 
 def calibrate(
-    path: str | Path,
+    source: HeightMap | str | Path,
     material: Material,
     *,
     unit: str | None = None,
@@ -297,17 +298,18 @@ def calibrate(
 
     Parameters
     ----------
-    path : path-like
-        Height map, any format ``mcsim ingest`` reads.
+    source : HeightMap or path-like
+        A map read once (:func:`mcsim.topography.maps.read_map`; ``mcsim ingest`` passes the
+        map it analysed), or a height map file, any format ``mcsim ingest`` reads.
     material : Material
         Its contact modulus E* (Pa) sets the pressures p = (p/E*)·E* of :data:`LOADS`.
     unit, pixel_size, channel, level, periodic
-        As for :func:`mcsim.studies.contact.contact_map` (pixel size in m).
+        For a file: as for :func:`mcsim.studies.contact.contact_map` (pixel size in m).
     tol : float
         Tolerance of the exact solves (:func:`mcsim.physics.bem.solve_contact`).
     surface : Surface, optional
         The GW surface whose radius is scaled (``mcsim ingest``'s, with its radius by
-        height); default: the map's own GW surface (:func:`~mcsim.studies.contact.contact_map`).
+        height); default: the map's own GW surface (:func:`~mcsim.topography.mapsurface.map_surface`).
     progress : bool
         A progress bar over the exact solves (as ``mcsim contact``'s, on large maps).
 
@@ -324,13 +326,13 @@ def calibrate(
 
     loads = np.append(LOADS, EXTRAPOLATED_LOAD)  # ascending: the last solve warm-starts from 1e-2
     pressure = loads * material.E_star
-    exact = contact_map(path, material, pressure, unit=unit, pixel_size=pixel_size,
-                        channel=channel, level=level, periodic=periodic, tol=tol,
-                        progress=progress)  # fmt: skip
+    exact = contact_map(source, material, pressure, surface=surface, unit=unit,
+                        pixel_size=pixel_size, channel=channel, level=level, periodic=periodic,
+                        tol=tol, progress=progress)  # fmt: skip
     if not np.all(exact.area_fraction > 0):
-        raise ParameterError(f"{path}: no pixel in contact at p/E* = {LOADS[0]:g}: the map is too "
+        raise ParameterError(f"{exact.source}: no pixel in contact at p/E* = {LOADS[0]:g}: the map is too "
                              "coarse to calibrate on (refine it)")  # fmt: skip
-    surface = exact.surface if surface is None else surface
+    surface = exact.surface
     fitted = slice(0, LOADS.size)
     area = exact.area_fraction[fitted]
 

@@ -70,17 +70,12 @@ from mcsim.model.params import Material, Surface
 from mcsim.physics import bem
 from mcsim.physics.analytic import hertz_area_fraction
 from mcsim.physics.environment import Environment, as_environment
-from mcsim.physics.loadcontrol import load_control
+from mcsim.physics.loadcontrol import balance
 from mcsim.physics.vanderwaals import vdw_flat_pressure
-from mcsim.studies.ingest import (
-    decide_periodic,
-    default_level,
-    ingest_file,
-    is_histogram_file,
-    read_map,
-)
-from mcsim.studies.ingested import LEVELS, FacingMap
-from mcsim.topography.summits import level as level_heights
+from mcsim.topography.maps import as_map
+from mcsim.topography.mapsurface import map_surface
+from mcsim.topography.readers import HeightMap
+from mcsim.topography.readers.base import FacingMap
 
 #: Maps of more pixels than this show a progress bar over the loads.
 PROGRESS_PIXELS = 128 * 128
@@ -109,7 +104,7 @@ def gw_hertz(surface: Surface, material: Material, pressure: np.ndarray):
     h, area_fraction, mean_gap : ndarray
         h = d/σ; A_r/A_n (dimensionless); mean gap, m (module docstring).
     """
-    h = load_control(surface, material, pressure, "seed").h
+    h = balance(surface, material, pressure, "seed").h
     offset = surface.summit_offset or 0.0
     return h, hertz_area_fraction(surface, h), surface.sigma * h + offset
 
@@ -287,10 +282,11 @@ class ContactResult:
 
 
 def contact_map(
-    path: str | Path,
+    source: HeightMap | str | Path,
     material: Material,
     pressure,
     *,
+    surface: Surface | None = None,
     unit: str | None = None,
     pixel_size: float | tuple[float, float] | None = None,
     channel: str | None = None,
@@ -306,16 +302,20 @@ def contact_map(
 
     Parameters
     ----------
-    path : path-like
-        Height map, any format ``mcsim ingest`` reads.
+    source : HeightMap or path-like
+        A map read once (:func:`mcsim.topography.maps.read_map`), or a height map file, any
+        format ``mcsim ingest`` reads (read here, with the options below).
     material : Material
         Its contact modulus ``E_star`` (Pa) is used.
     pressure : array_like or str
         Nominal pressures, Pa, > 0; or a string such as ``"1kPa:10MPa:5:log"``
         (:func:`mcsim.model.units.parse_values`). Solved in ascending order.
+    surface : Surface, optional
+        GW's surface on the map; default the map's own
+        (:func:`mcsim.topography.mapsurface.map_surface`, as ``mcsim ingest`` finds it).
     unit, pixel_size, channel, level
-        As for :func:`mcsim.studies.ingest.ingest_file` (pixel size in m; levelling by
-        default ``"plane"``, or ``"none"`` on a periodic map).
+        For a file: as for :func:`mcsim.studies.ingest.ingest_file` (pixel size in m;
+        levelling by default ``"plane"``, or ``"none"`` on a periodic map).
     periodic : bool, optional
         Solve the map as periodic or zero-padded; None: periodic when its opposite edges
         join (:func:`mcsim.topography.summits.periodic_edges`).
@@ -332,7 +332,7 @@ def contact_map(
     counter : path-like, optional
         A counter-surface's height map, measured face up, of the same size and pixel size:
         the map solved (and GW's) is the gap's topography, map − turned-over counter
-        (:func:`mcsim.studies.ingest.read_map`; docs/physics.md, section 'Two rough surfaces').
+        (:func:`mcsim.topography.maps.read_map`; docs/physics.md, section 'Two rough surfaces').
 
     Returns
     -------
@@ -351,14 +351,11 @@ def contact_map(
     if p[-1] >= material.E_star:  # linear elasticity (small strains) ends long before
         raise ParameterError(f"pressure = {p[-1]:g} Pa is out of range (allowed: below E* = "
                              f"{material.E_star:g} Pa, where small-strain elasticity holds)")  # fmt: skip
-    if is_histogram_file(Path(path)):
-        raise ParameterError(f"{path}: a height histogram has no map to press: give a height map")
-    hmap = read_map(path, unit=unit, pixel_size=pixel_size, channel=channel, counter=counter)
-    periodic, reason = decide_periodic(hmap.heights, periodic)
-    level = default_level(periodic) if level is None else level
-    ingested = ingest_file(path, unit=unit, pixel_size=pixel_size, level=level, channel=channel,
-                           periodic=periodic, counter=counter)  # fmt: skip
-    z = level_heights(hmap.heights, LEVELS[level])
+    hmap = as_map(source, "press", unit=unit, pixel_size=pixel_size, channel=channel,
+                  counter=counter, level=level, periodic=periodic)  # fmt: skip
+    path, z, periodic = hmap.source, hmap.levelled, hmap.periodic
+    if surface is None:
+        surface = map_surface(hmap).surface
     if not np.all(np.isfinite(z)):
         raise ParameterError(
             f"{path}: the map has missing pixels: fill or crop them for a contact solve"
@@ -384,16 +381,17 @@ def contact_map(
             pressures.append(s.pressure_field)
             gaps.append(s.gap_field)
     area, gap, patches, iterations, residual = (np.array(c) for c in zip(*rows, strict=True))
-    gw_h, gw_area, gw_gap = gw_hertz(ingested.surface, material, p)
+    gw_h, gw_area, gw_gap = gw_hertz(surface, material, p)
     return ContactResult(
-        source=Path(path), channel=hmap.channel, level=level, dx=hmap.dx, dy=hmap.dy,
-        shape=z.shape, periodic=periodic, periodic_reason=reason, E_star=material.E_star,
+        source=Path(path), channel=hmap.channel, level=hmap.level, dx=hmap.dx, dy=hmap.dy,
+        shape=z.shape, periodic=periodic, periodic_reason=hmap.periodic_reason,
+        E_star=material.E_star,
         tol=tol, pressure=p, area_fraction=area, mean_gap=gap, patches=patches.astype(int),
         iterations=iterations.astype(int), residual=residual, gw_h=gw_h,
-        gw_area_fraction=gw_area, gw_mean_gap=gw_gap, surface=ingested.surface,
+        gw_area_fraction=gw_area, gw_mean_gap=gw_gap, surface=surface,
         pressure_fields=np.stack(pressures) if keep_fields else None,
         gap_fields=np.stack(gaps) if keep_fields else None, environment=environment,
         vdw_pressure=None if environment is None else np.array([a[0] for a in attraction]),
         capillary_pressure=None if environment is None else np.array([a[1] for a in attraction]),
-        facing=ingested.facing,
+        facing=hmap.facing,
     )  # fmt: skip

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import datetime as dt
 import json
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -20,15 +20,14 @@ from mcsim.model.errors import ParameterError
 from mcsim.model.params import Surface
 from mcsim.store.outputs import check_output, write_atomic
 from mcsim.topography.empirical import Empirical
+from mcsim.topography.maps import LEVELS
+from mcsim.topography.mapsurface import ROUTES
+from mcsim.topography.readers.base import FacingMap, HeightMap
 from mcsim.topography.summits import TopographyResult
 
 if TYPE_CHECKING:
     from mcsim.studies.adhesioncalibration import AdhesionCalibration
     from mcsim.studies.calibration import Calibration
-
-#: Levelling choices: name → degree of the subtracted polynomial (``none``: the mean only).
-LEVELS = {"none": 0, "plane": 1, **{f"poly{n}": n for n in range(2, 6)}}
-ROUTES = ("direct", "spectral")
 
 
 @dataclass(frozen=True)
@@ -84,40 +83,6 @@ class HeightSummary:
 
 
 @dataclass(frozen=True)
-class FacingMap:
-    """A counter-surface's map facing the ingested one (``mcsim ingest --counter-surface``):
-    turned over (columns reversed, heights negated) and subtracted, so that the surface
-    ingested is the gap's topography.
-
-    Attributes
-    ----------
-    source : Path
-        The counter-surface's map file.
-    correlation : float
-        ρ of the two levelled maps' heights in the facing frame
-        (:func:`mcsim.topography.summits.height_correlation`).
-    rms, counter_rms : float
-        Rms of the levelled map and of the turned-over counter map over their common
-        pixels, m: the gap's rq is √(rms² + counter_rms² − 2ρ rms counter_rms).
-    """
-
-    source: Path
-    correlation: float
-    rms: float
-    counter_rms: float
-
-    def line(self) -> str:
-        """One line, for the terminal and the surface file."""
-        gap = (self.rms**2 + self.counter_rms**2
-               - 2 * self.correlation * self.rms * self.counter_rms) ** 0.5  # fmt: skip
-        return (f"{self.source} turned over to face the map (columns reversed, heights negated); "
-                f"the map analysed is their gap, map - turned-over counter; correlation of the "
-                f"levelled heights rho = {self.correlation:.4g}, rms {self.rms * 1e9:.4g} nm and "
-                f"{self.counter_rms * 1e9:.4g} nm: the gap's rms sqrt(rms1^2 + rms2^2 - 2 rho "
-                f"rms1 rms2) = {gap * 1e9:.4g} nm")  # fmt: skip
-
-
-@dataclass(frozen=True)
 class IngestResult:
     """What :func:`ingest_file` read and derived.
 
@@ -145,7 +110,7 @@ class IngestResult:
         Route of ``R``, ``eta`` and ``sigma`` (``direct``, ``spectral``, or ``user``
         for a histogram input).
     level : str
-        Levelling applied to a map (a key of :data:`LEVELS`); "" for a histogram.
+        Levelling applied to a map (a key of :data:`~mcsim.topography.maps.LEVELS`); "" for a histogram.
     shape : tuple of int or None
         (rows, columns) of a map.
     dx, dy : float
@@ -177,6 +142,10 @@ class IngestResult:
         ``[surface.adhesion_calibration]`` table; recorded, not applied.
     facing : FacingMap or None
         A counter-surface's map facing this one: the map analysed is their gap's topography.
+    height_map : HeightMap or None
+        The map as read once and analysed (:func:`mcsim.topography.maps.read_map`), for the
+        studies that follow on it (``mcsim report``: its exact contact and stickiness); None
+        for a histogram.
     """
 
     source: Path
@@ -205,6 +174,7 @@ class IngestResult:
     calibration: Calibration | None = None
     adhesion_calibration: AdhesionCalibration | None = None
     facing: FacingMap | None = None
+    height_map: HeightMap | None = field(default=None, repr=False)
 
     @property
     def distribution(self) -> Empirical:

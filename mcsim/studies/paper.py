@@ -19,7 +19,7 @@ from mcsim._version import __version__
 from mcsim.model.errors import MCSimError
 from mcsim.model.params import check_seed, plasticity_index
 from mcsim.model.presets import MATERIALS, PAPER_SURFACES, SURFACES
-from mcsim.physics.analytic import QUANTITIES, gw_curves
+from mcsim.physics.analytic import QUANTITIES, analytic_curves
 from mcsim.store.outputs import check_output, write_atomic
 
 #: Version of the layout of the CSV files written here (separate from the package version).
@@ -109,8 +109,8 @@ def reproduce_paper(
     material = MATERIALS["silicon"]
     surfaces = {name: SURFACES[name] for name in PAPER_SURFACES}
 
-    curves = {name: gw_curves(s, material, h) for name, s in surfaces.items()}
-    at_table = {name: gw_curves(s, material, MU_TABLE_H) for name, s in surfaces.items()}
+    curves = {name: analytic_curves(s, material, h) for name, s in surfaces.items()}
+    at_table = {name: analytic_curves(s, material, MU_TABLE_H) for name, s in surfaces.items()}
     mu_table = {name: dict(zip(MU_TABLE_H, c.mu.tolist())) for name, c in at_table.items()}
     psi = {name: plasticity_index(s, material) for name, s in surfaces.items()}
 

@@ -356,13 +356,13 @@ def report(
         raise ParameterError(f"pad_area = {area:.4g} m^2: a pad holds {summits:.3g} of the scan's "
                              f"summits (eta = {eta:.4g} m^-2): it cannot touch (allowed: an area "
                              f">= 1/eta = {1 / eta:.4g} m^2)")  # fmt: skip
-    calibration = calibrate(scan, material, level=ingested.level, periodic=ingested.periodic,
-                            surface=ingested.surface, **read)  # fmt: skip
+    hmap = ingested.height_map  # the scan read once, by ingest
+    calibration = calibrate(hmap, material, surface=ingested.surface)
     ingested = dataclasses.replace(ingested, calibration=calibration)
     surface = calibration.apply(ingested.surface)
     say("exact contact of the scan beside GW")
-    contact, contact_result = _contact(scan, material, surface, read)
-    sticky = _stickiness(scan, material, ingested, read)
+    contact, contact_result = _contact(hmap, material, surface)
+    sticky = _stickiness(hmap, material)
     law, law_notes = _law(law, surface, material)
     friction, friction_note = _friction(law, material)
     say(f"pads at {len(rh)} relative humidities")
@@ -490,12 +490,12 @@ def _scan(ingested, surface) -> dict:
     })  # fmt: skip
 
 
-def _contact(scan, material, surface, read) -> tuple[dict, object]:
+def _contact(hmap, material, surface) -> tuple[dict, object]:
     from mcsim.physics.validity import area_warnings
     from mcsim.studies.contact import contact_map, gw_hertz
 
     p = np.asarray(CONTACT_LOADS) * material.E_star
-    result = contact_map(scan, material, p, keep_fields=True, **read)
+    result = contact_map(hmap, material, p, keep_fields=True)
     h, calibrated, _ = gw_hertz(surface, material, result.pressure)
     return {
         "pressure": result.pressure.tolist(), "load": (result.pressure / material.E_star).tolist(),
@@ -506,15 +506,11 @@ def _contact(scan, material, surface, read) -> tuple[dict, object]:
     }, result  # fmt: skip
 
 
-def _stickiness(scan, material, ingested, read) -> dict:
+def _stickiness(hmap, material) -> dict:
     from mcsim.physics.stickiness import stickiness
-    from mcsim.studies.ingest import LEVELS, read_map
-    from mcsim.topography.summits import level as level_heights
 
-    hmap = read_map(scan, **read)
-    z = level_heights(hmap.heights, LEVELS[ingested.level])
     delta_r = material.z0 if material.z0 is not None else 1e-9
-    s = stickiness(z, hmap.dx, material.E_star, material.gamma, delta_r, ingested.periodic)
+    s = stickiness(hmap.levelled, hmap.dx, material.E_star, material.gamma, delta_r, hmap.periodic)
     return _plain({
         "pr_parameter": s.pr_parameter, "range_over_gap": s.range_over_gap, "tabor": s.tabor,
         "mesh": s.mesh, "energy_ratio": s.energy_ratio, "w": s.w, "delta_r": s.delta_r,

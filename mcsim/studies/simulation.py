@@ -16,6 +16,7 @@ import logging
 import shlex
 import sys
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -23,7 +24,7 @@ from mcsim._version import __version__
 from mcsim.engine import interrupt
 from mcsim.engine.montecarlo import DEFAULT_CHUNK, default_workers, run_sums
 from mcsim.engine.spec import MonteCarloSpec
-from mcsim.model.counterface import check_correlation, combine
+from mcsim.model.counterface import as_counter, check_correlation, gap_surface
 from mcsim.model.errors import ParameterError
 from mcsim.model.params import Material, Surface, check_range, check_seed, check_separations
 from mcsim.model.presets import as_material, as_surface
@@ -41,6 +42,9 @@ from mcsim.store.claim import Claim, claim_output
 from mcsim.store.inputgroup import counterface_attrs
 from mcsim.store.results import Run, assemble
 from mcsim.studies.runoptions import check_checkpoint_every, check_workers
+
+if TYPE_CHECKING:
+    from mcsim.physics.loadcontrol import Preload
 
 log = logging.getLogger(__name__)
 
@@ -82,7 +86,7 @@ def _preload_attrs(surface, material, h, law, cycle, environment, preload) -> di
     run is read (:meth:`mcsim.store.results.Run.pull_off`) from its summits drawn again; the
     grid must reach below the turns, since no summit below its lowest separation is drawn.
     """
-    from mcsim.physics.loadcontrol import preload_turn  # SciPy's optimizers: not at start-up
+    from mcsim.physics.loadcontrol import Preload, preload_turn  # SciPy: not at start-up
 
     if not cycle:
         raise ParameterError("preload: force control presses each pad before retraction; "
@@ -91,8 +95,12 @@ def _preload_attrs(surface, material, h, law, cycle, environment, preload) -> di
         signed = [name for name in LAW_SETS if "load" in get_law_set(name).names]
         raise ParameterError(f"preload: law = {law!r} has no signed load to balance it "
                              f"(allowed: {', '.join(signed)})")  # fmt: skip
-    pressure = check_range("preload", preload, "Pa", low=0, low_open=False)
-    turn = preload_turn(surface, material, pressure, law, environment)
+    given = preload.pressure if isinstance(preload, Preload) else preload
+    pressure = check_range("preload", given, "Pa", low=0, low_open=False)
+    if isinstance(preload, Preload) and preload.is_for(surface, material, law, environment):
+        turn = preload.turn  # found once already (the command line's grid needed it)
+    else:
+        turn = preload_turn(surface, material, pressure, law, environment)
     if min(h) > turn:
         raise ParameterError(f"preload = {pressure:g} Pa: the mean approach curve balances it at "
                              f"h = {turn:.4g}, below the lowest h = {min(h):g}; extend h (--h) down "
@@ -111,7 +119,7 @@ def simulate(
     law: str = "seed",
     count: str = "poisson",
     cycle: bool = False,
-    preload: float | str | None = None,
+    preload: float | str | Preload | None = None,
     device: str = "cpu",
     workers: int | None = None,
     scheduler=None,
@@ -151,13 +159,15 @@ def simulate(
     cycle : bool
         Approach over ``h`` (descending), then retraction back over the same ``h``
         after the closest approach min(h); both branches are stored.
-    preload : float or str, optional
+    preload : float or str or Preload, optional
         Nominal pressure, Pa or with a unit (``"1 MPa"``), with ``cycle``: force control,
         as an actuator presses a device. Each pad is pressed until its own approach load
         reaches preload × area and retracts from there (:meth:`Run.pull_off`, which draws
         its summits again); the run records the preload and the turn that balances it on
         the mean curve (:func:`mcsim.physics.loadcontrol.preload_turn`), which must lie
         within ``h``. Law sets with a signed load only; with an environment its net load.
+        A :class:`~mcsim.physics.loadcontrol.Preload` found for these very inputs (the
+        command line's, which needed the turn for its grid) passes its turn on.
     device : {"cpu", "cuda"}
         Sample and sum on the CPU or on the GPU (``mcsim[gpu]``; other random streams,
         so other numbers than the CPU's, equal in distribution); recorded in the run.
@@ -227,11 +237,12 @@ def simulate(
     mcsim.engine.interrupt.Interrupted
         On SIGINT (Ctrl-C) or SIGTERM, once the progress is saved (a ``KeyboardInterrupt``).
     """
-    given, material = as_surface(surface), as_material(material)
+    given, material = as_surface(surface), as_material(material)  # resolved here, once
     correlation = check_correlation(correlation)
-    surface, pair = combine(given, counter_surface, correlation), None
-    if surface is not given:  # a rough counter-surface: its parts recorded
-        pair = (given, as_surface(counter_surface, "counter-surface"), correlation)
+    counter = as_counter(counter_surface)
+    surface, pair = gap_surface(given, counter, correlation), None
+    if counter is not None:  # a rough counter-surface: its parts recorded
+        pair = (given, counter, correlation)
         extra_attrs = {**(extra_attrs or {}), **counterface_attrs(*pair)}
     environment = as_environment(environment)
     area_m2 = parse_quantity(area, "area", "area")
@@ -301,7 +312,7 @@ def _api_command(spec: MonteCarloSpec, *, seed, preload, environment, pair=None)
               "h": [float(x) for x in s.h], "area": s.area, "realizations": s.realizations,
               "seed": seed, "law": s.law, "count": s.count,
               **({"cycle": True} if s.cycle else {}),
-              **({"preload": preload} if preload is not None else {}),
+              **({"preload": getattr(preload, "pressure", preload)} if preload is not None else {}),
               **({"device": s.device} if s.device != "cpu" else {}),
               **({"environment": environment} if environment is not None else {})}  # fmt: skip
     return f"mcsim.simulate({', '.join(f'{k}={v!r}' for k, v in kwargs.items())})"
@@ -313,12 +324,13 @@ def _run(stack, spec: MonteCarloSpec, *, workers, scheduler, chunk_size,
     notes = regime_warnings(spec.surface, spec.material, spec.law)
     for warning in notes:
         log.info("warning: %s", warning)  # once the inputs are accepted: no error follows
-    for note in interface_notes(spec.surface, spec.material, spec.environment):
-        log.info("note: %s", note)
-    for warning in environment_warnings(spec.surface, spec.environment):
-        log.info("warning: %s", warning)
-    if spec.environment is not None and spec.environment.has_capillary:
-        log.info("note: %s", EQUILIBRIUM_NOTE)
+    if spec.environment is not None:  # a dry run has no interface notes or warnings
+        for note in interface_notes(spec.surface, spec.material, spec.environment):
+            log.info("note: %s", note)
+        for warning in environment_warnings(spec.surface, spec.environment):
+            log.info("warning: %s", warning)
+        if spec.environment.has_capillary:
+            log.info("note: %s", EQUILIBRIUM_NOTE)
     n_workers = default_workers() if workers is None else workers
     summits, pairs, seconds = estimate(spec, n_workers)
     if seconds > ESTIMATE_ABOVE:

@@ -31,7 +31,7 @@ from mcsim.physics.adhesion import (
     regime_warnings,
     tabor_parameter,
 )
-from mcsim.physics.analytic import gw_curves, quantities
+from mcsim.physics.analytic import analytic_curves, quantities
 from mcsim.physics.environment import Environment
 from mcsim.physics.gapheights import gap_heights
 from mcsim.physics.laws import get_law_set
@@ -227,7 +227,7 @@ def _evaluate(point: Point, config: Config, out: dict) -> None:
     environment = point.environment
     # The environment only where there is one: without, every call is as before it existed.
     with_environment = {} if environment is None else {"environment": environment}
-    curves = gw_curves(surface, material, np.asarray(config.h), law, **with_environment)
+    curves = analytic_curves(surface, material, np.asarray(config.h), law, **with_environment)
     out |= curves.values
     out |= _regime(surface, material, law)
     preload = config.preload if point.preload is None else point.preload

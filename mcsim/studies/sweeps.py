@@ -49,7 +49,7 @@ import numpy as np
 from mcsim._version import __version__
 from mcsim.engine import interrupt
 from mcsim.engine.montecarlo import FIRST_CHECKPOINT, default_workers, in_order
-from mcsim.model.counterface import check_correlation, combine
+from mcsim.model.counterface import as_counter, check_correlation, gap_surface
 from mcsim.model.errors import ParameterError
 from mcsim.model.params import Material, Surface, check_range, check_seed, check_separations
 from mcsim.model.presets import as_material, as_surface
@@ -237,12 +237,12 @@ def sweep(
     mcsim.engine.interrupt.Interrupted
         On SIGINT or SIGTERM, once the completed points are saved.
     """
-    given, material = as_surface(surface), as_material(material)
+    given, material = as_surface(surface), as_material(material)  # resolved here, once
     correlation = check_correlation(correlation)
-    surface, pair = combine(given, counter_surface, correlation), {}
-    if surface is not given:  # a rough counter-surface: its parts recorded
-        pair = inputgroup.counterface_attrs(given, as_surface(counter_surface, "counter-surface"),
-                                            correlation)  # fmt: skip
+    counter = as_counter(counter_surface)
+    surface, pair = gap_surface(given, counter, correlation), {}
+    if counter is not None:  # a rough counter-surface: its parts recorded
+        pair = inputgroup.counterface_attrs(given, counter, correlation)
     environment = as_environment(environment)
     names, grid = _check_vary(vary, law, mc or bool(pads), bool(pads))
     combined = [n for n in names if n in ("sigma", "R", "eta")]

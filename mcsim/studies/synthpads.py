@@ -135,7 +135,7 @@ def read_pads(path: str | Path) -> SynthesizedPads:
 def check_pads(n, pixels, seed=None, path=None) -> None:
     """Refuse a bad number of pads (≥ 1), pad side (≥ 8 pixels), seed (≥ 0) or a histogram
     file as the source (it has no spectrum), one line naming the field."""
-    from mcsim.studies.ingest import is_histogram_file
+    from mcsim.topography.maps import is_histogram_file
 
     if path is not None and is_histogram_file(Path(path)):
         raise ParameterError(
@@ -189,7 +189,7 @@ def synthesize_pads(
     ParameterError
         A bad ``n`` or ``pixels``, a histogram file, a map with non-square pixels or NaN.
     """
-    from mcsim.studies.ingest import decide_periodic, read_checked
+    from mcsim.topography.maps import decide_periodic, read_checked
 
     check_pads(n, pixels, seed, path)
     path = Path(path)

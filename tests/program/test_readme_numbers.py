@@ -384,10 +384,10 @@ def test_engine_and_file_constants():
     from mcsim.engine.pads import load as padload
     from mcsim.model import distributions
     from mcsim.store.schema import MAX_EXPANSION
-    from mcsim.studies.ingest import BYTES_PER_PIXEL
     from mcsim.studies.pads import FEW_CONTACTS
     from mcsim.studies.paper import MC_AREA
     from mcsim.studies.stiction import OFFSETS
+    from mcsim.topography.maps import BYTES_PER_PIXEL
 
     check_exact(r"located to (\S+) in h\) at `h_pull_off`", adhesion.H_TOLERANCE)
     check_exact(r"the minimum of the mean curve, located to (\S+) in h", adhesion.H_TOLERANCE)
@@ -417,7 +417,8 @@ def test_more_constants_of_the_code():
     from mcsim.physics import validity
     from mcsim.physics.laws import dmt
     from mcsim.store import files, runfile
-    from mcsim.studies import adhesivecontact, ingest, simulation, tail
+    from mcsim.studies import adhesivecontact, simulation, tail
+    from mcsim.topography import mapsurface
 
     project = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]
     # the README's quick start, and the guide's installation page that repeats it
@@ -434,7 +435,7 @@ def test_more_constants_of_the_code():
     check_exact(r"a histogram of more than (\d+) bins is drawn merged into at most (\d+) bars",
                 MAX_DRAWN_BINS, MAX_DRAWN_BINS)  # fmt: skip
     check_exact(r"direct and spectral routes more than a factor (\d+) apart",
-                ingest.ROUTE_DISAGREEMENT)  # fmt: skip
+                mapsurface.ROUTE_DISAGREEMENT)  # fmt: skip
     check_exact(r"or beyond A_r/A_n = (\S+) \(where neighbouring contacts interact\)",
                 validity.INTERACTING_AREA)  # fmt: skip
     assert quoted(r"(A fifth of the estimate's pads are drawn from the real law and three tenths "

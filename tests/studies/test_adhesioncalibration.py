@@ -24,7 +24,7 @@ from mcsim.studies.adhesioncalibration import (
 )
 from mcsim.studies.adhesivecontact import gw_adhesion
 from mcsim.studies.ingest import ingest_file
-from mcsim.studies.ingested import LEVELS
+from mcsim.topography.maps import LEVELS
 from mcsim.topography.summits import level
 
 SCAN = Path(__file__).resolve().parents[2] / "examples" / "scan.npy"

@@ -364,20 +364,20 @@ def test_a_missing_input_says_no_such_file(tmp_path):
 
 
 def test_a_map_too_large_for_the_memory_is_refused_naming_the_size_that_fits(tmp_path, monkeypatch):
-    import mcsim.studies.ingest
+    import mcsim.topography.maps
 
     np.save(tmp_path / "m.npy", np.random.default_rng(1).normal(size=(256, 256)))
-    monkeypatch.setattr(mcsim.studies.ingest, "available_memory", lambda: 1_000_000)
+    monkeypatch.setattr(mcsim.topography.maps, "available_memory", lambda: 1_000_000)
     code, _, err = run_cli("ingest", tmp_path / "m.npy", "--unit", "nm", "--pixel-size", "1nm",
                            "--out", tmp_path / "s.toml")  # fmt: skip
-    side = int(np.sqrt(1_000_000 // mcsim.studies.ingest.BYTES_PER_PIXEL))
+    side = int(np.sqrt(1_000_000 // mcsim.topography.maps.BYTES_PER_PIXEL))
     one_line(code, err, "a 256 x 256 map needs about", f"at most about {side} x {side} pixels")
 
 
 def test_the_memory_estimate_bounds_the_measured_peak(tmp_path):
     import tracemalloc
 
-    from mcsim.studies.ingest import BYTES_PER_PIXEL
+    from mcsim.topography.maps import BYTES_PER_PIXEL
 
     np.save(tmp_path / "m.npy", np.random.default_rng(1).normal(size=(512, 512)))
     tracemalloc.start()

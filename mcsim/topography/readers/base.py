@@ -48,13 +48,50 @@ _CONTROL = re.compile("[\x00-\x1f\x7f-\x9f\u2028\u2029]")
 
 
 @dataclass(frozen=True)
+class FacingMap:
+    """A counter-surface's map facing a map (``--counter-surface``): turned over (columns
+    reversed, heights negated) and subtracted, so that the map analysed is the gap's
+    topography.
+
+    Attributes
+    ----------
+    source : Path
+        The counter-surface's map file.
+    correlation : float
+        ρ of the two levelled maps' heights in the facing frame
+        (:func:`mcsim.topography.summits.height_correlation`).
+    rms, counter_rms : float
+        Rms of the levelled map and of the turned-over counter map over their common
+        pixels, m: the gap's rq is √(rms² + counter_rms² − 2ρ rms counter_rms).
+    """
+
+    source: Path
+    correlation: float
+    rms: float
+    counter_rms: float
+
+    def line(self) -> str:
+        """One line, for the terminal and the surface file."""
+        gap = (self.rms**2 + self.counter_rms**2
+               - 2 * self.correlation * self.rms * self.counter_rms) ** 0.5  # fmt: skip
+        return (f"{self.source} turned over to face the map (columns reversed, heights negated); "
+                f"the map analysed is their gap, map - turned-over counter; correlation of the "
+                f"levelled heights rho = {self.correlation:.4g}, rms {self.rms * 1e9:.4g} nm and "
+                f"{self.counter_rms * 1e9:.4g} nm: the gap's rms sqrt(rms1^2 + rms2^2 - 2 rho "
+                f"rms1 rms2) = {gap * 1e9:.4g} nm")  # fmt: skip
+
+
+@dataclass(frozen=True)
 class HeightMap:
-    """A measured height map in SI units.
+    """A measured height map in SI units: as a reader returns it, or read once and prepared
+    for every analysis (:func:`mcsim.topography.maps.read_map`: with a counter-surface the
+    gap's, its periodicity decided and levelled).
 
     Attributes
     ----------
     heights : ndarray
-        Heights, m, shape (rows along y, columns along x); NaN for missing pixels.
+        Heights, m, shape (rows along y, columns along x); NaN for missing pixels. As read
+        (the gap's with a counter-surface), not levelled.
     dx, dy : float
         Pixel size along x (between columns) and y (between rows), m.
     source : str
@@ -63,6 +100,18 @@ class HeightMap:
         Channel (data field) name inside the file.
     notes : tuple of str
         What the reader assumed or converted (units, scaling, chosen channel).
+    level : str or None
+        The levelling of :attr:`levelled` (a key of :data:`mcsim.topography.maps.LEVELS`);
+        None as a reader returns it.
+    periodic : bool or None
+        The map is analysed as periodic (summit neighbours and solves wrap); None as a
+        reader returns it.
+    periodic_reason : str
+        Why (asked, or the edge steps of :func:`mcsim.topography.summits.periodic_edges`).
+    levelled : ndarray or None
+        :attr:`heights` levelled by :attr:`level`, m.
+    facing : FacingMap or None
+        The counter-surface facing the map, if any.
     """
 
     heights: np.ndarray
@@ -71,6 +120,11 @@ class HeightMap:
     source: str
     channel: str = ""
     notes: tuple[str, ...] = field(default=())
+    level: str | None = None
+    periodic: bool | None = None
+    periodic_reason: str = ""
+    levelled: np.ndarray | None = field(default=None, repr=False)
+    facing: FacingMap | None = None
 
     def __post_init__(self):
         for name in ("dx", "dy"):
