@@ -57,9 +57,12 @@ def pads_varied(sweep, what: str):
     ------
     ParameterError
         No input, or more than two, varied over more than one value (``what`` names the
-        sweep in the message, e.g. "a pads sweep").
+        sweep in the message, e.g. "a pads sweep"). A sweep of one input at one value (a
+        report at one humidity) is drawn as its one point.
     """
     dims = [d for d in sweep.grid if sweep.coords[d].size > 1]
+    if not dims and len(sweep.grid) == 1:
+        dims = list(sweep.grid)
     if not dims or len(dims) > 2:
         raise ParameterError(f"plot: {what} is drawn against one or two varied inputs, this one "
                              f"varies {len(dims)} ({', '.join(sweep.grid)})")  # fmt: skip

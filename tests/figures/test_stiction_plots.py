@@ -27,6 +27,16 @@ def test_a_1d_pads_sweep_draws_p_stick_with_its_interval_and_the_model_on_a_log_
 
 
 @pytest.mark.filterwarnings("ignore::mcsim.physics.adhesion.RegimeWarning")
+def test_a_pads_sweep_at_one_value_of_its_input_is_drawn_as_its_one_point():
+    # a report at one humidity draws this figure (it used to stop after all its work)
+    result = sweep(SURFACES["smooth"], MATERIALS["silicon"], {"sigma": "2nm"}, **OPTIONS)
+    ax = stiction_figure(result).axes[0]
+    assert "(nm)" in ax.get_xlabel()
+    drawn = [line.get_xdata() for line in ax.get_lines() if line.get_transform() == ax.transData]
+    assert drawn and all(np.allclose(x, 2.0) for x in drawn)  # the point, its bar, its model
+
+
+@pytest.mark.filterwarnings("ignore::mcsim.physics.adhesion.RegimeWarning")
 @pytest.mark.filterwarnings("error::RuntimeWarning")  # the model's tails leak no overflow
 def test_cli_plot_of_a_2d_pads_sweep_writes_a_map_with_a_log_colour_bar(tmp_path, capsys):
     path = tmp_path / "map.h5"
