@@ -114,10 +114,9 @@ def _subpixel_text(k: int) -> str:
 
 def _write(args, result, figure) -> int:
     """The ``--out`` file and the ``--plot`` figure (``figure(result)``) of a contact result."""
-    from mcsim.studies.simulation import cli_command
 
     if args.out:
-        announce(result.write(args.out, command=cli_command(), overwrite=args.overwrite),
+        announce(result.write(args.out, command=args.command_line, overwrite=args.overwrite),
                  quiet=args.quiet)  # fmt: skip
     if args.plot:
         from mcsim.figures.style import save

@@ -18,7 +18,6 @@ def run(args) -> int:
     from mcsim.store.outputs import check_output
     from mcsim.studies.ingest import ingest_file
     from mcsim.studies.ingested import IngestResult
-    from mcsim.studies.simulation import cli_command
 
     def length(value, option):
         return positive_quantity(value, "length", option)
@@ -68,7 +67,7 @@ def run(args) -> int:
     )  # fmt: skip
     for line in result.summary_lines():
         print(line)
-    written = result.write_surface(out, overwrite=args.overwrite, command=cli_command())
+    written = result.write_surface(out, overwrite=args.overwrite, command=args.command_line)
     from mcsim.figures.style import save
     from mcsim.figures.topography import comparison_figure, histogram_figure
 
@@ -91,7 +90,10 @@ def run(args) -> int:
         print(f"pads       {args.synthesize} periodic pads of {args.pad_pixels} x {args.pad_pixels} "
               f"pixels from the map's radial PSD, seed {pads.seed}: expected rms {rms_pad:.4g} nm "
               f"(the map's {rms_map:.4g} nm; a pad lacks the wavelengths longer than its side)")  # fmt: skip
-        written = [*written, pads.write(pads_out, overwrite=args.overwrite, command=cli_command())]
+        written = [
+            *written,
+            pads.write(pads_out, overwrite=args.overwrite, command=args.command_line),
+        ]
     for path in [*written, *figures]:
         announce(path, quiet=args.quiet)
     done = {Path(p) for p in [*written, *figures]}

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import argparse
 import re
+import shlex
 import sys
 
 from mcsim._version import __version__
@@ -129,6 +130,10 @@ def main(argv: list[str] | None = None) -> int:
         args = parser.parse_args(argv)
     except SystemExit as done:  # --help, --version or a one-line usage error: its status
         return done.code if isinstance(done.code, int) else 2
+    # the command line that outputs record: the one parsed (main([...]) in a notebook records
+    # its own arguments, not the kernel's sys.argv)
+    words = sys.argv[1:] if argv is None else argv
+    args.command_line = shlex.join(["mcsim", *map(str, words)])
     try:
         return args.func(args)
     except KeyboardInterrupt:

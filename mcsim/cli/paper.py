@@ -17,8 +17,10 @@ def run(args) -> int:
             check_output(path, overwrite=args.overwrite)
     mc = None
     if not args.no_mc:
-        mc = paper_monte_carlo(args.out, seed=args.seed, overwrite=args.overwrite)
-    result = reproduce_paper(out_dir=args.out, mc=mc, overwrite=args.overwrite)
+        mc = paper_monte_carlo(args.out, seed=args.seed, overwrite=args.overwrite,
+                              command=args.command_line)  # fmt: skip
+    result = reproduce_paper(out_dir=args.out, mc=mc, overwrite=args.overwrite,
+                             command=args.command_line)  # fmt: skip
     for path in [*result["figures"].values(), result["curves_csv"], result["mu_table_csv"]]:
         announce(path, quiet=args.quiet)
     return 0

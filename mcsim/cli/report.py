@@ -27,7 +27,6 @@ def run(args) -> int:
     from mcsim.engine import interrupt
     from mcsim.store.outputs import check_output, write_atomic
     from mcsim.studies.report import report
-    from mcsim.studies.simulation import cli_command
 
     html, json_path = _outputs(args)
     for path in (html, json_path):  # refused before any work
@@ -40,7 +39,7 @@ def run(args) -> int:
         rh=args.rh, devices=args.devices, law=args.law, pads=args.pads,
         environment=environment,
         unit=args.unit, pixel_size=args.pixel_size, channel=args.channel, seed=args.seed,
-        workers=args.workers, progress=not args.quiet, command=cli_command(),
+        workers=args.workers, progress=not args.quiet, command=args.command_line,
     )  # fmt: skip
     texts = {json_path: result.to_json(), html: result.to_html()}
     fresh = [path for path in texts if not path.exists()]

@@ -44,7 +44,7 @@ def run(args) -> int:
 
     with interruptible(), log_notes(args.quiet):  # SIGINT/SIGTERM owned before heavy imports
         from mcsim.store.files import checkpoint_path, file_path
-        from mcsim.studies.simulation import cli_command, simulate
+        from mcsim.studies.simulation import simulate
 
         surface, material, pair = inputs_of(args, parts=True)
         given = pair.pop("surface", surface)  # with a counter-surface: the parts, recorded
@@ -75,7 +75,7 @@ def run(args) -> int:
                 count=args.count, cycle=args.cycle, preload=preload, device=args.device, workers=args.workers, scheduler=args.scheduler or args.dask,
                 chunk_size=args.chunk_size, keep_heights=args.keep_heights, out=out, overwrite=args.overwrite,
                 resume=args.resume, checkpoint_every=args.checkpoint_every, progress=show_progress,
-                command=cli_command(),
+                command=args.command_line,
                 extra_attrs=extra or None, **with_environment,
             )  # fmt: skip
         except Interrupted as stop:

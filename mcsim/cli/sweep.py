@@ -38,7 +38,6 @@ def run(args) -> int:
     with interruptible(), log_notes(args.quiet):  # SIGINT/SIGTERM owned before heavy imports
         from mcsim.physics.adhesion import ValidityWarning
         from mcsim.store.files import checkpoint_path
-        from mcsim.studies.simulation import cli_command
         from mcsim.studies.sweeps import area_warnings, sweep
 
         vary = {}
@@ -69,7 +68,7 @@ def run(args) -> int:
                     environment=environment, mc=args.mc, pads=args.pads, restoring_force=args.restoring_force, preload=args.preload, tail=True if args.tail else None, friction=args.friction, tangential_force=args.tangential_force, area=args.area, realizations=args.realizations or 1, seed=args.seed, device=args.device,
                     workers=args.workers, scheduler=args.scheduler or args.dask, out=out,
                     overwrite=args.overwrite, resume=args.resume, checkpoint_every=args.checkpoint_every,
-                    progress=not args.quiet and sys.stderr.isatty(), command=cli_command(),
+                    progress=not args.quiet and sys.stderr.isatty(), command=args.command_line,
                 )  # fmt: skip
         except Interrupted as stop:
             partial = checkpoint_path(out)

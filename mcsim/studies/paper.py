@@ -8,7 +8,6 @@ and reports μ at a few separations and the plasticity index of each surface.
 from __future__ import annotations
 
 import csv
-import sys
 from collections.abc import Callable, Mapping
 from datetime import UTC, datetime
 from pathlib import Path
@@ -50,6 +49,7 @@ def reproduce_paper(
     mc: Mapping[str, Mapping] | None = None,
     log: Callable[[str], object] | None = print,
     overwrite: bool = False,
+    command: str | None = None,
 ) -> dict:
     """Compute and plot the paper's Figs. 2-6 for its four surfaces on silicon.
 
@@ -82,6 +82,9 @@ def reproduce_paper(
     overwrite : bool
         Replace files left by an earlier reproduction; without it an existing output
         is an error, raised before anything is written (:mod:`mcsim.store.outputs`).
+    command : str, optional
+        The command line recorded in the provenance lines (the CLI passes the one it
+        parsed); by default the Python call is named.
 
     Returns
     -------
@@ -120,7 +123,7 @@ def reproduce_paper(
             curve_figure(quantity, curves, mc), out / filename, overwrite=overwrite
         )
 
-    header = _provenance(material, surfaces, h)
+    header = _provenance(material, surfaces, h, command)
     curves_csv = _write_csv(
         out / "paper_curves.csv",
         overwrite,
@@ -186,13 +189,14 @@ def paper_outputs(out_dir, monte_carlo: bool = True) -> list[Path]:
     return files
 
 
-def _provenance(material, surfaces: Mapping, h: np.ndarray) -> list[str]:
-    """Provenance lines: schema, versions, time, command line and inputs in SI units."""
+def _provenance(material, surfaces: Mapping, h: np.ndarray, command: str | None) -> list[str]:
+    """Provenance lines: schema, versions, time, command line (or the Python call) and inputs
+    in SI units."""
     lines = [
         f"schema: mcsim-paper-curves {SCHEMA_VERSION}",
         f"mcsim: {__version__}",
         f"created: {datetime.now(UTC).isoformat(timespec='seconds')}",
-        f"command: {' '.join(sys.argv)}",
+        f"command: {command or 'mcsim.studies.paper.reproduce_paper(...)'}",
         "model: analytic Greenwood-Williamson, law set 'seed' (paper Eqs. 1-8); "
         "P, F, T divided by A_n*K; mu = T/(P + F)",
         f"material: {material.name} E1 = {material.E1:g} Pa, E2 = {material.E2:g} Pa, "
@@ -249,13 +253,16 @@ def paper_monte_carlo(
     seed: int = 2026,
     log: Callable[[str], object] | None = print,
     overwrite: bool = False,
+    command: str | None = None,
 ) -> dict:
     """One Monte Carlo patch per paper surface, stored as HDF5 runs, as an ``mc`` overlay.
 
     Each surface gets a patch of :data:`MC_AREA` at the separations :data:`MC_H`,
     written to ``out_dir/mc_<surface>.h5``; existing runs are replaced only with
     ``overwrite`` (checked for all four before the first is computed). Surface i is
-    seeded with ``SeedSequence(seed).spawn(4)[i].generate_state(1)[0]``.
+    seeded with ``SeedSequence(seed).spawn(4)[i].generate_state(1)[0]``. ``command`` is
+    recorded in each run file (the CLI passes its command line; by default
+    :func:`~mcsim.studies.simulation.simulate` records its own Python call).
 
     Returns
     -------
@@ -264,7 +271,7 @@ def paper_monte_carlo(
         total force P̄ + F̄ with its standard error.
     """
     from mcsim.engine.statistics import MIN_CONTACTS, force_estimate
-    from mcsim.studies.simulation import cli_command, simulate
+    from mcsim.studies.simulation import simulate
 
     out = _output_folder(out_dir)
     runs = [out / f"mc_{name}.h5" for name in PAPER_SURFACES]
@@ -275,7 +282,7 @@ def paper_monte_carlo(
     mc = {}
     for name, child, path in zip(PAPER_SURFACES, seeds, runs):
         run = simulate(SURFACES[name], material, MC_H, MC_AREA, seed=int(child.generate_state(1)[0]), workers=2,
-                       out=path, overwrite=overwrite, command=cli_command())  # fmt: skip
+                       out=path, overwrite=overwrite, command=command)  # fmt: skip
         if log is not None:
             log(
                 f"Monte Carlo {name}: N = {run.n_summits[0]} summits on {MC_AREA * 1e12:g} um^2 -> {run.path}"

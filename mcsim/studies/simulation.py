@@ -13,7 +13,6 @@ import contextlib
 import dataclasses
 import functools
 import logging
-import shlex
 import sys
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -382,8 +381,3 @@ def _already_finished(claim: Claim, spec: MonteCarloSpec, keep_heights: bool, ex
         own_checkpoint=lambda partial: runfile.read_state(partial)[0].spec == finished.spec,
         seed_note="" if seed_given else f" (no seed given: taken as the file's, {spec.entropy})",
     )  # fmt: skip
-
-
-def cli_command() -> str:
-    """The current command line, quoted, for provenance."""
-    return " ".join(shlex.quote(a) for a in ["mcsim", *sys.argv[1:]])

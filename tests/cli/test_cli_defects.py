@@ -5,6 +5,7 @@ import json
 import sys
 import warnings
 
+import h5py
 import numpy as np
 import pytest
 from conftest import run_cli
@@ -285,4 +286,21 @@ def test_an_option_of_other_commands_says_which_instead_of_suggesting_itself(cap
     assert (
         "--rh is an option of mcsim analytic, adhesion, simulate, sweep, contact, report, not of mcsim pads"
         in err
+    )
+
+
+def test_a_command_run_in_process_records_its_own_arguments_not_the_interpreters(
+    capsys, tmp_path, monkeypatch
+):
+    # main([...]) from a notebook: sys.argv is the kernel's, not the command's
+    monkeypatch.setattr(sys, "argv", ["ipykernel_launcher.py", "-f", "kernel.json"])
+    out = tmp_path / "t.h5"
+    code, _, err = run_cli(capsys, "simulate", "--surface", "smooth", "--area", "1e-10",
+                           "--h=3,2", "--realizations", "2", "--seed", "1", "--out", out)  # fmt: skip
+    assert code == 0, err
+    with h5py.File(out) as f:
+        command = f.attrs["command"]
+    assert (
+        command
+        == f"mcsim simulate --surface smooth --area 1e-10 --h=3,2 --realizations 2 --seed 1 --out {out}"
     )
