@@ -192,8 +192,9 @@ class Environment:
         """
         if has_unit(contact_angle):
             angle = parse_quantity(contact_angle, "angle", "contact_angle")
-        else:  # a bare number is in degrees
-            angle = math.radians(parse_quantity(contact_angle, "dimensionless", "contact_angle"))
+        else:  # a bare number is in degrees: the same float as the string "<number> deg"
+            degrees = parse_quantity(contact_angle, "dimensionless", "contact_angle")
+            angle = parse_quantity(f"{degrees!r} deg", "angle", "contact_angle")
         if not 0 <= angle < math.pi:
             raise ParameterError(f"contact_angle = {math.degrees(angle)!r} deg is out of range "
                                  "(allowed: [0, 180) deg)")  # fmt: skip

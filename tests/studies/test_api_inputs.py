@@ -40,7 +40,8 @@ def test_an_environment_may_be_given_as_a_mapping_of_its_fields_as_in_a_toml_fil
     by_map = mcsim.gw_curves(SMOOTH, SILICON, [2.0, 0.5], law="jkr", environment=fields)
     by_obj = mcsim.gw_curves(SMOOTH, SILICON, [2.0, 0.5], law="jkr", environment=env)
     assert np.array_equal(by_map.load, by_obj.load) and by_map.environment == env
-    assert as_environment({"rh": 0.6, "contact_angle": 17}).contact_angle == np.radians(17)
+    # a bare angle is in degrees, the same float as "17 deg" (it was np.radians(17), an ulp off)
+    assert as_environment({"rh": 0.6, "contact_angle": 17}).contact_angle == angle
     summary = adhesion_summary(SMOOTH, SILICON, "jkr", environment=fields)
     assert summary.pull_off == adhesion_summary(SMOOTH, SILICON, "jkr", environment=env).pull_off
 
