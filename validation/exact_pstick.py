@@ -3,10 +3,10 @@
 On ``examples/scan.npy`` (periodic, 100 × 100 pixels of 10 nm, 3 nm rms; silicon, E* = 84 GPa):
 
 1. **The GW surface**: ``mcsim ingest --calibrate`` of the map (in a temporary folder:
-   :func:`mcsim.studies.ingest.ingest_file`, the surface file written and read back): direct
+   :func:`mcsim.studies.maps.ingest.ingest_file`, the surface file written and read back): direct
    route summits, radius by height, one radius scale fitted to exact non-adhesive areas.
 2. **The pads**: ``n`` periodic pads of ``pixels`` × ``pixels`` at the map's pixel size from
-   its radial PSD (:func:`mcsim.studies.synthpads.synthesize_pads`, the root seed's first
+   its radial PSD (:func:`mcsim.studies.maps.synthpads.synthesize_pads`, the root seed's first
    child; written to HDF5 and read back, as ``mcsim ingest --synthesize`` does). Full run:
    300 pads of 32² (0.1024 µm²); ``--quick``: 10 pads of 16² (0.0256 µm²).
 3. **Each pad exactly** (:func:`mcsim.physics.adhesivebem.follow` and ``solve_gap``, FFT
@@ -35,7 +35,7 @@ On ``examples/scan.npy`` (periodic, 100 × 100 pixels of 10 nm, 3 nm rms; silico
    ``cycle=True``, the same preload under force control, the same pad area, each pad's own
    turn and exact pull-off, :meth:`mcsim.store.results.Run.pull_off`), law sets jkr, dmt,
    maugis-dugdale with w = 0.1 J/m² and z0 = ρ/0.97 (maugis-dugdale's h0 = 0.97 z0 set to
-   the exponential's range, as :mod:`mcsim.studies.adhesivecontact` does); 400 pads each
+   the exponential's range, as :mod:`mcsim.studies.maps.adhesivecontact` does); 400 pads each
    (``--quick``: 40). Each pad holds round(ηA) summits (``count="fixed"``): under force
    control a Poisson pad without a summit cannot carry the preload (its ≈ 1e-5 chance at
    ηA ≈ 11 stops the whole run). Their p_stick at the same F_r with intervals.
@@ -72,10 +72,10 @@ from mcsim.physics import adhesivebem, bem
 from mcsim.physics.interactions import Exponential, mesh_parameter
 from mcsim.physics.stickiness import MESH_LIMIT
 from mcsim.store.config import load_surface
-from mcsim.studies.ingest import ingest_file
 from mcsim.studies.intervals import clopper_pearson
+from mcsim.studies.maps.ingest import ingest_file
+from mcsim.studies.maps.synthpads import read_pads, synthesize_pads
 from mcsim.studies.simulation import simulate
-from mcsim.studies.synthpads import read_pads, synthesize_pads
 from mcsim.topography.summits import summit_heights
 
 MAP = Path(__file__).resolve().parents[1] / "examples" / "scan.npy"

@@ -1,7 +1,7 @@
 """Why one radius cannot calibrate GW on the shipped map, and what does: taller summits are sharper.
 
 ``mcsim ingest --calibrate`` fits one summit-radius scale s to the exact (FFT boundary
-element) contact areas of a map at p/E* = 1e-4 … 1e-2 (mcsim.studies.calibration); on
+element) contact areas of a map at p/E* = 1e-4 … 1e-2 (mcsim.studies.maps.calibration); on
 ``examples/scan.npy`` (periodic, 10 nm pixels, silicon), with one radius for every summit
 (``--no-radius-by-height``) its worst area error is 13.8 %, above the 10 % issue 32 asks for.
 This script measures where the error comes from, on the map's own summits (direct route:
@@ -43,8 +43,8 @@ from reporting import Checks, parser, write_summary
 from scipy import optimize
 
 from mcsim.model.presets import MATERIALS
-from mcsim.studies.calibration import LOADS
-from mcsim.studies.ingest import ingest_file
+from mcsim.studies.maps.calibration import LOADS
+from mcsim.studies.maps.ingest import ingest_file
 from mcsim.topography.readers import read_height_map
 from mcsim.topography.summits import summit_curvatures
 

@@ -42,7 +42,7 @@ def run_adhesion(args) -> int:
     from mcsim.model.errors import ParameterError
     from mcsim.store.config import load_material
     from mcsim.store.outputs import check_output
-    from mcsim.studies.adhesivecontact import adhesive_contact
+    from mcsim.studies.maps.adhesivecontact import adhesive_contact
 
     if environment_of(args) is not None:
         raise ParameterError("--adhesion with an environment (--hamaker, --rh, ...) is not "
@@ -61,7 +61,7 @@ def run_adhesion(args) -> int:
         "pixel_size": positive_quantity(args.pixel_size, "length", "--pixel-size"),
     }  # fmt: skip
     if quantity["w"] is not None:  # refused by name, before the solves
-        from mcsim.studies.adhesioncalibration import check_inputs
+        from mcsim.studies.maps.adhesioncalibration import check_inputs
 
         check_inputs(quantity["w"], quantity["range_"])
     with warnings.catch_warnings():  # the mesh's said once below (result.warnings()); the GW
@@ -190,7 +190,7 @@ def run(args) -> int:
 
     from mcsim.store.config import load_material
     from mcsim.store.outputs import check_output
-    from mcsim.studies.contact import contact_map
+    from mcsim.studies.maps.contact import contact_map
 
     if args.adhesion:
         return run_adhesion(args)

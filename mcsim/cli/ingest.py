@@ -16,8 +16,8 @@ PAD_PIXELS = 32
 
 def run(args) -> int:
     from mcsim.store.outputs import check_output
-    from mcsim.studies.ingest import ingest_file
-    from mcsim.studies.ingested import IngestResult
+    from mcsim.studies.maps.ingest import ingest_file
+    from mcsim.studies.maps.ingested import IngestResult
 
     def length(value, option):
         return positive_quantity(value, "length", option)
@@ -81,7 +81,7 @@ def run(args) -> int:
         fig = comparison_figure(s, result.gaussian_surface, material, parse_h("4:-1:51"))
         save(fig, figures[1], overwrite=args.overwrite, inputs=inputs)
     if pads_out:
-        from mcsim.studies.synthpads import synthesize_pads
+        from mcsim.studies.maps.synthpads import synthesize_pads
 
         pads = synthesize_pads(args.file, args.synthesize, args.pad_pixels, args.seed,
                                unit=args.unit, pixel_size=length(args.pixel_size, "--pixel-size"),
@@ -116,7 +116,7 @@ def _pads_options(args, out: Path) -> Path | None:
             if value is not None:
                 raise ParameterError(f"{option}: used only with --synthesize N; add it")
         return None
-    from mcsim.studies.synthpads import check_pads
+    from mcsim.studies.maps.synthpads import check_pads
 
     if args.pad_pixels is None:
         args.pad_pixels = PAD_PIXELS

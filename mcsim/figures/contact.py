@@ -11,7 +11,7 @@ def contact_figure(result):
     Parameters
     ----------
     result : ContactResult
-        From :func:`mcsim.studies.contact.contact_map` with ``keep_fields=True``.
+        From :func:`mcsim.studies.maps.contact.contact_map` with ``keep_fields=True``.
 
     Returns
     -------
@@ -73,7 +73,7 @@ def adhesion_figure(result):
     Parameters
     ----------
     result : AdhesiveContactResult
-        From :func:`mcsim.studies.adhesivecontact.adhesive_contact`.
+        From :func:`mcsim.studies.maps.adhesivecontact.adhesive_contact`.
 
     Returns
     -------

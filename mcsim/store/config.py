@@ -114,7 +114,7 @@ _GAP_KEYS = {
     "summit_offset": ("length", "mean summit plane above the mean plane, e.g. '1.5 nm'"),
 }
 _HEIGHTS_KEYS = {"file", "edges", "counts", "densities", "unit"}
-#: Keys of ``[surface.calibration]`` (:mod:`mcsim.studies.calibration`): ``radius_scale`` is
+#: Keys of ``[surface.calibration]`` (:mod:`mcsim.studies.maps.calibration`): ``radius_scale`` is
 #: applied, the rest record how it was fitted: at the fitted loads (``in_sample_*``), leaving
 #: each load out in turn (``loo_*``) and at one load above them (``extrapolated_*``).
 #: ``worst_error`` and ``rms_error`` are the in-sample errors of files written before the
@@ -126,7 +126,7 @@ _CALIBRATION_KEYS = {"radius_scale", "material", "E_star", "pixel_size", "period
                      "loo_rms_error", "extrapolated_load", "extrapolated_exact_area_fraction",
                      "extrapolated_gw_area_fraction", "extrapolated_error", "worst_error",
                      "rms_error"}  # fmt: skip
-#: Keys of ``[surface.adhesion_calibration]`` (:mod:`mcsim.studies.adhesioncalibration`): a
+#: Keys of ``[surface.adhesion_calibration]`` (:mod:`mcsim.studies.maps.adhesioncalibration`): a
 #: record of GW's pull-off fitted to exact adhesive cycles, not applied.
 ADHESION_CALIBRATION_KEYS = ("law", "factor", "interaction", "w", "range", "material", "E_star",
                              "pixel_size", "periodic", "steps", "preload", "exact_pull_off_kPa",

@@ -2,8 +2,8 @@
 ``mcsim contact``, ``mcsim sweep --pads --vary rh=...`` and ``mcsim pads`` do one by one.
 
 :func:`report` ingests a scan and calibrates GW on its exact elastic contact
-(:func:`mcsim.studies.ingest.ingest_file`), solves the scan's exact contact beside GW's
-(:func:`mcsim.studies.contact.contact_map`) with the stickiness and validity diagnostics
+(:func:`mcsim.studies.maps.ingest.ingest_file`), solves the scan's exact contact beside GW's
+(:func:`mcsim.studies.maps.contact.contact_map`) with the stickiness and validity diagnostics
 (:mod:`mcsim.physics.stickiness`, :mod:`mcsim.physics.validity`), simulates the device's pads
 at each relative humidity (:func:`mcsim.sweep` with ``pads``: importance sampling where fewer
 than 10 pads lie on one side, :mod:`mcsim.studies.tail`), and carries p_stick and its interval
@@ -48,7 +48,7 @@ DEFAULT_PADS = 100
 DEFAULT_HAMAKER = 1.6e-19
 
 #: Loads p/E* of the exact contact shown beside GW's: those GW is calibrated at
-#: (:mod:`mcsim.studies.calibration`).
+#: (:mod:`mcsim.studies.maps.calibration`).
 CONTACT_LOADS = (1e-4, 10**-3.5, 1e-3, 10**-2.5, 1e-2)
 
 #: Most relative humidities in one report.
@@ -298,7 +298,7 @@ def report(
         Van der Waals and capillary inputs other than ``rh``; a Hamaker constant of None
         (or none given) is :data:`DEFAULT_HAMAKER` (0: no van der Waals).
     unit, pixel_size, channel
-        As for :func:`mcsim.studies.ingest.ingest_file` (pixel size m or with a unit).
+        As for :func:`mcsim.studies.maps.ingest.ingest_file` (pixel size m or with a unit).
     seed : int, optional
         Root seed of the pads (recorded).
     workers : int, optional
@@ -321,8 +321,8 @@ def report(
     from mcsim.model.units import parse_quantity
     from mcsim.physics.environment import Environment, as_environment
     from mcsim.store.config import load_material
-    from mcsim.studies.calibration import calibrate
-    from mcsim.studies.ingest import ingest_file
+    from mcsim.studies.maps.calibration import calibrate
+    from mcsim.studies.maps.ingest import ingest_file
 
     start = time.perf_counter()
     devices = check_devices(devices)
@@ -492,7 +492,7 @@ def _scan(ingested, surface) -> dict:
 
 def _contact(hmap, material, surface) -> tuple[dict, object]:
     from mcsim.physics.validity import area_warnings
-    from mcsim.studies.contact import contact_map, gw_hertz
+    from mcsim.studies.maps.contact import contact_map, gw_hertz
 
     p = np.asarray(CONTACT_LOADS) * material.E_star
     result = contact_map(hmap, material, p, keep_fields=True)

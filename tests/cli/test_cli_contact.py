@@ -14,7 +14,7 @@ from scipy import integrate, stats
 from mcsim.cli.main import main
 from mcsim.model.params import Material, Surface
 from mcsim.model.presets import MATERIALS
-from mcsim.studies.contact import contact_map, gw_hertz
+from mcsim.studies.maps.contact import contact_map, gw_hertz
 
 ROOT = Path(__file__).resolve().parents[2]
 SCAN = "examples/scan.npy"  # periodic, 100 x 100 pixels of 10 nm, heights in m

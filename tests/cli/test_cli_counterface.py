@@ -263,7 +263,7 @@ def maps(tmp_path):
 
 def test_ingest_two_maps_writes_the_gap_surface_and_the_correlation(capsys, tmp_path, maps):
     from mcsim.store.config import load_surface
-    from mcsim.studies.ingest import ingest_file
+    from mcsim.studies.maps.ingest import ingest_file
     from mcsim.topography.summits import facing_gap
 
     a, b, _ = maps

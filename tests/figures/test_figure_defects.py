@@ -260,7 +260,7 @@ def test_the_adhesion_cycle_has_its_legend_below_and_no_hyphen_or_exponent_in_it
 
 def test_the_contact_figure_writes_a_pressure_of_1000_mpa_as_1_gpa(tmp_path):
     from mcsim.figures.contact import _pressure_text, contact_figure
-    from mcsim.studies.contact import contact_map
+    from mcsim.studies.maps.contact import contact_map
 
     heights = np.random.default_rng(1).normal(0.0, 1e-9, (32, 32))
     np.save(tmp_path / "map.npy", heights)

@@ -18,7 +18,7 @@ import pytest
 
 from mcsim.physics.environment import Environment
 from mcsim.physics.surfaceenvironment import environment_curves, environment_works
-from mcsim.studies.ingest import ingest_file
+from mcsim.studies.maps.ingest import ingest_file
 from mcsim.topography.maps import LEVELS
 from mcsim.topography.readers import read_height_map
 from mcsim.topography.summits import level

@@ -14,7 +14,7 @@ from mcsim.model.errors import ParameterError
 from mcsim.model.presets import MATERIALS
 from mcsim.physics.interactions import Exponential
 from mcsim.store.config import load_surface
-from mcsim.studies.adhesioncalibration import (
+from mcsim.studies.maps.adhesioncalibration import (
     EXTRAPOLATED_PRELOAD,
     GW_LAWS,
     TARGET,
@@ -22,8 +22,8 @@ from mcsim.studies.adhesioncalibration import (
     AdhesionCalibration,
     calibrate_adhesion,
 )
-from mcsim.studies.adhesivecontact import gw_adhesion
-from mcsim.studies.ingest import ingest_file
+from mcsim.studies.maps.adhesivecontact import gw_adhesion
+from mcsim.studies.maps.ingest import ingest_file
 from mcsim.topography.maps import LEVELS
 from mcsim.topography.summits import level
 

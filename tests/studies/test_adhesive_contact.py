@@ -1,5 +1,5 @@
 """`mcsim contact --adhesion` and the study behind it: the exact adhesive cycle of a map beside
-GW's adhesion on the same map (mcsim.studies.adhesivecontact)."""
+GW's adhesion on the same map (mcsim.studies.maps.adhesivecontact)."""
 
 from __future__ import annotations
 
@@ -17,7 +17,7 @@ from mcsim.physics.adhesion import adhesion_summary
 from mcsim.physics.analytic import gw_curves
 from mcsim.physics.loadcontrol import preload_turn
 from mcsim.physics.stickiness import stickiness
-from mcsim.studies.adhesivecontact import GW_LAWS, H0_PER_Z0, adhesive_contact
+from mcsim.studies.maps.adhesivecontact import GW_LAWS, H0_PER_Z0, adhesive_contact
 
 #: examples/scan.npy (periodic, 100 x 100 pixels of 10 nm, 3 nm rms, heights in m) every second
 #: pixel: still periodic, 50 x 50 pixels of 20 nm, a quarter of the work

@@ -15,9 +15,9 @@ from mcsim.cli.main import main
 from mcsim.model.errors import ParameterError
 from mcsim.model.presets import MATERIALS
 from mcsim.store.config import load_surface
-from mcsim.studies.calibration import LOADS, TARGET, Calibration, _errors, calibrate
-from mcsim.studies.contact import contact_map, gw_hertz
-from mcsim.studies.ingest import ingest_file
+from mcsim.studies.maps.calibration import LOADS, TARGET, Calibration, _errors, calibrate
+from mcsim.studies.maps.contact import contact_map, gw_hertz
+from mcsim.studies.maps.ingest import ingest_file
 
 ROOT = Path(__file__).resolve().parents[2]
 SCAN = ROOT / "examples" / "scan.npy"  # periodic, 100 x 100 pixels of 10 nm, heights in m

@@ -11,7 +11,7 @@ from mcsim.model.presets import MATERIALS
 from mcsim.physics.capillary import capillary_pressure
 from mcsim.physics.environment import Environment
 from mcsim.physics.vanderwaals import vdw_pressure
-from mcsim.studies.contact import contact_map, gap_attraction
+from mcsim.studies.maps.contact import contact_map, gap_attraction
 
 SCAN = "examples/scan.npy"  # periodic, 100 x 100 pixels of 10 nm, heights in m
 #: films t = 1.00 nm: the bridges pull on 2t = 2.00 nm <= g < g_K = 2 r_K + 2t = 3.51 nm with

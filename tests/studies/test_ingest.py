@@ -11,7 +11,7 @@ from tolerances import ROUNDING_FEW, ROUNDING_SUM
 from mcsim.cli.main import main
 from mcsim.model.presets import MATERIALS
 from mcsim.store.config import load_surface
-from mcsim.studies.ingest import ingest_file
+from mcsim.studies.maps.ingest import ingest_file
 
 
 def run_cli(*argv) -> tuple[int, str, str]:

@@ -14,9 +14,9 @@ import mcsim.topography.readers.npy as npy_reader
 from mcsim.cli.main import main
 from mcsim.model.errors import ParameterError
 from mcsim.model.presets import MATERIALS
-from mcsim.studies.calibration import calibrate
-from mcsim.studies.contact import contact_map
-from mcsim.studies.ingest import ingest_file
+from mcsim.studies.maps.calibration import calibrate
+from mcsim.studies.maps.contact import contact_map
+from mcsim.studies.maps.ingest import ingest_file
 from mcsim.topography.maps import read_map
 from mcsim.topography.readers import read_height_map
 

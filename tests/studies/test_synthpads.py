@@ -1,4 +1,4 @@
-"""Pads from a map's spectrum (mcsim.studies.synthpads) and ``mcsim ingest --synthesize``."""
+"""Pads from a map's spectrum (mcsim.studies.maps.synthpads) and ``mcsim ingest --synthesize``."""
 
 from pathlib import Path
 
@@ -8,7 +8,7 @@ import pytest
 from conftest import run_cli
 
 from mcsim.model.errors import ParameterError
-from mcsim.studies.synthpads import read_pads, synthesize_pads
+from mcsim.studies.maps.synthpads import read_pads, synthesize_pads
 from mcsim.topography.synthesis import radial_psd
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"

@@ -63,7 +63,7 @@ import numpy as np
 from mcsim.model.errors import ParameterError
 from mcsim.model.params import Material, Surface
 from mcsim.physics import bem
-from mcsim.studies.contact import contact_map, gw_hertz
+from mcsim.studies.maps.contact import contact_map, gw_hertz
 from mcsim.topography.readers import HeightMap
 
 #: Calibration loads p/E*: five, evenly spaced in log from 1e-4 to 1e-2.
@@ -304,7 +304,7 @@ def calibrate(
     material : Material
         Its contact modulus E* (Pa) sets the pressures p = (p/E*)·E* of :data:`LOADS`.
     unit, pixel_size, channel, level, periodic
-        For a file: as for :func:`mcsim.studies.contact.contact_map` (pixel size in m).
+        For a file: as for :func:`mcsim.studies.maps.contact.contact_map` (pixel size in m).
     tol : float
         Tolerance of the exact solves (:func:`mcsim.physics.bem.solve_contact`).
     surface : Surface, optional

@@ -176,7 +176,7 @@ def synthesize_pads(
     seed : int, optional
         Root seed (None: fresh entropy, recorded).
     unit, pixel_size, channel
-        As for :func:`mcsim.studies.ingest.ingest_file`; the pixels must be square.
+        As for :func:`mcsim.studies.maps.ingest.ingest_file`; the pixels must be square.
     periodic : bool, optional
         Analyse the map as periodic; None decides from its edges.
 

@@ -54,7 +54,7 @@ import numpy as np
 
 from mcsim.model.errors import MCSimError, ParameterError
 from mcsim.model.params import Material, Surface
-from mcsim.studies.ingested import HeightSummary, IngestResult
+from mcsim.studies.maps.ingested import HeightSummary, IngestResult
 from mcsim.topography.maps import LEVELS, is_histogram_file, read_map
 from mcsim.topography.mapsurface import HEIGHTS, ROUTES, map_surface
 from mcsim.topography.readers import ReaderError, read_histogram
@@ -124,7 +124,7 @@ def ingest_file(
         opposite edges join (:func:`mcsim.topography.summits.periodic_edges`). Maps only.
     calibrate : Material, optional
         Fit GW's summit-radius scale to exact elastic solves of the map with this material's
-        E* (:func:`mcsim.studies.calibration.calibrate`); recorded in the surface file and
+        E* (:func:`mcsim.studies.maps.calibration.calibrate`); recorded in the surface file and
         used by every command that reads it. Maps only.
     radius_by_height : bool, optional
         Give each band of summit heights (each histogram bin) its own radius, from a fit of
@@ -134,7 +134,7 @@ def ingest_file(
     adhesion_w : float, optional
         With ``calibrate``: also calibrate GW's pull-off on exact adhesive cycles of the map
         with this work of adhesion, J/m², > 0
-        (:func:`mcsim.studies.adhesioncalibration.calibrate_adhesion`); recorded, not applied.
+        (:func:`mcsim.studies.maps.adhesioncalibration.calibrate_adhesion`); recorded, not applied.
     adhesion_range : float, optional
         The exponential law's range, m, > 0 (default the material's z0, else 1 nm).
     counter : path-like, optional
@@ -165,7 +165,7 @@ def ingest_file(
         _check_choice("level", level, tuple(LEVELS))
     _check_choice("heights", heights, HEIGHTS)
     if adhesion_w is not None or adhesion_range is not None:
-        from mcsim.studies.adhesioncalibration import check_inputs
+        from mcsim.studies.maps.adhesioncalibration import check_inputs
 
         if calibrate is None or adhesion_w is None:
             raise ParameterError("w: the adhesion calibration needs --calibrate and --w")
@@ -216,12 +216,12 @@ def ingest_file(
     surface = found.surface
     calibration = None
     if calibrate is not None:
-        from mcsim.studies.calibration import calibrate as fit
+        from mcsim.studies.maps.calibration import calibrate as fit
 
         calibration = fit(hmap, calibrate, surface=surface, progress=progress)
     adhesion = None
     if adhesion_w is not None:
-        from mcsim.studies.adhesioncalibration import calibrate_adhesion
+        from mcsim.studies.maps.adhesioncalibration import calibrate_adhesion
 
         try:
             adhesion = calibrate_adhesion(hmap.levelled, (hmap.dx, hmap.dy), calibrate,

@@ -1,14 +1,14 @@
 """GW's adhesion calibrated on the exact adhesive contact of its map: ``ingest --calibrate --w``.
 
-:mod:`mcsim.studies.calibration` fits GW's real contact area; this module then asks whether
+:mod:`mcsim.studies.maps.calibration` fits GW's real contact area; this module then asks whether
 GW's **pull-off** on the same (area-calibrated) surface follows the exact one, and fits at most
 one adhesion parameter per law set so that it does.
 
 The exact side
 --------------
 The map's exact adhesive approach and retraction (:mod:`mcsim.physics.adhesivebem`, the
-machinery of :func:`mcsim.studies.adhesivecontact.adhesive_contact`: the positions of
-:func:`~mcsim.studies.adhesivecontact.positions`, the pull-off located between the steps) is
+machinery of :func:`mcsim.studies.maps.adhesivecontact.adhesive_contact`: the positions of
+:func:`~mcsim.studies.maps.adhesivecontact.positions`, the pull-off located between the steps) is
 solved with the exponential law φ = −w e^{−g/ρ} (work of adhesion w, range ρ) at each preload
 p/E* of :data:`PRELOADS` (1e-4, 1e-3, 1e-2: the decades of the area calibration's loads; three,
 not five, because one cycle costs seconds), in :data:`STEPS` steps, and once more at
@@ -17,7 +17,7 @@ the most tensile mean pressure of the retraction, Pa.
 
 GW's side and the one parameter
 -------------------------------
-Each law set of :data:`~mcsim.studies.adhesivecontact.GW_LAWS` (jkr, dmt, maugis-dugdale)
+Each law set of :data:`~mcsim.studies.maps.adhesivecontact.GW_LAWS` (jkr, dmt, maugis-dugdale)
 takes, as ``adhesive_contact`` gives it, the Dugdale range of the same law (z0 = ρ/0.97), is
 pressed on its mean curve to the largest mean pressure of the exact approach (load control)
 and retracted; its pull-off is the most tensile mean load of the retraction
@@ -64,8 +64,8 @@ from mcsim.model.params import Material, Surface
 from mcsim.physics import adhesivebem
 from mcsim.physics.interactions import Exponential
 from mcsim.store.config import ADHESION_CALIBRATION_KEYS
-from mcsim.studies.adhesivecontact import GW_LAWS, H0_PER_Z0, exact_cycle
-from mcsim.studies.calibration import short
+from mcsim.studies.maps.adhesivecontact import GW_LAWS, H0_PER_Z0, exact_cycle
+from mcsim.studies.maps.calibration import short
 
 #: Preloads p/E* of the fit: the decades of the area calibration's loads.
 PRELOADS = np.logspace(-4, -2, 3)
@@ -412,7 +412,7 @@ def _minimax(errors, keep: np.ndarray, start: float) -> float:
 
     ``errors(x)`` gives e_k = ln(P_GW/P_exact) at every preload for c = e^x; each grows with x
     (more w, more pull-off), so max |e_k| is smallest where g, growing with x, crosses zero
-    (as :func:`mcsim.studies.calibration._minimax_scale`). The pull-off grows about as c^a
+    (as :func:`mcsim.studies.maps.calibration._minimax_scale`). The pull-off grows about as c^a
     with a between 1/2 and 1, so from ``start`` the root lies within −2 g: bracketed there
     (widened by doubling if not) and found by Brent's method to :data:`XTOL`.
     """

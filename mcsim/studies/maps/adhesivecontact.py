@@ -488,7 +488,7 @@ def adhesive_contact(
     steps : int
         Positions of the flat on approach (the retraction revisits them), >= 2.
     unit, pixel_size, channel, level, periodic
-        For a file: as for :func:`mcsim.studies.contact.contact_map`.
+        For a file: as for :func:`mcsim.studies.maps.contact.contact_map`.
     subpixel : int, optional
         k: the interaction integrated over k × k points of each pixel (bilinear gap), which
         resolves a Dugdale zone narrower than a pixel (docs/contact.md); 1, the default, at
@@ -501,7 +501,7 @@ def adhesive_contact(
     progress : bool
         A progress bar over the steps.
     counter : path-like, optional
-        A counter-surface's height map, as for :func:`mcsim.studies.contact.contact_map`.
+        A counter-surface's height map, as for :func:`mcsim.studies.maps.contact.contact_map`.
 
     Returns
     -------

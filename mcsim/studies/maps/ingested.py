@@ -1,8 +1,8 @@
 """What ``mcsim ingest`` found: height and summit statistics, the surface, and its files.
 
-:class:`IngestResult` is returned by :func:`mcsim.studies.ingest.ingest_file`; its
+:class:`IngestResult` is returned by :func:`mcsim.studies.maps.ingest.ingest_file`; its
 :meth:`~IngestResult.write_surface` writes the surface TOML file and the measured
-height histogram beside it (the layout is described in :mod:`mcsim.studies.ingest`).
+height histogram beside it (the layout is described in :mod:`mcsim.studies.maps.ingest`).
 """
 
 from __future__ import annotations
@@ -26,8 +26,8 @@ from mcsim.topography.readers.base import FacingMap, HeightMap
 from mcsim.topography.summits import TopographyResult
 
 if TYPE_CHECKING:
-    from mcsim.studies.adhesioncalibration import AdhesionCalibration
-    from mcsim.studies.calibration import Calibration
+    from mcsim.studies.maps.adhesioncalibration import AdhesionCalibration
+    from mcsim.studies.maps.calibration import Calibration
 
 
 @dataclass(frozen=True)
@@ -133,12 +133,12 @@ class IngestResult:
     periodic_reason : str
         Why: "as asked", or the edge check's numbers (:func:`~mcsim.topography.summits.periodic_edges`).
     calibration : Calibration or None
-        GW's summit-radius scale fitted to exact solves (:mod:`mcsim.studies.calibration`),
+        GW's summit-radius scale fitted to exact solves (:mod:`mcsim.studies.maps.calibration`),
         written to the surface file's ``[surface.calibration]`` table; ``surface`` keeps the
         measured radius.
     adhesion_calibration : AdhesionCalibration or None
         GW's pull-off calibrated on exact adhesive cycles of the map
-        (:mod:`mcsim.studies.adhesioncalibration`), written to the surface file's
+        (:mod:`mcsim.studies.maps.adhesioncalibration`), written to the surface file's
         ``[surface.adhesion_calibration]`` table; recorded, not applied.
     facing : FacingMap or None
         A counter-surface's map facing this one: the map analysed is their gap's topography.
@@ -410,7 +410,7 @@ class IngestResult:
         ]
 
     def _calibration_toml(self) -> list[str]:
-        """The ``[surface.calibration]`` table (:mod:`mcsim.studies.calibration`), or nothing."""
+        """The ``[surface.calibration]`` table (:mod:`mcsim.studies.maps.calibration`), or nothing."""
         c = self.calibration
         if c is None:
             return []

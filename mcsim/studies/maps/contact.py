@@ -314,7 +314,7 @@ def contact_map(
         GW's surface on the map; default the map's own
         (:func:`mcsim.topography.mapsurface.map_surface`, as ``mcsim ingest`` finds it).
     unit, pixel_size, channel, level
-        For a file: as for :func:`mcsim.studies.ingest.ingest_file` (pixel size in m;
+        For a file: as for :func:`mcsim.studies.maps.ingest.ingest_file` (pixel size in m;
         levelling by default ``"plane"``, or ``"none"`` on a periodic map).
     periodic : bool, optional
         Solve the map as periodic or zero-padded; None: periodic when its opposite edges
