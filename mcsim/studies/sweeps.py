@@ -53,7 +53,6 @@ from mcsim.model.counterface import as_counter, check_correlation, gap_surface
 from mcsim.model.errors import ParameterError
 from mcsim.model.params import Material, Surface, check_range, check_seed, check_separations
 from mcsim.model.presets import as_material, as_surface
-from mcsim.model.units import parse_quantity
 from mcsim.physics.adhesion import RegimeWarning, ValidityWarning
 from mcsim.physics.environment import Environment, as_environment
 from mcsim.physics.laws import get_law_set
@@ -62,12 +61,18 @@ from mcsim.store.claim import claim_output
 from mcsim.store.sweepfile import SCHEMA_VERSION, Sweep, empty_sweep, read_sweep, write_sweep
 from mcsim.store.sweepvariables import (
     ENVIRONMENT_INPUTS,
-    INPUTS,
     PAD_INPUTS,
     dimension_name,
     plain,
 )
 from mcsim.studies.runoptions import check_checkpoint_every, check_workers
+from mcsim.studies.sweepinputs import (
+    check_friction,
+    check_monte_carlo,
+    check_pads,
+    check_values,
+    check_vary,
+)
 from mcsim.studies.sweeppoint import (
     MAX_POINTS,
     Config,
@@ -76,9 +81,7 @@ from mcsim.studies.sweeppoint import (
     evaluate_quietly,
     has_summary,
     make_point,
-    parse_values,
     point_curves,
-    unknown_input,
 )
 from mcsim.studies.sweepresume import already_finished, read_checkpoint, recorded_seed, restore
 
@@ -244,13 +247,13 @@ def sweep(
     if counter is not None:  # a rough counter-surface: its parts recorded
         pair = inputgroup.counterface_attrs(given, counter, correlation)
     environment = as_environment(environment)
-    names, grid = _check_vary(vary, law, mc or bool(pads), bool(pads))
+    names, grid = check_vary(vary, law, mc or bool(pads), bool(pads))
     combined = [n for n in names if n in ("sigma", "R", "eta")]
     if pair and combined:
         raise ParameterError(f"vary {combined[0]}: with a counter-surface the surface's sigma, R "
                              "and eta are the combination's, not inputs: vary them in the "
                              "surfaces and sweep each pair")  # fmt: skip
-    tangential_force, friction = _check_friction(pads, friction, tangential_force, names)
+    tangential_force, friction = check_friction(pads, friction, tangential_force, names)
     if friction and "tau" not in names:  # a law set without friction: refused before any point
         from mcsim.physics.friction import friction_rule
 
@@ -258,7 +261,7 @@ def sweep(
         for name in laws:
             if name != "auto":
                 friction_rule(str(name), material)
-    restoring_force, preload = _check_pads(pads, restoring_force, preload, turn,
+    restoring_force, preload = check_pads(pads, restoring_force, preload, turn,
                                            "restoring_force" in names, tail, friction,
                                            "preload" in names)  # fmt: skip
     checkpoint_every = check_checkpoint_every(checkpoint_every)
@@ -268,7 +271,7 @@ def sweep(
         get_law_set(law)
     h = tuple(check_separations(h).tolist())
     turn = None if turn is None else check_range("turn", turn, "1")
-    area_m2 = _check_monte_carlo(mc, pads, area, names, realizations, device, scheduler)
+    area_m2 = check_monte_carlo(mc, pads, area, names, realizations, device, scheduler)
     if mc and device == "cuda":
         workers = 1  # one GPU; each point's run keeps it busy
     if resume and out is None:
@@ -279,7 +282,7 @@ def sweep(
                              f"({' x '.join(map(str, shape))}), more than the limit of {MAX_POINTS}")  # fmt: skip
     if environment is None and any(n in ENVIRONMENT_INPUTS for n in names):
         environment = Environment()
-    _check_values(surface, material, environment, names, grid)
+    check_values(surface, material, environment, names, grid)
     seed = check_seed(seed)
     dims = [dimension_name(n) for n in names]
     with interrupt.interruptible(), contextlib.ExitStack() as stack:
@@ -369,42 +372,6 @@ def area_warnings(result: Sweep) -> list[str]:
     return [f"at {count} of {int(np.prod(result.shape))} points: {line}; largest at {at}"]
 
 
-def _check_monte_carlo(
-    mc: bool, pads, area, names, realizations, device, scheduler
-) -> float | None:
-    """Check the options of the Monte Carlo runs and the pads; the patch area (m²) if given."""
-    area_m2 = None
-    if mc or pads:
-        if area is None and "area" not in names:
-            raise ParameterError(f"{'mc' if mc else 'pads'} needs the patch area (area=..., --area)")  # fmt: skip
-        if area is not None:
-            if "area" in names:
-                raise ParameterError("area: given both as a value and as a varied input")
-            area_m2 = check_range("area", parse_quantity(area, "area", "area"), "m^2", low=0)
-    if mc:
-        if isinstance(realizations, bool) or not isinstance(realizations, int) or realizations < 1:
-            raise ParameterError(f"realizations = {realizations!r} is out of range (allowed: integer >= 1)")  # fmt: skip
-        if device not in ("cpu", "cuda"):
-            raise ParameterError(f"device = {device!r} is not one of cpu, cuda")
-        if device == "cuda":
-            from mcsim.engine.cuda import require_gpu
-
-            require_gpu()
-            if scheduler is not None:
-                raise ParameterError(
-                    "device = 'cuda' runs on this machine's GPU: drop the Dask scheduler"
-                )
-    elif device != "cpu":
-        raise ParameterError(
-            f"device = {device!r}: the device applies to the Monte Carlo runs only (add mc / --mc)"
-        )
-    elif area is not None and not pads:
-        raise ParameterError(
-            "area: the pad area applies to the Monte Carlo runs only, or the pads (add mc / --mc or pads / --pads)"
-        )
-    return area_m2
-
-
 @contextlib.contextmanager
 def _quiet_point_runs():
     """Each Monte Carlo point's :func:`~mcsim.studies.simulation.simulate` logs its inputs'
@@ -449,58 +416,6 @@ def _product(grid: list[np.ndarray]):
     shape = tuple(len(v) for v in grid)
     for idx in np.ndindex(*shape):
         yield [v[i] for v, i in zip(grid, idx)]
-
-
-def _check_vary(
-    vary: Mapping, law: str | None, mc: bool, pads: bool
-) -> tuple[list[str], list[np.ndarray]]:
-    if not isinstance(vary, Mapping) or not vary:
-        raise ParameterError("vary: give at least one input to vary (e.g. --vary sigma=0.3nm:20nm:40:log)")  # fmt: skip
-    names = list(vary)
-    fields: dict[str, str] = {}
-    for name in names:
-        if name not in INPUTS:
-            raise unknown_input(name)
-        for f in INPUTS[name][1]:
-            if f in fields:
-                raise ParameterError(f"vary: {name!r} and {fields[f]!r} both set {f}: vary one of them")  # fmt: skip
-            fields[f] = name
-    if "law" in names and law is not None:
-        raise ParameterError("law: given both as --law and as a varied input (--vary law=...)")
-    if "area" in names and not mc:
-        raise ParameterError("vary area: the pad area applies to the Monte Carlo runs only (add --mc)")  # fmt: skip
-    for name in PAD_INPUTS:
-        if name in names and not pads:
-            raise ParameterError(f"vary {name}: it applies to the pads only (add pads=N, --pads N)")  # fmt: skip
-    return names, [parse_values(n, vary[n]) for n in names]
-
-
-def _check_values(surface: Surface, material: Material, environment, names, grid) -> None:
-    """Each value on its own (with the other inputs at their base values) must be valid."""
-    for name, values in zip(names, grid):
-        if name == "law":
-            continue
-        if name == "area":
-            for v in values:
-                check_range("vary area", v, "m^2", low=0)
-            continue
-        if name in (*PAD_INPUTS, "preload"):
-            unit = "Pa" if name == "preload" else "N"
-            for v in values:
-                if not (math.isfinite(v) and v >= 0):
-                    raise ParameterError(f"vary {name}: {float(v)!r} {unit} is out of range "
-                                         f"(allowed: a finite {'pressure' if unit == 'Pa' else 'force'}"
-                                         f" >= 0 {unit})")  # fmt: skip
-            continue
-        for v in values:
-            changes = dict.fromkeys(INPUTS[name][1], float(v))
-            base = surface if name in ("sigma", "R", "eta") else material
-            if name in ENVIRONMENT_INPUTS:
-                base = environment
-            try:
-                dataclasses.replace(base, **changes)
-            except ParameterError as err:
-                raise ParameterError(f"vary {name}: {err}") from None
 
 
 def _attrs(surface, material, environment, law, dims, grid, config: Config, area, command,
@@ -553,74 +468,6 @@ def _pads_index(index: int, names, shape) -> int:
     if not kept:
         return 0
     return int(np.ravel_multi_index([i for i, _ in kept], [n for _, n in kept]))
-
-
-def _check_friction(pads, friction, tangential_force, names) -> tuple[float | None, bool]:
-    """Check the friction's options: the tangential force (N; None where not given or
-    varied) and whether the pads report their friction."""
-    from mcsim.studies.padfriction import check_tangential_force
-
-    if not isinstance(friction, bool):
-        raise ParameterError(f"friction = {friction!r}: allowed True or False")
-    varied = "tangential_force" in names
-    if tangential_force is not None:
-        if varied:
-            raise ParameterError("tangential_force: given both as a value and as a varied input")
-        tangential_force = check_tangential_force(plain(tangential_force))
-    friction = friction or varied or tangential_force is not None
-    if friction and not pads:
-        what = "friction" if tangential_force is None else "tangential_force"
-        raise ParameterError(f"{what} applies to the pads only (add pads=N, --pads N)")
-    return tangential_force, friction
-
-
-def _check_pads(pads, restoring_force, preload, turn, varied: bool, tail=None,
-                friction: bool = False, preload_varied: bool = False
-                ) -> tuple[float | None, float | None]:  # fmt: skip
-    """Check the pads' options; the restoring force (N; None where ``varied`` or, with
-    ``friction``, not given) and the preload (Pa), SI."""
-    from mcsim.studies.tail import MIN_TAIL_PADS
-
-    if tail not in (None, True, False):
-        raise ParameterError(f"tail = {tail!r}: allowed None (automatic), True or False")
-    if preload_varied:
-        if preload is not None:
-            raise ParameterError("preload: given both as a value and as a varied input")
-        if turn is not None:
-            raise ParameterError("turn and vary preload: give one of them (the preload sets the turn)")  # fmt: skip
-    if preload is not None:
-        if turn is not None:
-            raise ParameterError("turn and preload: give one of them (the preload sets the turn)")
-        preload = parse_quantity(plain(preload), "pressure", "preload")
-        if not (math.isfinite(preload) and preload >= 0):  # 0: resting under its attraction
-            raise ParameterError(f"preload = {preload!r} Pa: allowed a finite pressure >= 0")
-    if pads is None:
-        if restoring_force is not None or tail is not None:
-            raise ParameterError(f"{'restoring_force' if tail is None else 'tail'} applies to "
-                                 "the pads only (add pads=N, --pads N)")  # fmt: skip
-        return None, preload
-    if isinstance(pads, bool) or not isinstance(pads, int) or pads < 1:
-        raise ParameterError(f"pads = {pads!r} is out of range (allowed: integer >= 1)")
-    if tail is True and pads < MIN_TAIL_PADS:
-        raise ParameterError(f"pads = {pads}: importance sampling (tail) needs at least "
-                             f"{MIN_TAIL_PADS} pads")  # fmt: skip
-    if varied:
-        if restoring_force is not None:
-            raise ParameterError("restoring_force: given both as a value and as a varied input")
-        return None, preload
-    if restoring_force is None:
-        if friction:
-            return None, preload
-        raise ParameterError(
-            "pads need the restoring force (restoring_force=..., --restoring-force, or vary it), "
-            "or friction (friction=True, --friction, or a tangential force)"
-        )
-    fr = parse_quantity(plain(restoring_force), "force", "restoring_force")
-    if not (math.isfinite(fr) and fr >= 0):
-        raise ParameterError(
-            f"restoring_force = {restoring_force!r}: allowed a finite force >= 0 N"
-        )
-    return fr, preload
 
 
 def _pads_attrs(config: Config, area, names=()) -> dict:
