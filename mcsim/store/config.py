@@ -93,7 +93,6 @@ from __future__ import annotations
 
 import difflib
 import sys
-import tomllib
 from pathlib import Path
 from typing import Any
 
@@ -101,7 +100,8 @@ from mcsim.model.counterface import FLAT, check_correlation
 from mcsim.model.errors import MCSimError, ParameterError, UnitError
 from mcsim.model.params import Material, RadiusByHeight, Surface, combine_surfaces
 from mcsim.model.presets import MATERIALS, SURFACES
-from mcsim.model.units import SI_UNITS, has_unit, parse_quantity
+from mcsim.model.units import parse_quantity
+from mcsim.store.tomlfile import is_bare, is_number, quantities, read_toml, toml_table
 from mcsim.topography.empirical import Empirical
 
 _SURFACE_KEYS = {
@@ -144,79 +144,6 @@ _MATERIAL_KEYS = {
     "z0": ("length", "equilibrium spacing (optional), e.g. '0.3 nm'"),
     "tau": ("pressure", "interfacial shear strength (optional), e.g. '100 MPa'"),
 }
-
-
-def _read_toml(path: Path) -> dict[str, Any]:
-    try:
-        with path.open("rb") as f:
-            return tomllib.load(f)
-    except FileNotFoundError:
-        raise MCSimError(f"{path}: no such file") from None
-    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as err:
-        raise MCSimError(f"{path}: not a valid TOML file ({err})") from None
-    except RecursionError:
-        raise MCSimError(f"{path}: not a valid TOML file (nested too deeply)") from None
-    except OSError as err:
-        raise MCSimError(f"{path}: cannot read ({err.strerror})") from None
-    except ValueError:  # a NUL byte in the name
-        raise MCSimError(f"{path!r}: not a valid file name") from None
-
-
-def _quantities(
-    table: dict[str, Any],
-    keys: dict,
-    where: str,
-    optional=(),
-    *,
-    units_required: bool = False,
-    written: dict[str, str] | None = None,
-) -> dict[str, float]:
-    """Parse ``keys`` of ``table``; ``written`` maps a key to the name the user wrote
-    (``E1`` came from ``E``), for messages."""
-    written = written or {}
-    unknown = set(table) - set(keys) - {"name"}
-    if unknown:
-        raise ParameterError(
-            f"{where}: unknown key(s) {', '.join(sorted(unknown))} (allowed: {', '.join(keys)}, name)"
-        )
-    out = {}
-    for key, (dimension, meaning) in keys.items():
-        if key not in table:
-            if key in optional:
-                continue
-            raise ParameterError(f"{where}: missing key '{key}' ({meaning})")
-        name = written.get(key, key)
-        value = table[key]
-        if units_required and dimension != "dimensionless" and _is_bare(value):
-            parse_quantity(value, dimension, f"{where}: {name}")  # not finite: says so
-            raise UnitError(
-                f"{where}: {name} = {value!r} has no unit (a bare number in a file is refused); "
-                f"write it with its unit, e.g. {name} = {_with_unit(value, dimension, meaning)}"
-            )
-        out[key] = parse_quantity(value, dimension, f"{where}: {name}")
-    return out
-
-
-def _with_unit(value: Any, dimension: str, meaning: str) -> str:
-    """``"1.4 nm"``: the bare ``value`` with the unit of the key's example, or with the SI
-    unit where the number looks like SI already (|value| >= 1e3 or <= 1e-3)."""
-    number = float(value)
-    typical = meaning.split("e.g. '")[-1].rstrip("'").split(" ", 1)[-1]
-    looks_si = number != 0 and not 1e-3 < abs(number) < 1e3
-    return f'"{value} {SI_UNITS[dimension] if looks_si else typical}"'
-
-
-def _is_bare(value: Any) -> bool:
-    """A number, or a string holding only a number: no unit given."""
-    return _is_number(value) or (isinstance(value, str) and not has_unit(value))
-
-
-def _table(data: dict[str, Any], key: str, path: Path) -> dict[str, Any]:
-    if key not in data:
-        raise ParameterError(f"{path}: missing table [{key}]")
-    if not isinstance(data[key], dict):
-        raise ParameterError(f"{path}: [{key}] must be a table, got {data[key]!r}")
-    return data[key]
 
 
 def _heights_from_value(
@@ -265,7 +192,7 @@ def _heights_from_value(
     )
     weights = value.get("counts", value.get("densities"))
     edges = value["edges"]
-    if not (isinstance(edges, list) and all(_is_number(e) for e in edges)):
+    if not (isinstance(edges, list) and all(is_number(e) for e in edges)):
         raise ParameterError(f"{where}: heights: edges must be a list of numbers, got {edges!r}")
     if any(isinstance(e, int) and abs(e) > sys.float_info.max for e in edges):
         raise ParameterError(f"{where}: heights: histogram edges and weights must be finite")
@@ -278,10 +205,6 @@ def _heights_from_value(
         )
     except (ParameterError, TypeError) as err:
         raise ParameterError(f"{where}: heights: {err}") from None
-
-
-def _is_number(value: Any) -> bool:
-    return isinstance(value, int | float) and not isinstance(value, bool)
 
 
 def surface_from_table(
@@ -310,7 +233,7 @@ def surface_from_table(
             ):
                 raise ParameterError(f"{where}: combine must list two surfaces, got {pair!r}")
             rest = {k: v for k, v in table.items() if k not in ("combine", "name")}
-            eta = _quantities(rest, {"eta": _SURFACE_KEYS["eta"]}, where, **strict)["eta"]
+            eta = quantities(rest, {"eta": _SURFACE_KEYS["eta"]}, where, **strict)["eta"]
             try:
                 first, second = (
                     load_surface(_relative_to(p, base_dir), including=including) for p in pair
@@ -329,7 +252,7 @@ def surface_from_table(
         _adhesion_calibration(table.pop("adhesion_calibration", None), where)
         bands = _radius_by_height(table.pop("radius_by_height", None), where)
         optional = ("rq", "summit_offset") if heights is None else ("sigma", "rq", "summit_offset")
-        values = _quantities(table, _SURFACE_KEYS | _GAP_KEYS, where, optional=optional, **strict)
+        values = quantities(table, _SURFACE_KEYS | _GAP_KEYS, where, optional=optional, **strict)
         values["R"] *= scale
         if heights is not None:
             values.setdefault("sigma", heights.sigma)
@@ -352,7 +275,7 @@ def _radius_by_height(table: Any, where: str) -> RadiusByHeight | None:
                              "in s = z/sigma) and 'factors' (radius over R), got "
                              f"{table!r}")  # fmt: skip
     edges, factors = table["edges"], table["factors"]
-    if not all(isinstance(v, list) and all(_is_number(x) for x in v) for v in (edges, factors)):
+    if not all(isinstance(v, list) and all(is_number(x) for x in v) for v in (edges, factors)):
         raise ParameterError(f"{where}: radius_by_height: edges and factors must be lists of "
                              "numbers")  # fmt: skip
     return RadiusByHeight(tuple(edges), tuple(factors))
@@ -369,7 +292,7 @@ def _radius_scale(table: Any, where: str) -> float:
         raise ParameterError(f"{where}: calibration: unknown key(s) {', '.join(sorted(unknown))} "
                              f"(allowed: {', '.join(sorted(_CALIBRATION_KEYS))})")  # fmt: skip
     scale = table.get("radius_scale")
-    if not (_is_number(scale) and 0 < scale < float("inf")):
+    if not (is_number(scale) and 0 < scale < float("inf")):
         raise ParameterError(f"{where}: calibration: radius_scale = {scale!r} is out of range "
                              "(allowed: a number > 0)")  # fmt: skip
     return float(scale)
@@ -387,7 +310,7 @@ def _adhesion_calibration(table: Any, where: str) -> None:
         raise ParameterError(f"{where}: adhesion_calibration: unknown key(s) "
                              f"{', '.join(sorted(unknown))} (allowed: {', '.join(ADHESION_CALIBRATION_KEYS)})")  # fmt: skip
     factor = table.get("factor")
-    if not (_is_number(factor) and 0 < factor < float("inf")):
+    if not (is_number(factor) and 0 < factor < float("inf")):
         raise ParameterError(f"{where}: adhesion_calibration: factor = {factor!r} is out of range "
                              "(allowed: a number > 0)")  # fmt: skip
 
@@ -415,7 +338,7 @@ def material_from_table(
             table.setdefault(one, value)
             table.setdefault(two, value)
             written |= {one: both, two: both}
-    values = _quantities(
+    values = quantities(
         table, _MATERIAL_KEYS, where, optional=("H", "z0", "tau"), units_required=units_required,
         written=written,
     )  # fmt: skip
@@ -438,7 +361,7 @@ def load_surface(spec: str | Path, *, including: tuple[Path, ...] = ()) -> Surfa
             f"unknown surface {str(spec)!r}{_closest(spec, SURFACES)}: give a preset "
             f"({', '.join(SURFACES)}) or a .toml file"
         )
-    table = _table(_read_toml(path), "surface", path)
+    table = toml_table(read_toml(path), "surface", path)
     if path.resolve() in including:
         raise ParameterError(f"{path}: combine: the surface files include each other")
     return surface_from_table(
@@ -465,10 +388,10 @@ def counter_surface_in_file(spec: str | Path) -> tuple[Surface | None, float | N
     path = Path(spec)
     if path.suffix != ".toml" or str(spec) in SURFACES:
         return None, None
-    data = _read_toml(path)
+    data = read_toml(path)
     if "counter_surface" not in data:
         return None, None
-    table, where = dict(_table(data, "counter_surface", path)), f"{path} [counter_surface]"
+    table, where = dict(toml_table(data, "counter_surface", path)), f"{path} [counter_surface]"
     correlation = table.pop("correlation", None)
     if correlation is not None:
         correlation = check_correlation(correlation, f"{where}: correlation")
@@ -512,7 +435,7 @@ def load_material(spec: str | Path) -> Material:
             f"unknown material {str(spec)!r}{_closest(spec, MATERIALS)}: give a preset "
             f"({', '.join(MATERIALS)}) or a .toml file"
         )
-    table = _table(_read_toml(path), "material", path)
+    table = toml_table(read_toml(path), "material", path)
     return material_from_table(table, where=f"{path} [material]", units_required=True)
 
 
@@ -558,12 +481,12 @@ def environment_in_file(spec: str | Path) -> dict[str, Any]:
     path = Path(spec)
     if path.suffix != ".toml" or str(spec) in SURFACES or str(spec) in MATERIALS:
         return {}
-    data = _read_toml(path)
+    data = read_toml(path)
     if "environment" not in data:
         return {}
     from mcsim.physics.environment import environment_fields
 
-    table, where = _table(data, "environment", path), f"{path} [environment]"
+    table, where = toml_table(data, "environment", path), f"{path} [environment]"
     try:
         fields = environment_fields(table)
     except MCSimError as err:
@@ -571,7 +494,7 @@ def environment_in_file(spec: str | Path) -> dict[str, Any]:
     key_of = {field: key for key, (field, _, _) in ENVIRONMENT_KEYS.items()}
     for (written, value), field in zip(table.items(), fields, strict=True):
         _, dimension, meaning = ENVIRONMENT_KEYS[key_of[field]]
-        if dimension not in ("dimensionless", "angle") and _is_bare(value):
+        if dimension not in ("dimensionless", "angle") and is_bare(value):
             raise UnitError(f"{where}: {written} = {value!r} has no unit (a bare number in a file "
                             f"is refused); write it with its unit, {meaning}")  # fmt: skip
     environment_from_values(table, where)
@@ -598,7 +521,7 @@ def _surface_table(spec: str | Path, key: str, check) -> dict[str, Any] | None:
     path = Path(spec)
     if path.suffix != ".toml" or str(spec) in SURFACES:
         return None
-    table = _table(_read_toml(path), "surface", path).get(key)
+    table = toml_table(read_toml(path), "surface", path).get(key)
     if table is None:
         return None
     check(table, f"{path} [surface]")
@@ -610,9 +533,9 @@ def material_in_surface_file(spec: str | Path) -> Material | None:
     path = Path(spec)
     if path.suffix != ".toml" or str(spec) in SURFACES:
         return None
-    data = _read_toml(path)
+    data = read_toml(path)
     if "material" not in data:
         return None
     return material_from_table(
-        _table(data, "material", path), where=f"{path} [material]", units_required=True
+        toml_table(data, "material", path), where=f"{path} [material]", units_required=True
     )
