@@ -320,13 +320,18 @@ def _stage(law: _Law, tilt: Tilt | None, n: int, key: tuple, evaluate, workers: 
 
 @dataclass(frozen=True)
 class _Chain:
-    """One chain's cross-entropy stages: its tilt, stages after stage 0, pads evaluated, and
-    whether its last stage reached the event."""
+    """One chain's cross-entropy stages: its tilt, stages after stage 0, pads evaluated,
+    whether its last stage reached the event, and every stage's law (None: nominal), number
+    of pads, their summits per bin above the cut and their scores (stage 0 first)."""
 
     tilt: Tilt
     stages: int
     evaluations: int
     reached: bool
+    laws: tuple = ()
+    sizes: tuple = ()
+    counts: np.ndarray | None = None
+    force: np.ndarray | None = None
 
 
 def _cross_entropy(law, c, counts, force, *, pilot, margin, hit, evaluate, workers, give_up):
@@ -355,7 +360,7 @@ def _cross_entropy(law, c, counts, force, *, pilot, margin, hit, evaluate, worke
         laws.append(fitted), sizes.append(pilot)
         counts, force = np.vstack([counts, more]), np.concatenate([force, new])
         evaluations += pilot
-    return _Chain(fitted, stage, evaluations, reached)
+    return _Chain(fitted, stage, evaluations, reached, tuple(laws), tuple(sizes), counts, force)
 
 
 def importance_p_stick(spec, restoring_force: float, *, turn: float, preload: float | None = None,
@@ -452,19 +457,31 @@ def importance_p_stick(spec, restoring_force: float, *, turn: float, preload: fl
     parts = [_stage(law, q, n, (CHAINS, j), evaluate, workers)
              for j, (q, n) in enumerate(zip(laws, sizes, strict=True))]  # fmt: skip
     evaluations += pads
-    counts = np.vstack([part[0] for part in parts])
-    y = hit(np.concatenate([part[1] for part in parts])) * law.weight(laws, sizes, counts)
-    q, se, low, high = _estimate(y, sizes[0])
-    # each chain's own estimate from its tilts' pads and its share of the nominal pads
-    # (independent of the other chain's): they agree within AGREE standard errors unless the
-    # tilts found different ways into the event
+
+    def recycled(final: list, mine: list) -> tuple:
+        """The deterministic mixture of the final parts ``final`` (indices into ``parts``;
+        the nominal one first) and the stages of ``mine`` (chains): p̂, se, low, high, hits."""
+        nominal = [parts[final[0]]] + [(c.counts[: c.sizes[0]], c.force[: c.sizes[0]])
+                                       for c in mine]  # fmt: skip
+        drawn = nominal + [parts[j] for j in final[1:]]
+        drawn += [(c.counts[c.sizes[0] :], c.force[c.sizes[0] :]) for c in mine]
+        q_all = [None] * len(nominal) + [laws[j] for j in final[1:]]
+        q_all += [q for c in mine for q in c.laws[1:]]
+        n_all = [len(part[1]) for part in drawn[: len(nominal)]] + [sizes[j] for j in final[1:]]
+        n_all += [n for c in mine for n in c.sizes[1:]]
+        counts = np.vstack([part[0] for part in drawn])
+        y = hit(np.concatenate([part[1] for part in drawn])) * law.weight(q_all, n_all, counts)
+        return (*_estimate(y, sum(n_all[: len(nominal)])), int(np.count_nonzero(y)))
+
+    q, se, low, high, hits = recycled(list(range(len(laws))), chains)
+    # each chain's own estimate from its stages, its tilts' final pads and its share of the
+    # nominal ones (independent of the other chain's): they agree within AGREE standard
+    # errors unless the tilts found different ways into the event
     own = []
     for c in range(CHAINS):
-        nominal = slice(c * sizes[0] // CHAINS, (c + 1) * sizes[0] // CHAINS)
-        mine = [(parts[0][0][nominal], parts[0][1][nominal]), parts[1 + 2 * c], parts[2 + 2 * c]]
-        n = [len(part[1]) for part in mine]
-        w = law.weight([None, *laws[1 + 2 * c : 3 + 2 * c]], n, np.vstack([m[0] for m in mine]))
-        own.append(_estimate(hit(np.concatenate([m[1] for m in mine])) * w, n[0]))
+        share = slice(c * sizes[0] // CHAINS, (c + 1) * sizes[0] // CHAINS)
+        parts.append((parts[0][0][share], parts[0][1][share]))
+        own.append(recycled([len(parts) - 1, 1 + 2 * c, 2 + 2 * c], [chains[c]]))
     chain = tuple((o[0], o[2], o[3]) for o in own)
     (qa, sa, *_), (qb, sb, *_) = own
     agree = abs(qa - qb) <= AGREE * math.hypot(sa, sb)
@@ -472,7 +489,7 @@ def importance_p_stick(spec, restoring_force: float, *, turn: float, preload: fl
     if event == "release":
         q, low, high = 1.0 - q, 1.0 - high, 1.0 - low
     return TailEstimate(min(max(q, 0.0), 1.0), se, max(low, 0.0), min(high, 1.0), ess,
-                        int(np.count_nonzero(y)), pads, evaluations, stages, reached, event,
+                        hits, pads, evaluations, stages, reached, event,
                         tilts, law.cut, agree, chain)  # fmt: skip
 
 

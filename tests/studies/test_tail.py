@@ -350,8 +350,9 @@ def test_the_automatic_switch_gives_up_where_the_stages_cannot_reach_the_event()
     full = importance_p_stick(_spec(3), far, turn=TURN, pads=400, pilot=100, score=count)
     assert full.pads == 400 and full.evaluations == CHAINS * 100 * (STAGES + 1) + 400
     assert full.p_stick == 0 and full.ess == 0
-    # no pad in the event: the nominal pads' own bound, 0 in ⌈0.2 · 400⌉ = 80
-    assert (full.low, full.high) == clopper_pearson(0, 80)
+    # no pad in the event: the nominal pads' own bound, 0 in ⌈0.2 · 400⌉ = 80 final ones and
+    # the chains' stages 0 of 100 each
+    assert (full.low, full.high) == clopper_pearson(0, 80 + CHAINS * 100)
 
 
 def test_where_the_chains_disagree_the_plain_fraction_stays(monkeypatch):
