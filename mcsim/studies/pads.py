@@ -23,7 +23,7 @@ the analytic pull-off per nominal area (:func:`mcsim.physics.adhesion.adhesion_s
 force/(A K)) times K A. It is the most tensile value of the *mean* retraction load,
 located to 1e-7 in h; a pad's pull-off is the most tensile value of its *own* load
 curve, also in continuous h (its summits drawn again from the run's seed,
-:mod:`mcsim.engine.padcurves`), whatever the run's grid. The two differ: the minimum of
+:mod:`mcsim.engine.pads.curves`), whatever the run's grid. The two differ: the minimum of
 a noisy curve lies below the minimum of its mean (E[max] ≥ max E, so small pads pull
 off harder on average than the analytic value, by a relative amount of order N^(-1/2)).
 """
@@ -191,7 +191,7 @@ def finite_pads(spec, restoring_force: float | None, *, preload: float | None = 
     """Pull-off statistics of the ``spec.realizations`` pads of a cycle spec, as sweep variables.
 
     Each pad's summits are drawn from ``spec``'s seed as a ``--cycle`` run of the same spec
-    draws them (:func:`mcsim.engine.padload.patch_heights`), so ``mcsim simulate --cycle``
+    draws them (:func:`mcsim.engine.pads.load.patch_heights`), so ``mcsim simulate --cycle``
     with that seed followed by ``mcsim pads`` gives the same pads.
 
     Parameters
@@ -202,7 +202,7 @@ def finite_pads(spec, restoring_force: float | None, *, preload: float | None = 
         F_r, N: a pad sticks when its pull-off exceeds it (None: no p_stick, with ``friction``).
     preload : float, optional
         Nominal pressure P, Pa: each pad turns under force control where its own approach
-        load reaches P·A (:func:`mcsim.engine.padcurves.force_turn`). Without it every pad
+        load reaches P·A (:func:`mcsim.engine.pads.curves.force_turn`). Without it every pad
         turns at ``turn``.
     turn : float
         The mean-field turn d/σ (under a preload, the one that balances P on the mean

@@ -64,7 +64,15 @@ the event; q only sets the variance.
   pads: P(event)) and at most E_{q_j}[(L_j·1)²]/c_j (one law alone; Hesterberg 1995, Owen &
   Zhou, *JASA* 95, 135, 2000). The half-way law fills the gap between the two others where
   the tilt thins the bins a pad of the event still uses (its weights then stay near
-  1/c₁·L₁ instead of 1/c₀). p̂ = mean(w·1{event}); its standard error is the pooled
+  1/c₁·L₁ instead of 1/c₀). **The chains' stages join the final pads** (adaptive multiple
+  importance sampling: Cornuet, Marin, Mira & Robert, *Scand. J. Stat.* 39, 798, 2012): the
+  sum runs over every pad evaluated, the stages 0 among the nominal ones, and the mixture
+  over every law drawn from, c_j = n_j/(all pads); the stages' laws, between the nominal
+  law and the tilts, lighten the weights of the pads the tilts make rare (p ≈ 1e-4 as
+  ``sweep --pads 2000`` runs it: relative half-widths ≤ 0.30 in 9 of 10 seeds against a
+  few above 0.4; validation/README.md). A stage's law depends on the earlier stages' pads,
+  so this estimate is consistent rather than exactly unbiased (Cornuet et al.); the
+  coverage checks on exact events measure it. p̂ = mean(w·1{event}); its standard error is the pooled
   sample standard deviation of w·1 (ddof = 1) over √pads, which for the fixed allocation
   overstates the variance by the spread of the two laws' means (Owen, ch. 9.12):
   conservative. **One effective sample size**, n* = p̂(1 − p̂)/se² (the plain pads that would
@@ -76,20 +84,32 @@ the event; q only sets the variance.
   of a few large weights is, where the normal interval p̂ ± 1.96 se covered in fewer runs
   (41 against 43 of 48 runs of the two-part mixture of 1000 pads; validation/README.md).
   Where n* is undefined (no pad in the event, or all weights alike) the interval is
-  Clopper–Pearson's of the n₀ nominal pads alone: they are plain pads, so it holds whatever
-  the tilts drew; with none in the event [0, 1 − 0.025^(1/n₀)] ≈ [0, 3.7/(DEFENSIVE · pads)]
-  (:func:`effective_clopper_pearson`). The event is sticking when sticking is rare, and not
+  Clopper–Pearson's of the n₀ nominal pads alone (the final ⌈DEFENSIVE · pads⌉ and the
+  stages 0): they are plain pads, so it holds whatever the tilts drew; with none in the event
+  [0, 1 − 0.025^(1/n₀)] ≈ [0, 3.7/n₀] (:func:`effective_clopper_pearson`). The event is sticking when sticking is rare, and not
   sticking (p = 1 − P(not sticking)) when that is the rarer one.
-* **The chains' check.** Each chain also estimates p from its own half-way and tilted pads
-  and its half of the nominal ones (the balance heuristic of those three laws), independently
+* **The chains' check.** Each chain also estimates p from its own stages, half-way and
+  tilted pads and its half of the final nominal ones (the balance heuristic of those three laws), independently
   of the other; where they differ by more than :data:`AGREE` = 3.29 of their combined
   standard error √(se₁² + se₂²) (for two correct normal estimates a chance of 0.1 %) the
   tilts have found different ways into the event and ``agree`` is False: :func:`mcsim.studies.pads.rare_event` then keeps the plain
   fraction. The pooled mixture holds both tilts, so a way in that one chain finds and the
   other misses is in the estimate; a way in that both miss is not detected (docs/physics.md).
+  **The tall way in.** Two free chains follow the same way where the score's intermediate
+  levels all lead there; under force control a pad sticks with many summits just below the
+  turn and none above it, so a first tilt that raises the summits above the turn (r_k > 1 in
+  a bin at or above h̄) has found another way, through tall summits. For a rare sticking
+  under force control (a ``preload``; at a common turn more summits above it are the usual
+  way, and the second chain stays free) the second chain then fits under r_k ≤ 1 in those bins (the cross-entropy fit restricted to
+  that family: each bin's Poisson likelihood is concave, so its maximum under the bound is
+  the clipped one) and looks for the way below the turn: on an exact event with both ways
+  (validation/tail_benchmark.py's ``TwoWays``) 9 of 10 runs held p or disagreed, against 0
+  of 10 with two free chains (tests/studies/test_tail.py). Where the first tilt keeps the
+  summits above the turn at or below nominal, as sticking pads' tilts do, the second chain
+  is free; a rare release is not restricted.
 
-Each pad is evaluated by :func:`mcsim.engine.padcurves.force_turn` and
-:func:`~mcsim.engine.padcurves.pull_off` with the run's spec, as plain pads are, so every
+Each pad is evaluated by :func:`mcsim.engine.pads.curves.force_turn` and
+:func:`~mcsim.engine.pads.curves.pull_off` with the run's spec, as plain pads are, so every
 law set (and its environment) of the spec applies unchanged. Stage k of chain c draws from
 its own stream ``SeedSequence(spec.entropy, spawn_key=(STREAM, c, k))``, apart from the plain
 pads' (realization r: keys (r, 0), (r, 1 + b)), the final pads of law j (:func:`mixture`'s
@@ -166,11 +186,12 @@ class TailEstimate:
     low, high : float
         Its 95 % interval (:func:`effective_clopper_pearson`), in [0, 1].
     ess : float
-        Effective number of final pads in the sampled event, n*·p̂ with n* = p̂(1 − p̂)/se²
+        Effective number of pads in the sampled event, n*·p̂ with n* = p̂(1 − p̂)/se²
         (p̂ of the sampled side): the one effective sample size, which the interval takes
         (module docstring); 0 where n* is undefined.
     hits : int
-        Final pads in the event (sticking, or not sticking where that is the rare side).
+        Pads in the event (sticking, or not sticking where that is the rare side), the
+        stages' included: those the estimate sums.
     pads : int
         Final pads, from the nominal law, the half-way tilt and the last tilt
         (:func:`mixture`).
@@ -277,22 +298,23 @@ def _split(values: np.ndarray, counts: np.ndarray) -> list:
     return np.split(values, np.cumsum(counts)[:-1])
 
 
-def _fit(law: _Law, previous: Tilt, counts: np.ndarray, weights: np.ndarray) -> Tilt:
+def _fit(law: _Law, previous: Tilt, counts: np.ndarray, weights: np.ndarray, cap=math.inf) -> Tilt:
     """The smoothed cross-entropy tilt from elite pads' summits per bin above the cut and their
-    weights: each bin's weighted mean count over its nominal count (module docstring)."""
+    weights: each bin's weighted mean count over its nominal count, at most ``cap`` (per bin;
+    module docstring)."""
     with np.errstate(invalid="ignore", divide="ignore"):
         fit = (weights @ counts) / (np.sum(weights) * law.mass)
     fit = np.where(law.mass > 0, fit, 1.0)
     r = SMOOTHING * fit + (1 - SMOOTHING) * np.asarray(previous.ratio)
-    return Tilt(tuple(np.maximum(r, RATIO_FLOOR).tolist()))
+    return Tilt(tuple(np.maximum(np.minimum(r, cap), RATIO_FLOOR).tolist()))
 
 
 def pad_pull_off(spec, s: np.ndarray, *, turn: float, preload: float | None) -> float:
     """One pad's pull-off (N) from its summit heights ``s`` (σ), as plain pads evaluate it.
 
     Under a ``preload`` (Pa) the pad turns where its own approach load reaches P·A
-    (:func:`mcsim.engine.padcurves.force_turn`), else at ``turn`` (d/σ); its pull-off is
-    :func:`mcsim.engine.padcurves.pull_off` after that turn.
+    (:func:`mcsim.engine.pads.curves.force_turn`), else at ``turn`` (d/σ); its pull-off is
+    :func:`mcsim.engine.pads.curves.pull_off` after that turn.
     """
     from mcsim.engine.pads import curves as padcurves
 
@@ -320,16 +342,22 @@ def _stage(law: _Law, tilt: Tilt | None, n: int, key: tuple, evaluate, workers: 
 
 @dataclass(frozen=True)
 class _Chain:
-    """One chain's cross-entropy stages: its tilt, stages after stage 0, pads evaluated, and
-    whether its last stage reached the event."""
+    """One chain's cross-entropy stages: its tilt, stages after stage 0, pads evaluated,
+    whether its last stage reached the event, and every stage's law (None: nominal), number
+    of pads, their summits per bin above the cut and their scores (stage 0 first)."""
 
     tilt: Tilt
     stages: int
     evaluations: int
     reached: bool
+    laws: tuple = ()
+    sizes: tuple = ()
+    counts: np.ndarray | None = None
+    force: np.ndarray | None = None
 
 
-def _cross_entropy(law, c, counts, force, *, pilot, margin, hit, evaluate, workers, give_up):
+def _cross_entropy(law, c, counts, force, *, pilot, margin, hit, evaluate, workers, give_up,
+                   cap=math.inf):  # fmt: skip
     """Chain ``c``'s tilt from its stage 0 (summits per bin, scores) by the multilevel
     cross-entropy method, every stage's pads reused in every fit (module docstring)."""
     laws, sizes, new = [None], [len(force)], force
@@ -347,7 +375,7 @@ def _cross_entropy(law, c, counts, force, *, pilot, margin, hit, evaluate, worke
                 break
             previous, elite = level, margin(force) >= level
         weights = law.weight(laws, sizes, counts[elite])
-        fitted = _fit(law, fitted, counts[elite], weights)
+        fitted = _fit(law, fitted, counts[elite], weights, cap)
         if reached or stage == STAGES:
             break
         stage += 1
@@ -355,7 +383,7 @@ def _cross_entropy(law, c, counts, force, *, pilot, margin, hit, evaluate, worke
         laws.append(fitted), sizes.append(pilot)
         counts, force = np.vstack([counts, more]), np.concatenate([force, new])
         evaluations += pilot
-    return _Chain(fitted, stage, evaluations, reached)
+    return _Chain(fitted, stage, evaluations, reached, tuple(laws), tuple(sizes), counts, force)
 
 
 def importance_p_stick(spec, restoring_force: float, *, turn: float, preload: float | None = None,
@@ -389,7 +417,9 @@ def importance_p_stick(spec, restoring_force: float, *, turn: float, preload: fl
     score : callable, optional
         What is compared with ``restoring_force``, as a function of a pad's summit heights
         above s_min (σ); default its pull-off (:func:`pad_pull_off`). Another score gives
-        the probability of another event of the same pads (the tests' exact cases).
+        the probability of another event of the same pads (the tests' exact cases); a
+        ``preload`` then only marks the event as one of force-controlled pads (the tall way
+        in, module docstring).
     give_up : bool
         Stop the stages where their level (the elite's margin to F_r) does not rise from one
         stage to the next, or rises too slowly to reach F_r in the stages left at its latest
@@ -438,9 +468,14 @@ def importance_p_stick(spec, restoring_force: float, *, turn: float, preload: fl
     else:  # the given pads, dealt to the chains in turn
         counts, force = law.bins(start[0]), np.asarray(start[1], dtype=float)
         zero = [(counts[c::CHAINS], force[c::CHAINS]) for c in range(CHAINS)]
-    chains = [_cross_entropy(law, c, *zero[c], pilot=pilot, margin=margin, hit=hit,
-                             evaluate=evaluate, workers=workers, give_up=give_up)
-              for c in range(CHAINS)]  # fmt: skip
+    options = dict(pilot=pilot, margin=margin, hit=hit, evaluate=evaluate, workers=workers,
+                   give_up=give_up)  # fmt: skip
+    chains = [_cross_entropy(law, 0, *zero[0], **options)]
+    # the second chain may not raise the summits above the turn where the first one raised
+    # them into a sticking (module docstring: the tall way in)
+    above = (law.edges[:-1] >= turn) & (np.asarray(chains[0].tilt.ratio) > 1)
+    cap = np.where(above, 1.0, math.inf) if event == "stick" and preload is not None else math.inf
+    chains += [_cross_entropy(law, c, *zero[c], **options, cap=cap) for c in range(1, CHAINS)]
     evaluations += sum(c.evaluations for c in chains)
     tilts = tuple(c.tilt for c in chains)
     stages, reached = max(c.stages for c in chains), all(c.reached for c in chains)
@@ -452,19 +487,31 @@ def importance_p_stick(spec, restoring_force: float, *, turn: float, preload: fl
     parts = [_stage(law, q, n, (CHAINS, j), evaluate, workers)
              for j, (q, n) in enumerate(zip(laws, sizes, strict=True))]  # fmt: skip
     evaluations += pads
-    counts = np.vstack([part[0] for part in parts])
-    y = hit(np.concatenate([part[1] for part in parts])) * law.weight(laws, sizes, counts)
-    q, se, low, high = _estimate(y, sizes[0])
-    # each chain's own estimate from its tilts' pads and its share of the nominal pads
-    # (independent of the other chain's): they agree within AGREE standard errors unless the
-    # tilts found different ways into the event
+
+    def recycled(final: list, mine: list) -> tuple:
+        """The deterministic mixture of the final parts ``final`` (indices into ``parts``;
+        the nominal one first) and the stages of ``mine`` (chains): p̂, se, low, high, hits."""
+        nominal = [parts[final[0]]] + [(c.counts[: c.sizes[0]], c.force[: c.sizes[0]])
+                                       for c in mine]  # fmt: skip
+        drawn = nominal + [parts[j] for j in final[1:]]
+        drawn += [(c.counts[c.sizes[0] :], c.force[c.sizes[0] :]) for c in mine]
+        q_all = [None] * len(nominal) + [laws[j] for j in final[1:]]
+        q_all += [q for c in mine for q in c.laws[1:]]
+        n_all = [len(part[1]) for part in drawn[: len(nominal)]] + [sizes[j] for j in final[1:]]
+        n_all += [n for c in mine for n in c.sizes[1:]]
+        counts = np.vstack([part[0] for part in drawn])
+        y = hit(np.concatenate([part[1] for part in drawn])) * law.weight(q_all, n_all, counts)
+        return (*_estimate(y, sum(n_all[: len(nominal)])), int(np.count_nonzero(y)))
+
+    q, se, low, high, hits = recycled(list(range(len(laws))), chains)
+    # each chain's own estimate from its stages, its tilts' final pads and its share of the
+    # nominal ones (independent of the other chain's): they agree within AGREE standard
+    # errors unless the tilts found different ways into the event
     own = []
     for c in range(CHAINS):
-        nominal = slice(c * sizes[0] // CHAINS, (c + 1) * sizes[0] // CHAINS)
-        mine = [(parts[0][0][nominal], parts[0][1][nominal]), parts[1 + 2 * c], parts[2 + 2 * c]]
-        n = [len(part[1]) for part in mine]
-        w = law.weight([None, *laws[1 + 2 * c : 3 + 2 * c]], n, np.vstack([m[0] for m in mine]))
-        own.append(_estimate(hit(np.concatenate([m[1] for m in mine])) * w, n[0]))
+        share = slice(c * sizes[0] // CHAINS, (c + 1) * sizes[0] // CHAINS)
+        parts.append((parts[0][0][share], parts[0][1][share]))
+        own.append(recycled([len(parts) - 1, 1 + 2 * c, 2 + 2 * c], [chains[c]]))
     chain = tuple((o[0], o[2], o[3]) for o in own)
     (qa, sa, *_), (qb, sb, *_) = own
     agree = abs(qa - qb) <= AGREE * math.hypot(sa, sb)
@@ -472,7 +519,7 @@ def importance_p_stick(spec, restoring_force: float, *, turn: float, preload: fl
     if event == "release":
         q, low, high = 1.0 - q, 1.0 - high, 1.0 - low
     return TailEstimate(min(max(q, 0.0), 1.0), se, max(low, 0.0), min(high, 1.0), ess,
-                        int(np.count_nonzero(y)), pads, evaluations, stages, reached, event,
+                        hits, pads, evaluations, stages, reached, event,
                         tilts, law.cut, agree, chain)  # fmt: skip
 
 
