@@ -66,7 +66,8 @@ from mcsim.engine.spec import MonteCarloSpec
 from mcsim.model.presets import MATERIALS, SURFACES
 from mcsim.physics.environment import Environment
 from mcsim.physics.loadcontrol import preload_turn
-from mcsim.studies.tail import TAIL_PADS, TAIL_PILOT, cut, importance_p_stick
+from mcsim.studies.rareevent import TAIL_PADS, TAIL_PILOT
+from mcsim.studies.tail import cut, importance_p_stick
 
 SIGMA, AREA, PRELOAD = 3e-9, 30e-12, 1e6
 H = np.linspace(4, -1, 51)

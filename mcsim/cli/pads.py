@@ -114,7 +114,7 @@ def run(args) -> int:
 
 def _p_stick_notes(report, n: int, asked: bool) -> None:
     """How p_stick was found; a warning where p_stick_model lies outside its interval."""
-    from mcsim.studies.tail import MIN_ESS, MIN_TAIL_PADS, SWITCH
+    from mcsim.studies.rareevent import MIN_ESS, MIN_TAIL_PADS, SWITCH
 
     s = report.stick
     rare = round(min(s["p_stick"], 1 - s["p_stick"]) * n)

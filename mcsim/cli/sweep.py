@@ -126,7 +126,7 @@ def _p_stick_notes(result) -> None:
     pads were too few on the rarer side, and where p_stick_model lies outside p_stick's interval."""
     import numpy as np
 
-    from mcsim.studies.tail import MIN_ESS, MIN_TAIL_PADS, SWITCH
+    from mcsim.studies.rareevent import MIN_ESS, MIN_TAIL_PADS, SWITCH
 
     d = result.data
     if "p_stick_method" not in d:

@@ -179,7 +179,7 @@ def tail_p_slip(spec, statistics: FrictionStatistics, *, turn: float, preload: f
     ParameterError
         ``tail`` True with fewer than MIN_TAIL_PADS pads or a fixed summit count.
     """
-    from mcsim.studies.tail import rare_event
+    from mcsim.studies.rareevent import rare_event
 
     def score(s):  # slips when −T_s > −F
         return -pad_static_friction(spec, s, turn=turn, preload=preload)

@@ -37,7 +37,7 @@ import numpy as np
 
 from mcsim.model.errors import ParameterError
 from mcsim.studies.intervals import INTERVALS, clopper_pearson, wilson
-from mcsim.studies.tail import (
+from mcsim.studies.rareevent import (
     rare_event,
 )
 
@@ -212,7 +212,7 @@ def finite_pads(spec, restoring_force: float | None, *, preload: float | None = 
         model estimate ``p_stick_model`` (:func:`mcsim.studies.stiction.p_stick_model`).
     tail : bool, optional
         p_stick (and p_slip) by importance sampling (:func:`tail_p_stick`): True always, None
-        where the pads see fewer than :data:`~mcsim.studies.tail.SWITCH` on the rarer side, False never.
+        where the pads see fewer than :data:`~mcsim.studies.rareevent.SWITCH` on the rarer side, False never.
     friction : bool
         Also each pad's static friction at its turn and μ_s (:mod:`mcsim.studies.padfriction`):
         the keys of :data:`mcsim.store.sweepvariables.FRICTION`.
@@ -224,7 +224,7 @@ def finite_pads(spec, restoring_force: float | None, *, preload: float | None = 
     -------
     dict
         The keys of :data:`mcsim.store.sweepvariables.PADS` (floats, SI) and ``p_stick_method``
-        (one of :data:`~mcsim.studies.tail.METHODS`; those of p_stick only with a restoring force), and the
+        (one of :data:`~mcsim.studies.rareevent.METHODS`; those of p_stick only with a restoring force), and the
         friction's.
 
     Raises
@@ -294,13 +294,13 @@ def tail_p_stick(spec, statistics: PadStatistics, restoring_force: float, *, tur
     """p_stick of the pads of ``spec``: the plain pads' fraction, or importance sampling.
 
     Importance sampling (:func:`mcsim.studies.tail.importance_p_stick`, max(n,
-    :data:`~mcsim.studies.tail.TAIL_PADS`) final pads, cross-entropy stages of max(:data:`~mcsim.studies.tail.TAIL_PILOT`, n/10)
+    :data:`~mcsim.studies.rareevent.TAIL_PADS`) final pads, cross-entropy stages of max(:data:`~mcsim.studies.rareevent.TAIL_PILOT`, n/10)
     pads after the n plain pads as stage 0, or its own with fewer than TAIL_PILOT) replaces the
-    fraction where the plain pads see fewer than :data:`~mcsim.studies.tail.SWITCH` pads on the rarer side
+    fraction where the plain pads see fewer than :data:`~mcsim.studies.rareevent.SWITCH` pads on the rarer side
     (``tail`` None) or always (``tail`` True), not
-    with fewer than :data:`~mcsim.studies.tail.MIN_TAIL_PADS` pads or a fixed summit count (``tail`` None: the
+    with fewer than :data:`~mcsim.studies.rareevent.MIN_TAIL_PADS` pads or a fixed summit count (``tail`` None: the
     fraction stays; True: an error), nor where its effective sample size stays below
-    :data:`~mcsim.studies.tail.MIN_ESS` or its two chains' estimates disagree (the fraction stays: it cannot tell).
+    :data:`~mcsim.studies.rareevent.MIN_ESS` or its two chains' estimates disagree (the fraction stays: it cannot tell).
 
     Parameters
     ----------
@@ -314,7 +314,7 @@ def tail_p_stick(spec, statistics: PadStatistics, restoring_force: float, *, tur
         Mean-field turn (d/σ) and the nominal pressure (Pa, or None), as :func:`finite_pads`.
     tail : bool or None
         None: automatic (importance sampling where the plain pads see fewer than
-        :data:`~mcsim.studies.tail.SWITCH` on the rarer side); True: importance sampling; False: the plain fraction.
+        :data:`~mcsim.studies.rareevent.SWITCH` on the rarer side); True: importance sampling; False: the plain fraction.
     start : tuple, optional
         The plain pads as stage 0: their heights above :func:`mcsim.studies.tail.cut` (σ)
         and pull-off (N); else the tail draws its own.
@@ -325,12 +325,12 @@ def tail_p_stick(spec, statistics: PadStatistics, restoring_force: float, *, tur
         ``p_stick``, ``p_stick_low``, ``p_stick_high`` (95 %), ``p_stick_ess`` (the effective
         number of pads on the rarer side, n*·p̂ with n* = p̂(1 − p̂)/se², the one its interval
         takes, :attr:`mcsim.studies.tail.TailEstimate.ess`; for plain pads their count) and
-        ``p_stick_method`` (one of :data:`~mcsim.studies.tail.METHODS`).
+        ``p_stick_method`` (one of :data:`~mcsim.studies.rareevent.METHODS`).
 
     Raises
     ------
     ParameterError
-        ``tail`` True with fewer than :data:`~mcsim.studies.tail.MIN_TAIL_PADS` pads or a fixed summit count.
+        ``tail`` True with fewer than :data:`~mcsim.studies.rareevent.MIN_TAIL_PADS` pads or a fixed summit count.
     """
     return rare_event(spec, "p_stick", statistics.pads, statistics.p_stick,
                       statistics.p_stick_ci, restoring_force, turn=turn, preload=preload,
@@ -428,7 +428,7 @@ def pad_report(
     tail : bool, optional
         With F_r: p_stick by importance sampling (:func:`tail_p_stick`, with pads of its own
         streams of the run's seed): True always, None where the pads see fewer than
-        :data:`~mcsim.studies.tail.SWITCH` on the rarer side, False never. The same for p_slip with F.
+        :data:`~mcsim.studies.rareevent.SWITCH` on the rarer side, False never. The same for p_slip with F.
     friction : bool
         Also the pads' static friction T_s at their turns and μ_s
         (:mod:`mcsim.studies.padfriction`).

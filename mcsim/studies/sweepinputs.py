@@ -109,7 +109,7 @@ def check_pads(pads, restoring_force, preload, turn, varied: bool, tail=None,
                 ) -> tuple[float | None, float | None]:  # fmt: skip
     """Check the pads' options; the restoring force (N; None where ``varied`` or, with
     ``friction``, not given) and the preload (Pa), SI."""
-    from mcsim.studies.tail import MIN_TAIL_PADS
+    from mcsim.studies.rareevent import MIN_TAIL_PADS
 
     if tail not in (None, True, False):
         raise ParameterError(f"tail = {tail!r}: allowed None (automatic), True or False")

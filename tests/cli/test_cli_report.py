@@ -142,7 +142,7 @@ def test_the_readme_command_and_defaults_are_the_parsers():
     import shlex
 
     from mcsim.cli.main import build_parser
-    from mcsim.studies.tail import MIN_TAIL_PADS, SWITCH
+    from mcsim.studies.rareevent import MIN_TAIL_PADS, SWITCH
 
     readme = (Path(__file__).resolve().parents[2] / "README.md").read_text()
     section = readme.split("## From a scan to a stiction report", 1)[1].split("\n## ", 1)[0]

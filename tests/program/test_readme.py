@@ -78,7 +78,7 @@ SMALLER = (
     # by itself) at its two ends with 20 pads each, for `mcsim plot`
     ("--vary sigma=1.5nm:3nm:4 --preload 1MPa \\\n    --pads 100", "--vary sigma=1.5nm:3nm:2 --preload 1MPa \\\n    --pads 20"),
     # importance sampling with --tail: test_tail_example runs it as written (its pilot
-    # stages and final pads have a floor, mcsim.studies.tail.TAIL_PILOT and TAIL_PADS, that
+    # stages and final pads have a floor, mcsim.studies.rareevent.TAIL_PILOT and TAIL_PADS, that
     # no smaller --pads lowers); here 20 plain pads, the sweep's path without it
     ("--pads 2000 \\\n    --area 30um^2 --restoring-force 83uN --tail", "--pads 20 \\\n    --area 30um^2 --restoring-force 83uN"),
     # the humid sweep (test_humid_p_stick_table) dry and at its most humid point, 4 pads each

@@ -495,7 +495,7 @@ def test_p_stick_table(tmp_path):
 
 
 def test_when_importance_sampling_replaces_the_fraction_of_the_pads():
-    from mcsim.studies.tail import MIN_ESS, MIN_TAIL_PADS, SWITCH, TAIL_PADS, TAIL_PILOT
+    from mcsim.studies.rareevent import MIN_ESS, MIN_TAIL_PADS, SWITCH, TAIL_PADS, TAIL_PILOT
 
     check_exact(r"\| at least (\d+) pads stick and (\d+) do not \| `pads`", SWITCH, SWITCH)
     check_exact(r"\| fewer than (\d+) on either side \(at least (\d+) pads\) \| `importance`",
@@ -591,7 +591,7 @@ def test_friction_slip_table(tmp_path):
     # the guide's sweep of "Will my pad slip?" (about 20 s of CPU)
     import xarray as xr
 
-    from mcsim.studies.tail import MIN_TAIL_PADS, SWITCH
+    from mcsim.studies.rareevent import MIN_TAIL_PADS, SWITCH
 
     args = quoted(
         r"mcsim (sweep --surface smooth --law jkr --hamaker 1\.6e-19J --vary "

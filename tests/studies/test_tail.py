@@ -20,19 +20,16 @@ from mcsim.model.errors import ParameterError
 from mcsim.model.presets import MATERIALS, SURFACES
 from mcsim.studies.intervals import clopper_pearson
 from mcsim.studies.pads import finite_pads, pad_statistics, tail_p_stick
+from mcsim.studies.rareevent import MIN_ESS, MIN_TAIL_PADS, SWITCH, rare_event
 from mcsim.studies.tail import (
     CHAINS,
-    MIN_ESS,
-    MIN_TAIL_PADS,
     STAGES,
-    SWITCH,
     Tilt,
     _Law,
     cut,
     effective_clopper_pearson,
     importance_p_stick,
     mixture,
-    rare_event,
 )
 
 #: The few-summit case of the issue: smooth at σ = 3 nm, 30 µm² (λ = 510 summits).
@@ -358,9 +355,9 @@ def test_the_automatic_switch_gives_up_where_the_stages_cannot_reach_the_event()
 def test_where_the_chains_disagree_the_plain_fraction_stays(monkeypatch):
     # rare_event keeps the plain fraction (it cannot tell) where the two tilts' own estimates
     # disagree, however large the effective sample size.
-    import mcsim.studies.tail as tail
+    import mcsim.studies.rareevent as rareevent
 
-    real = tail.importance_p_stick
+    real = rareevent.importance_p_stick
 
     def disagreeing(*args, **kwargs):
         return dataclasses.replace(real(*args, **kwargs), agree=False)
@@ -369,7 +366,7 @@ def test_where_the_chains_disagree_the_plain_fraction_stays(monkeypatch):
     options = dict(turn=TURN, preload=None, tail=True, score=_band_score)
     out = rare_event(_spec(2), *plain, **options)
     assert out["p_stick_method"] == "importance" and out["p_stick_ess"] >= MIN_ESS
-    monkeypatch.setattr(tail, "importance_p_stick", disagreeing)
+    monkeypatch.setattr(rareevent, "importance_p_stick", disagreeing)
     out = rare_event(_spec(2), *plain, **options)
     assert out["p_stick_method"] == "pads" and out["p_stick"] == 0.03
     assert (out["p_stick_low"], out["p_stick_high"]) == clopper_pearson(3, 100)
