@@ -417,7 +417,8 @@ def test_more_constants_of_the_code():
     from mcsim.physics import validity
     from mcsim.physics.laws import dmt
     from mcsim.store import files, runfile
-    from mcsim.studies import adhesivecontact, simulation, tail
+    from mcsim.studies import simulation, tail
+    from mcsim.studies.maps import adhesivecontact
     from mcsim.topography import mapsurface
 
     project = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]
