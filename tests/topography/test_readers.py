@@ -106,6 +106,18 @@ def test_ascii_matrix_without_pixel_size_is_refused(tmp_path):
         read_height_map(write(tmp_path, "m.txt", "0 1 2\n3 4 5\n6 7 8\n"), unit="nm")
 
 
+def test_a_pixel_size_is_taken_as_users_write_it_and_a_bad_one_is_refused_by_name(tmp_path):
+    path = write(tmp_path, "m.txt", "0 1 2\n3 4 5\n6 7 8\n")
+    for given in ("10nm", "10 nm", 1e-8, np.float64(1e-8), ("10 nm", "0.01 um")):
+        m = read_height_map(path, unit="nm", pixel_size=given)
+        assert (m.dx, m.dy) == pytest.approx((1e-8, 1e-8), rel=ROUNDING_FEW), given
+    assert read_height_map(path, unit="nm", pixel_size=("10nm", "20nm")).dy == 2e-8
+    for bad, message in (("10 s", "pixel size"), ("-1nm", "positive"), ((1e-8,) * 3, "a pair"),
+                         (True, "pixel size"), (float("inf"), "pixel size")):  # fmt: skip
+        with pytest.raises(ReaderError, match=message):
+            read_height_map(path, unit="nm", pixel_size=bad)
+
+
 def test_ascii_matrix_without_unit_is_refused(tmp_path):
     with pytest.raises(ReaderError, match="missing height unit: pass --unit"):
         read_height_map(write(tmp_path, "m.txt", "0 1 2\n3 4 5\n6 7 8\n"), pixel_size=1e-9)

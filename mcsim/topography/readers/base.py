@@ -18,7 +18,7 @@ from pathlib import Path
 import numpy as np
 
 from mcsim.model.errors import MCSimError
-from mcsim.model.units import unit_factor
+from mcsim.model.units import parse_quantity, unit_factor
 
 #: Largest map a reader accepts, in pixels (16384 × 16384, 2 GiB as float64): a header that
 #: declares more is refused before anything is allocated.
@@ -154,16 +154,31 @@ def length_factor(unit: str, path: Path | str, what: str) -> float:
 
 
 def pixel_sizes(
-    path: Path | str, pixel_size: float | tuple[float, float] | None
+    path: Path | str, pixel_size: float | str | tuple[float | str, float | str] | None
 ) -> tuple[float, float]:
-    """(dx, dy) in m from the caller's ``pixel_size``; raises if it is missing or bad."""
+    """(dx, dy) in m from the caller's ``pixel_size`` (m, or a length with its unit such as
+    ``"10 nm"``; one for both axes or a pair); raises if it is missing or bad."""
     if pixel_size is None:
         raise ReaderError(f"{path}: missing pixel size: pass --pixel-size")
-    dx, dy = (pixel_size, pixel_size) if np.ndim(pixel_size) == 0 else pixel_size
-    for value in (dx, dy):
-        if not (math.isfinite(value) and value > 0):
-            raise ReaderError(f"{path}: pixel size must be positive and finite, got {value!r} m")
-    return float(dx), float(dy)
+    pair = (
+        (pixel_size, pixel_size)
+        if isinstance(pixel_size, str) or np.ndim(pixel_size) == 0
+        else pixel_size
+    )
+    if len(pair) != 2:
+        raise ReaderError(f"{path}: pixel size {pixel_size!r}: give one length or a pair (dx, dy)")
+    sizes = []
+    for value in pair:
+        if isinstance(value, np.generic | np.ndarray) and np.ndim(value) == 0:
+            value = value.item()  # a NumPy scalar: its Python number
+        try:
+            size = parse_quantity(value, "length", "pixel size")
+        except MCSimError as err:
+            raise ReaderError(f"{path}: {err}") from None
+        if not (math.isfinite(size) and size > 0):
+            raise ReaderError(f"{path}: pixel size must be positive and finite, got {size!r} m")
+        sizes.append(size)
+    return sizes[0], sizes[1]
 
 
 def check_heights(path: Path | str, z: np.ndarray) -> np.ndarray:
