@@ -423,7 +423,8 @@ def importance_p_stick(spec, restoring_force: float, *, turn: float, preload: fl
     give_up : bool
         Stop the stages where their level (the elite's margin to F_r) does not rise from one
         stage to the next, or rises too slowly to reach F_r in the stages left at its latest
-        pace, and draw no final pads where the stages did not reach the event:
+        pace, and draw no final pads where the stages did not reach the event (the first
+        chain that does not ends the search; the next one would not change the answer):
         then p_stick is NaN and the effective sample size 0 (the automatic switch's way out
         where F_r lies far beyond any pad: without it, every such point of a sweep spends
         all the stages and the final pads to find no pad in the event).
@@ -461,24 +462,31 @@ def importance_p_stick(spec, restoring_force: float, *, turn: float, preload: fl
     def margin(force):  # how far into the event
         return sign * (force - fr)
 
-    evaluations = 0
-    if start is None:  # each chain's own stage 0 from the nominal law
-        zero = [_stage(law, None, pilot, (c, 0), evaluate, workers) for c in range(CHAINS)]
-        evaluations += CHAINS * pilot
-    else:  # the given pads, dealt to the chains in turn
-        counts, force = law.bins(start[0]), np.asarray(start[1], dtype=float)
-        zero = [(counts[c::CHAINS], force[c::CHAINS]) for c in range(CHAINS)]
+    if start is not None:  # the given pads, dealt to the chains in turn
+        given = law.bins(start[0]), np.asarray(start[1], dtype=float)
+
+    def zero(c):  # chain c's stage 0: its own pads from the nominal law, or its share
+        if start is None:
+            return _stage(law, None, pilot, (c, 0), evaluate, workers)
+        return given[0][c::CHAINS], given[1][c::CHAINS]
+
     options = dict(pilot=pilot, margin=margin, hit=hit, evaluate=evaluate, workers=workers,
                    give_up=give_up)  # fmt: skip
-    chains = [_cross_entropy(law, 0, *zero[0], **options)]
-    # the second chain may not raise the summits above the turn where the first one raised
-    # them into a sticking (module docstring: the tall way in)
-    above = (law.edges[:-1] >= turn) & (np.asarray(chains[0].tilt.ratio) > 1)
-    cap = np.where(above, 1.0, math.inf) if event == "stick" and preload is not None else math.inf
-    chains += [_cross_entropy(law, c, *zero[c], **options, cap=cap) for c in range(1, CHAINS)]
-    evaluations += sum(c.evaluations for c in chains)
+    chains = []
+    for c in range(CHAINS):
+        # the second chain may not raise the summits above the turn where the first one
+        # raised them into a sticking (module docstring: the tall way in)
+        cap = math.inf
+        if c and event == "stick" and preload is not None:
+            above = (law.edges[:-1] >= turn) & (np.asarray(chains[0].tilt.ratio) > 1)
+            cap = np.where(above, 1.0, math.inf)
+        chains.append(_cross_entropy(law, c, *zero(c), **options, cap=cap))
+        if give_up and not chains[-1].reached:
+            break  # one chain that cannot reach the event ends the search: no estimate
+    evaluations = sum(c.evaluations for c in chains) + (len(chains) * pilot if start is None else 0)
     tilts = tuple(c.tilt for c in chains)
-    stages, reached = max(c.stages for c in chains), all(c.reached for c in chains)
+    stages = max(c.stages for c in chains)
+    reached = len(chains) == CHAINS and all(c.reached for c in chains)
     if give_up and not reached:
         return TailEstimate(math.nan, math.nan, 0.0, 1.0, 0.0, 0, 0, evaluations, stages, False,
                             event, tilts, law.cut, True)  # fmt: skip
