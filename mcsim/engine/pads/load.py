@@ -70,13 +70,34 @@ def pad_load(spec: MonteCarloSpec, z: np.ndarray, d, d_turn=None) -> np.ndarray:
     (:func:`mcsim.physics.surfaceenvironment.open_gap_pressures`). On approach without ``d_turn``;
     on retraction after the closest approach ``d_turn`` (m).
     """
-    d = np.atleast_1d(np.asarray(d, dtype=float))
-    if spec.environment is None:
-        return contact_load(spec, z, d, d_turn)
+    return _loader(spec)(z, np.atleast_1d(np.asarray(d, dtype=float)), d_turn)
+
+
+@functools.lru_cache(maxsize=16)
+def _loader(spec: MonteCarloSpec):
+    """:func:`pad_load` of ``spec`` as a function of (z, d, d_turn), its kernel looked up
+    once: a pad's search sums a few rows dozens of times, and the lookup cost as much as
+    the sums. The same kernel on the same arrays as :func:`contact_load`: the same bits."""
     if spec.surface.radius_by_height is not None:  # each band's contact and caps, its radius
-        turn = None if d_turn is None else np.full_like(d, d_turn)
-        return net_load(spec, sums(spec, z, d, turn), d)
-    return split_laws(spec).net(z, d, d_turn)
+
+        def load(z, d, d_turn):
+            turn = None if d_turn is None else np.full_like(d, d_turn)
+            if spec.environment is None:
+                return sums(spec, z, d, turn)[:, sum_columns(spec.law_set).index("load")]
+            return net_load(spec, sums(spec, z, d, turn), d)
+
+        return load
+    if spec.environment is not None:
+        return split_laws(spec).net
+    kernel = prepared(spec.law_set, spec.arguments, spec.edges)
+    column = sum_columns(spec.law_set).index("load")
+
+    def dry(z, d, d_turn):
+        d = np.ascontiguousarray(d)
+        turn = d if d_turn is None else np.full_like(d, d_turn)
+        return kernel(np.ascontiguousarray(z, dtype=float), d, turn)[:, column]
+
+    return dry
 
 
 def contact_load(spec: MonteCarloSpec, z: np.ndarray, d, d_turn=None) -> np.ndarray:
