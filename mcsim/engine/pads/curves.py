@@ -85,8 +85,8 @@ def pull_off(spec: MonteCarloSpec, z: np.ndarray, d_turn: float) -> tuple[float,
     # air, dropping the intervals whose bound lies above the lowest value met); in humid air
     # then on every other interval whose bound still lies at or below it: the minimum's
     # interval need not be among the REFINE whose interior points are lowest (without this,
-    # 7 of 1440 one-radius humid pull-offs, 3 law sets x 2 presets x RH 0.3, 0.7, 0.9 x 40
-    # pads x preloads 0, 1 MPa, came out 1e-5 to 5.9 % short: tests/engine/test_padcurves.py).
+    # 9 of 1440 one-radius humid pull-offs, 3 law sets x 2 presets x RH 0.3, 0.7, 0.9 x 40
+    # pads x preloads 0, 1 MPa, came out 1.2e-5 to 5.9 % short: tests/engine/test_padcurves.py).
     rows = np.argsort(values[:, 1:-1].min(axis=1))
     force, at = _zoom(spec, z, d_turn, points, values, rows[:REFINE], floor, curve, force, at)
     if floor is not None:
