@@ -8,9 +8,9 @@ summit by summit from the shape of each branch of the contact law (:func:`branch
 :meth:`_Curve.bounds`), leave only the ranges that can hold the turn (:func:`humid_turn`) or
 the pull-off (:func:`humid_pull_off`) to be split; the same tolerance
 (:data:`~mcsim.engine.pads.load.XTOL`) and, for the pull-off, the same sampling and zoom of the
-intervals left (:func:`mcsim.engine.pads.curves.pull_off`). With one summit radius only
-(:func:`bounded`): with a radius by height each band has its own law, and those pads keep
-the sampling of every interval.
+intervals left (:func:`mcsim.engine.pads.curves.pull_off`). With a radius by height each band
+of heights has its own radius, hence its own law arguments, edges and branches: its summits
+are bounded on its own branches (a group per band and branch, :class:`_Group`).
 """
 
 from __future__ import annotations
@@ -26,11 +26,13 @@ from mcsim.engine.pads.load import (
     SUB,
     XTOL,
     GapTable,
+    Part,
     Split,
     open_gap_table,
     open_gaps,
     pad_load,
     split_laws,
+    total,
 )
 from mcsim.engine.spec import MonteCarloSpec
 from mcsim.model.errors import ParameterError
@@ -38,10 +40,9 @@ from mcsim.physics.laws import Edges
 
 
 def bounded(spec: MonteCarloSpec) -> bool:
-    """Whether a pad's turn and pull-off are searched by branch and bound: in humid air with
-    one summit radius (with a radius by height each band has its own law; those pads keep
-    the sampling of every interval)."""
-    return spec.environment is not None and spec.surface.radius_by_height is None
+    """Whether a pad's turn and pull-off are searched by branch and bound: in humid air (an
+    environment), with one summit radius or a radius by height."""
+    return spec.environment is not None
 
 
 class _Branch(NamedTuple):
@@ -68,9 +69,10 @@ _BRANCH_REFINE = 8
 _MIN_MARGIN = 1e-6
 
 
-@functools.lru_cache(maxsize=16)
-def branches(spec: MonteCarloSpec) -> tuple[_Branch, _Branch]:
-    """The approach and retraction branches of the contact law's load of one summit.
+def branches(part: Part) -> tuple[_Branch, _Branch]:
+    """The approach and retraction branches of the contact law's load of one summit, of the
+    law set, arguments and edges ``part`` (one band of heights; found once per spec and
+    band: :func:`_setup`).
 
     Law sets with a retraction are *quasiconvex* on each branch (a requirement of
     :mod:`mcsim.physics.laws`): as δ grows, f(δ) is 0 up to the branch's lowest edge, then
@@ -97,7 +99,6 @@ def branches(spec: MonteCarloSpec) -> tuple[_Branch, _Branch]:
     """
     from scipy.optimize import minimize_scalar
 
-    part = split_laws(spec).contact
     e = part.edges
     i = part.law.names.index("load")
     out, args = part.law.outputs[i], part.args[i]
@@ -148,10 +149,22 @@ def branches(spec: MonteCarloSpec) -> tuple[_Branch, _Branch]:
 
 
 class _Group(NamedTuple):
-    """Summits on one branch: sorted heights (m) and the branch."""
+    """Summits of one band of heights on one branch: sorted heights (m), the branch and the
+    band (its index in :attr:`_Setup.bands`)."""
 
     z: np.ndarray
     branch: _Branch
+    band: int
+
+
+class _Band(NamedTuple):
+    """One band of heights' part of a humid pad's search: its contact law's edges and
+    branches, and for each branch's ``falling`` the contact law's sums over the summits
+    above it."""
+
+    edges: Edges
+    branches: tuple[_Branch, _Branch]
+    above: dict
 
 
 class _Setup(NamedTuple):
@@ -160,29 +173,33 @@ class _Setup(NamedTuple):
     sigma: float
     area: float
     parts: Split
-    edges: Edges
-    branches: tuple[_Branch, _Branch]
+    bands: tuple[_Band, ...]
     gaps: object
     table: GapTable
-    above: dict  # a branch's ``falling`` -> the contact law's sums over the summits above it
 
 
 @functools.lru_cache(maxsize=16)
 def _setup(spec: MonteCarloSpec) -> _Setup:
     """The :class:`_Setup` of ``spec``."""
     parts = split_laws(spec)
-    above = {b.falling: prepared(parts.contact.law, parts.contact.args, Edges(*[b.falling] * 3))
-             for b in branches(spec) if b.falling > b.low}  # fmt: skip
-    return _Setup(spec.surface.sigma, spec.area, parts, parts.contact.edges, branches(spec),
-                  open_gaps(spec), open_gap_table(spec), above)  # fmt: skip
+    bands = []
+    for band in parts.bands:
+        c = band.contact
+        pair = branches(c)
+        above = {b.falling: prepared(c.law, c.args, Edges(*[b.falling] * 3))
+                 for b in pair if b.falling > b.low}  # fmt: skip
+        bands.append(_Band(c.edges, pair, above))
+    return _Setup(spec.surface.sigma, spec.area, parts, tuple(bands), open_gaps(spec),
+                  open_gap_table(spec))  # fmt: skip
 
 
 class _Curve:
     """The points of a humid pad's curve evaluated so far: separations ``x`` (ascending, m),
     net load ``net`` (N), and the ``sums`` (N) its bounds need (:meth:`bounds`): for each
-    group of summits (one branch each) the contact load, and what the summits between the
-    branch's lowest edge and its ``falling`` point add to it; last the caps' attraction.
-    ``cuts`` (m) are where a summit crosses an edge of its branch."""
+    group of summits (one band and branch each) the contact load, and what the summits
+    between the branch's lowest edge and its ``falling`` point add to it; last the caps'
+    attraction, summed over the bands (``z``: each band's summits, m). ``cuts`` (m) are
+    where a summit crosses an edge of its branch."""
 
     def __init__(self, setup, groups, z, d_turn, cuts, lower=False):
         self.setup, self.groups, self.z, self.d_turn, self.cuts = setup, groups, z, d_turn, cuts
@@ -199,11 +216,11 @@ class _Curve:
         sums = np.empty((d.size, self.sums.shape[1]))
         for j, g in enumerate(self.groups):
             b = g.branch
-            sums[:, 2 * j] = whole = parts.contact_sums(g.z, d, turn)[:, parts.load]
+            sums[:, 2 * j] = whole = parts.bands[g.band].contact_sums(g.z, d, turn)[:, parts.load]
             # what the summits in (d + low, d + falling] add
             sums[:, 2 * j + 1] = 0.0 if b.falling <= b.low else (
-                whole - setup.above[b.falling](g.z, d, turn)[:, parts.load])  # fmt: skip
-        sums[:, -1] = parts.caps_load(self.z, d)  # no history
+                whole - setup.bands[g.band].above[b.falling](g.z, d, turn)[:, parts.load])  # fmt: skip
+        sums[:, -1] = total(parts.caps_load(zk, d, k) for k, zk in enumerate(self.z))  # no history
         gaps = setup.area * setup.gaps(d / setup.sigma)
         net = sums[:, 0:-1:2].sum(axis=1) - sums[:, -1] - gaps
         if self.x.size:
@@ -229,9 +246,10 @@ class _Curve:
         summits above or below d + a, where d is that end (``sums``); those above d + r are
         at most the sum above d + a less m for each summit in between, which
         :func:`branches` makes a rounding narrow; the counts come from the sorted heights.
+        With a radius by height each group's summits are bounded on their own band's branch.
         The caps attract more the closer (each summit's van der Waals and meniscus force
-        rise with δ: :mod:`mcsim.physics.laws.attraction`), so they lie between their sums
-        at the two ends; the open gaps' term between the mean of its ends ∓ the spline's
+        rise with δ, whatever its radius: :mod:`mcsim.physics.laws.attraction`), so their
+        sum over every band lies between its values at the two ends; the open gaps' term between the mean of its ends ∓ the spline's
         steepest slope times half the gap (:func:`open_gap_table`).
         Compiled: :func:`mcsim.engine.pads.gaps.environment_bounds` and
         :func:`~mcsim.engine.pads.gaps.branch_bounds`.
@@ -312,10 +330,7 @@ def humid_turn(spec, z, force, bottom, top, reaches):
     checks both against a dense evaluation).
     """
     setup = _setup(spec)
-    e = setup.edges
-    z = np.ascontiguousarray(z, dtype=float)
-    cuts = _cuts(z, bottom, top, (e.reach, e.jump_in, *e.breakpoints))
-    curve = _Curve(setup, (_Group(np.sort(z), setup.branches[0]),), z, None, cuts)
+    curve = _approach(spec, z, bottom, top)
     new = curve.split(None, (bottom, top))
     while new.size:
         curve.add(new)
@@ -332,24 +347,39 @@ def humid_turn(spec, z, force, bottom, top, reaches):
     return float(curve.x[first]), float(curve.net[first])
 
 
+def _approach(spec, z, bottom, top) -> _Curve:
+    """A humid pad's approach, as an empty :class:`_Curve`: each band's summits on its
+    approach branch, and the cuts in (``bottom``, ``top``) (m; jump-in, reach, breakpoints of
+    each summit's band: the caps' forces are continuous)."""
+    setup = _setup(spec)
+    z = np.ascontiguousarray(z, dtype=float)
+    zs, groups, cuts = setup.parts.split(z), [], []
+    for k, (zk, band) in enumerate(zip(zs, setup.bands)):
+        e = band.edges
+        groups.append(_Group(np.sort(zk), band.branches[0], k))
+        cuts.append(_cuts(zk, bottom, top, (e.reach, e.jump_in, *e.breakpoints)))
+    return _Curve(setup, tuple(groups), zs, None, np.unique(np.concatenate(cuts)))
+
+
 def _retraction(spec, z, d_turn, top=None) -> _Curve:
     """A humid pad's retraction after the closest approach ``d_turn`` (m), as a :class:`_Curve`
-    asked for lower bounds only: the summits in contact at the turn on the retraction
-    branch, the others (if they can feel an attraction) on the approach branch, and the
-    cuts up to ``top`` (m; none without: break-off, reach, breakpoints for a summit in
-    contact, reach, breakpoints for one that is not)."""
+    asked for lower bounds only: in each band of heights, the summits in contact at the turn
+    on its retraction branch, the others (if they can feel an attraction) on its approach
+    branch, and the cuts up to ``top`` (m; none without: break-off, reach, breakpoints of
+    its band for a summit in contact, reach, breakpoints for one that is not)."""
     setup = _setup(spec)
-    e = setup.edges
     z = np.ascontiguousarray(z, dtype=float)
-    approach, retract = setup.branches
-    held = z - d_turn > e.jump_in  # in contact at the turn: on the retraction branch
-    groups = [_Group(np.sort(z[held]), retract)]
+    zs, groups, cuts = setup.parts.split(z), [], []
     ends = (d_turn, d_turn if top is None else top)
-    cuts = [_cuts(z[held], *ends, (e.reach, e.break_off, *e.breakpoints))]
-    if approach.low < e.jump_in and not np.all(held):  # the others may feel an attraction
-        groups.append(_Group(np.sort(z[~held]), approach))
-        cuts.append(_cuts(z[~held], *ends, (e.reach, *e.breakpoints)))
-    return _Curve(setup, tuple(groups), z, d_turn, np.unique(np.concatenate(cuts)), lower=True)
+    for k, (zk, band) in enumerate(zip(zs, setup.bands)):
+        e, (approach, retract) = band.edges, band.branches
+        held = zk - d_turn > e.jump_in  # in contact at the turn: on the retraction branch
+        groups.append(_Group(np.sort(zk[held]), retract, k))
+        cuts.append(_cuts(zk[held], *ends, (e.reach, e.break_off, *e.breakpoints)))
+        if approach.low < e.jump_in and not np.all(held):  # the others may feel an attraction
+            groups.append(_Group(np.sort(zk[~held]), approach, k))
+            cuts.append(_cuts(zk[~held], *ends, (e.reach, *e.breakpoints)))
+    return _Curve(setup, tuple(groups), zs, d_turn, np.unique(np.concatenate(cuts)), lower=True)
 
 
 def bracket_floors(curve: _Curve, lo, hi) -> np.ndarray:

@@ -75,20 +75,14 @@ def pad_load(spec: MonteCarloSpec, z: np.ndarray, d, d_turn=None) -> np.ndarray:
 
 @functools.lru_cache(maxsize=16)
 def _loader(spec: MonteCarloSpec):
-    """:func:`pad_load` of ``spec`` as a function of (z, d, d_turn), its kernel looked up
+    """:func:`pad_load` of ``spec`` as a function of (z, d, d_turn), its kernels looked up
     once: a pad's search sums a few rows dozens of times, and the lookup cost as much as
-    the sums. The same kernel on the same arrays as :func:`contact_load`: the same bits."""
-    if spec.surface.radius_by_height is not None:  # each band's contact and caps, its radius
-
-        def load(z, d, d_turn):
-            turn = None if d_turn is None else np.full_like(d, d_turn)
-            if spec.environment is None:
-                return sums(spec, z, d, turn)[:, sum_columns(spec.law_set).index("load")]
-            return net_load(spec, sums(spec, z, d, turn), d)
-
-        return load
+    the sums. Dry, the same kernel on the same arrays as :func:`contact_load`: the same
+    bits."""
     if spec.environment is not None:
         return split_laws(spec).net
+    if spec.surface.radius_by_height is not None:  # each band of heights with its radius
+        return lambda z, d, d_turn: contact_load(spec, z, d, d_turn)
     kernel = prepared(spec.law_set, spec.arguments, spec.edges)
     column = sum_columns(spec.law_set).index("load")
 
@@ -127,37 +121,72 @@ def _load(contact: Part, z: np.ndarray, d: np.ndarray, d_turn) -> np.ndarray:
     return sums[:, sum_columns(contact.law).index("load")]
 
 
+class Band(NamedTuple):
+    """One band of heights of a humid pad (:class:`Split`): its contact law set and its caps
+    (:func:`contact_parts`, :func:`caps_parts`) and their kernels, looked up once
+    (:func:`mcsim.engine.kernels.prepared`)."""
+
+    contact: Part
+    caps: Part
+    contact_sums: object
+    caps_sums: object
+
+
 class Split:
-    """A humid pad's net load (one summit radius: the first of :func:`contact_parts`) as two
-    sums over its summits, each evaluated only where it acts: the contact law set's
-    (``contact``, with its arguments and edges) over those that can touch, and the
-    environment's caps' (``caps``: a law set of the outputs ``vdw`` and ``capillary``) over
-    every summit within their reach; less the open gaps' attraction times the pad's area.
-    Their kernels are looked up once (:func:`mcsim.engine.kernels.prepared`): a pad's search
-    sums them hundreds of times on a few rows."""
+    """A humid pad's net load as two sums over its summits, each evaluated only where it
+    acts, in each band of heights with its own radius (one band with one summit radius):
+    the contact law set's (``contact``, with its arguments and edges) over those that can
+    touch, and the environment's caps' (``caps``: a law set of the outputs ``vdw`` and
+    ``capillary``) over every summit within their reach; less the open gaps' attraction
+    times the pad's area. Their kernels are looked up once
+    (:func:`mcsim.engine.kernels.prepared`): a pad's search sums them hundreds of times on a
+    few rows. ``contact`` and ``caps`` are the first band's."""
 
     def __init__(self, spec: MonteCarloSpec):
-        self.contact, self.caps = contact_parts(spec)[0], caps_parts(spec)[0]
-        self.contact_sums = prepared(*self.contact)
-        self.caps_sums = prepared(*self.caps)
+        self.bands = tuple(Band(c, k, prepared(*c), prepared(*k))
+                           for c, k in zip(contact_parts(spec), caps_parts(spec)))  # fmt: skip
+        self.contact, self.caps = self.bands[0].contact, self.bands[0].caps
         self.load = sum_columns(self.contact.law).index("load")
         self.attraction = [sum_columns(self.caps.law).index(t) for t in self.caps.law.names]
         self.area, self.sigma, self.gaps = spec.area, spec.surface.sigma, open_gaps(spec)
+        self.radius_by_height = spec.surface.radius_by_height
 
-    def contact_load(self, z: np.ndarray, d: np.ndarray, d_turn=None) -> np.ndarray:
-        """The contact law's load (N) over summits ``z`` (m, contiguous) at ``d`` (m)."""
+    def split(self, z: np.ndarray) -> tuple[np.ndarray, ...]:
+        """The summits ``z`` (m, contiguous) of each band, contiguous, in their order (with one
+        band ``z`` itself)."""
+        if len(self.bands) == 1:
+            return (z,)
+        band = self.radius_by_height.band_of(z / self.sigma)
+        return tuple(np.ascontiguousarray(z[band == k]) for k in range(len(self.bands)))
+
+    def contact_load(self, z: np.ndarray, d: np.ndarray, d_turn=None, band: int = 0):
+        """The contact law's load (N) over summits ``z`` (m, contiguous) of band ``band`` at
+        ``d`` (m)."""
         turn = d if d_turn is None else np.full_like(d, d_turn)
-        return self.contact_sums(z, d, turn)[:, self.load]
+        return self.bands[band].contact_sums(z, d, turn)[:, self.load]
 
-    def caps_load(self, z: np.ndarray, d: np.ndarray) -> np.ndarray:
-        """The caps' attraction (N, > 0) of summits ``z`` (m, contiguous) at ``d`` (m)."""
-        return self.caps_sums(z, d, d)[:, self.attraction].sum(axis=1)
+    def caps_load(self, z: np.ndarray, d: np.ndarray, band: int = 0) -> np.ndarray:
+        """The caps' attraction (N, > 0) of summits ``z`` (m, contiguous) of band ``band`` at
+        ``d`` (m)."""
+        return self.bands[band].caps_sums(z, d, d)[:, self.attraction].sum(axis=1)
 
     def net(self, z: np.ndarray, d: np.ndarray, d_turn=None) -> np.ndarray:
-        """The net load (N) of the pad of summits ``z`` (m) at ``d`` (m), as :func:`pad_load`."""
+        """The net load (N) of the pad of summits ``z`` (m) at ``d`` (m), as :func:`pad_load`:
+        each band's contact load, less each band's caps, less the open gaps."""
         z, d = np.ascontiguousarray(z, dtype=float), np.ascontiguousarray(d, dtype=float)
-        contact = self.contact_load(z, d, d_turn)
-        return contact - self.caps_load(z, d) - self.area * self.gaps(d / self.sigma)
+        zs = self.split(z)
+        contact = total(self.contact_load(zk, d, d_turn, k) for k, zk in enumerate(zs))
+        caps = total(self.caps_load(zk, d, k) for k, zk in enumerate(zs))
+        return contact - caps - self.area * self.gaps(d / self.sigma)
+
+
+def total(terms) -> np.ndarray:
+    """The sum of the arrays ``terms``, from the first on (one term: itself, not 0 + it)."""
+    terms = iter(terms)
+    out = next(terms)
+    for term in terms:
+        out = out + term
+    return out
 
 
 @functools.lru_cache(maxsize=16)
@@ -301,7 +330,9 @@ def contact_edges(spec: MonteCarloSpec) -> Edges:
     """The edges of the contact law alone: where a pad's load can jump or turn sharply.
     The environment's caps add kinks only (their forces are continuous): the search for a
     pad's pull-off and turn samples their intervals inside and does not cut at them."""
-    return spec.edges if spec.environment is None else split_laws(spec).contact.edges
+    if spec.environment is None:
+        return spec.edges
+    return Edges.widest([band.contact.edges for band in split_laws(spec).bands])
 
 
 def smooth_intervals(spec: MonteCarloSpec, z: np.ndarray, low: float, high: float,
