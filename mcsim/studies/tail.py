@@ -423,11 +423,13 @@ def importance_p_stick(spec, restoring_force: float, *, turn: float, preload: fl
     give_up : bool
         Stop the stages where their level (the elite's margin to F_r) does not rise from one
         stage to the next, or rises too slowly to reach F_r in the stages left at its latest
-        pace, and draw no final pads where the stages did not reach the event (the first
-        chain that does not ends the search; the next one would not change the answer):
-        then p_stick is NaN and the effective sample size 0 (the automatic switch's way out
+        pace, and draw no final pads where the first chain's stages did not reach the
+        event (the next chain is then not run): then p_stick is NaN and the effective sample size 0 (the automatic switch's way out
         where F_r lies far beyond any pad: without it, every such point of a sweep spends
-        all the stages and the final pads to find no pad in the event).
+        all the stages and the final pads to find no pad in the event). A later chain that
+        stalls ends its own stages only: the first one found a way into the event, and the
+        later one, kept off that way under force control, found no other; its last tilt
+        joins the mixture as it is (any law does, the defensive part bounds the weights).
 
     Returns
     -------
@@ -481,13 +483,13 @@ def importance_p_stick(spec, restoring_force: float, *, turn: float, preload: fl
             above = (law.edges[:-1] >= turn) & (np.asarray(chains[0].tilt.ratio) > 1)
             cap = np.where(above, 1.0, math.inf)
         chains.append(_cross_entropy(law, c, *zero(c), **options, cap=cap))
-        if give_up and not chains[-1].reached:
-            break  # one chain that cannot reach the event ends the search: no estimate
+        if give_up and not chains[0].reached:
+            break  # the first chain cannot reach the event: no estimate
     evaluations = sum(c.evaluations for c in chains) + (len(chains) * pilot if start is None else 0)
     tilts = tuple(c.tilt for c in chains)
     stages = max(c.stages for c in chains)
     reached = len(chains) == CHAINS and all(c.reached for c in chains)
-    if give_up and not reached:
+    if give_up and not chains[0].reached:
         return TailEstimate(math.nan, math.nan, 0.0, 1.0, 0.0, 0, 0, evaluations, stages, False,
                             event, tilts, law.cut, True)  # fmt: skip
     sizes = mixture(pads)
