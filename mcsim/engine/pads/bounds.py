@@ -249,8 +249,9 @@ class _Curve:
         With a radius by height each group's summits are bounded on their own band's branch.
         The caps attract more the closer (each summit's van der Waals and meniscus force
         rise with δ, whatever its radius: :mod:`mcsim.physics.laws.attraction`), so their
-        sum over every band lies between its values at the two ends; the open gaps' term between the mean of its ends ∓ the spline's
-        steepest slope times half the gap (:func:`open_gap_table`).
+        sum over every band lies between its values at the two ends; the open gaps' term
+        between the mean of its ends ∓ the spline's steepest slope times half the gap
+        (:func:`open_gap_table`).
         Compiled: :func:`mcsim.engine.pads.gaps.environment_bounds` and
         :func:`~mcsim.engine.pads.gaps.branch_bounds`.
         """
