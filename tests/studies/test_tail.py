@@ -344,12 +344,33 @@ def test_the_automatic_switch_gives_up_where_the_stages_cannot_reach_the_event()
                                give_up=True)  # fmt: skip
     assert math.isnan(quick.p_stick) and quick.ess == 0 and quick.pads == 0
     assert not quick.reached and quick.evaluations < CHAINS * 100 * (STAGES + 1)
+    assert quick.evaluations <= 100 * (STAGES + 1)  # the first chain's stages alone
     full = importance_p_stick(_spec(3), far, turn=TURN, pads=400, pilot=100, score=count)
     assert full.pads == 400 and full.evaluations == CHAINS * 100 * (STAGES + 1) + 400
     assert full.p_stick == 0 and full.ess == 0
     # no pad in the event: the nominal pads' own bound, 0 in ⌈0.2 · 400⌉ = 80 final ones and
     # the chains' stages 0 of 100 each
     assert (full.low, full.high) == clopper_pearson(0, 80 + CHAINS * 100)
+
+
+def test_a_later_chain_that_stalls_keeps_the_first_ones_estimate(monkeypatch):
+    # The second chain, kept off the first one's way in under force control, may find no
+    # other and stall: that ends its own stages, not the search (the report's pads at RH 0
+    # fell back to their plain 0 [0, 0.036] this way). Its last tilt joins the mixture.
+    import mcsim.studies.tail as tail
+
+    real = tail._cross_entropy
+
+    def second_stalls(law, c, *args, **kwargs):
+        chain = real(law, c, *args, **kwargs)
+        return dataclasses.replace(chain, reached=False) if c else chain
+
+    options = dict(turn=TURN, pads=400, pilot=100, score=_band_score, give_up=True)
+    both = importance_p_stick(_spec(2), 18.5, **options)
+    monkeypatch.setattr(tail, "_cross_entropy", second_stalls)
+    stalled = importance_p_stick(_spec(2), 18.5, **options)
+    assert both.reached and not stalled.reached
+    assert stalled.p_stick == both.p_stick and stalled.pads == 400 and stalled.ess > 0
 
 
 def test_where_the_chains_disagree_the_plain_fraction_stays(monkeypatch):
