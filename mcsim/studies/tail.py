@@ -200,8 +200,9 @@ class TailEstimate:
     stages : int
         Cross-entropy stages after stage 0.
     reached : bool
-        Whether the last stage's elite lay in the event (else the tilt stopped short of
-        F_r after :data:`STAGES` stages: the estimate is unbiased still, its variance larger).
+        Whether every chain's last stage's elite lay in the event (else a tilt stopped short
+        of F_r after :data:`STAGES` stages, or a later chain stalled: the estimate is
+        unbiased still, its variance larger).
     event : str
         ``"stick"`` or ``"release"``: which side was sampled.
     tilts : tuple of Tilt
@@ -424,9 +425,10 @@ def importance_p_stick(spec, restoring_force: float, *, turn: float, preload: fl
         Stop the stages where their level (the elite's margin to F_r) does not rise from one
         stage to the next, or rises too slowly to reach F_r in the stages left at its latest
         pace, and draw no final pads where the first chain's stages did not reach the
-        event (the next chain is then not run): then p_stick is NaN and the effective sample size 0 (the automatic switch's way out
-        where F_r lies far beyond any pad: without it, every such point of a sweep spends
-        all the stages and the final pads to find no pad in the event). A later chain that
+        event (the next chain is then not run): then p_stick is NaN and the effective
+        sample size 0 (the automatic switch's way out where F_r lies far beyond any pad:
+        without it, every such point of a sweep spends all the stages and the final pads to
+        find no pad in the event). A later chain that
         stalls ends its own stages only: the first one found a way into the event, and the
         later one, kept off that way under force control, found no other; its last tilt
         joins the mixture as it is (any law does, the defensive part bounds the weights).
