@@ -16,6 +16,8 @@ are bounded on its own branches (a group per band and branch, :class:`_Group`).
 from __future__ import annotations
 
 import functools
+from functools import reduce
+from operator import add
 from typing import NamedTuple
 
 import numpy as np
@@ -32,7 +34,6 @@ from mcsim.engine.pads.load import (
     open_gaps,
     pad_load,
     split_laws,
-    total,
 )
 from mcsim.engine.spec import MonteCarloSpec
 from mcsim.model.errors import ParameterError
@@ -220,7 +221,8 @@ class _Curve:
             # what the summits in (d + low, d + falling] add
             sums[:, 2 * j + 1] = 0.0 if b.falling <= b.low else (
                 whole - setup.bands[g.band].above[b.falling](g.z, d, turn)[:, parts.load])  # fmt: skip
-        sums[:, -1] = total(parts.caps_load(zk, d, k) for k, zk in enumerate(self.z))  # no history
+        caps = (parts.caps_load(zk, d, k) for k, zk in enumerate(self.z))
+        sums[:, -1] = reduce(add, caps)  # no history
         gaps = setup.area * setup.gaps(d / setup.sigma)
         net = sums[:, 0:-1:2].sum(axis=1) - sums[:, -1] - gaps
         if self.x.size:

@@ -19,6 +19,8 @@ reach, breakpoints: d = z_i − e, :func:`smooth_intervals`), which the searches
 from __future__ import annotations
 
 import functools
+from functools import reduce
+from operator import add
 from typing import NamedTuple
 
 import numpy as np
@@ -175,18 +177,10 @@ class Split:
         each band's contact load, less each band's caps, less the open gaps."""
         z, d = np.ascontiguousarray(z, dtype=float), np.ascontiguousarray(d, dtype=float)
         zs = self.split(z)
-        contact = total(self.contact_load(zk, d, d_turn, k) for k, zk in enumerate(zs))
-        caps = total(self.caps_load(zk, d, k) for k, zk in enumerate(zs))
+        # summed from the first band on (one band: its sum itself, not 0 + it)
+        contact = reduce(add, (self.contact_load(zk, d, d_turn, k) for k, zk in enumerate(zs)))
+        caps = reduce(add, (self.caps_load(zk, d, k) for k, zk in enumerate(zs)))
         return contact - caps - self.area * self.gaps(d / self.sigma)
-
-
-def total(terms) -> np.ndarray:
-    """The sum of the arrays ``terms``, from the first on (one term: itself, not 0 + it)."""
-    terms = iter(terms)
-    out = next(terms)
-    for term in terms:
-        out = out + term
-    return out
 
 
 @functools.lru_cache(maxsize=16)
