@@ -145,7 +145,7 @@ def pad_static_friction(spec, s: np.ndarray, *, turn: float, preload: float | No
 
 
 def tail_p_slip(spec, statistics: FrictionStatistics, *, turn: float, preload: float | None,
-                tail: bool | None, start=None) -> dict:  # fmt: skip
+                tail: bool | None, start=None, floor: float = 0.0) -> dict:  # fmt: skip
     """p_slip of the pads of ``spec``: the plain pads' fraction, or importance sampling.
 
     As :func:`mcsim.studies.pads.tail_p_stick` for p_stick, with T_s in place of the
@@ -167,6 +167,8 @@ def tail_p_slip(spec, statistics: FrictionStatistics, *, turn: float, preload: f
     start : tuple, optional
         The plain pads as stage 0: their heights above :func:`mcsim.studies.tail.cut` (σ)
         and T_s (N).
+    floor : float
+        As for :func:`mcsim.studies.pads.tail_p_stick`.
 
     Returns
     -------
@@ -188,4 +190,5 @@ def tail_p_slip(spec, statistics: FrictionStatistics, *, turn: float, preload: f
         start = (start[0], -np.asarray(start[1]))
     return rare_event(spec, "p_slip", statistics.pads, statistics.p_slip,
                       statistics.p_slip_ci, -statistics.tangential_force, turn=turn,
-                      preload=preload, tail=tail, start=start, score=score)  # fmt: skip
+                      preload=preload, tail=tail, start=start, score=score,
+                      floor=floor)  # fmt: skip

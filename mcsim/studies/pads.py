@@ -187,7 +187,7 @@ FEW_CONTACTS = 10
 
 def finite_pads(spec, restoring_force: float | None, *, preload: float | None = None, turn: float,
                 h_pull_off: float, tail: bool | None = None, friction: bool = False,
-                tangential_force: float | None = None) -> dict:  # fmt: skip
+                tangential_force: float | None = None, floor: float = 0.0) -> dict:  # fmt: skip
     """Pull-off statistics of the ``spec.realizations`` pads of a cycle spec, as sweep variables.
 
     Each pad's summits are drawn from ``spec``'s seed as a ``--cycle`` run of the same spec
@@ -219,6 +219,8 @@ def finite_pads(spec, restoring_force: float | None, *, preload: float | None = 
     tangential_force : float, optional
         F, N (implies ``friction``): also p_slip = P(T_s < F), the keys of
         :data:`~mcsim.store.sweepvariables.SLIP` and ``p_slip_method``.
+    floor : float
+        As for :func:`tail_p_stick` (p_stick and p_slip).
 
     Returns
     -------
@@ -268,12 +270,12 @@ def finite_pads(spec, restoring_force: float | None, *, preload: float | None = 
         out |= friction_study.variables(f)
         if tangential_force is not None:
             out |= friction_study.tail_p_slip(spec, f, turn=turn, preload=preload, tail=tail,
-                                              start=(highs, static))  # fmt: skip
+                                              start=(highs, static), floor=floor)  # fmt: skip
     s = pad_statistics(force, restoring_force)
     q05, q50, q95 = np.quantile(work, QUANTILES)  # signed (J/m²): not pad_statistics' forces
     if restoring_force is not None:
         out |= tail_p_stick(spec, s, restoring_force, turn=turn, preload=preload, tail=tail,
-                            start=(highs, force))  # fmt: skip
+                            start=(highs, force), floor=floor)  # fmt: skip
         model = (p_stick_model(spec, restoring_force, turn=turn, h_pull_off=h_pull_off,
                                preload=preload) if math.isfinite(h_pull_off) else 0.0)  # fmt: skip
         out["p_stick_model"] = min(max(model, 0.0), 1.0)
@@ -290,7 +292,8 @@ def finite_pads(spec, restoring_force: float | None, *, preload: float | None = 
 
 
 def tail_p_stick(spec, statistics: PadStatistics, restoring_force: float, *, turn: float,
-                 preload: float | None, tail: bool | None, start=None) -> dict:  # fmt: skip
+                 preload: float | None, tail: bool | None, start=None,
+                 floor: float = 0.0) -> dict:  # fmt: skip
     """p_stick of the pads of ``spec``: the plain pads' fraction, or importance sampling.
 
     Importance sampling (:func:`mcsim.studies.tail.importance_p_stick`, max(n,
@@ -318,6 +321,10 @@ def tail_p_stick(spec, statistics: PadStatistics, restoring_force: float, *, tur
     start : tuple, optional
         The plain pads as stage 0: their heights above :func:`mcsim.studies.tail.cut` (σ)
         and pull-off (N); else the tail draws its own.
+    floor : float
+        Importance sampling resolves the probability only down to it: where its stages show
+        the rarer side below ``floor`` it stops and gives that bound
+        (:func:`mcsim.studies.tail.importance_p_stick`); 0: to the estimate.
 
     Returns
     -------
@@ -334,7 +341,7 @@ def tail_p_stick(spec, statistics: PadStatistics, restoring_force: float, *, tur
     """
     return rare_event(spec, "p_stick", statistics.pads, statistics.p_stick,
                       statistics.p_stick_ci, restoring_force, turn=turn, preload=preload,
-                      tail=tail, start=start)  # fmt: skip
+                      tail=tail, start=start, floor=floor)  # fmt: skip
 
 
 @dataclass(frozen=True)

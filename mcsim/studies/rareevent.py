@@ -6,7 +6,7 @@ measurements are in validation/README.md ("Importance sampling of pads")."""
 from __future__ import annotations
 
 from mcsim.model.errors import ParameterError
-from mcsim.studies.tail import importance_p_stick
+from mcsim.studies.tail import MIN_ESS, importance_p_stick
 
 #: Fewer pads than this on the rarer side (sticking or not) switch p_stick to importance
 #: sampling by itself (``tail=None``): on the few-summit pads of issue 31 its intervals (the
@@ -28,18 +28,13 @@ TAIL_PADS = 2000
 #: pads fit the tilt's 16 bins.
 TAIL_PILOT = 300
 
-#: Smallest effective sample size of importance sampling that replaces the fraction: below
-#: it a few heavy weights decide p̂ and its interval does not cover (measured: 100
-#: pads of σ = 1.5 nm gave 1 − p̂ = 0.003 [0.0006, 0.0054] at an ESS of 5.9, against a
-#: brute-force 18 of 2000 = 0.009 and 0.010–0.013 from 1000 pads at an ESS of ~50).
-MIN_ESS = 30
-
 #: How p_stick was estimated: the fraction of plain pads, or importance sampling.
 METHODS = ("pads", "importance")
 
 
 def rare_event(spec, name: str, n: int, p: float, ci, threshold: float, *, turn: float,
-               preload: float | None, tail: bool | None, start=None, score=None) -> dict:  # fmt: skip
+               preload: float | None, tail: bool | None, start=None, score=None,
+               floor: float = 0.0) -> dict:  # fmt: skip
     """The probability ``name`` (``p_stick``, ``p_slip``) of the pads of ``spec`` whose score
     (their pull-off, or ``score``) exceeds ``threshold``: the plain fraction ``p`` of ``n`` pads
     with its interval ``ci``, or importance sampling, by the rules of :func:`mcsim.studies.pads.tail_p_stick`.
@@ -64,7 +59,7 @@ def rare_event(spec, name: str, n: int, p: float, ci, threshold: float, *, turn:
                                   pads=max(n, TAIL_PADS), pilot=max(TAIL_PILOT, n // 10),
                                   start=start if n >= TAIL_PILOT else None,
                                   event="stick" if k <= n - k else "release",
-                                  give_up=tail is None, score=score)  # fmt: skip
+                                  give_up=tail is None, score=score, floor=floor)  # fmt: skip
     if estimate.ess < MIN_ESS or not estimate.agree:
         return plain
     return {name: estimate.p_stick, f"{name}_low": estimate.low, f"{name}_high": estimate.high,

@@ -54,6 +54,14 @@ CONTACT_LOADS = (1e-4, 10**-3.5, 1e-3, 10**-2.5, 1e-2)
 #: Most relative humidities in one report.
 MAX_RH = 50
 
+#: Devices of the lot below which importance sampling stops resolving p_stick: where its
+#: stages show the rarer side (sticking, or not) below RESOLUTION/N, fewer than RESOLUTION
+#: devices of N are expected on it, and the report gives that bound instead of an estimate
+#: (the sweep's ``floor``; :func:`mcsim.studies.tail.importance_p_stick`). At RH ≥ 0.5 on the
+#: README's scan every pad sticks: without it the release side's stages went on to 1 − p ≈
+#: 5e-10 (7100 pads, 200 s an RH) for an effective sample size below MIN_ESS, thrown away.
+RESOLUTION = 0.01
+
 
 @dataclass(frozen=True)
 class Report:
@@ -377,7 +385,7 @@ def report(
         result = sweep(surface, material, {"rh": list(rh)}, law=law, environment=env,
                        pads=pads, area=area, preload=pressure, restoring_force=force,
                        friction=friction, seed=seed, workers=workers, progress=progress,
-                       command=command)  # fmt: skip
+                       command=command, floor=RESOLUTION / devices)  # fmt: skip
     if result.failed:
         inputs, message = result.failed[0]
         raise ParameterError(f"pads at rh = {inputs.get('rh')}: {message}")

@@ -104,6 +104,15 @@ def check_monte_carlo(mc: bool, pads, area, names, realizations, device, schedul
     return area_m2
 
 
+def check_floor(floor, pads) -> float:
+    """``floor`` (importance sampling's floor) as a probability in [0, 1), given with pads only."""
+    if isinstance(floor, bool) or not isinstance(floor, int | float) or not 0 <= floor < 1:
+        raise ParameterError(f"floor = {floor!r}: out of range (allowed: a probability in [0, 1))")
+    if floor and pads is None:
+        raise ParameterError("floor applies to the pads only (add pads=N, --pads N)")
+    return float(floor)
+
+
 def check_pads(pads, restoring_force, preload, turn, varied: bool, tail=None,
                 friction: bool = False, preload_varied: bool = False
                 ) -> tuple[float | None, float | None]:  # fmt: skip

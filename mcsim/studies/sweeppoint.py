@@ -160,6 +160,7 @@ class Config:
     tail: bool | None = None
     friction: bool = False
     tangential_force: float | None = None
+    floor: float = 0.0
 
 
 def make_point(base_surface, base_material, base_environment, law, area, names, values,
@@ -267,7 +268,8 @@ def _pads(point: Point, config: Config, law: str, turn: float, h_pull_off: float
     force = config.restoring_force if point.restoring_force is None else point.restoring_force
     lateral = config.tangential_force if point.tangential_force is None else point.tangential_force
     return finite_pads(spec, force, preload=preload, turn=turn, h_pull_off=h_pull_off,
-                       tail=config.tail, friction=config.friction, tangential_force=lateral)  # fmt: skip
+                       tail=config.tail, friction=config.friction, tangential_force=lateral,
+                       floor=config.floor)  # fmt: skip
 
 
 def pads_seed(entropy: int, index: int) -> int:

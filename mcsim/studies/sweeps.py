@@ -67,6 +67,7 @@ from mcsim.store.sweepvariables import (
 )
 from mcsim.studies.runoptions import check_checkpoint_every, check_workers
 from mcsim.studies.sweepinputs import (
+    check_floor,
     check_friction,
     check_monte_carlo,
     check_pads,
@@ -106,6 +107,7 @@ def sweep(
     restoring_force: float | str | None = None,
     preload: float | str | None = None,
     tail: bool | None = None,
+    floor: float = 0.0,
     friction: bool = False,
     tangential_force: float | str | None = None,
     area: float | str | None = None,
@@ -179,6 +181,11 @@ def sweep(
         where the pads see fewer than 10 on the rarer side (None, needs >= 100 pads, else the
         fraction stays), at every point (True, needs >= 100 pads) or never (False); variables
         ``p_stick_method`` and ``p_stick_ess`` (:func:`mcsim.studies.pads.tail_p_stick`).
+    floor : float
+        With ``pads``: importance sampling resolves p_stick (and p_slip) only down to this
+        probability, in [0, 1): where its stages show the rarer side below it, it stops and
+        gives that bound (:func:`mcsim.studies.tail.importance_p_stick`; ``mcsim report``
+        sets 0.01 over the devices of the lot). 0: to the estimate.
     friction : bool
         With ``pads``: also each pad's static friction at its turn and μ_s
         (:mod:`mcsim.studies.padfriction`; variables
@@ -264,6 +271,7 @@ def sweep(
     restoring_force, preload = check_pads(pads, restoring_force, preload, turn,
                                            "restoring_force" in names, tail, friction,
                                            "preload" in names)  # fmt: skip
+    floor = check_floor(floor, pads)
     checkpoint_every = check_checkpoint_every(checkpoint_every)
     workers = check_workers(workers)
     law = "seed" if law is None else law
@@ -297,7 +305,7 @@ def sweep(
             seed = recorded_seed(claim)
         entropy = np.random.SeedSequence(seed).entropy if mc or pads else None
         config = Config(h, turn, mc, realizations, entropy, device, pads, restoring_force, preload,
-                        tail, friction, tangential_force)  # fmt: skip
+                        tail, friction, tangential_force, floor)  # fmt: skip
         result = _empty_result(material, law, names, dims, grid, config, environment is not None,
                                "restoring_force" in names, "tangential_force" in names)  # fmt: skip
         if command is None:
@@ -488,7 +496,8 @@ def _pads_attrs(config: Config, area, names=()) -> dict:
                   "pads_streams": "point i: SeedSequence(seed_entropy, spawn_key=(i, 1)), i the "
                                   "point's index without its environment and restoring-force "
                                   f"dimensions{shared} (the same pads there)",
-                  "p_stick_tail": {None: "auto", True: "importance", False: "pads"}[config.tail]}  # fmt: skip
+                  "p_stick_tail": {None: "auto", True: "importance", False: "pads"}[config.tail],
+                  "p_stick_floor": config.floor}  # fmt: skip
     return attrs
 
 

@@ -18,7 +18,7 @@ import pytest
 import mcsim
 from mcsim.model.errors import MCSimError, ParameterError
 from mcsim.studies.intervals import clopper_pearson
-from mcsim.studies.report import lot
+from mcsim.studies.report import RESOLUTION, lot
 
 SCAN = Path(__file__).resolve().parents[2] / "examples" / "scan.npy"
 
@@ -222,6 +222,23 @@ def test_bad_inputs_get_one_line(change, message):
     with pytest.raises(ParameterError, match=message) as err:
         mcsim.report(SCAN, **(SMALL | change))
     assert "\n" not in str(err.value)
+
+
+def test_importance_sampling_resolves_p_stick_to_a_hundredth_of_a_device(monkeypatch):
+    # The lot's resolution (RESOLUTION devices of N) is the sweep's floor: importance
+    # sampling stops where it shows fewer than 0.01 of the N devices on the rarer side.
+    import mcsim.studies.sweeps
+
+    asked = []
+
+    def stop(*args, **options):
+        asked.append(options["floor"])
+        raise KeyboardInterrupt  # the floor is all this test needs
+
+    monkeypatch.setattr(mcsim.studies.sweeps, "sweep", stop)
+    with pytest.raises(KeyboardInterrupt):
+        mcsim.report(SCAN, **(SMALL | {"devices": 400}))
+    assert asked == [RESOLUTION / 400] == [2.5e-5]
 
 
 def test_a_spring_gives_the_restoring_force():

@@ -151,7 +151,11 @@ def test_sweep_preload_turns_where_the_mean_approach_load_balances_it_at_every_p
      ({"pads": 10, "restoring_force": "1uN"}, "pads needs the patch area"),
      ({"preload": "1MPa", "turn": 1.0}, "turn and preload"),
      ({"preload": "-1MPa"}, "preload"),
-     ({"pads": 10, "area": "30um^2", "restoring_force": "-1uN"}, "restoring_force")],
+     ({"pads": 10, "area": "30um^2", "restoring_force": "-1uN"}, "restoring_force"),
+     ({"floor": 1e-6}, "floor applies to the pads only"),
+     *(({"pads": 10, "area": "30um^2", "restoring_force": "1uN", "floor": f},
+        rf"floor = {f!r}: out of range \(allowed: a probability in \[0, 1\)\)")
+       for f in (-1e-6, 1.0, math.nan, True, "1e-6"))],
 )  # fmt: skip
 def test_bad_pads_options_are_one_line_errors_naming_the_field(options, match):
     with pytest.raises(MCSimError, match=match):

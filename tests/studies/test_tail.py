@@ -176,6 +176,45 @@ def test_a_rare_release_is_estimated_as_one_minus_its_probability():
     assert abs(e.p_stick - p) < 5 * e.se and e.low <= e.p_stick <= e.high <= 1.0, (e, p)
 
 
+def test_a_floor_above_the_event_bounds_it_after_fewer_pads():
+    # p ≈ 2.5e-10 and a floor of 1e-4: every chain's stages show the event below the floor
+    # (the interval of a level the event lies within) and stop there, in each of 12 seeds:
+    # p_stick 0, its interval [0, bound] with p <= bound < floor, no final pads.
+    m = 40
+    p = _exact(m)
+    full = _estimate(0, m, pads=2000, pilot=300)
+    assert not full.bounded and full.low <= p <= full.high
+    for seed in range(12):
+        e = _estimate(seed, m, pads=2000, pilot=300, floor=1e-4)
+        assert e.bounded and e.p_stick == 0 == e.low and p <= e.high < 1e-4, (seed, e)
+        assert e.ess >= MIN_ESS and e.pads == 0 and e.evaluations < full.evaluations, (seed, e)
+        assert all(c[2] <= e.high for c in e.chains) and not e.reached
+
+
+def test_a_floor_below_the_event_changes_nothing():
+    # p ≈ 1.3e-4 above a floor of 1e-6: the same estimate, bit for bit, as without a floor.
+    m = 26
+    assert _exact(m) > 1e-5
+    assert _estimate(3, m, pads=1000, pilot=300, floor=1e-6) == _estimate(3, m, pads=1000,
+                                                                          pilot=300)  # fmt: skip
+
+
+def test_a_release_below_the_floor_is_bounded_from_one():
+    # Score: the summits in the band; fewer than 1 (Poisson mean 13: 1 − p ≈ 2e-6) is the
+    # rare side, below a floor of 1e-2: p_stick 1, its interval [1 − bound, 1].
+    lam = SURFACE.eta * 30e-12 * float(SURFACE.heights.sf(BAND[0]) - SURFACE.heights.sf(BAND[1]))
+    q = math.exp(-lam)
+    assert q < 1e-5
+
+    def band(s):
+        return float(np.count_nonzero((s > BAND[0]) & (s <= BAND[1])))
+
+    e = importance_p_stick(_spec(7), 0.5, turn=TURN, pads=2000, pilot=300, score=band,
+                           event="release", floor=1e-2)  # fmt: skip
+    assert e.bounded and e.event == "release" and e.p_stick == 1 == e.high, e
+    assert 1 - 1e-2 < e.low <= 1 - q, (e, q)
+
+
 def test_same_seed_is_bit_identical_whatever_the_workers():
     one = _estimate(9, 19, pads=300, pilot=200)
     two = _estimate(9, 19, pads=300, pilot=200, workers=2)
