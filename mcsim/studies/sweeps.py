@@ -496,8 +496,9 @@ def _pads_attrs(config: Config, area, names=()) -> dict:
                   "pads_streams": "point i: SeedSequence(seed_entropy, spawn_key=(i, 1)), i the "
                                   "point's index without its environment and restoring-force "
                                   f"dimensions{shared} (the same pads there)",
-                  "p_stick_tail": {None: "auto", True: "importance", False: "pads"}[config.tail],
-                  "p_stick_floor": config.floor}  # fmt: skip
+                  "p_stick_tail": {None: "auto", True: "importance", False: "pads"}[config.tail]}  # fmt: skip
+        if config.floor:  # importance sampling's floor (only where given: older files have none)
+            attrs["p_stick_floor"] = config.floor
     return attrs
 
 
