@@ -7,7 +7,7 @@ import sys
 from pathlib import Path
 
 from mcsim.cli.display import announce
-from mcsim.cli.options import add_environment, integer
+from mcsim.cli.options import add_environment, add_parallel, integer
 from mcsim.model.errors import ParameterError
 
 
@@ -27,6 +27,7 @@ def run(args) -> int:
     from mcsim.engine import interrupt
     from mcsim.store.outputs import check_output, write_atomic
     from mcsim.studies.report import report
+    from mcsim.studies.reportpage import shown
 
     html, json_path = _outputs(args)
     for path in (html, json_path):  # refused before any work
@@ -39,7 +40,8 @@ def run(args) -> int:
         rh=args.rh, devices=args.devices, law=args.law, pads=args.pads,
         environment=environment,
         unit=args.unit, pixel_size=args.pixel_size, channel=args.channel, seed=args.seed,
-        workers=args.workers, progress=not args.quiet, command=args.command_line,
+        workers=args.workers, scheduler=args.scheduler or args.dask, progress=not args.quiet,
+        command=args.command_line,
     )  # fmt: skip
     texts = {json_path: result.to_json(), html: result.to_html()}
     fresh = [path for path in texts if not path.exists()]
@@ -56,9 +58,10 @@ def run(args) -> int:
     for path in texts:
         announce(path, quiet=args.quiet)
     for i, row in enumerate(result.rows):  # the results on standard output
-        print(f"RH {row['rh']:g}: p_stick {row['p_stick']:.3g} [{row['p_stick_low']:.3g}, "
-              f"{row['p_stick_high']:.3g}], P(any of {result.device['devices']} stuck) "
-              f"{row['p_any']:.3g} [{row['p_any_low']:.3g}, {row['p_any_high']:.3g}]"
+        p, p_any = (", ".join(shown(row[k + x], 3) for x in ("_low", "_high"))
+                    for k in ("p_stick", "p_any"))  # fmt: skip
+        print(f"RH {row['rh']:g}: p_stick {shown(row['p_stick'], 3)} [{p}], P(any of "
+              f"{result.device['devices']} stuck) {shown(row['p_any'], 3)} [{p_any}]"
               + ("" if i else f"  (report made in {result.elapsed:.1f} s)"),
               file=sys.stdout)  # fmt: skip
     return 0
@@ -104,7 +107,7 @@ def add_parser(sub) -> None:
     d.add_argument("--pads", metavar="N", type=integer(1), default=100,
                    help="pads per RH (>= 100: importance sampling where the answer is rare)")  # fmt: skip
     d.add_argument("--seed", type=integer(0), help="root seed of the pads (recorded)")
-    d.add_argument("--workers", type=integer(1, 1024), help="worker threads (all cores by default)")
+    add_parallel(d, "worker threads of the pads, or with --dask local processes")
     add_environment(p, rh=False)
     p.add_argument("--out", metavar="FILE.html", help="the report (default SCAN-report.html in "
                    "the current folder); the JSON file goes beside it, FILE.json")  # fmt: skip

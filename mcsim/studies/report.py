@@ -272,6 +272,7 @@ def report(
     channel: str | None = None,
     seed: int | None = None,
     workers: int | None = None,
+    scheduler=None,
     progress: bool = False,
     command: str | None = None,
 ) -> Report:
@@ -310,7 +311,11 @@ def report(
     seed : int, optional
         Root seed of the pads (recorded).
     workers : int, optional
-        Worker threads of the pads.
+        Worker threads of the pads (processes of a local Dask cluster).
+    scheduler : str or dask.distributed.Client, optional
+        Run the RH values on Dask: ``"local"`` (a local cluster of ``workers`` processes), a
+        scheduler address or a client, as in :func:`mcsim.sweep`; the numbers do not depend
+        on it.
     progress : bool
         Stages and a progress bar over the RH values on stderr.
     command : str, optional
@@ -384,8 +389,8 @@ def report(
         python_warnings.simplefilter("ignore", ValidityWarning)
         result = sweep(surface, material, {"rh": list(rh)}, law=law, environment=env,
                        pads=pads, area=area, preload=pressure, restoring_force=force,
-                       friction=friction, seed=seed, workers=workers, progress=progress,
-                       command=command, floor=RESOLUTION / devices)  # fmt: skip
+                       friction=friction, seed=seed, workers=workers, scheduler=scheduler,
+                       progress=progress, command=command, floor=RESOLUTION / devices)  # fmt: skip
     if result.failed:
         inputs, message = result.failed[0]
         raise ParameterError(f"pads at rh = {inputs.get('rh')}: {message}")

@@ -31,13 +31,25 @@ p.meta { color: #555; font-size: 0.9em; }
 """
 
 
-def _number(value, key: str, scale: float = 1.0) -> str:
-    """A table cell for the JSON value at ``key``, shown divided by ``scale``."""
+def shown(p: float, digits: int = DIGITS) -> str:
+    """A probability ``p`` to ``digits`` significant digits; within 1e-3 of 1 (not 1) as
+    ``1 − q``, q = 1 − p to those digits, which p's own digits would round away (p_stick
+    bounded at 1 − 9.553e-06 would show as 1)."""
+    if 1 - 1e-3 < p < 1:
+        return f"1 − {1 - p:.{digits}g}"
+    return f"{p:.{digits}g}"
+
+
+def _number(value, key: str, scale: float = 1.0, probability: bool = False) -> str:
+    """A table cell for the JSON value at ``key``, shown divided by ``scale`` (a
+    ``probability`` near 1 as 1 − q, :func:`shown`)."""
     attrs = f' data-key="{html.escape(key)}"'
     if scale != 1.0:
         attrs += f' data-scale="{scale:g}"'
     if value is None or (isinstance(value, float) and not math.isfinite(value)):
         return f"<td{attrs}>n/a</td>"
+    if probability:
+        return f"<td{attrs}>{shown(value)}</td>"
     return f"<td{attrs}>{value / scale:.{DIGITS}g}</td>"
 
 
@@ -83,11 +95,14 @@ def _devices(report) -> str:
     for i, r in enumerate(report.rows):
         k = f"rows.{i}"
         cells = [_number(r["rh"], f"{k}.rh")]
-        cells += [_number(r[x], f"{k}.{x}") for x in ("p_stick", "p_stick_low", "p_stick_high")]
+        cells += [_number(r[x], f"{k}.{x}", probability=True)
+                  for x in ("p_stick", "p_stick_low", "p_stick_high")]  # fmt: skip
         cells.append(_text(r["p_stick_method"]))
-        cells += [_number(r[x], f"{k}.{x}") for x in (
-            "expected_stuck", "expected_stuck_low", "expected_stuck_high", "p_any", "p_any_low",
-            "p_any_high", "rh_margin")]  # fmt: skip
+        cells += [_number(r[x], f"{k}.{x}")
+                  for x in ("expected_stuck", "expected_stuck_low", "expected_stuck_high")]  # fmt: skip
+        cells += [_number(r[x], f"{k}.{x}", probability=True)
+                  for x in ("p_any", "p_any_low", "p_any_high")]  # fmt: skip
+        cells.append(_number(r["rh_margin"], f"{k}.rh_margin"))
         cells.append(_number(r["pull_off_mean"], f"{k}.pull_off_mean", 1e-6))
         cells.append(_number(r["work_of_separation_mean"], f"{k}.work_of_separation_mean", 1e-3))
         if friction:

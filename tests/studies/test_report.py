@@ -14,11 +14,13 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from conftest import run_cli
 
 import mcsim
 from mcsim.model.errors import MCSimError, ParameterError
 from mcsim.studies.intervals import clopper_pearson
 from mcsim.studies.report import RESOLUTION, lot
+from mcsim.studies.reportpage import shown
 
 SCAN = Path(__file__).resolve().parents[2] / "examples" / "scan.npy"
 
@@ -90,8 +92,18 @@ def test_every_number_of_the_page_is_the_jsons(small):
         if value is None:
             assert text == "n/a", key
             continue
+        if text.startswith("1 − "):  # a probability near 1: its complement to 4 digits
+            assert 1 - value == pytest.approx(float(text[4:]), rel=5.1e-4), f"{key}: {text}"
+            continue
         shown = float(text) * scale  # 4 significant digits: within half a unit of the 4th
         assert shown == pytest.approx(value, rel=5.1e-4, abs=1e-300), f"{key}: {text} vs {value}"
+
+
+def test_a_probability_near_one_shows_its_complement():
+    # p_stick bounded at 1 − 9.553e-06 would show as 1 to 4 digits, its bound lost.
+    assert shown(0.9999904467778564) == "1 − 9.553e-06"
+    assert shown(0.998) == "0.998" and shown(1.0) == "1" and shown(0.0) == "0"
+    assert shown(0.99999, 3) == "1 − 1e-05"
 
 
 def test_the_page_is_self_contained(small):
@@ -241,6 +253,24 @@ def test_importance_sampling_resolves_p_stick_to_a_hundredth_of_a_device(monkeyp
     assert asked == [RESOLUTION / 400] == [2.5e-5]
 
 
+def test_the_rh_values_run_on_dask_where_asked(monkeypatch, capsys):
+    # --dask local / --scheduler reach the pads' sweep, which runs its points there (the
+    # sweep's own tests check that Dask gives the same numbers as threads).
+    import mcsim.studies.sweeps
+
+    asked = []
+
+    def stop(*args, **options):
+        asked.append((options["scheduler"], options["workers"]))
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(mcsim.studies.sweeps, "sweep", stop)
+    code, _, _ = run_cli(capsys, "report", SCAN, "--unit", "m", "--pixel-size", "10nm",
+                         "--pad-area", "10um^2", "--restoring-force", "10uN", "--dask", "local",
+                         "--workers", 2, "--rh", 0)  # fmt: skip
+    assert code == 130 and asked == [("local", 2)]
+
+
 def test_a_spring_gives_the_restoring_force():
     from mcsim.studies.report import restoring_force_of
 
@@ -297,8 +327,8 @@ def test_the_page_renders_in_a_real_browser(small, tmp_path):
     assert layout["width"] <= layout["viewport"]  # nothing wider than the window: no clipping
     assert all(right <= layout["viewport"] for right in layout["tables"])
     assert len(layout["images"]) == 2
-    for complete, natural, shown in layout["images"]:
-        assert complete and natural > 0 and 0.5 * min(natural, 1000) < shown <= natural
+    for complete, natural, drawn in layout["images"]:
+        assert complete and natural > 0 and 0.5 * min(natural, 1000) < drawn <= natural
     assert layout["font"] >= 12  # table text in readable pixels
     image = np.asarray(Image.open(shot).convert("RGB"), dtype=int)
     ink = np.any(image < 200, axis=2)
