@@ -510,6 +510,14 @@ def test_when_importance_sampling_replaces_the_fraction_of_the_pads():
     check_exact(r"where its effective sample size `p_stick_ess` is at least (\d+);", MIN_ESS)
 
 
+def test_the_report_resolves_p_stick_to_its_resolution():
+    from mcsim.studies.report import DEFAULT_PADS, RESOLUTION
+
+    check_exact(r"resolves p_stick to (\S+) devices of the lot: where it shows the rarer side "
+                r"below (\S+)/N", RESOLUTION, RESOLUTION)  # fmt: skip
+    check_exact(r"simulates `--pads` pads \((\d+)\) at each RH", DEFAULT_PADS)
+
+
 @pytest.mark.slow
 def test_tail_example(tmp_path):
     # the guide's sweep of "Far in the tail: importance sampling" (about 50 s of CPU)
