@@ -9,6 +9,7 @@ numbers do not depend on where the tasks run.
 from __future__ import annotations
 
 import contextlib
+import logging
 from collections.abc import Iterator
 
 from mcsim.model.errors import MCSimError
@@ -23,8 +24,6 @@ def _quiet_shutdown() -> Iterator[None]:
     process 4 s to exit and then kill it, warning "Worker process still alive after 4.0
     seconds, killing" once per worker, which happens with many processes on few cores
     (each tears down NumPy and numba). Every result is in by then; nothing is lost."""
-    import logging
-
     logger = logging.getLogger("distributed")
     level = logger.level
     logger.setLevel(logging.ERROR)
@@ -52,9 +51,9 @@ def dask_client(scheduler: str, workers: int | None = None) -> Iterator[object]:
     except ImportError:
         raise MCSimError("Dask is not installed: pip install 'mcsim[dask]'") from None
     if scheduler == "local":
-        cluster = LocalCluster(
-            n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None
-        )
+        # the workers' own WARNING lines (a task cancelled by Ctrl-C, ...) are not the user's
+        cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
+                               dashboard_address=None, silence_logs=logging.ERROR)  # fmt: skip
         try:
             with Client(cluster) as client:
                 yield client

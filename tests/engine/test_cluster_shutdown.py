@@ -23,3 +23,22 @@ def test_closing_a_local_cluster_that_kills_a_slow_worker_prints_no_warning(capf
         client.run(_exit_slowly)
     err = capfd.readouterr().err + caplog.text  # distributed's handler, or pytest's
     assert "still alive" not in err and "killing" not in err, err
+
+
+def _warn_from_the_worker() -> None:
+    import logging
+
+    logging.getLogger("distributed.worker").warning("a worker's own warning")
+
+
+def test_a_local_clusters_workers_print_no_warning_lines(capfd, caplog):
+    # Ctrl-C during `mcsim report --dask local` cancels the workers' tasks, and each worker
+    # warned "Async instruction ... ended with CancelledError" on stderr under the one line
+    # "interrupted; no output written". A worker's warning stands for those here.
+    pytest.importorskip("distributed", reason="Dask (extra 'dask') not installed")
+    from mcsim.engine.cluster import dask_client
+
+    with dask_client("local", workers=1) as client:
+        client.run(_warn_from_the_worker)
+    err = capfd.readouterr().err + caplog.text
+    assert "a worker's own warning" not in err, err
