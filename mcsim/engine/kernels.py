@@ -323,15 +323,20 @@ def _kernel(outputs: tuple[Output, ...], legacy: bool, counting: bool, linear_ro
     accumulate = _accumulate(_terms(len(outputs)))
     zero = (0.0,) * len(_terms(len(outputs)))
 
-    def sweep(z, d, d_turn, thr_desc, order, out, jump_in, break_off, *u):
-        """Summits are first bucketed by the first row (in descending order of the rows'
-        thresholds) at which they can carry force (a counting sort), so that for the k-th
+    def sweep(z, d, d_turn, reach, jump_in, break_off, out, *u):
+        """Each row's threshold (:meth:`~mcsim.physics.laws.Edges.threshold` of the edges
+        ``reach``, ``jump_in``, ``break_off``) and the rows in descending order of it (a
+        stable sort) come first. Summits are then bucketed by the first row (in that order)
+        at which they can carry force (a counting sort), so that for the k-th
         row the summits to evaluate are a prefix of the bucketed array. The loop over that
         prefix evaluates the laws and accumulates the moments in registers; LLVM vectorises
         it (the ``reassoc`` flag lets it reorder the sums, in a fixed way for a given block,
         so the result stays bit-reproducible). Pairs that cannot carry force are never
         evaluated. Results go to the rows' original positions.
         """
+        threshold = np.minimum(d + reach, np.maximum(d_turn + jump_in, d + break_off))
+        order = np.argsort(-threshold, kind="mergesort")
+        thr_desc = threshold[order]
         n, m = z.size, thr_desc.size
         first = np.empty(n, np.int64)  # index of the first row at which the summit counts
         offsets = np.zeros(m + 3, np.int64)  # [lo + 2]: lo = m (never counts) included
@@ -570,30 +575,10 @@ def prepared(law: LawSet, args, edges: Edges | None = None):
     parameters = tuple(args[i][j] for i, j in _parameters(law.outputs, law.legacy_kernel)[0])
     columns = len(sum_columns(law))
     reach, jump_in, break_off = float(edges.reach), float(edges.jump_in), float(edges.break_off)
-    ordered = _ordered_thresholds()
 
     def sums(z: np.ndarray, d: np.ndarray, d_turn: np.ndarray) -> np.ndarray:
-        threshold, order = ordered(d, d_turn, reach, jump_in, break_off)
         out = np.zeros((d.size, columns))
-        kernel(z, d, d_turn, threshold, order, out, jump_in, break_off, *parameters)
+        kernel(z, d, d_turn, reach, jump_in, break_off, out, *parameters)
         return out
 
     return sums
-
-
-@functools.cache
-def _ordered_thresholds():
-    """The compiled ``(d, d_turn, reach, jump_in, break_off) -> (threshold, order)`` of
-    :func:`prepared`: each row's :meth:`~mcsim.physics.laws.Edges.threshold` and the rows in
-    descending order of it (a stable sort), the thresholds in that order. One call in place
-    of the six NumPy ones it replaces, which cost a pad's search more than their work on its
-    few rows (the same arithmetic, so the same bits)."""
-    import numba
-
-    @numba.njit(nogil=True, cache=True)
-    def ordered(d, d_turn, reach, jump_in, break_off):
-        threshold = np.minimum(d + reach, np.maximum(d_turn + jump_in, d + break_off))
-        order = np.argsort(-threshold, kind="mergesort")
-        return threshold[order], order
-
-    return ordered
