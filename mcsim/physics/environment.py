@@ -244,6 +244,12 @@ class Environment:
             return self.film_thickness
         return float(films.film_thickness(self.rh))
 
+    def acting(self) -> Environment:
+        """This environment as it acts: without liquid bridges (:attr:`has_capillary` False)
+        the humidity enters none of its terms (the capillary ones are off, the van der Waals
+        ones do not read it), and it acts as it does at RH 0, which this returns."""
+        return self if self.has_capillary or self.rh == 0 else dataclasses.replace(self, rh=0.0)
+
     @property
     def no_condensation_reason(self) -> str | None:
         """Why no liquid bridges form (dry vapour, non-wetting liquid, a film no thicker than

@@ -11,8 +11,11 @@ import dataclasses
 import difflib
 import logging
 import math
+import threading
 import warnings
-from dataclasses import dataclass
+from collections import OrderedDict
+from concurrent.futures import Future
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -144,6 +147,48 @@ class Point:
     preload: float | None = None  # Pa, where varied; else the Config's
 
 
+class SharedPads:
+    """The pads of a sweep's points whose pads act alike, evaluated once.
+
+    Points that differ only by a humidity below the liquid bridges' onset (where it acts on
+    nothing: :meth:`mcsim.physics.environment.Environment.acting`) have the same pads, drawn
+    from the same stream (the environment's dimensions share it), under the same physics: the
+    first point to ask evaluates them and the others, concurrent or later, take its result.
+    ``mcsim report`` at RH 0 and 0.3 evaluated the same pads twice, importance sampling
+    included. A copy sent to another process (a Dask worker) starts empty.
+    """
+
+    #: Most pads results kept (a few floats each).
+    SIZE = 64
+
+    def __init__(self):
+        self._lock = threading.Lock()
+        self._results: OrderedDict = OrderedDict()
+
+    def __reduce__(self):
+        return SharedPads, ()
+
+    def get(self, key, compute) -> dict:
+        """``compute()`` for the first caller with ``key``; the same result (a copy) for the
+        others, who wait for it. A failure is not kept: each later caller computes again."""
+        with self._lock:
+            future = self._results.get(key)
+            owner = future is None
+            if owner:
+                future = self._results[key] = Future()
+                while len(self._results) > self.SIZE:
+                    self._results.popitem(last=False)
+        if owner:
+            try:
+                future.set_result(compute())
+            except BaseException as err:
+                with self._lock:
+                    self._results.pop(key, None)
+                future.set_exception(err)
+                raise
+        return dict(future.result())
+
+
 @dataclass(frozen=True)
 class Config:
     """What every point shares."""
@@ -161,6 +206,7 @@ class Config:
     friction: bool = False
     tangential_force: float | None = None
     floor: float = 0.0
+    shared: SharedPads = field(default_factory=SharedPads, compare=False, repr=False)
 
 
 def make_point(base_surface, base_material, base_environment, law, area, names, values,
@@ -267,9 +313,17 @@ def _pads(point: Point, config: Config, law: str, turn: float, h_pull_off: float
                           environment=point.environment)  # fmt: skip
     force = config.restoring_force if point.restoring_force is None else point.restoring_force
     lateral = config.tangential_force if point.tangential_force is None else point.tangential_force
-    return finite_pads(spec, force, preload=preload, turn=turn, h_pull_off=h_pull_off,
-                       tail=config.tail, friction=config.friction, tangential_force=lateral,
-                       floor=config.floor)  # fmt: skip
+    acting = (
+        spec
+        if spec.environment is None
+        else dataclasses.replace(spec, environment=spec.environment.acting())
+    )  # the same pads as every such point's
+    return config.shared.get(
+        (acting, force, lateral, preload, turn, h_pull_off),
+        lambda: finite_pads(acting, force, preload=preload, turn=turn, h_pull_off=h_pull_off,
+                            tail=config.tail, friction=config.friction, tangential_force=lateral,
+                            floor=config.floor),
+    )  # fmt: skip
 
 
 def pads_seed(entropy: int, index: int) -> int:

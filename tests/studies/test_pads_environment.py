@@ -177,3 +177,34 @@ def test_a_pads_sweep_over_rh_stores_the_pads_work_and_no_model_estimate():
     for q in ("std", "q05", "q50", "q95"):
         assert np.all(np.isfinite(np.asarray(data[f"work_of_separation_{q}"])))
     assert np.all(np.isnan(np.asarray(data["p_stick_model"])))
+
+
+def test_pads_below_the_bridges_onset_are_evaluated_once_with_each_rhs_own_numbers(monkeypatch):
+    # RH 0, 0.1 and 0.25 lie below the liquid bridges' onset (RH_dry = 0.30: the adsorbed
+    # film is still no thicker than its structured layers), where the humidity acts on
+    # nothing: the three points draw the same pads (the environment's dimension shares their
+    # stream) under the same physics, and the sweep evaluates them once. Each point's numbers
+    # are those of its own RH's pads (a sweep of it alone, each pad evaluated at that RH),
+    # bit for bit; RH 0.5 has pads of its own.
+    import mcsim.studies.sweeppoint
+
+    below = [0.0, 0.1, 0.25]
+    assert not any(dataclasses.replace(HUMID, rh=rh).has_capillary for rh in below)
+    options = dict(law="jkr", h=H, pads=4, restoring_force="1 mN", preload=0, area="30 um^2",
+                   seed=5, environment=HUMID)  # fmt: skip
+    evaluated = []
+    pads = mcsim.studies.sweeppoint.finite_pads
+
+    def counted(spec, *args, **kwargs):
+        evaluated.append(spec.environment.rh)
+        return pads(spec, *args, **kwargs)
+
+    monkeypatch.setattr(mcsim.studies.sweeppoint, "finite_pads", counted)
+    data = sweep(SMOOTH, SILICON, {"rh": [*below, 0.5]}, **options, workers=2).data
+    assert sorted(evaluated) == [0.0, 0.5]
+    monkeypatch.setattr(Environment, "acting", lambda self: self)  # each RH's own pads
+    for i, rh in enumerate([*below, 0.5]):
+        alone = sweep(SMOOTH, SILICON, {"rh": [rh]}, **options).data
+        for name in ("pull_off_mean", "pull_off_std", "work_of_separation_mean", "p_stick"):
+            assert np.asarray(data[name])[i] == np.asarray(alone[name])[0], (rh, name)
+    assert evaluated[2:] == [*below, 0.5]
