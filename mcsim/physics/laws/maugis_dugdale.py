@@ -151,13 +151,17 @@ def _sin_minus_u_cos(u: np.ndarray) -> np.ndarray:
 
     Each element takes one branch: the series is summed only where u < 1, the closed form
     only elsewhere (the bisection of :func:`_solve_branch` calls this 64 times per table).
+    The series stops after 9 terms: for u < 1 the 10th and every later one is below
+    60 u^18/21! < 1.2e-18 of the first, and the sum is at least 0.9 of the first, so adding
+    them would not change a bit of it (each is below half the spacing of doubles there,
+    2^-54 of the sum; checked to the bit on 1.7e6 values in the tests).
     """
     u = np.asarray(u, dtype=float)
     out = np.empty_like(u)
     below = u < 1.0
     small = u[below]
     term, total = small**3 / 3.0, np.zeros_like(small)
-    for k in range(1, 14):  # |term_k| = 2k u^{2k+1}/(2k+1)!, of sign (−1)^{k+1}, in place
+    for k in range(1, 10):  # |term_k| = 2k u^{2k+1}/(2k+1)!, of sign (−1)^{k+1}, in place
         if k % 2:
             total += term
         else:
