@@ -273,12 +273,21 @@ class Table:
 
 def _solve_branch(targets: np.ndarray, psi_lo: float, lam: float) -> np.ndarray:
     """ψ on the stable branch (0, ψ_lo] with Δ(ψ) = target, by bisection in ln ψ (Δ
-    decreases monotonically there, from +∞)."""
+    decreases monotonically there, from +∞).
+
+    All targets start from the same interval, so the first steps share few midpoints (at
+    most 2^k at step k): while they are fewer than a tenth of the targets, Δ is computed
+    once per distinct midpoint.
+    """
     lo = np.full(targets.shape, np.log(1e-30))
     hi = np.full(targets.shape, np.log(psi_lo))
-    for _ in range(64):
+    for k in range(64):
         mid = 0.5 * (lo + hi)
-        above = _penetration(np.exp(mid), lam) > targets
+        if 2**k < targets.size // 10:
+            distinct, where = np.unique(mid, return_inverse=True)
+            above = _penetration(np.exp(distinct), lam)[where] > targets
+        else:
+            above = _penetration(np.exp(mid), lam) > targets
         lo = np.where(above, mid, lo)
         hi = np.where(above, hi, mid)
     return np.exp(0.5 * (lo + hi))
