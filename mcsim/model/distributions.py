@@ -40,7 +40,11 @@ class HeightDistribution(Protocol):
         """``n`` draws from the distribution truncated to s > s_min (s_min may be -inf)."""
 
     def gw_integrals(
-        self, g: LawIntegrand, h: np.ndarray, breaks: np.ndarray | None = None
+        self,
+        g: LawIntegrand,
+        h: np.ndarray,
+        breaks: np.ndarray | None = None,
+        upper: np.ndarray | None = None,
     ) -> tuple[np.ndarray, np.ndarray]:
         """Partial expectations E[g(S − h); S > h] = scale · integral, for each h.
 
@@ -54,6 +58,10 @@ class HeightDistribution(Protocol):
         ``breaks[:, 1:]`` that lie above ``breaks[:, 0]``, each panel [Δ_k, Δ_k+1] in
         u = √(Δ − Δ_k); ``g`` is then called as ``g(delta, rows)`` with ``rows`` the
         index into ``h`` of each row of ``delta``.
+
+        ``upper`` (shape ``(len(h),)``, with ``breaks``) promises that ``g`` is zero
+        wherever Δ > upper: an implementation may skip the panels that start above it,
+        which add exactly nothing (a band's, :meth:`Band.gw_integrals`).
         """
 
 
@@ -110,7 +118,11 @@ class Gaussian:
         return truncated_standard_normal(rng, float(s_min), np.empty(n))
 
     def gw_integrals(
-        self, g: LawIntegrand, h: np.ndarray, breaks: np.ndarray | None = None
+        self,
+        g: LawIntegrand,
+        h: np.ndarray,
+        breaks: np.ndarray | None = None,
+        upper: np.ndarray | None = None,
     ) -> tuple[np.ndarray, np.ndarray]:
         """Gaussian partial expectations by Gauss–Legendre quadrature in u = √Δ.
 
@@ -124,7 +136,8 @@ class Gaussian:
         u = √(Δ − Δ_k) from the panel's lower edge Δ_k (removing a square-root
         branch point there, such as JKR's at break-off), over the s range where
         the weight exceeds e^-41 of its peak above the lower limit
-        (:func:`_piecewise_gaussian`).
+        (:func:`_piecewise_gaussian`). ``upper`` is not used: every panel is evaluated in
+        one array operation.
         """
         if breaks is not None:
             return _piecewise_gaussian(g, np.atleast_1d(np.asarray(h, dtype=float)), breaks)
@@ -232,11 +245,15 @@ class Band:
                              "its radius_by_height instead)")  # fmt: skip
 
     def gw_integrals(
-        self, g: LawIntegrand, h: np.ndarray, breaks: np.ndarray | None = None
+        self,
+        g: LawIntegrand,
+        h: np.ndarray,
+        breaks: np.ndarray | None = None,
+        upper: np.ndarray | None = None,
     ) -> tuple[np.ndarray, np.ndarray]:
         """The parent's integrals over the band: the lower limit raised to Δ = lo − h, a
         breakpoint at Δ = hi − h, and ``g`` zero above it (the panels split there, so the
-        cut is exact)."""
+        cut is exact; the parent is told, as ``upper``, and may skip the panels above)."""
         h = np.atleast_1d(np.asarray(h, dtype=float))
         if breaks is None:
             base = np.zeros((h.size, 1))
@@ -246,15 +263,16 @@ class Band:
         else:
             base, inner = np.asarray(breaks, dtype=float).reshape(h.size, -1), g
         columns = [np.maximum(base[:, 0], self.lo - h), *base[:, 1:].T]
-        upper = self.hi - h
+        cut = self.hi - h
         if self.hi < np.inf:
-            columns.append(upper)
+            columns.append(cut)
 
         def banded(delta, rows):
             values = np.asarray(inner(delta, rows))
-            return np.where(delta <= upper[rows][:, None], values, 0.0)
+            return np.where(delta <= cut[rows][:, None], values, 0.0)
 
-        return self.parent.gw_integrals(banded, h, np.stack(columns, axis=1))
+        upper = cut if upper is None else np.minimum(cut, upper)
+        return self.parent.gw_integrals(banded, h, np.stack(columns, axis=1), upper)
 
 
 GAUSSIAN = Gaussian()

@@ -347,7 +347,9 @@ class Empirical:
         # 1 − U lies in (0, 1]: draws in (lo, hi], strictly above s_min.
         return hi[k] - (hi[k] - lo[k]) * rng.random(n)
 
-    def gw_integrals(self, g: LawIntegrand, h, breaks=None) -> tuple[np.ndarray, np.ndarray]:
+    def gw_integrals(
+        self, g: LawIntegrand, h, breaks=None, upper: np.ndarray | None = None
+    ) -> tuple[np.ndarray, np.ndarray]:
         """Partial expectations E[g(S − h); S > h] = Σ_k f_k ∫_{max(a_k, h)}^{b_k} g(s − h) ds.
 
         Each bin [a_k, b_k] with b_k > h is clipped to s > h and integrated in
@@ -358,11 +360,15 @@ class Empirical:
         With ``breaks`` (see :meth:`mcsim.model.distributions.HeightDistribution.gw_integrals`)
         the integral starts at Δ = breaks[:, 0] and every bin is further split at the
         breakpoints; each piece [Δ_k, Δ_k+1] is integrated in u = √(Δ − Δ_k) with the
-        same rule, and ``g`` is called as ``g(delta, rows)``.
+        same rule, and ``g`` is called as ``g(delta, rows)``. With ``upper`` too (g zero
+        above Δ = upper, a band's), the pieces that start above it are skipped: every node
+        of one lies above, so it adds exactly 0.
         """
         h = np.atleast_1d(np.asarray(h, dtype=float))
         if breaks is not None:
-            return self._piecewise(g, h, np.asarray(breaks, dtype=float).reshape(h.size, -1))
+            breaks = np.asarray(breaks, dtype=float).reshape(h.size, -1)
+            top = np.full(h.size, np.inf) if upper is None else np.asarray(upper, dtype=float)
+            return self._piecewise(g, h, breaks, top)
         a, b = self.edges[:-1], self.edges[1:]
         # Active (h, bin) pairs: the bin reaches above h and has probability.
         ih, ik = np.nonzero((b[None, :] > h[:, None]) & (self.densities[None, :] > 0))
@@ -385,17 +391,20 @@ class Empirical:
                 integral[i] = np.bincount(ih, weights=contributions[i], minlength=h.size)
         return np.ones(h.size), integral
 
-    def _piecewise(self, g: LawIntegrand, h: np.ndarray, breaks: np.ndarray):
-        """:meth:`gw_integrals` with breakpoints: panels are bins ∩ break intervals."""
+    def _piecewise(self, g: LawIntegrand, h: np.ndarray, breaks: np.ndarray, upper: np.ndarray):
+        """:meth:`gw_integrals` with breakpoints: panels are bins ∩ break intervals, those
+        that start above ``upper`` left out."""
         a, b = self.edges[:-1], self.edges[1:]
         lo = breaks[:, 0]
         hi = np.maximum(b[-1] - h, lo)
         cuts = panel_edges(breaks, lo, hi)  # (h, m + 2), in Δ
         # Active (h, bin, break interval) triples, each clipped to the bin and interval.
-        ih, ik = np.nonzero((b[None, :] - h[:, None] > lo[:, None]) & (self.densities > 0))
+        above_lo = b[None, :] - h[:, None] > lo[:, None]
+        below_upper = a[None, :] - h[:, None] <= upper[:, None]
+        ih, ik = np.nonzero(above_lo & below_upper & (self.densities > 0))
         p_lo = np.maximum((a[ik] - h[ih])[:, None], cuts[ih, :-1])
         p_hi = np.minimum((b[ik] - h[ih])[:, None], cuts[ih, 1:])
-        keep = p_hi > p_lo
+        keep = (p_hi > p_lo) & (p_lo <= upper[ih][:, None])
         rows = np.broadcast_to(ih[:, None], keep.shape)[keep]
         density = np.broadcast_to(self.densities[ik][:, None], keep.shape)[keep]
         p_lo, p_hi = p_lo[keep], p_hi[keep]

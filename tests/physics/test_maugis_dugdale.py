@@ -274,6 +274,26 @@ def test_compiled_law_functions_equal_the_numpy_ones():
         )
 
 
+def test_sin_minus_u_cos_sums_the_series_to_every_bit_the_full_series_gives():
+    # Below u = 1 the module sums 9 terms of sin u − u cos u = Σ (−1)^{k+1} 2k u^{2k+1}/(2k+1)!
+    # in place: to the last bit the 13 terms of the plain loop the tables were first built
+    # with, from tiny u to just below 1; and close to the closed form where it has no
+    # cancellation.
+    rng = np.random.default_rng(7)
+    u = np.concatenate([rng.uniform(0, 1, 1_000_000), 1 - rng.uniform(0, 1e-3, 200_000),
+                        np.exp(rng.uniform(np.log(1e-30), 0, 500_000)),
+                        np.nextafter(1.0, 0) - np.arange(1000) * 2.0**-52])  # fmt: skip
+    u = u[u < 1]
+    term, total = u**3 / 3.0, np.zeros_like(u)
+    for k in range(1, 14):
+        total = total + term
+        term = -term * u * u * (k + 1) / (k * (2 * k + 2) * (2 * k + 3))
+    got = md._sin_minus_u_cos(u)
+    assert np.array_equal(got, total)
+    big = u > 0.5
+    np.testing.assert_allclose(got[big], np.sin(u[big]) - u[big] * np.cos(u[big]), rtol=1e-14)
+
+
 def test_the_table_is_built_once_per_lambda():
     assert md.table(0.5) is md.table(0.5)
 

@@ -301,8 +301,9 @@ def mcsim(*args: str) -> str:
 
 def mcsim_here(*args: str) -> str:
     """Standard output of ``mcsim ARGS`` run in this process (:func:`mcsim.cli.main.main`),
-    for the commands that tests/program/test_readme.py runs as written, each in a process
-    of its own: a new interpreter here would only import NumPy, SciPy and mcsim again."""
+    for the commands that tests/program/test_readme.py runs, as written or on fewer points
+    (its SMALLER), each in a process of its own: a new interpreter here would only import
+    NumPy, SciPy and mcsim again."""
     return mcsim_here_with_stderr(*args)[0]
 
 
@@ -572,7 +573,7 @@ def test_humid_p_stick_table(tmp_path):
         r"--asperity-roughness 0\.5nm \\ --vary rh=0,0\.3,0\.4,0\.45,0\.5,0\.55,0\.7,0\.9 "
         r"--preload 0 --pads 40 --area 30um\^2 \\ --restoring-force 450uN --seed 1) --out humid"
     )
-    mcsim(*args[0].replace("\\ ", "").split(), "--out", str(tmp_path / "humid.h5"), "--quiet")
+    mcsim_here(*args[0].replace("\\ ", "").split(), "--out", str(tmp_path / "humid.h5"), "--quiet")
     with xr.open_dataset(tmp_path / "humid.h5", engine="h5netcdf") as ds:
         shown = 0
         for i, rh in enumerate(ds.rh.values):
@@ -607,7 +608,7 @@ def test_friction_slip_table(tmp_path):
         r"preload=0\.1MPa:10MPa:5:log \\ --vary rh=0,0\.6 --pads 40 --area 30um\^2 "
         r"--tangential-force 1\.75mN --seed 1) --out slip"
     )
-    mcsim(*args[0].replace("\\ ", "").split(), "--out", str(tmp_path / "slip.h5"), "--quiet")
+    mcsim_here(*args[0].replace("\\ ", "").split(), "--out", str(tmp_path / "slip.h5"), "--quiet")
     with xr.open_dataset(tmp_path / "slip.h5", engine="h5netcdf") as ds:
         shown = 0
         for i, p in enumerate(ds.preload.values):
@@ -732,7 +733,7 @@ def test_adhesive_contact_of_the_shipped_scan():
         r"mcsim (contact examples/scan\.npy --unit m --pixel-size 10nm --adhesion --w "
         r"0\.1J/m\^2 --range 1nm \\ --pressure 100MPa) --plot"
     )
-    data = json.loads(mcsim(*args.replace("\\ ", "").split(), "--format", "json", "--quiet"))
+    data = json.loads(mcsim_here(*args.replace("\\ ", "").split(), "--format", "json", "--quiet"))
     s, gw, sticky = data["summary"], data["summary"]["gw"], data["stickiness"]
     check_rounded(r"the exact pull-off is (\S+) kPa and the work of separation (\S+) mJ/m²",
                   s["pull_off"] / 1e3, s["work_of_separation"] * 1e3)  # fmt: skip

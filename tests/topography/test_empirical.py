@@ -134,6 +134,35 @@ def test_gw_integrals_match_brute_force_quadrature_to_1e10(preset):
         )
 
 
+def test_a_band_skips_the_bins_above_it_and_gets_the_same_bits():
+    # A band's integrand is zero above its top (Band.gw_integrals); told so by ``upper``,
+    # the histogram skips the pieces that start above it, which added exactly zero.
+    from mcsim.model.distributions import Band
+
+    band = Band(skewed(), -0.4, 0.9)
+    h = np.array([-5.0, -1.3, -0.5, 0.0, 0.37, 0.9, 2.0])
+    breaks = np.stack([np.zeros_like(h), np.full_like(h, 0.3), 1.1 - h], axis=1)
+    seen = []
+
+    def g(delta, rows):
+        seen.append(delta.size)
+        return np.stack([delta**1.5, np.sqrt(1 + delta)])
+
+    _, banded = band.gw_integrals(g, h, breaks)
+    skipped = seen[0]
+    cut = 0.9 - h
+
+    def zero_above(delta, rows):
+        seen.append(delta.size)
+        return np.where(delta <= cut[rows][:, None], g(delta, rows), 0.0)
+
+    columns = np.column_stack([np.maximum(breaks[:, 0], -0.4 - h), breaks[:, 1:], cut])
+    seen.clear()
+    _, whole = skewed().gw_integrals(zero_above, h, columns)  # every piece evaluated
+    assert np.array_equal(banded, whole)
+    assert skipped < seen[0]  # and it evaluated fewer quadrature points
+
+
 def test_gw_integrals_vanish_above_the_support():
     _, integral = skewed().gw_integrals(lambda d: np.stack([d, d]), np.array([3.0, 10.0]))
     assert integral[:, 1].tolist() == [0.0, 0.0]

@@ -52,6 +52,7 @@ not the work of separation or the hysteresis.
 from __future__ import annotations
 
 import dataclasses
+import functools
 import math
 import warnings
 from dataclasses import dataclass
@@ -534,6 +535,7 @@ def calibrate_adhesion(
     fits = []
     for name in GW_LAWS:
 
+        @functools.cache  # the fit's last step is one of its points: not solved again below
         def gw(x: float, name=name) -> np.ndarray:
             m = dataclasses.replace(material, gamma=math.exp(x) * w, z0=range_ / H0_PER_Z0)
             return gw_pull_off(surface, m, name, reached)
