@@ -557,8 +557,8 @@ def _rows(result, rh, env, devices: int) -> list[dict]:
         if row["contacting_summits"] < FEW_CONTACTS:
             warnings.append(f"a pad touches with {row['contacting_summits']:.3g} summits on "
                             f"average (fewer than {FEW_CONTACTS}): its tallest summits decide it")  # fmt: skip
-        if row["rh_margin"] <= 0:
-            warnings.append(f"at or above RH_cr = {env.critical_rh:.3g}: menisci spread across "
+        if dataclasses.replace(env, rh=value).has_capillary:  # as the pads' physics has it
+            warnings.append(f"above RH_cr = {env.critical_rh:.3g}: menisci spread across "
                             "the interface")  # fmt: skip
         row["warnings"] = warnings
         rows.append(_plain(row))

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import base64
+import dataclasses
 import json
 import math
 import os
@@ -159,6 +160,24 @@ def test_the_lot_of_each_row_is_its_p_stick_carried_to_n_devices(small):
     for row in small.rows:
         expected = lot(row["p_stick"], row["p_stick_low"], row["p_stick_high"], SMALL["devices"])
         assert {k: row[k] for k in expected} == pytest.approx(expected, rel=1e-12)
+
+
+def test_the_menisci_warning_sits_where_the_menisci_act():
+    # At RH_cr itself (0.30: the film no thicker than its structured layers) no bridge forms,
+    # and the pads there are the dry ones: no "menisci spread" warning. Above it, one.
+    from mcsim.physics.environment import Environment
+    from mcsim.studies.report import _rows
+
+    env = Environment(hamaker=1.6e-19)
+    rh = (0.0, env.critical_rh, 0.5)
+    keys = ("p_stick", "p_stick_low", "p_stick_high", "p_stick_ess", "contacting_summits")
+    data = {k: np.full(3, 0.5) for k in keys} | {"p_stick_method": np.array(["pads"] * 3),
+                                                  "regime_warning": np.array([""] * 3)}  # fmt: skip
+    data["contacting_summits"] = np.full(3, 100.0)
+    rows = _rows(type("Sweep", (), {"data": data})(), rh, env, 10)
+    spread = [any("menisci spread" in w for w in r["warnings"]) for r in rows]
+    assert spread == [False, False, True]
+    assert [dataclasses.replace(env, rh=r).has_capillary for r in rh] == spread
 
 
 def test_the_margin_is_the_critical_rh_minus_each_rh(small):
