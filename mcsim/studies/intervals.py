@@ -2,7 +2,8 @@
 
 Clopper–Pearson's exact interval (the default: its coverage never falls below the level) and
 Wilson's score interval (shorter, its coverage near the level on average), both at
-:data:`CONFIDENCE` unless given.
+:data:`CONFIDENCE` unless given; and the interval of a weighted (importance-sampling)
+estimate on its effective sample size (:func:`effective_clopper_pearson`).
 """
 
 from __future__ import annotations
@@ -72,3 +73,41 @@ def wilson(k: int, n: int, confidence: float = CONFIDENCE) -> tuple[float, float
     centre = (p + z * z / (2 * n)) / (1 + z * z / n)
     half = z * math.sqrt(p * (1 - p) / n + z * z / (4 * n * n)) / (1 + z * z / n)
     return max(0.0, centre - half), min(1.0, centre + half)
+
+
+def effective_sample_size(q: float, se: float) -> float:
+    """The effective number of events n*·q of a weighted estimate ``q`` with standard error
+    ``se``, n* = q(1 − q)/se² (the plain trials that would give that standard error;
+    :mod:`mcsim.studies.tail`); 0 where n* is undefined."""
+    return q * q * (1 - q) / se**2 if se > 0 and 0 < q < 1 else 0.0
+
+
+def weighted_estimate(y: np.ndarray, n0: int) -> tuple[float, float, float, float]:
+    """p̂ = mean(y) of weighted indicators ``y`` (the first ``n0`` from the nominal law), its
+    standard error (the sample's, ddof = 1) and 95 % interval (:func:`effective_clopper_pearson`)."""
+    q, se = float(np.mean(y)), float(np.std(y, ddof=1) / math.sqrt(y.size))
+    k0 = int(np.count_nonzero(y[:n0]))
+    return (q, se, *effective_clopper_pearson(q, se, k0, n0))
+
+
+def effective_clopper_pearson(q: float, se: float, k0: int, n0: int) -> tuple[float, float]:
+    """95 % interval of a weighted estimate ``q`` of a probability with standard error ``se``,
+    of which ``n0`` pads from the nominal law saw ``k0`` events.
+
+    Clopper–Pearson's (Clopper & Pearson 1934) on the effective sample size
+    n* = q(1 − q)/se² with x* = n* q events, non-integer (Korn & Graubard, *Survey
+    Methodology* 24, 193, 1998): the 0.025 quantile of Beta(x*, n* − x* + 1) and the 0.975
+    one of Beta(x* + 1, n* − x*); for 0/1 values (se² = q(1 − q)/n) it is the plain
+    Clopper–Pearson interval of n trials. Where n* is undefined (q is 0 or at least 1, or se
+    is 0: no pad in the event, or all weights alike) the plain Clopper–Pearson interval of
+    the nominal pads alone, ``k0`` events in ``n0`` trials: they are plain pads, so it holds
+    whatever the other laws drew (with no event, [0, 1 − 0.025^(1/n0)] ≈ [0, 3.7/n0];
+    :mod:`mcsim.studies.tail`: n0 = ⌈DEFENSIVE · pads⌉).
+    """
+    from scipy.stats import beta
+
+    if se > 0 and 0 < q < 1:
+        n = q * (1 - q) / se**2
+        x = q * n
+        return float(beta.ppf(0.025, x, n - x + 1)), float(beta.ppf(0.975, x + 1, n - x))
+    return clopper_pearson(k0, n0)

@@ -138,10 +138,7 @@ def pad_static_friction(spec, s: np.ndarray, *, turn: float, preload: float | No
     from mcsim.engine.pads import friction as padfriction
 
     z = s * spec.surface.sigma
-    d_turn = turn * spec.surface.sigma
-    if preload is not None:
-        d_turn, _ = padcurves.force_turn(spec, z, preload * spec.area)
-    return padfriction.static_friction(spec, z, d_turn)
+    return padfriction.static_friction(spec, z, padcurves.pad_turn(spec, z, turn, preload))
 
 
 def tail_p_slip(spec, statistics: FrictionStatistics, *, turn: float, preload: float | None,

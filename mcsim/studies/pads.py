@@ -254,9 +254,7 @@ def finite_pads(spec, restoring_force: float | None, *, preload: float | None = 
     cut, highs = sampling.cut(spec, turn), []  # the summits a tail's stage 0 needs
     for r in range(spec.realizations):
         z = padload.patch_heights(spec, r)
-        d_turn = turn * sigma
-        if preload is not None:
-            d_turn, _ = padcurves.force_turn(spec, z, preload * spec.area)
+        d_turn = padcurves.pad_turn(spec, z, turn, preload)
         force[r] = padcurves.pull_off(spec, z, d_turn)[0]
         work[r] = padcurves.pad_work(spec, z, d_turn)
         highs.append(z[z > cut * sigma] / sigma)

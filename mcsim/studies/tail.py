@@ -85,9 +85,10 @@ the event; q only sets the variance.
   (41 against 43 of 48 runs of the two-part mixture of 1000 pads; validation/README.md).
   Where n* is undefined (no pad in the event, or all weights alike) the interval is
   Clopper–Pearson's of the n₀ nominal pads alone (the final ⌈DEFENSIVE · pads⌉ and the
-  stages 0): they are plain pads, so it holds whatever the tilts drew; with none in the event
-  [0, 1 − 0.025^(1/n₀)] ≈ [0, 3.7/n₀] (:func:`effective_clopper_pearson`). The event is sticking when sticking is rare, and not
-  sticking (p = 1 − P(not sticking)) when that is the rarer one.
+  stages 0): they are plain pads, so it holds whatever the tilts drew; with none in the
+  event [0, 1 − 0.025^(1/n₀)] ≈ [0, 3.7/n₀]
+  (:func:`~mcsim.studies.intervals.effective_clopper_pearson`). The event is sticking when
+  sticking is rare, and not sticking (p = 1 − P(not sticking)) when that is the rarer one.
 * **The chains' check.** Each chain also estimates p from its own stages, half-way and
   tilted pads and its half of the final nominal ones (the balance heuristic of those three laws), independently
   of the other; where they differ by more than :data:`AGREE` = 3.29 of their combined
@@ -141,6 +142,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from mcsim.model.errors import ParameterError
+from mcsim.studies.intervals import effective_sample_size, weighted_estimate
 
 #: Elite fraction of each cross-entropy stage (Rubinstein & Kroese 2004 use 0.01 … 0.1).
 RHO = 0.1
@@ -205,7 +207,7 @@ class TailEstimate:
     p_stick, se : float
         The estimate of P(pull-off > F_r) and its standard error (dimensionless).
     low, high : float
-        Its 95 % interval (:func:`effective_clopper_pearson`), in [0, 1].
+        Its 95 % interval (:func:`~mcsim.studies.intervals.effective_clopper_pearson`), in [0, 1].
     ess : float
         Effective number of pads in the sampled event, n*·p̂ with n* = p̂(1 − p̂)/se²
         (p̂ of the sampled side): the one effective sample size, which the interval takes
@@ -337,19 +339,13 @@ def _fit(law: _Law, previous: Tilt, counts: np.ndarray, weights: np.ndarray, cap
 
 
 def pad_pull_off(spec, s: np.ndarray, *, turn: float, preload: float | None) -> float:
-    """One pad's pull-off (N) from its summit heights ``s`` (σ), as plain pads evaluate it.
-
-    Under a ``preload`` (Pa) the pad turns where its own approach load reaches P·A
-    (:func:`mcsim.engine.pads.curves.force_turn`), else at ``turn`` (d/σ); its pull-off is
-    :func:`mcsim.engine.pads.curves.pull_off` after that turn.
-    """
+    """One pad's pull-off (N) from its summit heights ``s`` (σ), as plain pads evaluate it:
+    :func:`mcsim.engine.pads.curves.pull_off` after its turn
+    (:func:`~mcsim.engine.pads.curves.pad_turn`; ``turn`` d/σ, ``preload`` Pa or None)."""
     from mcsim.engine.pads import curves as padcurves
 
     z = s * spec.surface.sigma
-    d_turn = turn * spec.surface.sigma
-    if preload is not None:
-        d_turn, _ = padcurves.force_turn(spec, z, preload * spec.area)
-    return padcurves.pull_off(spec, z, d_turn)[0]
+    return padcurves.pull_off(spec, z, padcurves.pad_turn(spec, z, turn, preload))[0]
 
 
 def _stage(law: _Law, tilt: Tilt | None, n: int, key: tuple, evaluate, workers: int):
@@ -372,7 +368,7 @@ class _Chain:
     """One chain's cross-entropy stages: its tilt, stages after stage 0, pads evaluated,
     whether its last stage reached the event, every stage's law (None: nominal), number of
     pads, their summits per bin above the cut and their scores (stage 0 first), and where the
-    stages stopped at the floor, the estimate (p̂, se, low, high, ess) of the level below it."""
+    stages stopped at the floor, the estimate (p̂, se, low, high) of the level below it."""
 
     tilt: Tilt
     stages: int
@@ -401,10 +397,10 @@ def _cross_entropy(law, c, counts, force, *, pilot, margin, hit, evaluate, worke
         else:
             if floor > 0 and stage > 0:  # the event lies within the previous level
                 y = (margin(force) >= previous) * law.weight(laws, sizes, counts)
-                q, se, low, high = _estimate(y, sizes[0])
-                if high < floor and _ess(q, se) >= MIN_ESS:
-                    bound = (q, se, low, high, _ess(q, se))
+                bound = weighted_estimate(y, sizes[0])
+                if bound[3] < floor and effective_sample_size(*bound[:2]) >= MIN_ESS:
                     break
+                bound = None
             level = np.sort(margin(new))[-elite_size]
             # stalled, or too slow to reach F_r in the stages left at its latest pace
             # (Rubinstein & Kroese 2004, ch. 3: a level that stops rising ends the method)
@@ -537,10 +533,9 @@ def importance_p_stick(spec, restoring_force: float, *, turn: float, preload: fl
         high = max(c.bound[3] for c in chains)
         p, low, high = (0.0, 0.0, high) if event == "stick" else (1.0, 1.0 - high, 1.0)
         return TailEstimate(p, max(c.bound[1] for c in chains), low, high,
-                            min(c.bound[4] for c in chains), 0, 0, evaluations, stages, False,
-                            event, tilts, law.cut, True,
-                            tuple((c.bound[0], c.bound[2], c.bound[3]) for c in chains),
-                            bounded=True)  # fmt: skip
+                            min(effective_sample_size(*c.bound[:2]) for c in chains), 0, 0,
+                            evaluations, stages, False, event, tilts, law.cut, True,
+                            tuple((c.bound[0], *c.bound[2:]) for c in chains), bounded=True)  # fmt: skip
     if give_up and not chains[0].reached and chains[0].bound is None:
         return TailEstimate(math.nan, math.nan, 0.0, 1.0, 0.0, 0, 0, evaluations, stages, False,
                             event, tilts, law.cut, True)  # fmt: skip
@@ -563,7 +558,7 @@ def importance_p_stick(spec, restoring_force: float, *, turn: float, preload: fl
         n_all += [n for c in mine for n in c.sizes[1:]]
         counts = np.vstack([part[0] for part in drawn])
         y = hit(np.concatenate([part[1] for part in drawn])) * law.weight(q_all, n_all, counts)
-        return (*_estimate(y, sum(n_all[: len(nominal)])), int(np.count_nonzero(y)))
+        return (*weighted_estimate(y, sum(n_all[: len(nominal)])), int(np.count_nonzero(y)))
 
     q, se, low, high, hits = recycled(list(range(len(laws))), chains)
     # each chain's own estimate from its stages, its tilts' final pads and its share of the
@@ -577,25 +572,12 @@ def importance_p_stick(spec, restoring_force: float, *, turn: float, preload: fl
     chain = tuple((o[0], o[2], o[3]) for o in own)
     (qa, sa, *_), (qb, sb, *_) = own
     agree = abs(qa - qb) <= AGREE * math.hypot(sa, sb)
-    ess = _ess(q, se)
+    ess = effective_sample_size(q, se)
     if event == "release":
         q, low, high = 1.0 - q, 1.0 - high, 1.0 - low
     return TailEstimate(min(max(q, 0.0), 1.0), se, max(low, 0.0), min(high, 1.0), ess,
                         hits, pads, evaluations, stages, reached, event,
                         tilts, law.cut, agree, chain)  # fmt: skip
-
-
-def _ess(q: float, se: float) -> float:
-    """The effective sample size n*·q, n* = q(1 − q)/se² (module docstring); 0 where undefined."""
-    return q * q * (1 - q) / se**2 if se > 0 and 0 < q < 1 else 0.0
-
-
-def _estimate(y: np.ndarray, n0: int) -> tuple[float, float, float, float]:
-    """p̂ = mean(y) of the weighted indicators ``y`` (the first ``n0`` from the nominal law),
-    its standard error and 95 % interval (:func:`effective_clopper_pearson`)."""
-    q, se = float(np.mean(y)), float(np.std(y, ddof=1) / math.sqrt(y.size))
-    k0 = int(np.count_nonzero(y[:n0]))
-    return (q, se, *effective_clopper_pearson(q, se, k0, n0))
 
 
 def half(tilt: Tilt) -> Tilt:
@@ -612,27 +594,3 @@ def mixture(pads: int) -> tuple[int, ...]:
     out = [n0, *(n1, n2) * CHAINS]
     out[-1] += pads - sum(out)
     return tuple(out)
-
-
-def effective_clopper_pearson(q: float, se: float, k0: int, n0: int) -> tuple[float, float]:
-    """95 % interval of a weighted estimate ``q`` of a probability with standard error ``se``,
-    of which ``n0`` pads from the nominal law saw ``k0`` events.
-
-    Clopper–Pearson's (Clopper & Pearson 1934) on the effective sample size
-    n* = q(1 − q)/se² with x* = n* q events, non-integer (Korn & Graubard, *Survey
-    Methodology* 24, 193, 1998): the 0.025 quantile of Beta(x*, n* − x* + 1) and the 0.975
-    one of Beta(x* + 1, n* − x*); for 0/1 values (se² = q(1 − q)/n) it is the plain
-    Clopper–Pearson interval of n trials. Where n* is undefined (q is 0 or at least 1, or se
-    is 0: no pad in the event, or all weights alike) the plain Clopper–Pearson interval of
-    the nominal pads alone, ``k0`` events in ``n0`` trials: they are plain pads, so it holds
-    whatever the other laws drew (with no event, [0, 1 − 0.025^(1/n0)] ≈ [0, 3.7/n0], n0 =
-    ⌈DEFENSIVE · pads⌉; module docstring).
-    """
-    from scipy.stats import beta
-
-    if se > 0 and 0 < q < 1:
-        n = q * (1 - q) / se**2
-        x = q * n
-        return float(beta.ppf(0.025, x, n - x + 1)), float(beta.ppf(0.975, x + 1, n - x))
-    low = 0.0 if k0 == 0 else float(beta.ppf(0.025, k0, n0 - k0 + 1))
-    return low, 1.0 if k0 == n0 else float(beta.ppf(0.975, k0 + 1, n0 - k0))

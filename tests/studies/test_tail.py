@@ -18,7 +18,7 @@ from scipy.stats import poisson
 from mcsim.engine.spec import MonteCarloSpec
 from mcsim.model.errors import ParameterError
 from mcsim.model.presets import MATERIALS, SURFACES
-from mcsim.studies.intervals import clopper_pearson
+from mcsim.studies.intervals import clopper_pearson, effective_clopper_pearson
 from mcsim.studies.pads import finite_pads, pad_statistics, tail_p_stick
 from mcsim.studies.rareevent import MIN_ESS, MIN_TAIL_PADS, SWITCH, rare_event
 from mcsim.studies.tail import (
@@ -27,7 +27,6 @@ from mcsim.studies.tail import (
     Tilt,
     _Law,
     cut,
-    effective_clopper_pearson,
     importance_p_stick,
     mixture,
 )

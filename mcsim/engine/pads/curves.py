@@ -237,6 +237,15 @@ def _approach_prefix(spec: MonteCarloSpec, z: np.ndarray, points: np.ndarray, re
     return pad_load(spec, z, points)
 
 
+def pad_turn(spec: MonteCarloSpec, z: np.ndarray, turn: float, preload: float | None) -> float:
+    """A pad's closest approach (m), as plain pads and their importance sampling take it: under
+    a ``preload`` (Pa) its own, where its approach load reaches P·A (:func:`force_turn`), else
+    the common ``turn`` (d/σ)."""
+    if preload is None:
+        return turn * spec.surface.sigma
+    return force_turn(spec, z, preload * spec.area)[0]
+
+
 def force_turn(spec: MonteCarloSpec, z: np.ndarray, force: float) -> tuple[float, float]:
     """A pad's closest approach under force control: the largest d (m) with approach load ≥ ``force``.
 
