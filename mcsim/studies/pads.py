@@ -35,6 +35,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from mcsim.engine import interrupt
 from mcsim.model.errors import ParameterError
 from mcsim.studies.intervals import INTERVALS, clopper_pearson, wilson
 from mcsim.studies.rareevent import (
@@ -253,6 +254,7 @@ def finite_pads(spec, restoring_force: float | None, *, preload: float | None = 
     static, normal = np.empty(spec.realizations), np.empty(spec.realizations)
     cut, highs = sampling.cut(spec, turn), []  # the summits a tail's stage 0 needs
     for r in range(spec.realizations):
+        interrupt.check()  # a signal ends the pads between two, in a sweep's worker thread too
         z = padload.patch_heights(spec, r)
         d_turn = padcurves.pad_turn(spec, z, turn, preload)
         force[r] = padcurves.pull_off(spec, z, d_turn)[0]

@@ -141,6 +141,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from mcsim.engine import interrupt
 from mcsim.model.errors import ParameterError
 from mcsim.studies.intervals import effective_sample_size, weighted_estimate
 
@@ -355,11 +356,16 @@ def _stage(law: _Law, tilt: Tilt | None, n: int, key: tuple, evaluate, workers: 
     pads, highs = law.draw(
         tilt, n, np.random.default_rng(seed)
     )  # all drawn before any is evaluated
+
+    def score(s):  # a signal ends the stage between pads, in a sweep's worker thread too
+        interrupt.check()
+        return evaluate(s)
+
     if workers > 1:
         with ThreadPoolExecutor(workers) as pool:
-            force = np.array(list(pool.map(evaluate, pads)))
+            force = np.array(list(pool.map(score, pads)))
     else:
-        force = np.array([evaluate(s) for s in pads])
+        force = np.array([score(s) for s in pads])
     return law.bins(highs), force
 
 

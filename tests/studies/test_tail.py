@@ -452,3 +452,29 @@ def test_a_sticking_with_a_second_tall_way_in_is_estimated_or_flagged():
             for s in seeds]  # fmt: skip
     told = [e.low <= p <= e.high or not e.agree for e in runs]
     assert sum(told) >= 8, [(e.p_stick / p, e.low / p, e.high / p, e.agree) for e in runs]
+
+
+def test_a_signal_ends_the_pads_and_their_importance_sampling_in_a_worker_thread():
+    # Ctrl-C of `mcsim report` waited minutes for the importance sampling of the humidities
+    # running in the sweep's worker threads to end by itself; a recorded signal now ends the
+    # plain pads and the stages at the next pad, no pad evaluated after it.
+    import signal
+    from concurrent.futures import ThreadPoolExecutor
+
+    from mcsim.engine import interrupt
+
+    scored = []
+
+    def band(s):
+        scored.append(s)
+        return _band_score(s)
+
+    with interrupt.interruptible(), ThreadPoolExecutor(1) as pool:
+        signal.raise_signal(signal.SIGINT)
+        with pytest.raises(interrupt.Interrupted):
+            pool.submit(importance_p_stick, _spec(1), 25.5, turn=TURN, pads=1000, pilot=300,
+                        score=band).result()  # fmt: skip
+        with pytest.raises(interrupt.Interrupted):
+            pool.submit(finite_pads, _spec(1, pads=5), 1e-6, turn=TURN,
+                        h_pull_off=math.nan).result()  # fmt: skip
+    assert scored == []
