@@ -14,12 +14,15 @@ $(BIN)/.installed: pyproject.toml
 run: $(BIN)/.installed
 	$(BIN)/mcsim paper --overwrite
 
-# -n 2: the tests spread over two worker processes (pytest-xdist); --dist worksteal lets an
-# idle worker take tests queued on the other, and tests/conftest.py starts the slow ones
-# first, so the runs of the README's and the guide's pages overlap the rest of the suite
+# -n 3: the tests spread over three worker processes (pytest-xdist), one more than CI's 2
+# cores: many tests wait on a subprocess's start, a Dask cluster or a signal, and with two
+# workers the cores idled a fifth of the time (measured on 2 cores, 2026-11-29: -n 2 729 s
+# wall for 1160 s of CPU, -n 3 585 s, the cores 99 % busy). --dist worksteal lets an idle
+# worker take tests queued on another, and tests/conftest.py starts the slow ones first, so
+# the runs of the README's and the guide's pages overlap the rest of the suite
 # (--durations: the 25 slowest tests, where to look when the suite grows)
 test: $(BIN)/.installed
-	$(BIN)/python -m pytest -q -n 2 --dist worksteal --durations=25
+	$(BIN)/python -m pytest -q -n 3 --dist worksteal --durations=25
 	$(MAKE) --no-print-directory test-portable
 
 # NumPy's SIMD targets dispatched at run time on this CPU (numpy 2.4 on an AVX2 machine:
