@@ -40,7 +40,7 @@ def run(args) -> int:
         rh=args.rh, devices=args.devices, law=args.law, pads=args.pads,
         environment=environment,
         unit=args.unit, pixel_size=args.pixel_size, channel=args.channel, seed=args.seed,
-        workers=args.workers, scheduler=args.scheduler or args.dask, progress=not args.quiet,
+        workers=args.workers, scheduler=_scheduler(args), progress=not args.quiet,
         command=args.command_line,
     )  # fmt: skip
     texts = {json_path: result.to_json(), html: result.to_html()}
@@ -107,10 +107,22 @@ def add_parser(sub) -> None:
     d.add_argument("--pads", metavar="N", type=integer(1), default=100,
                    help="pads per RH (>= 100: importance sampling where the answer is rare)")  # fmt: skip
     d.add_argument("--seed", type=integer(0), help="root seed of the pads (recorded)")
-    add_parallel(d, "worker threads of the pads, or with --dask local processes")
+    add_parallel(d, "worker processes of the pads (1: in this process), or with --dask local "
+                 "a local Dask cluster's")  # fmt: skip
     add_environment(p, rh=False)
     p.add_argument("--out", metavar="FILE.html", help="the report (default SCAN-report.html in "
                    "the current folder); the JSON file goes beside it, FILE.json")  # fmt: skip
     p.add_argument("--overwrite", action="store_true", help="replace existing report files")
     p.add_argument("--quiet", action="store_true", help="no progress and no 'wrote FILE' lines")
     p.set_defaults(func=run)
+
+
+def _scheduler(args):
+    """Where the RH values run: Dask where asked, else worker processes of this machine (the
+    pads' search holds Python's lock much of the time, so threads gain little: about 100 s
+    against 167 s on 2 cores for the README's report), in this process with ``--workers 1``."""
+    from mcsim.engine.cluster import PROCESSES
+
+    if args.scheduler or args.dask:
+        return args.scheduler or args.dask
+    return None if args.workers == 1 else PROCESSES

@@ -362,8 +362,25 @@ def _fast(point: Point, config: Config) -> bool:
             and surface.radius_by_height is None)  # fmt: skip
 
 
+def _alike(point: Point) -> tuple:
+    """What a point's pads depend on besides the sweep's shared inputs: points equal in it
+    share their pads (:class:`SharedPads`; its key adds what follows from these)."""
+    environment = None if point.environment is None else point.environment.acting()
+    return (point.pads_index, point.surface, point.material, point.law, point.area, environment,
+            point.restoring_force, point.tangential_force, point.preload)  # fmt: skip
+
+
 def batches(points, config: Config):
-    """Consecutive points in lists: up to :data:`BATCH` fast-path points, others alone."""
+    """Consecutive points in lists: up to :data:`BATCH` fast-path points, others alone; with
+    pads, the points whose pads act alike (:func:`_alike`) in one list, in the order of their
+    first, so that a point waiting for another's pads never holds a worker (a thread, or a
+    Dask process that would evaluate them again)."""
+    if config.pads:
+        groups: dict = {}
+        for point in points:
+            groups.setdefault(_alike(point), []).append(point)
+        yield from groups.values()
+        return
     batch: list[Point] = []
     for point in points:
         if not _fast(point, config):

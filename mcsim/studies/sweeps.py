@@ -48,6 +48,7 @@ import numpy as np
 
 from mcsim._version import __version__
 from mcsim.engine import interrupt
+from mcsim.engine.cluster import PROCESSES, process_pool
 from mcsim.engine.montecarlo import FIRST_CHECKPOINT, default_workers, in_order
 from mcsim.model.counterface import as_counter, check_correlation, gap_surface
 from mcsim.model.errors import ParameterError
@@ -204,9 +205,14 @@ def sweep(
         Where the Monte Carlo runs sample and sum (``"cuda"``: this machine's GPU, see
         :func:`mcsim.simulate`; points then run one after another, not on Dask).
     workers : int, optional
-        Local worker threads (1 to 1024; all cores by default), or processes of ``"local"`` Dask.
+        Local worker threads (1 to 1024; all cores by default), or processes of
+        ``"processes"`` or ``"local"`` Dask.
     scheduler : str or dask.distributed.Client, optional
-        ``"local"``, a scheduler address or a client, as in :func:`mcsim.simulate`.
+        ``"local"``, a scheduler address or a client, as in :func:`mcsim.simulate`; or
+        ``"processes"``: the points on ``workers`` worker processes of this machine, no
+        Dask needed (:func:`mcsim.engine.cluster.process_pool`; faster than threads where
+        the points hold pads, whose search runs much in Python; a script that calls it
+        needs ``if __name__ == "__main__":``, as for any spawned process).
     out : str or path-like, optional
         Write the sweep (HDF5, see the module docstring) atomically; completed points
         are checkpointed in ``<stem>.partial<suffix>`` beside it.
@@ -512,17 +518,21 @@ def _run(stack, points, config, result: Sweep, done, workers, scheduler, progres
 
         bar = stack.enter_context(tqdm(total=done.size, initial=int(done.sum()), unit=" points",
                                        file=sys.stderr, leave=False))  # fmt: skip
-    client = scheduler
-    if isinstance(scheduler, str):
-        from mcsim.engine.cluster import dask_client
-
-        client = stack.enter_context(dask_client(scheduler, workers))
-    if client is None:
+    if scheduler == PROCESSES:
+        pool_submit = stack.enter_context(process_pool(n_workers))
+        submit = functools.partial(pool_submit, evaluate_quietly, config=config)
+        window = 2 * n_workers
+    elif scheduler is None:
         pool = ThreadPoolExecutor(max_workers=n_workers)
         stack.callback(pool.shutdown, wait=True, cancel_futures=True)
         submit = functools.partial(pool.submit, evaluate_batch, config=config)
         window = 2 * n_workers
     else:
+        client = scheduler
+        if isinstance(scheduler, str):
+            from mcsim.engine.cluster import dask_client
+
+            client = stack.enter_context(dask_client(scheduler, workers))
         submit = functools.partial(client.submit, evaluate_quietly, config=config, pure=False)
         window = 2 * max(1, sum(client.nthreads().values()))
     next_checkpoint = time.monotonic() + min(FIRST_CHECKPOINT, checkpoint_every)

@@ -229,10 +229,8 @@ class TailEstimate:
         unbiased still, its variance larger).
     event : str
         ``"stick"`` or ``"release"``: which side was sampled.
-    tilts : tuple of Tilt
-        Each chain's last tilt.
-    cut : float
-        The cut s_c, in σ.
+    tilts, cut : tuple of Tilt, float
+        Each chain's last tilt; the cut s_c, in σ.
     agree : bool
         Whether the chains' own estimates agree within :data:`AGREE` combined standard errors
         (module docstring); True where no final pads were drawn.
@@ -529,11 +527,11 @@ def importance_p_stick(spec, restoring_force: float, *, turn: float, preload: fl
             above = (law.edges[:-1] >= turn) & (np.asarray(chains[0].tilt.ratio) > 1)
             cap = np.where(above, 1.0, math.inf)
         chains.append(_cross_entropy(law, c, *zero(c), **options, cap=cap))
-        if give_up and not chains[0].reached and chains[0].bound is None:
+        stalled = give_up and not chains[0].reached and chains[0].bound is None
+        if stalled:
             break  # the first chain cannot reach the event: no estimate
     evaluations = sum(c.evaluations for c in chains) + (len(chains) * pilot if start is None else 0)
-    tilts = tuple(c.tilt for c in chains)
-    stages = max(c.stages for c in chains)
+    tilts, stages = tuple(c.tilt for c in chains), max(c.stages for c in chains)
     reached = len(chains) == CHAINS and all(c.reached for c in chains)
     if all(c.bound is not None for c in chains):  # every chain shows the event below the floor
         high = max(c.bound[3] for c in chains)
@@ -542,7 +540,7 @@ def importance_p_stick(spec, restoring_force: float, *, turn: float, preload: fl
                             min(effective_sample_size(*c.bound[:2]) for c in chains), 0, 0,
                             evaluations, stages, False, event, tilts, law.cut, True,
                             tuple((c.bound[0], *c.bound[2:]) for c in chains), bounded=True)  # fmt: skip
-    if give_up and not chains[0].reached and chains[0].bound is None:
+    if stalled:
         return TailEstimate(math.nan, math.nan, 0.0, 1.0, 0.0, 0, 0, evaluations, stages, False,
                             event, tilts, law.cut, True)  # fmt: skip
     sizes = mixture(pads)

@@ -42,3 +42,30 @@ def test_a_local_clusters_workers_print_no_warning_lines(capfd, caplog):
         client.run(_warn_from_the_worker)
     err = capfd.readouterr().err + caplog.text
     assert "a worker's own warning" not in err, err
+
+
+_SCRIPT = """from mcsim.engine.cluster import process_pool
+{guard}
+    with process_pool(1) as submit:
+        print("result", submit(abs, -1).result())
+"""
+
+
+@pytest.mark.parametrize("guard", ["if True:", 'if __name__ == "__main__":'])
+def test_a_script_that_starts_worker_processes_gets_a_result_or_an_error_not_a_hang(
+    tmp_path, guard
+):
+    # A spawned worker imports the script that started it: without the guard it starts
+    # workers of its own and dies (multiprocessing.Pool would replace it forever: a hang).
+    import subprocess
+    import sys
+
+    script = tmp_path / "script.py"
+    script.write_text(_SCRIPT.format(guard=guard))
+    done = subprocess.run([sys.executable, str(script)], capture_output=True, text=True,
+                          timeout=120, cwd=tmp_path)  # fmt: skip
+    if "__main__" in guard:
+        assert done.returncode == 0 and done.stdout == "result 1\n", done.stderr
+    else:
+        assert done.returncode == 1, done.stderr
+        assert "MCSimError: a worker process ended abruptly" in done.stderr

@@ -208,3 +208,37 @@ def test_pads_below_the_bridges_onset_are_evaluated_once_with_each_rhs_own_numbe
         for name in ("pull_off_mean", "pull_off_std", "work_of_separation_mean", "p_stick"):
             assert np.asarray(data[name])[i] == np.asarray(alone[name])[0], (rh, name)
     assert evaluated[2:] == [*below, 0.5]
+
+
+def test_points_whose_pads_act_alike_are_one_task_in_the_order_of_the_first(monkeypatch):
+    # The README's report ran RH 0 and RH 0.3 (below the bridges' onset: the same pads) on
+    # two worker threads: the second waited the whole of the first's importance sampling
+    # for its result, holding a worker (and on Dask, whose processes do not share it,
+    # evaluated the pads again). Such points are now one task, sent where the first is.
+    import mcsim.studies.sweeps
+
+    tasks = []
+    evaluate_batch = mcsim.studies.sweeps.evaluate_batch
+
+    def recorded(points, config):
+        tasks.append([p.environment.rh for p in points])
+        return evaluate_batch(points, config)
+
+    monkeypatch.setattr(mcsim.studies.sweeps, "evaluate_batch", recorded)
+    options = dict(law="jkr", h=H, pads=2, restoring_force="1 mN", preload=0, area="30 um^2",
+                   seed=5, environment=HUMID, workers=1)  # fmt: skip
+    sweep(SMOOTH, SILICON, {"rh": [0.0, 0.5, 0.1, 0.9, 0.25]}, **options)
+    assert tasks == [[0.0, 0.1, 0.25], [0.5], [0.9]]
+
+
+def test_worker_processes_give_the_numbers_of_threads():
+    # scheduler="processes" (mcsim report's default): the points on spawned processes of this
+    # machine, whose pads search runs in Python half the time and so does not share one core
+    options = dict(law="jkr", h=H, pads=3, restoring_force="1 mN", preload=0, area="30 um^2",
+                   seed=5, environment=HUMID, workers=2)  # fmt: skip
+    grid = {"rh": [0.0, 0.2, 0.6]}
+    threads = sweep(SMOOTH, SILICON, grid, **options)
+    processes = sweep(SMOOTH, SILICON, grid, **options, scheduler="processes")
+    assert set(processes.data) == set(threads.data)
+    for name, values in threads.data.items():
+        np.testing.assert_array_equal(processes.data[name], values, err_msg=name)

@@ -272,9 +272,20 @@ def test_importance_sampling_resolves_p_stick_to_a_hundredth_of_a_device(monkeyp
     assert asked == [RESOLUTION / 400] == [2.5e-5]
 
 
-def test_the_rh_values_run_on_dask_where_asked(monkeypatch, capsys):
-    # --dask local / --scheduler reach the pads' sweep, which runs its points there (the
-    # sweep's own tests check that Dask gives the same numbers as threads).
+@pytest.mark.parametrize(
+    ("options", "scheduler", "workers"),
+    [
+        (["--dask", "local", "--workers", "2"], "local", 2),
+        (["--scheduler", "tcp://host:8786"], "tcp://host:8786", None),
+        ([], "processes", None),  # worker processes of this machine, one per core
+        (["--workers", "2"], "processes", 2),
+        (["--workers", "1"], None, 1),  # in this process
+    ],
+)
+def test_the_rh_values_run_where_asked(monkeypatch, capsys, options, scheduler, workers):
+    # --dask local / --scheduler reach the pads' sweep, which runs its points there; by
+    # default worker processes (the sweep's own tests check that Dask and processes give
+    # the same numbers as threads)
     import mcsim.studies.sweeps
 
     asked = []
@@ -285,9 +296,9 @@ def test_the_rh_values_run_on_dask_where_asked(monkeypatch, capsys):
 
     monkeypatch.setattr(mcsim.studies.sweeps, "sweep", stop)
     code, _, _ = run_cli(capsys, "report", SCAN, "--unit", "m", "--pixel-size", "10nm",
-                         "--pad-area", "10um^2", "--restoring-force", "10uN", "--dask", "local",
-                         "--workers", 2, "--rh", 0)  # fmt: skip
-    assert code == 130 and asked == [("local", 2)]
+                         "--pad-area", "10um^2", "--restoring-force", "10uN", *options,
+                         "--rh", 0)  # fmt: skip
+    assert code == 130 and asked == [(scheduler, workers)]
 
 
 def test_a_spring_gives_the_restoring_force():
@@ -357,3 +368,52 @@ def test_the_page_renders_in_a_real_browser(small, tmp_path):
     assert colours.sum() > 5000
     assert not ink[:, -20:].any()  # a white margin on the right: nothing runs off the page
     assert math.isfinite(small.elapsed)
+
+
+def test_ctrl_c_ends_the_worker_processes_and_leaves_nothing(tmp_path):
+    # `mcsim report` runs the RH values on worker processes by default. A terminal's Ctrl-C
+    # reaches them too, but they ignore it (blocked from their start until then): the
+    # command ends them without waiting for their pads, prints one line and writes nothing.
+    import signal
+    import sys
+    import time
+
+    out = tmp_path / "r.html"
+    cmd = [sys.executable, "-m", "mcsim", "report", str(SCAN), "--unit", "m", "--pixel-size",
+           "10nm", "--pad-area", "1um^2", "--restoring-force", "1uN", "--rh", "0,0.5",
+           "--pads", "2000", "--devices", "100", "--seed", "1", "--law", "jkr", "--workers", "2",
+           "--out", str(out)]  # fmt: skip
+    env = {**os.environ, "PYTHONFAULTHANDLER": "1"}
+    proc = subprocess.Popen(
+        cmd, stderr=subprocess.PIPE, text=True, env=env, start_new_session=True
+    )  # its own group, as under a terminal
+    children = f"/proc/{proc.pid}/task/{proc.pid}/children"
+    workers: list[int] = []
+    deadline = time.monotonic() + 120
+    while len(workers) < 2 and proc.poll() is None and time.monotonic() < deadline:
+        time.sleep(0.2)  # until both workers run (a third child: multiprocessing's tracker)
+        with open(children) as f:
+            workers = [int(pid) for pid in f.read().split()]
+    assert proc.poll() is None, proc.communicate()[1]
+    time.sleep(2.0)  # the workers import mcsim and take their first points
+    os.killpg(proc.pid, signal.SIGINT)  # as a terminal's Ctrl-C: to the whole group
+    started = time.monotonic()
+    try:
+        _, err = proc.communicate(timeout=60)
+    except subprocess.TimeoutExpired:
+        proc.send_signal(signal.SIGABRT)  # every thread's stack (PYTHONFAULTHANDLER)
+        pytest.fail(f"no exit 60 s after Ctrl-C:\n{proc.communicate(timeout=30)[1]}")
+    assert proc.returncode == 130, err
+    assert time.monotonic() - started < 30, "waited for the workers' pads"
+    lines = [line for line in err.replace("\r", "\n").splitlines()
+             if line.strip() and not line.startswith("mcsim: report:") and "points" not in line]  # fmt: skip
+    assert lines == ["mcsim: interrupted; no output written"], err
+    assert list(tmp_path.iterdir()) == []
+    time.sleep(0.5)
+    for pid in workers:  # ended (gone, or a zombie no one reaps), not left running their pads
+        try:
+            with open(f"/proc/{pid}/stat") as f:
+                state = f.read().rsplit(")", 1)[1].split()[0]
+        except FileNotFoundError:
+            continue
+        assert state in ("Z", "X"), f"worker {pid} still running (state {state})"
