@@ -233,7 +233,7 @@ def test_points_whose_pads_act_alike_are_one_task_in_the_order_of_the_first(monk
 
 def test_worker_processes_give_the_numbers_of_threads():
     # scheduler="processes" (mcsim report's default): the points on spawned processes of this
-    # machine, whose pads search runs in Python half the time and so does not share one core
+    # machine (a pad's search holds the GIL much of the time: threads gain little there)
     options = dict(law="jkr", h=H, pads=3, restoring_force="1 mN", preload=0, area="30 um^2",
                    seed=5, environment=HUMID, workers=2)  # fmt: skip
     grid = {"rh": [0.0, 0.2, 0.6]}
