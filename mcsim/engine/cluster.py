@@ -15,7 +15,10 @@ import concurrent.futures
 import contextlib
 import logging
 import multiprocessing
+import multiprocessing.connection
+import os
 import signal
+import threading
 import warnings
 from collections.abc import Callable, Iterator
 
@@ -80,11 +83,22 @@ def dask_client(scheduler: str, workers: int | None = None) -> Iterator[object]:
 
 def _quiet_worker(filters: list) -> None:
     """A pool worker's start: Ctrl-C is this process's parent's to handle (it ends the
-    workers), and the parent's warning filters apply."""
+    workers), the parent's warning filters apply, and the worker ends with its parent: a
+    parent killed outright (SIGKILL, out of memory) cannot end it, and its pool's queues
+    would keep it waiting forever."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # a Ctrl-C pending since the start: dropped
     if hasattr(signal, "pthread_sigmask"):  # not on Windows
         signal.pthread_sigmask(signal.SIG_UNBLOCK, [signal.SIGINT])
     warnings.filters[:] = filters
+    parent = multiprocessing.parent_process()
+    if parent is not None:
+        threading.Thread(target=_end_with, args=(parent.sentinel,), daemon=True).start()
+
+
+def _end_with(sentinel) -> None:
+    """End this process, its task unfinished, when ``sentinel`` (its parent's) fires."""
+    multiprocessing.connection.wait([sentinel])
+    os._exit(1)
 
 
 def _filters() -> list:

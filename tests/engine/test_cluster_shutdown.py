@@ -5,6 +5,8 @@ purpose: the nanny waits its 4 s and kills it."""
 
 from __future__ import annotations
 
+import os
+
 import pytest
 
 
@@ -69,3 +71,43 @@ def test_a_script_that_starts_worker_processes_gets_a_result_or_an_error_not_a_h
     else:
         assert done.returncode == 1, done.stderr
         assert "MCSimError: a worker process ended abruptly" in done.stderr
+
+
+_KILLED = """import os, time
+from mcsim.engine.cluster import process_pool
+if __name__ == "__main__":
+    with process_pool(1) as submit:
+        print(submit(os.getpid).result(), flush=True)
+        submit(time.sleep, 120)
+        time.sleep(120)
+"""
+
+
+def _running(pid: int) -> bool:
+    try:
+        with open(f"/proc/{pid}/stat") as f:
+            return f.read().rsplit(")", 1)[1].split()[0] not in ("Z", "X")
+    except FileNotFoundError:
+        return False
+
+
+@pytest.mark.skipif(not os.path.isdir("/proc/self"), reason="reads /proc (Linux)")
+def test_a_worker_process_ends_with_its_parent_killed_outright(tmp_path):
+    # SIGKILL of `mcsim report` (or the out-of-memory killer) cannot end its workers, and a
+    # process pool's queues kept them waiting forever after their task: each now watches
+    # its parent and ends with it, its task unfinished.
+    import subprocess
+    import sys
+    import time
+
+    script = tmp_path / "killed.py"
+    script.write_text(_KILLED)
+    proc = subprocess.Popen([sys.executable, str(script)], stdout=subprocess.PIPE, text=True)
+    worker = int(proc.stdout.readline())
+    assert _running(worker)
+    proc.kill()
+    proc.wait(timeout=30)
+    deadline = time.monotonic() + 15
+    while _running(worker) and time.monotonic() < deadline:
+        time.sleep(0.1)
+    assert not _running(worker), "the worker outlived its killed parent"
