@@ -370,6 +370,7 @@ def test_the_page_renders_in_a_real_browser(small, tmp_path):
     assert math.isfinite(small.elapsed)
 
 
+@pytest.mark.skipif(not os.path.isdir("/proc/self"), reason="reads /proc (Linux)")
 def test_ctrl_c_ends_the_worker_processes_and_leaves_nothing(tmp_path):
     # `mcsim report` runs the RH values on worker processes by default. A terminal's Ctrl-C
     # reaches them too, but they ignore it (blocked from their start until then): the
@@ -397,14 +398,12 @@ def test_ctrl_c_ends_the_worker_processes_and_leaves_nothing(tmp_path):
     assert proc.poll() is None, proc.communicate()[1]
     time.sleep(2.0)  # the workers import mcsim and take their first points
     os.killpg(proc.pid, signal.SIGINT)  # as a terminal's Ctrl-C: to the whole group
-    started = time.monotonic()
-    try:
+    try:  # its pads would take minutes: a wait for them is a hang
         _, err = proc.communicate(timeout=60)
     except subprocess.TimeoutExpired:
         proc.send_signal(signal.SIGABRT)  # every thread's stack (PYTHONFAULTHANDLER)
         pytest.fail(f"no exit 60 s after Ctrl-C:\n{proc.communicate(timeout=30)[1]}")
     assert proc.returncode == 130, err
-    assert time.monotonic() - started < 30, "waited for the workers' pads"
     lines = [line for line in err.replace("\r", "\n").splitlines()
              if line.strip() and not line.startswith("mcsim: report:") and "points" not in line]  # fmt: skip
     assert lines == ["mcsim: interrupted; no output written"], err
