@@ -155,7 +155,8 @@ class SharedPads:
     from the same stream (the environment's dimensions share it), under the same physics: the
     first point to ask evaluates them and the others, concurrent or later, take its result.
     ``mcsim report`` at RH 0 and 0.3 evaluated the same pads twice, importance sampling
-    included. A copy sent to another process (a Dask worker) starts empty.
+    included. A copy sent to another process (a Dask worker, a process pool's) starts empty:
+    the sweep sends such points there as one task (:func:`batches`).
     """
 
     #: Most pads results kept (a few floats each).
