@@ -123,6 +123,7 @@ def _scheduler(args):
     against 167 s on 2 cores for the README's report), in this process with ``--workers 1``."""
     from mcsim.engine.cluster import PROCESSES
 
-    if args.scheduler or args.dask:
-        return args.scheduler or args.dask
+    dask = args.scheduler or args.dask
+    if dask:
+        return dask
     return None if args.workers == 1 else PROCESSES

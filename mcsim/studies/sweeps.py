@@ -205,8 +205,8 @@ def sweep(
         Where the Monte Carlo runs sample and sum (``"cuda"``: this machine's GPU, see
         :func:`mcsim.simulate`; points then run one after another, not on Dask).
     workers : int, optional
-        Local worker threads (1 to 1024; all cores by default), or processes of
-        ``"processes"`` or ``"local"`` Dask.
+        Local worker threads (1 to 1024; all cores by default), or the worker processes of
+        ``"processes"`` or of a ``"local"`` Dask cluster.
     scheduler : str or dask.distributed.Client, optional
         ``"local"``, a scheduler address or a client, as in :func:`mcsim.simulate`; or
         ``"processes"``: the points on ``workers`` worker processes of this machine, no
