@@ -68,15 +68,31 @@ def block_sums_against_numpy(n: int) -> dict:
     return out
 
 
-def patch(heights, sizes, *, entropy=7, launch_blocks=mc.LAUNCH_BLOCKS, grid=None, s_min=-0.5):
+def patch(heights, sizes, *, entropy=7, launch_blocks=mc.LAUNCH_BLOCKS, grid=None, s_min=-0.5,
+          h=(-0.5, 0.0, 1.0, 2.0)):  # fmt: skip
     law = LAW_SETS["seed"]
     parts = mc.patch_block_sums_cuda(
         law=law, args=law.arguments(SURFACE, MATERIAL), heights=heights, sigma=SURFACE.sigma,
         s_min=s_min, entropy=entropy, realization=1, block_sizes=sizes, first_block=3,
-        d=np.array([-0.5, 0.0, 1.0, 2.0]) * SURFACE.sigma, launch_blocks=launch_blocks,
-        grid=grid,
+        d=np.asarray(h) * SURFACE.sigma, launch_blocks=launch_blocks, grid=grid,
     )  # fmt: skip
     return np.concatenate(list(parts))
+
+
+def rows_split(sizes: list[int]) -> bool:
+    """More rows than one group of the kernel's reduction holds, in one launch or split
+    between two: bit-identical sums (the groups' barriers change no order)."""
+    h = np.linspace(2.0, -0.5, 2 * mc.SHARED_BYTES // (8 * 10 * mc.THREADS // mc.WARP) + 3)
+    whole = patch(SURFACE.heights, sizes[:1], h=h)
+    cut = h.size // 3
+    parts = np.concatenate(
+        [
+            patch(SURFACE.heights, sizes[:1], h=h[:cut]),
+            patch(SURFACE.heights, sizes[:1], h=h[cut:]),
+        ],
+        axis=1,
+    )
+    return bool(np.array_equal(whole, parts))
 
 
 def sampling(sizes: list[int]) -> dict:
@@ -155,6 +171,7 @@ def main() -> None:
         "simulator": mc.simulating(),
         "block_sums": block_sums_against_numpy(n),
         "sampling": sampling(sizes),
+        "rows_split_identical": rows_split(sizes),
     }
     if len(sys.argv) > 3:
         result["simulate"] = simulated_runs(sys.argv[3])

@@ -278,6 +278,12 @@ def test_gpu_sampling_is_bit_identical_for_any_launch_configuration(checks):
         assert r["other_seed_differs"]
 
 
+def test_gpu_sums_are_bit_identical_for_any_split_of_the_rows(checks):
+    """More rows than one group of the reduction (SHARED_BYTES) holds, in one launch or
+    two: the same bits."""
+    assert checks["rows_split_identical"]
+
+
 def test_gpu_heights_follow_the_truncated_distribution(checks):
     """Contact counts at h = −0.5 (= s_min), 0, 1, 2 against P(S > h)/P(S > s_min)."""
     for r in checks["sampling"].values():

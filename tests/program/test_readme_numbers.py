@@ -163,6 +163,15 @@ def test_load_control_tolerance_and_z_threshold():
     check_exact(r"Where fewer than (\S+) contacting summits are expected", MIN_CONTACTS)
 
 
+def test_the_gpu_backends_blocks_and_launches():
+    from mcsim.engine import cuda
+    from mcsim.engine.montecarlo import BLOCK
+
+    check_exact(r"each block of (\S+) summits is reduced in a fixed order", BLOCK)
+    check_exact(r"at most (\S+) blocks and (\S+) MiB of sums per launch",
+                cuda.LAUNCH_BLOCKS, cuda.LAUNCH_BYTES / 2**20)  # fmt: skip
+
+
 def test_guarantees_state_the_bounds_the_tests_check():
     from designmap_checks import AGREE  # (the ~1e-13 of the curves: tests/physics/test_analytic.py)
 
