@@ -320,6 +320,20 @@ def add_parallel(p, workers: str) -> None:
                    help="'local': start a local Dask cluster of --workers processes")  # fmt: skip
 
 
+def scheduler_of(args, *, processes: bool):
+    """Where a sweep's points run: on Dask where asked (``--scheduler``, ``--dask``); else,
+    with ``processes``, on worker processes of this machine (points holding pads, whose
+    search holds Python's lock much of the time: threads gain little; the README's report
+    took about 100 s against 167 s on threads on 2 cores), in the command's own process with
+    ``--workers 1``; else on threads (None)."""
+    from mcsim.engine.cluster import PROCESSES
+
+    dask = args.scheduler or args.dask
+    if dask or not processes:
+        return dask
+    return None if args.workers == 1 else PROCESSES
+
+
 def add_preload(p, what: str) -> None:
     """``--preload P``: the closest approach is where the mean approach load balances P."""
     p.add_argument("--preload", metavar="P", help="nominal pressure pressing the surfaces before "

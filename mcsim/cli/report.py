@@ -7,7 +7,7 @@ import sys
 from pathlib import Path
 
 from mcsim.cli.display import announce
-from mcsim.cli.options import add_environment, add_parallel, integer
+from mcsim.cli.options import add_environment, add_parallel, integer, scheduler_of
 from mcsim.model.errors import ParameterError
 
 
@@ -40,7 +40,7 @@ def run(args) -> int:
         rh=args.rh, devices=args.devices, law=args.law, pads=args.pads,
         environment=environment,
         unit=args.unit, pixel_size=args.pixel_size, channel=args.channel, seed=args.seed,
-        workers=args.workers, scheduler=_scheduler(args), progress=not args.quiet,
+        workers=args.workers, scheduler=scheduler_of(args, processes=True), progress=not args.quiet,
         command=args.command_line,
     )  # fmt: skip
     texts = {json_path: result.to_json(), html: result.to_html()}
@@ -115,15 +115,3 @@ def add_parser(sub) -> None:
     p.add_argument("--overwrite", action="store_true", help="replace existing report files")
     p.add_argument("--quiet", action="store_true", help="no progress and no 'wrote FILE' lines")
     p.set_defaults(func=run)
-
-
-def _scheduler(args):
-    """Where the RH values run: Dask where asked, else worker processes of this machine (the
-    pads' search holds Python's lock much of the time, so threads gain little: about 100 s
-    against 167 s on 2 cores for the README's report), in this process with ``--workers 1``."""
-    from mcsim.engine.cluster import PROCESSES
-
-    dask = args.scheduler or args.dask
-    if dask:
-        return dask
-    return None if args.workers == 1 else PROCESSES

@@ -24,6 +24,7 @@ from mcsim.cli.options import (
     inputs_of,
     parse_h,
     parse_turn,
+    scheduler_of,
     seed_type,
 )
 from mcsim.model.errors import ParameterError
@@ -66,7 +67,7 @@ def run(args) -> int:
                 result = sweep(
                     given, material, vary, **pair, law=args.law, h=parse_h(args.h), turn=parse_turn(args.turn),
                     environment=environment, mc=args.mc, pads=args.pads, restoring_force=args.restoring_force, preload=args.preload, tail=True if args.tail else None, friction=args.friction, tangential_force=args.tangential_force, area=args.area, realizations=args.realizations or 1, seed=args.seed, device=args.device,
-                    workers=args.workers, scheduler=args.scheduler or args.dask, out=out,
+                    workers=args.workers, scheduler=scheduler_of(args, processes=bool(args.pads) and args.device == "cpu"), out=out,
                     overwrite=args.overwrite, resume=args.resume, checkpoint_every=args.checkpoint_every,
                     progress=not args.quiet and sys.stderr.isatty(), command=args.command_line,
                 )  # fmt: skip
@@ -227,7 +228,11 @@ def add_parser(sub) -> None:
     p.add_argument("--device", choices=("cpu", "cuda"), default="cpu",
                    help="where the Monte Carlo runs sample and sum (cuda: this machine's GPU, needs "
                    "mcsim[gpu]; points then run one after another)")  # fmt: skip
-    add_parallel(p, "worker threads, or processes of --dask local")
+    add_parallel(
+        p,
+        "worker threads (with --pads: worker processes; 1: in this process), or "
+        "processes of --dask local",
+    )
     p.add_argument("--overwrite", action="store_true", help="replace an existing sweep file")
     p.add_argument("--resume", action="store_true", help="continue from the checkpoint beside --out "
                    "(same arguments): completed points are not recomputed; if --out holds this "

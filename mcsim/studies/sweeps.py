@@ -212,7 +212,9 @@ def sweep(
         ``"processes"``: the points on ``workers`` worker processes of this machine, no
         Dask needed (:func:`mcsim.engine.cluster.process_pool`; faster than threads where
         the points hold pads, whose search runs much in Python; a script that calls it
-        needs ``if __name__ == "__main__":``, as for any spawned process).
+        needs ``if __name__ == "__main__":``, as for any spawned process). No more
+        processes than tasks start, and none for one task (points whose pads act alike
+        are one task), which runs in this process.
     out : str or path-like, optional
         Write the sweep (HDF5, see the module docstring) atomically; completed points
         are checkpointed in ``<stem>.partial<suffix>`` beside it.
@@ -512,6 +514,12 @@ def _run(stack, points, config, result: Sweep, done, workers, scheduler, progres
          checkpoint, checkpoint_every) -> None:  # fmt: skip
     """Evaluate the points on threads or Dask, storing each result as it arrives (in order)."""
     n_workers = default_workers() if workers is None else workers
+    tasks = batches(points, config)
+    if scheduler == PROCESSES:
+        tasks = list(tasks)  # pads' points: already grouped in a list
+        if len(tasks) <= 1:
+            scheduler = None  # a pool would only add its processes' start to one task
+        n_workers = max(1, min(n_workers, len(tasks)))
     bar = None
     if progress:
         from tqdm import tqdm
@@ -538,7 +546,7 @@ def _run(stack, points, config, result: Sweep, done, workers, scheduler, progres
     next_checkpoint = time.monotonic() + min(FIRST_CHECKPOINT, checkpoint_every)
     unsaved = False
     results = stack.enter_context(
-        contextlib.closing(in_order(submit, batches(points, config), window, interrupt.check))
+        contextlib.closing(in_order(submit, tasks, window, interrupt.check))
     )
     try:
         for batch, batch_values in results:

@@ -248,6 +248,52 @@ def test_a_varied_restoring_force_gives_each_point_the_pads_of_a_fixed_one(pads_
     assert on_disk.units["restoring_force"] == "N" and "restoring_force" not in on_disk.attrs
 
 
+PADS_CLI = ("--pads", 5, "--area", "30um^2", "--restoring-force", "20uN", "--seed", 1)
+
+
+@pytest.mark.parametrize(
+    ("options", "scheduler", "workers"),
+    [
+        ([*PADS_CLI], "processes", None),  # pads: worker processes of this machine
+        ([*PADS_CLI, "--workers", 2], "processes", 2),
+        ([*PADS_CLI, "--workers", 1], None, 1),  # in this process
+        ([*PADS_CLI, "--dask", "local", "--workers", 2], "local", 2),
+        ([*PADS_CLI, "--scheduler", "tcp://host:8786"], "tcp://host:8786", None),
+        ([], None, None),  # no pads: threads
+    ],
+)
+def test_the_cli_sweeps_points_run_where_asked(monkeypatch, capsys, tmp_path, options, scheduler,
+                                              workers):  # fmt: skip
+    import mcsim.studies.sweeps
+
+    asked = []
+
+    def stop(*args, **kwargs):
+        asked.append((kwargs["scheduler"], kwargs["workers"]))
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(mcsim.studies.sweeps, "sweep", stop)
+    code, _, err = run_cli(capsys, "sweep", "--surface", "smooth", "--law", "jkr", "--vary",
+                           "sigma=3nm,4nm", *options, "--out", tmp_path / "s.h5", "--quiet")  # fmt: skip
+    assert code == 130 and asked == [(scheduler, workers)], err
+
+
+def test_one_task_on_processes_runs_in_this_process(monkeypatch):
+    # a pool would only add its processes' start: one point (or points whose pads act
+    # alike, one task) runs here, with the numbers of threads
+    import mcsim.studies.sweeps
+
+    def no_pool(workers):
+        raise AssertionError("a process pool was started for one task")
+
+    options = {"pads": 5, "seed": 3, **PADS_OPTIONS}
+    threads = sweep(SMOOTH, SILICON, {"sigma": "3nm"}, **options)
+    monkeypatch.setattr(mcsim.studies.sweeps, "process_pool", no_pool)
+    here = sweep(SMOOTH, SILICON, {"sigma": "3nm"}, scheduler="processes", **options)
+    for name in threads.data:
+        np.testing.assert_array_equal(here.data[name], threads.data[name], err_msg=name)
+
+
 def test_cli_sweep_varies_the_restoring_force_and_plots_it(tmp_path, capsys):
     out = tmp_path / "f.h5"
     code, _, err = run_cli(capsys, "sweep", "--surface", "smooth", "--law", "jkr", "--vary",
