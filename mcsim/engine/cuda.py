@@ -534,6 +534,12 @@ def height_sampler(heights, s_min: float) -> tuple:
     )
 
 
+def blocks_per_launch(rows: int, columns: int) -> int:
+    """Blocks one launch handles: :data:`LAUNCH_BLOCKS`, fewer where their sums (``rows`` ×
+    ``columns`` doubles a block) would pass :data:`LAUNCH_BYTES`."""
+    return max(1, min(LAUNCH_BLOCKS, LAUNCH_BYTES // (8 * rows * columns)))
+
+
 def patch_block_sums_cuda(
     *,
     law: LawSet,
@@ -588,7 +594,7 @@ def patch_block_sums_cuda(
     sizes = np.asarray(block_sizes, dtype=np.int64)
     dummy = _cuda().to_device(np.zeros(1))
     ncols = len(sum_columns(law))
-    step = max(1, min(launch_blocks, LAUNCH_BYTES // (8 * rows[0].size * ncols)))
+    step = min(launch_blocks, blocks_per_launch(rows[0].size, ncols))
     for start in range(0, sizes.size, step):
         part = sizes[start : start + step]
         yield _launch(

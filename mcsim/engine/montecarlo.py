@@ -341,7 +341,7 @@ def run_sums(
         raise ParameterError("keep_heights cannot be combined with resuming a run")
     task_fn = run_task
     if spec.device == "cuda":
-        from mcsim.engine.cuda import LAUNCH_BLOCKS, require_gpu
+        from mcsim.engine.cuda import blocks_per_launch, require_gpu
 
         require_gpu()
         if keep_heights or client is not None:
@@ -350,7 +350,10 @@ def run_sums(
                 "drop keep_heights and the Dask scheduler"
             )
         task_fn, workers = run_task_cuda, 1  # one GPU; big tasks keep it busy
-        chunk_size = max(chunk_size, LAUNCH_BLOCKS * BLOCK)
+        rows = spec.rows()[0].size  # tasks of one launch at least, its sums within LAUNCH_BYTES
+        chunk_size = max(
+            chunk_size, blocks_per_launch(rows, len(sum_columns(spec.law_set))) * BLOCK
+        )
     if resume is None:
         state = EnsembleSums.start(spec)
     else:  # the inputs are immutable values; only the progress is copied

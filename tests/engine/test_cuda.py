@@ -307,6 +307,13 @@ def test_a_gpu_run_agrees_with_the_analytic_curves(checks):
     assert max(abs(v) for v in caps) < 5
 
 
+def test_a_launchs_sums_stay_within_launch_bytes():
+    # 51 rows of the seed's 10 columns: the most blocks; 1000 rows: as many as 256 MiB hold
+    assert mc.blocks_per_launch(51, 10) == mc.LAUNCH_BLOCKS
+    assert mc.blocks_per_launch(1000, 10) == mc.LAUNCH_BYTES // 80000 < mc.LAUNCH_BLOCKS
+    assert mc.blocks_per_launch(10**9, 10) == 1  # never none
+
+
 def test_an_unknown_device_is_a_parameter_error():
     from mcsim.engine.spec import MonteCarloSpec
 
