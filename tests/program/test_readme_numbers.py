@@ -422,7 +422,7 @@ def test_more_constants_of_the_code():
     import inspect
     import tomllib
 
-    from mcsim.engine import cuda, montecarlo
+    from mcsim.engine import montecarlo
     from mcsim.figures.topography import MAX_DRAWN_BINS
     from mcsim.physics import validity
     from mcsim.physics.laws import dmt
@@ -442,7 +442,6 @@ def test_more_constants_of_the_code():
     default = inspect.signature(simulation.simulate).parameters["checkpoint_every"].default
     check_exact(r"every `--checkpoint-every` seconds, default (\d+),", default)
     check_exact(r"Per step \((\d+) by default, `--steps`\)", adhesivecontact.STEPS)
-    check_exact(r"at most (\d+) blocks per launch", cuda.LAUNCH_BLOCKS)
     check_exact(r"a histogram of more than (\d+) bins is drawn merged into at most (\d+) bars",
                 MAX_DRAWN_BINS, MAX_DRAWN_BINS)  # fmt: skip
     check_exact(r"direct and spectral routes more than a factor (\d+) apart",
