@@ -21,15 +21,8 @@ from mcsim.model.presets import MATERIALS, SURFACES
 from mcsim.studies.intervals import clopper_pearson, effective_clopper_pearson
 from mcsim.studies.pads import finite_pads, pad_statistics, tail_p_stick
 from mcsim.studies.rareevent import MIN_ESS, MIN_TAIL_PADS, SWITCH, rare_event
-from mcsim.studies.tail import (
-    CHAINS,
-    STAGES,
-    Tilt,
-    _Law,
-    cut,
-    importance_p_stick,
-    mixture,
-)
+from mcsim.studies.tail import CHAINS, STAGES, importance_p_stick, mixture
+from mcsim.studies.tiltlaw import Law, Tilt, cut
 
 #: The few-summit case of the issue: smooth at σ = 3 nm, 30 µm² (λ = 510 summits).
 SURFACE = dataclasses.replace(SURFACES["smooth"], sigma=3e-9)
@@ -67,7 +60,7 @@ def test_likelihood_ratio_has_mean_one_under_the_tilted_law():
     # E_q[L] = 1 for any tilt q: 4000 pads of a mild tilt (ratios 0.8 … 1.25, light-tailed
     # weights); |z| < 5 against the sample's standard error.
     spec = _spec(1)
-    law = _Law(spec, cut(spec, TURN))
+    law = Law(spec, cut(spec, TURN))
     tilt = Tilt(tuple(np.linspace(0.8, 1.25, 16)))
     highs = law.draw(tilt, 4000, np.random.default_rng(5))[1]
     weights = np.exp(law.log_ratio(tilt, law.bins(highs)))
@@ -79,7 +72,7 @@ def test_tilted_pads_below_the_cut_keep_the_nominal_count():
     # Summits below the cut are drawn untilted: their mean count is λ(S(s_min) − S(s_c)),
     # within 5 Poisson standard errors of the mean of 2000 pads.
     spec = _spec(1)
-    law = _Law(spec, cut(spec, TURN))
+    law = Law(spec, cut(spec, TURN))
     tilt = Tilt((3.0,) * 16)
     pads, _ = law.draw(tilt, 2000, np.random.default_rng(6))
     low = [np.count_nonzero(s <= law.cut) for s in pads]
