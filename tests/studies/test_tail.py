@@ -21,15 +21,8 @@ from mcsim.model.presets import MATERIALS, SURFACES
 from mcsim.studies.intervals import clopper_pearson, effective_clopper_pearson
 from mcsim.studies.pads import finite_pads, pad_statistics, tail_p_stick
 from mcsim.studies.rareevent import MIN_ESS, MIN_TAIL_PADS, SWITCH, rare_event
-from mcsim.studies.tail import (
-    CHAINS,
-    STAGES,
-    Tilt,
-    _Law,
-    cut,
-    importance_p_stick,
-    mixture,
-)
+from mcsim.studies.tail import CHAINS, FITTED, STAGES, importance_p_stick, mixture
+from mcsim.studies.tiltlaw import Law, Tilt, cut
 
 #: The few-summit case of the issue: smooth at σ = 3 nm, 30 µm² (λ = 510 summits).
 SURFACE = dataclasses.replace(SURFACES["smooth"], sigma=3e-9)
@@ -67,7 +60,7 @@ def test_likelihood_ratio_has_mean_one_under_the_tilted_law():
     # E_q[L] = 1 for any tilt q: 4000 pads of a mild tilt (ratios 0.8 … 1.25, light-tailed
     # weights); |z| < 5 against the sample's standard error.
     spec = _spec(1)
-    law = _Law(spec, cut(spec, TURN))
+    law = Law(spec, cut(spec, TURN))
     tilt = Tilt(tuple(np.linspace(0.8, 1.25, 16)))
     highs = law.draw(tilt, 4000, np.random.default_rng(5))[1]
     weights = np.exp(law.log_ratio(tilt, law.bins(highs)))
@@ -79,7 +72,7 @@ def test_tilted_pads_below_the_cut_keep_the_nominal_count():
     # Summits below the cut are drawn untilted: their mean count is λ(S(s_min) − S(s_c)),
     # within 5 Poisson standard errors of the mean of 2000 pads.
     spec = _spec(1)
-    law = _Law(spec, cut(spec, TURN))
+    law = Law(spec, cut(spec, TURN))
     tilt = Tilt((3.0,) * 16)
     pads, _ = law.draw(tilt, 2000, np.random.default_rng(6))
     low = [np.count_nonzero(s <= law.cut) for s in pads]
@@ -409,6 +402,43 @@ def test_a_later_chain_that_stalls_keeps_the_first_ones_estimate(monkeypatch):
     stalled = importance_p_stick(_spec(2), 18.5, **options)
     assert both.reached and not stalled.reached
     assert stalled.p_stick == both.p_stick and stalled.pads == 400 and stalled.ess > 0
+
+
+def test_pads_from_the_tilt_refitted_to_every_pad_in_the_event_join_the_estimate(monkeypatch):
+    # After the final pads, ⌈FITTED · pads⌉ more are drawn from one tilt fitted (unsmoothed)
+    # to every pad in the event so far, both chains' and the final ones, each weighted by the
+    # mixture of every law drawn: its ratio in each bin is their weighted mean count over the
+    # nominal one. They join the estimate and its evaluations (issue 44, the reach point's
+    # heavy pads); with no pad in the event none are drawn.
+    import mcsim.studies.tail as tail
+
+    drawn, real = [], tail._stage
+
+    def record(law, tilt, n, key, evaluate, workers):
+        out = real(law, tilt, n, key, evaluate, workers)
+        drawn.append((tilt, n, key, *out))
+        return out
+
+    monkeypatch.setattr(tail, "_stage", record)
+    e = _estimate(3, 19, pads=400, pilot=200)
+    final = [d for d in drawn if d[2][0] == CHAINS]
+    assert [d[1] for d in final] == [*mixture(400), math.ceil(FITTED * 400)]
+    assert final[-1][2] == (CHAINS, len(mixture(400)))
+    stages = sum(d[1] for d in drawn if d[2][0] < CHAINS)
+    assert e.evaluations == stages + 400 + math.ceil(FITTED * 400)
+    # the refitted tilt from the pads before it, weighted as the estimate weights them
+    law = Law(_spec(3), cut(_spec(3), TURN))
+    laws = [d[0] for d in drawn[:-1]]
+    sizes = [d[1] for d in drawn[:-1]]
+    counts = np.vstack([d[3] for d in drawn[:-1]])
+    y = (np.concatenate([d[4] for d in drawn[:-1]]) > 18.5) * law.weight(laws, sizes, counts)
+    expected = (y @ counts) / (y.sum() * law.mass)
+    ratio = np.asarray(final[-1][0].ratio)
+    live = law.mass > 0
+    assert np.allclose(ratio[live], np.maximum(expected[live], 0.01), rtol=1e-9)
+    drawn.clear()
+    none = _estimate(3, 1000, pads=400, pilot=200)  # 1000 summits in the band: no pad has them
+    assert none.hits == 0 and [d[1] for d in drawn if d[2][0] == CHAINS] == list(mixture(400))
 
 
 def test_where_the_chains_disagree_the_plain_fraction_stays(monkeypatch):
