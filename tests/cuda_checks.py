@@ -17,7 +17,7 @@ import numpy as np
 from lawset_toy import TOY
 
 from mcsim.engine import cuda as mc
-from mcsim.engine.kernels import block_sums_numpy
+from mcsim.engine.kernels import block_sums_numpy, sum_columns
 from mcsim.model.presets import MATERIALS, SURFACES
 from mcsim.physics.environment import Environment
 from mcsim.physics.laws import LAW_SETS
@@ -82,7 +82,7 @@ def patch(heights, sizes, *, entropy=7, launch_blocks=mc.LAUNCH_BLOCKS, grid=Non
 def rows_split(sizes: list[int]) -> bool:
     """More rows than one group of the kernel's reduction holds, in one launch or split
     between two: bit-identical sums (the groups' barriers change no order)."""
-    h = np.linspace(2.0, -0.5, 2 * mc.SHARED_BYTES // (8 * 10 * mc.THREADS // mc.WARP) + 3)
+    h = np.linspace(2.0, -0.5, 2 * mc.group_rows(len(sum_columns(LAW_SETS["seed"]))) + 3)
     whole = patch(SURFACE.heights, sizes[:1], h=h)
     cut = h.size // 3
     parts = np.concatenate(

@@ -34,6 +34,7 @@ from numba import cuda
 from reporting import Checks
 
 from mcsim.engine import cuda as mc
+from mcsim.engine.cudaheights import philox_key
 from mcsim.engine.montecarlo import BLOCK, default_workers, plan_patch, run_sums
 from mcsim.engine.spec import MonteCarloSpec
 from mcsim.model.presets import MATERIALS, SURFACES
@@ -151,7 +152,7 @@ def run_bare(bare, spec: MonteCarloSpec, n_above: int):
     R, K = args[0]
     G = args[2][2]
     gamma = args[1][2]
-    k0, k1 = mc.philox_key(spec.entropy, 0)
+    k0, k1 = philox_key(spec.entropy, 0)
     cuda.synchronize()
     t = time.perf_counter()
     bare[-(-n_above // mc.TILE), mc.THREADS](

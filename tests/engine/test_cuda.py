@@ -28,6 +28,7 @@ from cuda_checks import MATERIAL, SURFACE, law_sets
 from lawset_toy import toy_grip
 
 from mcsim.engine import cuda as mc
+from mcsim.engine import cudaheights
 from mcsim.model.errors import ParameterError
 from mcsim.physics.laws import LAW_SETS, ieee
 
@@ -77,8 +78,8 @@ def test_every_registered_law_function_keeps_to_the_vocabulary():
 
 def philox_python():
     """The sampler's source (the text the kernel compiles) run as plain Python."""
-    ns = {"np": np, "_HEIGHTS": 1, "_ndtri": None}
-    exec(mc._PHILOX, ns)
+    ns = {"np": np, "HEIGHTS": cudaheights.HEIGHTS, "_ndtri": None}
+    exec(cudaheights.PHILOX, ns)
     return ns
 
 
@@ -132,7 +133,7 @@ def test_device_cuda_without_a_gpu_is_a_parameter_error(monkeypatch):
 def test_unsupported_height_distributions_are_refused_on_the_gpu():
     other = types.SimpleNamespace(name="weibull")
     with pytest.raises(ParameterError, match="weibull"):
-        mc.height_sampler(other, 0.0)
+        cudaheights.height_sampler(other, 0.0)
 
 
 # -- the real CUDA compiler (NVVM), no GPU needed ------------------------------------
