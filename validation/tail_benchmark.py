@@ -27,11 +27,12 @@ Criteria (PASS/FAIL lines, exit status 1 on a FAIL):
   an effective sample size ≥ MIN_ESS and the chains agreeing in at least 8 of 10 seeds.
 * **Reach:** at p ≈ 1e-6, a relative half-width (high − low)/(2p) ≤ 0.2 from at most
   2·10⁴ pad evaluations, pilot stages included, on each of REACH_SEEDS seeds (full run);
-  the time per point is judged against 20 s in the full run, on one thread: a second one
-  only slows it (a pad's search holds the GIL most of its time; 2026-11-29, idle: 22.6 s on
-  two threads against 17.5–19.1 s on one), and a sweep's points run one importance sampling
-  each on one thread (the machine's load, ``uptime``, and the CPU seconds are printed with
-  it).
+  the time per point is judged against 20 s on 2 cores in the full run: the point's stages
+  on REACH_WORKERS worker processes (:mod:`mcsim.studies.padpool`, as ``mcsim pads --tail``
+  and a one-point ``sweep --pads`` run it; threads gain little, a pad's search holds the GIL
+  most of its time: 2026-11-29, idle, 22.6 s on two threads against 17.5–19.1 s on one).
+  Its wall seconds are printed with the CPU seconds of this process and of the workers
+  (``os.times``) and the machine's load (``uptime``).
 * **Two ways in** (full run only; ``TwoWays``): in at least 8 of 10 runs the interval holds
   the exact p or the chains disagree (the run says it cannot tell).
 * **With the environment** (full run only): humid air (A = 1.6e-19 J, D0 = 0.2 nm, RH 0.7,
@@ -102,6 +103,8 @@ SECONDS_PER_POINT = 20.0
 REACH_PADS, REACH_PILOT = 5600, 500
 #: Seeds of the reach point (full run): each must reach REL_HALF_WIDTH.
 REACH_SEEDS = 5
+#: Worker processes of the timed reach point: issue 44 asks for 20 s a point on 2 cores.
+REACH_WORKERS = 2
 
 
 def _spec(pads, seed, environment=None, sigma=SIGMA, area=AREA):
@@ -226,7 +229,8 @@ def _brute_force(n, seed, environment, workers, out: Path, case: str):
 
 
 def _tail(job):
-    """One importance run (one process, one thread) and its seconds."""
+    """One importance run and its wall seconds: in this process, or with a seventh item on
+    that many worker processes."""
     warnings.simplefilter("ignore")
     fr, seed, pads, pilot, environment, turn, *workers = job
     t = time.perf_counter()
@@ -272,7 +276,8 @@ def main() -> None:
     cover = [
         (F_2, s, TAIL_PADS, TAIL_PILOT, None, turn) for s in child_seeds(args.seed + 2, repeats)
     ]
-    reach = (F_6, seeds[2], *((200, 100) if args.quick else (REACH_PADS, REACH_PILOT)), None, turn)
+    reach = (F_6, seeds[2], *((200, 100) if args.quick else (REACH_PADS, REACH_PILOT)), None, turn,
+             REACH_WORKERS)  # fmt: skip
     with ProcessPoolExecutor(args.workers) as pool:
         done = list(pool.map(_tail, jobs + cover))
     for (fr, *_), (e, sec) in zip(jobs, done):
@@ -345,15 +350,19 @@ def main() -> None:
                      f"chains disagree in {sum(not a for *_, a in runs)}; p_IS/p: "
                      f"{', '.join(f'{q / event.p:.2f}' for q, *_ in runs)}")  # fmt: skip
         checks.at_least("two ways in: runs of 10 that hold p or whose chains disagree", told, 8)
-    cpu = time.process_time()
-    e, sec = _tail(reach)
-    cpu = time.process_time() - cpu
+    before = os.times()
+    e, sec = _tail(reach)  # its pool closed: the workers' CPU seconds are in os.times()
+    after = os.times()
+    cpu = after.user + after.system - before.user - before.system
+    workers_cpu = (after.children_user + after.children_system - before.children_user
+                   - before.children_system)  # fmt: skip
     half = (e.high - e.low) / (2 * e.p_stick) if e.p_stick > 0 else math.inf
     load = os.getloadavg()[0]
     lines.append(f"| {F_6 * 1e6:.0f} | - | {e.p_stick:.3g} [{e.low:.3g}, {e.high:.3g}] | "
                  f"{e.se / e.p_stick:.3f} | {e.ess:.0f} | {e.evaluations} | {sec:.0f} | - |")  # fmt: skip
-    lines.append(f"reach: {e.stages} cross-entropy stages, {e.evaluations} evaluations, {sec:.0f} s "
-                 f"on one thread ({cpu:.0f} CPU s), load average {load:.2f} (uptime)")  # fmt: skip
+    lines.append(f"reach: {e.stages} cross-entropy stages, {e.evaluations} evaluations, {sec:.1f} s "
+                 f"on {REACH_WORKERS} worker processes (CPU s: {cpu:.1f} this process, "
+                 f"{workers_cpu:.1f} the workers), load average {load:.2f} (uptime)")  # fmt: skip
     if not args.quick:
         checks.at_most("p ~ 1e-6: relative half-width of the 95 % interval", half, REL_HALF_WIDTH)
         # the same point on other seeds: one seed's half-width says little of the next one's

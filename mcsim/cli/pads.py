@@ -8,7 +8,7 @@ import sys
 from pathlib import Path
 
 from mcsim.cli.display import announce, print_rows
-from mcsim.cli.options import FORMATS
+from mcsim.cli.options import FORMATS, workers_type
 from mcsim.model.errors import ParameterError
 
 #: Names of the intervals of ``mcsim pads``, as printed.
@@ -16,6 +16,7 @@ _INTERVAL_NAMES = {"clopper-pearson": "Clopper-Pearson", "wilson": "Wilson"}
 
 
 def run(args) -> int:
+    from mcsim.engine.montecarlo import default_workers
     from mcsim.model.units import parse_quantity
     from mcsim.store.runfile import read_run
     from mcsim.studies.pads import FEW_CONTACTS, pad_report
@@ -47,7 +48,8 @@ def run(args) -> int:
     try:
         report = pad_report(run, fr, args.interval, tail=True if args.tail else None,
                             friction=args.friction, tangential_force=ft,
-                            progress=not args.quiet and sys.stderr.isatty())  # fmt: skip
+                            progress=not args.quiet and sys.stderr.isatty(),
+                            workers=args.workers or default_workers())  # fmt: skip
     except ParameterError as err:
         raise ParameterError(f"{args.run}: {err}") from None
     pull_off, stats = report.pull_off, report.statistics
@@ -213,6 +215,10 @@ def add_parser(sub) -> None:
     p.add_argument("--tangential-force", metavar="F",
                    help="force pulling the pad sideways (N or with a unit, '50uN'; implies --friction): "
                    "p_slip, the fraction of pads whose static friction is below it, with its 95 %% interval")  # fmt: skip
+    p.add_argument("--workers", type=workers_type,
+                   help="worker processes of importance sampling (--tail, and where it switches "
+                   "on by itself; default: all cores; 1: in this process); results do not "
+                   "depend on it")  # fmt: skip
     p.add_argument("--format", choices=FORMATS, default="table",
                    help="table or json: the statistics; csv: one row per pad (pull-off in N)")  # fmt: skip
     p.add_argument(

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import dataclasses
 import functools
+import weakref
 from dataclasses import dataclass
 
 import numpy as np
@@ -34,6 +35,10 @@ MAX_SUMMITS = 1e18
 #: anything is planned rather than left to swap (10⁸ realizations at two separations would
 #: need 20 GB). Runs that need more realizations are several runs with other seeds.
 MAX_STATE_BYTES = 2**30
+
+
+#: The specs unpickled in this process, each under its value while it lives (:func:`_unpickled`).
+_UNPICKLED: weakref.WeakValueDictionary = weakref.WeakValueDictionary()
 
 
 @dataclass(frozen=True, eq=False)
@@ -151,6 +156,10 @@ class MonteCarloSpec:
         process (hashing strings with another seed) computes again."""
         return {k: v for k, v in self.__dict__.items() if k != "_hash"}
 
+    def __reduce__(self) -> tuple:
+        """Pickled as its :meth:`__getstate__`, unpickled by :func:`_unpickled`."""
+        return _unpickled, (self.__getstate__(),)
+
     def differences(self, other: MonteCarloSpec) -> list[str]:
         """Names of the inputs that differ from ``other``."""
         a, b = self.fields(), other.fields()
@@ -248,3 +257,14 @@ def state_bytes(spec: MonteCarloSpec, realizations: int) -> int:
 def check_count(name: str, value) -> None:
     if isinstance(value, bool) or not isinstance(value, int | np.integer) or value < 1:
         raise ParameterError(f"{name} = {value!r} is out of range (allowed: integer >= 1)")
+
+
+def _unpickled(state: dict) -> MonteCarloSpec:
+    """The spec of ``state``, or the equal one already unpickled in this process: a worker
+    sent one chunk of pads after another holds one object, which the caches keyed by a spec
+    (:mod:`mcsim.engine.pads`, looked up dozens of times a pad) find by identity; an equal
+    but distinct spec costs a comparison of its fields (~12 µs) at every lookup, a quarter
+    more time a pad (measured on the few-summit pads of validation/tail_benchmark.py)."""
+    spec = object.__new__(MonteCarloSpec)
+    spec.__dict__.update(state)
+    return _UNPICKLED.setdefault(spec, spec)

@@ -16,12 +16,14 @@ tilted pads, cross-entropy stages and defensive mixture as p_stick).
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 
 import numpy as np
 
 from mcsim.model.errors import ParameterError
+from mcsim.studies.padpool import PadPool
 
 #: Statistics reported of T_s and of μ_s, in order.
 STATISTICS = ("mean", "se", "std", "q05", "q50", "q95")
@@ -141,8 +143,14 @@ def pad_static_friction(spec, s: np.ndarray, *, turn: float, preload: float | No
     return padfriction.static_friction(spec, z, padcurves.pad_turn(spec, z, turn, preload))
 
 
+def _slip_score(spec, s: np.ndarray, *, turn: float, preload: float | None) -> float:
+    """−T_s (N) of one pad (:func:`pad_static_friction`): a pad slips when it exceeds −F."""
+    return -pad_static_friction(spec, s, turn=turn, preload=preload)
+
+
 def tail_p_slip(spec, statistics: FrictionStatistics, *, turn: float, preload: float | None,
-                tail: bool | None, start=None, floor: float = 0.0) -> dict:  # fmt: skip
+                tail: bool | None, start=None, floor: float = 0.0,
+                workers: int | PadPool = 1) -> dict:  # fmt: skip
     """p_slip of the pads of ``spec``: the plain pads' fraction, or importance sampling.
 
     As :func:`mcsim.studies.pads.tail_p_stick` for p_stick, with T_s in place of the
@@ -166,6 +174,8 @@ def tail_p_slip(spec, statistics: FrictionStatistics, *, turn: float, preload: f
         and T_s (N).
     floor : float
         As for :func:`mcsim.studies.pads.tail_p_stick`.
+    workers : int or PadPool
+        As for :func:`mcsim.studies.pads.tail_p_stick` (the score runs on its processes).
 
     Returns
     -------
@@ -180,12 +190,10 @@ def tail_p_slip(spec, statistics: FrictionStatistics, *, turn: float, preload: f
     """
     from mcsim.studies.rareevent import rare_event
 
-    def score(s):  # slips when −T_s > −F
-        return -pad_static_friction(spec, s, turn=turn, preload=preload)
-
+    score = functools.partial(_slip_score, spec, turn=turn, preload=preload)
     if start is not None:
         start = (start[0], -np.asarray(start[1]))
     return rare_event(spec, "p_slip", statistics.pads, statistics.p_slip,
                       statistics.p_slip_ci, -statistics.tangential_force, turn=turn,
                       preload=preload, tail=tail, start=start, score=score,
-                      floor=floor)  # fmt: skip
+                      floor=floor, workers=workers)  # fmt: skip

@@ -38,9 +38,8 @@ import numpy as np
 from mcsim.engine import interrupt
 from mcsim.model.errors import ParameterError
 from mcsim.studies.intervals import INTERVALS, clopper_pearson, wilson
-from mcsim.studies.rareevent import (
-    rare_event,
-)
+from mcsim.studies.padpool import PadPool, chunks, opened
+from mcsim.studies.rareevent import rare_event
 
 #: Quantiles reported, as fractions.
 QUANTILES = (0.05, 0.5, 0.95)
@@ -186,9 +185,16 @@ def moment_std(run) -> float:
 FEW_CONTACTS = 10
 
 
+#: Fewest plain pads that :func:`finite_pads` evaluates on worker processes: fewer take less
+#: time than the workers' start (about 1 CPU s each: their imports and compiled kernels,
+#: against 1.5–2 ms a pad).
+PROCESS_PADS = 1000
+
+
 def finite_pads(spec, restoring_force: float | None, *, preload: float | None = None, turn: float,
                 h_pull_off: float, tail: bool | None = None, friction: bool = False,
-                tangential_force: float | None = None, floor: float = 0.0) -> dict:  # fmt: skip
+                tangential_force: float | None = None, floor: float = 0.0,
+                workers: int = 1) -> dict:  # fmt: skip
     """Pull-off statistics of the ``spec.realizations`` pads of a cycle spec, as sweep variables.
 
     Each pad's summits are drawn from ``spec``'s seed as a ``--cycle`` run of the same spec
@@ -222,6 +228,10 @@ def finite_pads(spec, restoring_force: float | None, *, preload: float | None = 
         :data:`~mcsim.store.sweepvariables.SLIP` and ``p_slip_method``.
     floor : float
         As for :func:`tail_p_stick` (p_stick and p_slip).
+    workers : int
+        Worker processes sharing one pool (:class:`~mcsim.studies.padpool.PadPool`): the
+        plain pads in contiguous chunks where there are at least :data:`PROCESS_PADS`, and
+        importance sampling's stages; 1: all in this process. The values do not depend on it.
 
     Returns
     -------
@@ -236,11 +246,8 @@ def finite_pads(spec, restoring_force: float | None, *, preload: float | None = 
         A turn below the spec's lowest separation (no summit below it is drawn), or a pad
         whose approach load stays below P·A down to it.
     """
-    from mcsim.engine.pads import curves as padcurves
     from mcsim.engine.pads import friction as padfriction
-    from mcsim.engine.pads import load as padload
     from mcsim.studies import padfriction as friction_study
-    from mcsim.studies import tail as sampling
     from mcsim.studies.stiction import p_stick_model
 
     if turn < spec.turn:
@@ -249,33 +256,21 @@ def finite_pads(spec, restoring_force: float | None, *, preload: float | None = 
     friction = friction or tangential_force is not None
     if friction:
         padfriction.check_friction(spec)
-    sigma = spec.surface.sigma
-    force, work = np.empty(spec.realizations), np.empty(spec.realizations)
-    static, normal = np.empty(spec.realizations), np.empty(spec.realizations)
-    cut, highs = sampling.cut(spec, turn), []  # the summits a tail's stage 0 needs
-    for r in range(spec.realizations):
-        interrupt.check()  # a signal ends the pads between two, in a sweep's worker thread too
-        z = padload.patch_heights(spec, r)
-        d_turn = padcurves.pad_turn(spec, z, turn, preload)
-        force[r] = padcurves.pull_off(spec, z, d_turn)[0]
-        work[r] = padcurves.pad_work(spec, z, d_turn)
-        highs.append(z[z > cut * sigma] / sigma)
+    with opened(workers) as pool:
+        force, work, highs, static, normal = _plain_pads(spec, pool, turn, preload, friction)
+        s, out = pad_statistics(force, restoring_force), {}
         if friction:
-            applied = None if preload is None else preload * spec.area
-            static[r] = padfriction.static_friction(spec, z, d_turn)
-            normal[r] = padfriction.normal_load(spec, z, d_turn, applied)
-    out = {}
-    if friction:
-        f = friction_study.friction_statistics(static, normal, tangential_force)
-        out |= friction_study.variables(f)
-        if tangential_force is not None:
-            out |= friction_study.tail_p_slip(spec, f, turn=turn, preload=preload, tail=tail,
-                                              start=(highs, static), floor=floor)  # fmt: skip
-    s = pad_statistics(force, restoring_force)
+            f = friction_study.friction_statistics(static, normal, tangential_force)
+            out |= friction_study.variables(f)
+            if tangential_force is not None:
+                out |= friction_study.tail_p_slip(spec, f, turn=turn, preload=preload, tail=tail,
+                                                  start=(highs, static), floor=floor,
+                                                  workers=pool)  # fmt: skip
+        if restoring_force is not None:
+            out |= tail_p_stick(spec, s, restoring_force, turn=turn, preload=preload, tail=tail,
+                                start=(highs, force), floor=floor, workers=pool)  # fmt: skip
     q05, q50, q95 = np.quantile(work, QUANTILES)  # signed (J/m²): not pad_statistics' forces
     if restoring_force is not None:
-        out |= tail_p_stick(spec, s, restoring_force, turn=turn, preload=preload, tail=tail,
-                            start=(highs, force), floor=floor)  # fmt: skip
         model = (p_stick_model(spec, restoring_force, turn=turn, h_pull_off=h_pull_off,
                                preload=preload) if math.isfinite(h_pull_off) else 0.0)  # fmt: skip
         out["p_stick_model"] = min(max(model, 0.0), 1.0)
@@ -291,9 +286,52 @@ def finite_pads(spec, restoring_force: float | None, *, preload: float | None = 
             "contacting_summits": lam * float(spec.surface.heights.sf(turn))}  # fmt: skip
 
 
+def _plain_pads(spec, pool: PadPool, turn: float, preload: float | None, friction: bool) -> tuple:
+    """The ``spec.realizations`` plain pads of :func:`finite_pads`, in this process or, from
+    :data:`PROCESS_PADS` pads, on ``pool`` in contiguous chunks joined in order
+    (:func:`_pad_range`): each pad's pull-off (N), work of separation (J/m²), summits above
+    the tail's cut (σ) and, with ``friction``, its static friction and normal load (N)."""
+    from mcsim.studies.tail import cut
+
+    n, s_c = spec.realizations, cut(spec, turn)
+    if n < PROCESS_PADS:  # a few pads: the workers' start would take longer than they do
+        parts = [_pad_range(spec, 0, n, turn, preload, s_c, friction)]
+    else:
+        parts = pool.map(_pad_range, [(spec, c.start, c.stop, turn, preload, s_c, friction)
+                                      for c in chunks(n, pool.workers)])  # fmt: skip
+    force, work, static, normal = (np.concatenate([p[k] for p in parts]) for k in (0, 1, 3, 4))
+    return force, work, [h for p in parts for h in p[2]], static, normal
+
+
+def _pad_range(
+    spec, lo: int, hi: int, turn: float, preload: float | None, cut: float, friction: bool
+) -> tuple:
+    """Plain pads ``lo`` … ``hi`` − 1 of ``spec`` (:func:`_plain_pads`; the static friction
+    and normal load NaN without ``friction``)."""
+    from mcsim.engine.pads import curves as padcurves
+    from mcsim.engine.pads import friction as padfriction
+    from mcsim.engine.pads import load as padload
+
+    sigma, n = spec.surface.sigma, hi - lo
+    force, work, static, normal = np.empty(n), np.empty(n), np.full(n, np.nan), np.full(n, np.nan)
+    highs = []
+    for i, r in enumerate(range(lo, hi)):
+        interrupt.check()  # a signal ends the pads between two, in a sweep's worker thread too
+        z = padload.patch_heights(spec, r)
+        d_turn = padcurves.pad_turn(spec, z, turn, preload)
+        force[i] = padcurves.pull_off(spec, z, d_turn)[0]
+        work[i] = padcurves.pad_work(spec, z, d_turn)
+        highs.append(z[z > cut * sigma] / sigma)
+        if friction:
+            applied = None if preload is None else preload * spec.area
+            static[i] = padfriction.static_friction(spec, z, d_turn)
+            normal[i] = padfriction.normal_load(spec, z, d_turn, applied)
+    return force, work, highs, static, normal
+
+
 def tail_p_stick(spec, statistics: PadStatistics, restoring_force: float, *, turn: float,
-                 preload: float | None, tail: bool | None, start=None,
-                 floor: float = 0.0) -> dict:  # fmt: skip
+                 preload: float | None, tail: bool | None, start=None, floor: float = 0.0,
+                 workers: int | PadPool = 1) -> dict:  # fmt: skip
     """p_stick of the pads of ``spec``: the plain pads' fraction, or importance sampling.
 
     Importance sampling (:func:`mcsim.studies.tail.importance_p_stick`, max(n,
@@ -325,6 +363,9 @@ def tail_p_stick(spec, statistics: PadStatistics, restoring_force: float, *, tur
         Importance sampling resolves the probability only down to it: where its stages show
         the rarer side below ``floor`` it stops and gives that bound
         (:func:`mcsim.studies.tail.importance_p_stick`); 0: to the estimate.
+    workers : int or PadPool
+        Worker processes of importance sampling, or an open pool
+        (:func:`mcsim.studies.tail.importance_p_stick`); 1: in this process.
 
     Returns
     -------
@@ -341,7 +382,7 @@ def tail_p_stick(spec, statistics: PadStatistics, restoring_force: float, *, tur
     """
     return rare_event(spec, "p_stick", statistics.pads, statistics.p_stick,
                       statistics.p_stick_ci, restoring_force, turn=turn, preload=preload,
-                      tail=tail, start=start, floor=floor)  # fmt: skip
+                      tail=tail, start=start, floor=floor, workers=workers)  # fmt: skip
 
 
 @dataclass(frozen=True)
@@ -418,7 +459,7 @@ class PadReport:
 def pad_report(
     run, restoring_force: float | None = None, interval: str = "clopper-pearson",
     tail: bool | None = None, *, friction: bool = False, tangential_force: float | None = None,
-    progress: bool = False,
+    progress: bool = False, workers: int = 1,
 ) -> PadReport:  # fmt: skip
     """Pull-off statistics of the pads of a cycle run (one pad per realization), as ``mcsim pads``.
 
@@ -444,6 +485,10 @@ def pad_report(
         adds p_slip and its interval.
     progress : bool
         A progress bar over the pads on stderr (:meth:`mcsim.Run.pull_off`).
+    workers : int
+        Worker processes of importance sampling, one pool for p_stick and p_slip
+        (:func:`tail_p_stick`); 1: in this process. The run's own pads are evaluated in this
+        process (:meth:`mcsim.Run.pull_off`). The values do not depend on it.
 
     Returns
     -------
@@ -470,18 +515,19 @@ def pad_report(
                  "h_turn_max": float(np.max(t))}  # fmt: skip
     turn = spec.turn if turn is None else float(turn)
     contacts = spec.surface.eta * spec.area * float(spec.surface.heights.sf(turn))
-    model = stick = None
-    if restoring_force is not None:
-        fr = statistics.restoring_force
-        model = min(max(_p_stick_model(spec, fr, pull_off.preload, turn), 0.0), 1.0)
-        stick = tail_p_stick(spec, statistics, fr, turn=turn, preload=pull_off.preload, tail=tail)
-    fs = slip = None
-    if friction:
-        fs = padfriction.friction_statistics(pull_off.static_friction, pull_off.normal_load,
-                                             tangential_force, interval)  # fmt: skip
-        if tangential_force is not None:
-            slip = padfriction.tail_p_slip(spec, fs, turn=turn, preload=pull_off.preload,
-                                           tail=tail)  # fmt: skip
+    model = stick = fs = slip = None
+    with opened(workers) as pool:
+        if restoring_force is not None:
+            fr = statistics.restoring_force
+            model = min(max(_p_stick_model(spec, fr, pull_off.preload, turn), 0.0), 1.0)
+            stick = tail_p_stick(spec, statistics, fr, turn=turn, preload=pull_off.preload,
+                                 tail=tail, workers=pool)  # fmt: skip
+        if friction:
+            fs = padfriction.friction_statistics(pull_off.static_friction, pull_off.normal_load,
+                                                 tangential_force, interval)  # fmt: skip
+            if tangential_force is not None:
+                slip = padfriction.tail_p_slip(spec, fs, turn=turn, preload=pull_off.preload,
+                                               tail=tail, workers=pool)  # fmt: skip
     return PadReport(pull_off, statistics, analytic_pad_pull_off(spec, turn), contacts, model,
                      turns, stick, fs, slip)  # fmt: skip
 

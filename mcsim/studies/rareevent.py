@@ -6,6 +6,7 @@ measurements are in validation/README.md ("Importance sampling of pads")."""
 from __future__ import annotations
 
 from mcsim.model.errors import ParameterError
+from mcsim.studies.padpool import PadPool
 from mcsim.studies.tail import MIN_ESS, importance_p_stick
 
 #: Fewer pads than this on the rarer side (sticking or not) switch p_stick to importance
@@ -34,10 +35,12 @@ METHODS = ("pads", "importance")
 
 def rare_event(spec, name: str, n: int, p: float, ci, threshold: float, *, turn: float,
                preload: float | None, tail: bool | None, start=None, score=None,
-               floor: float = 0.0) -> dict:  # fmt: skip
+               floor: float = 0.0, workers: int | PadPool = 1) -> dict:  # fmt: skip
     """The probability ``name`` (``p_stick``, ``p_slip``) of the pads of ``spec`` whose score
     (their pull-off, or ``score``) exceeds ``threshold``: the plain fraction ``p`` of ``n`` pads
-    with its interval ``ci``, or importance sampling, by the rules of :func:`mcsim.studies.pads.tail_p_stick`.
+    with its interval ``ci``, or importance sampling, by the rules of :func:`mcsim.studies.pads.tail_p_stick`,
+    on ``workers`` processes or an open :class:`~mcsim.studies.padpool.PadPool`
+    (:func:`~mcsim.studies.tail.importance_p_stick`).
 
     Returns
     -------
@@ -59,7 +62,8 @@ def rare_event(spec, name: str, n: int, p: float, ci, threshold: float, *, turn:
                                   pads=max(n, TAIL_PADS), pilot=max(TAIL_PILOT, n // 10),
                                   start=start if n >= TAIL_PILOT else None,
                                   event="stick" if k <= n - k else "release",
-                                  give_up=tail is None, score=score, floor=floor)  # fmt: skip
+                                  give_up=tail is None, score=score, floor=floor,
+                                  workers=workers)  # fmt: skip
     if estimate.ess < MIN_ESS or not estimate.agree:
         return plain
     return {name: estimate.p_stick, f"{name}_low": estimate.low, f"{name}_high": estimate.high,

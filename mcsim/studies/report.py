@@ -314,8 +314,8 @@ def report(
         Worker threads of the pads (processes of a local Dask cluster).
     scheduler : str or dask.distributed.Client, optional
         Where the RH values run (default: this process's threads): ``"processes"``
-        (``workers`` spawned processes of this machine, what ``mcsim report`` does; about
-        1.5 times faster on 2 cores, the pads' search holding Python's lock much of the time;
+        (``workers`` spawned processes of this machine, what ``mcsim report`` does, one RH
+        value's pads on them; about 1.5 times faster on 2 cores, the pads' search holding Python's lock much of the time;
         a script then needs ``if __name__ == "__main__":``), or Dask: ``"local"`` (a local
         cluster of ``workers`` processes), a scheduler address or a client, as in
         :func:`mcsim.sweep`. The numbers do not depend on it.

@@ -207,6 +207,9 @@ class Config:
     friction: bool = False
     tangential_force: float | None = None
     floor: float = 0.0
+    #: Worker processes of a point's pads (:func:`mcsim.studies.pads.finite_pads`): more than
+    #: 1 only where the sweep's pads run as one task in its own process, never inside a pool.
+    pad_workers: int = 1
     shared: SharedPads = field(default_factory=SharedPads, compare=False, repr=False)
 
 
@@ -323,7 +326,7 @@ def _pads(point: Point, config: Config, law: str, turn: float, h_pull_off: float
         (acting, force, lateral, preload, turn, h_pull_off),
         lambda: finite_pads(acting, force, preload=preload, turn=turn, h_pull_off=h_pull_off,
                             tail=config.tail, friction=config.friction, tangential_force=lateral,
-                            floor=config.floor),
+                            floor=config.floor, workers=config.pad_workers),
     )  # fmt: skip
 
 

@@ -213,8 +213,9 @@ def sweep(
         Dask needed (:func:`mcsim.engine.cluster.process_pool`; faster than threads where
         the points hold pads, whose search runs much in Python; a script that calls it
         needs ``if __name__ == "__main__":``, as for any spawned process). No more
-        processes than tasks start, and none for one task (points whose pads act alike
-        are one task), which runs in this process.
+        processes than tasks start; one task (points whose pads act alike are one task)
+        runs in this process, and its pads, plain and importance sampling's, on ``workers``
+        worker processes (:func:`mcsim.studies.pads.finite_pads`).
     out : str or path-like, optional
         Write the sweep (HDF5, see the module docstring) atomically; completed points
         are checkpointed in ``<stem>.partial<suffix>`` beside it.
@@ -517,8 +518,9 @@ def _run(stack, points, config, result: Sweep, done, workers, scheduler, progres
     tasks = batches(points, config)
     if scheduler == PROCESSES:
         tasks = list(tasks)  # pads' points: already grouped in a list
-        if len(tasks) <= 1:
-            scheduler = None  # a pool would only add its processes' start to one task
+        if len(tasks) <= 1:  # one task here, its pads on the worker processes
+            scheduler = None
+            config = dataclasses.replace(config, pad_workers=n_workers)
         n_workers = max(1, min(n_workers, len(tasks)))
     bar = None
     if progress:

@@ -141,14 +141,16 @@ Each pad is evaluated by :func:`mcsim.engine.pads.curves.force_turn` and
 law set (and its environment) of the spec applies unchanged. Stage k of chain c draws from
 its own stream ``SeedSequence(spec.entropy, spawn_key=(STREAM, c, k))``, apart from the plain
 pads' (realization r: keys (r, 0), (r, 1 + b)), the final pads of law j (:func:`mixture`'s
-order) on keys (STREAM, CHAINS, j); all of a stage is drawn before any pad is evaluated, so
-the estimate is bit-identical for any ``workers``.
+order) on keys (STREAM, CHAINS, j); all of a stage is drawn before any pad is evaluated, and
+each pad is scored by the same function of its heights in this process or on a worker process
+(:mod:`mcsim.studies.padpool`: contiguous chunks, joined in order), so the estimate is
+bit-identical for any ``workers``.
 """
 
 from __future__ import annotations
 
+import functools
 import math
-from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 
 import numpy as np
@@ -156,6 +158,7 @@ import numpy as np
 from mcsim.engine import interrupt
 from mcsim.model.errors import ParameterError
 from mcsim.studies.intervals import effective_sample_size, weighted_estimate
+from mcsim.studies.padpool import PadPool, chunks, opened, portable
 from mcsim.studies.tiltlaw import BINS, Law, Tilt, cut, fit, half
 
 #: Elite fraction of each cross-entropy stage (Rubinstein & Kroese 2004 use 0.01 … 0.1).
@@ -266,24 +269,37 @@ def pad_pull_off(spec, s: np.ndarray, *, turn: float, preload: float | None) -> 
     return padcurves.pull_off(spec, z, padcurves.pad_turn(spec, z, turn, preload))[0]
 
 
-def _stage(law: Law, tilt: Tilt | None, n: int, key: tuple, evaluate, workers: int):
+def _scores(evaluate, pads: list) -> np.ndarray:
+    """Each pad's score, ``evaluate`` of its summit heights, in order; a signal ends them
+    between pads (:func:`mcsim.engine.interrupt.check`, in a sweep's worker thread too; a
+    worker process leaves it to this one)."""
+    out = []
+    for s in pads:
+        interrupt.check()
+        out.append(evaluate(s))
+    return np.array(out)
+
+
+def _scorer(evaluate, pool: PadPool):
+    """``scores(pads)``: :func:`_scores` of ``pads`` on ``pool``, in contiguous chunks joined
+    in order; on its worker processes where they can call ``evaluate``, else on threads."""
+    processes = pool.workers > 1 and portable(evaluate)
+
+    def scores(pads: list) -> np.ndarray:
+        calls = [(evaluate, pads[c]) for c in chunks(len(pads), pool.workers)]
+        return np.concatenate(pool.map(_scores, calls, processes=processes))
+
+    return scores
+
+
+def _stage(law: Law, tilt: Tilt | None, n: int, key: tuple, scores):
     """``n`` pads drawn from ``tilt`` (nominal: None) on stream ``key``: their summits per bin
-    above the cut and their scores (pull-off, N)."""
+    above the cut and their ``scores`` (pull-off, N; :func:`_scorer`)."""
     seed = np.random.SeedSequence(law.spec.entropy, spawn_key=(STREAM, *key))
     pads, highs = law.draw(
         tilt, n, np.random.default_rng(seed)
     )  # all drawn before any is evaluated
-
-    def score(s):  # a signal ends the stage between pads, in a sweep's worker thread too
-        interrupt.check()
-        return evaluate(s)
-
-    if workers > 1:
-        with ThreadPoolExecutor(workers) as pool:
-            force = np.array(list(pool.map(score, pads)))
-    else:
-        force = np.array([score(s) for s in pads])
-    return law.bins(highs), force
+    return law.bins(highs), scores(pads)
 
 
 @dataclass(frozen=True)
@@ -304,7 +320,7 @@ class _Chain:
     bound: tuple | None = None
 
 
-def _cross_entropy(law, c, counts, force, *, pilot, margin, hit, evaluate, workers, give_up,
+def _cross_entropy(law, c, counts, force, *, pilot, margin, hit, scores, give_up,
                    floor=0.0, cap=math.inf):  # fmt: skip
     """Chain ``c``'s tilt from its stage 0 (summits per bin, scores) by the multilevel
     cross-entropy method, every stage's pads reused in every fit (module docstring); it stops
@@ -335,7 +351,7 @@ def _cross_entropy(law, c, counts, force, *, pilot, margin, hit, evaluate, worke
         if reached or stage == STAGES:
             break
         stage += 1
-        more, new = _stage(law, fitted, pilot, (c, stage), evaluate, workers)
+        more, new = _stage(law, fitted, pilot, (c, stage), scores)
         laws.append(fitted), sizes.append(pilot)
         counts, force = np.vstack([counts, more]), np.concatenate([force, new])
         evaluations += pilot
@@ -345,7 +361,7 @@ def _cross_entropy(law, c, counts, force, *, pilot, margin, hit, evaluate, worke
 
 def importance_p_stick(spec, restoring_force: float, *, turn: float, preload: float | None = None,
                        pads: int, pilot: int, event: str = "stick", start=None,
-                       workers: int = 1, score=None, give_up: bool = False,
+                       workers: int | PadPool = 1, score=None, give_up: bool = False,
                        floor: float = 0.0) -> TailEstimate:  # fmt: skip
     """P(pull-off > F_r) of the pads of ``spec`` by importance sampling (module docstring).
 
@@ -370,14 +386,19 @@ def importance_p_stick(spec, restoring_force: float, *, turn: float, preload: fl
     start : tuple of (list of ndarray, ndarray), optional
         Stage 0 already evaluated on the nominal law, e.g. the plain pads: each pad's summit
         heights above :func:`cut` (σ) and its pull-off (N); else stage 0 draws ``pilot`` pads.
-    workers : int
-        Threads evaluating the pads of a stage (the result does not depend on it).
+    workers : int or PadPool
+        Worker processes evaluating each stage's pads, in contiguous chunks (one pool for the
+        whole call, :class:`~mcsim.studies.padpool.PadPool`; the result does not depend on
+        it); 1: every pad in this process, no pool started; or a caller's open pool, shared.
     score : callable, optional
         What is compared with ``restoring_force``, as a function of a pad's summit heights
         above s_min (σ); default its pull-off (:func:`pad_pull_off`). Another score gives
         the probability of another event of the same pads (the tests' exact cases); a
         ``preload`` then only marks the event as one of force-controlled pads (the tall way
-        in, module docstring).
+        in, module docstring). With ``workers`` > 1 it runs on the worker processes where
+        they can call it (it pickles, and is not defined in ``__main__``:
+        :func:`~mcsim.studies.padpool.portable`), else, a lambda, a closure, a script's or
+        a notebook's function, on as many threads of this process, as it always could.
     give_up : bool
         Stop the stages where their level (the elite's margin to F_r) does not rise from one
         stage to the next, or rises too slowly to reach F_r in the stages left at its latest
@@ -412,14 +433,18 @@ def importance_p_stick(spec, restoring_force: float, *, turn: float, preload: fl
     if pads < 4 * CHAINS or pilot * RHO < 1:
         raise ParameterError(f"pads = {pads!r}, pilot = {pilot!r}: importance sampling needs "
                              f"pads >= {4 * CHAINS} and pilot >= {math.ceil(1 / RHO)}")  # fmt: skip
-    law = Law(spec, cut(spec, turn))
-    fr = float(restoring_force)
+    if score is None:
+        score = functools.partial(pad_pull_off, spec, turn=turn, preload=preload)
+    with opened(workers) as pool:
+        return _sample(Law(spec, cut(spec, turn)), float(restoring_force), turn=turn,
+                       preload=preload, pads=pads, pilot=pilot, event=event, start=start,
+                       scores=_scorer(score, pool), give_up=give_up, floor=floor)  # fmt: skip
+
+
+def _sample(law: Law, fr: float, *, turn: float, preload: float | None, pads: int, pilot: int,
+            event: str, start, scores, give_up: bool, floor: float) -> TailEstimate:  # fmt: skip
+    """:func:`importance_p_stick` of ``law``'s pads, scored by ``scores`` (:func:`_scorer`)."""
     sign = 1.0 if event == "stick" else -1.0
-
-    def evaluate(s):
-        return pad_pull_off(spec, s, turn=turn, preload=preload)
-
-    evaluate = evaluate if score is None else score
 
     def hit(force):  # the event: sticking, or its complement
         return (force > fr) if event == "stick" else ~(force > fr)
@@ -432,11 +457,11 @@ def importance_p_stick(spec, restoring_force: float, *, turn: float, preload: fl
 
     def zero(c):  # chain c's stage 0: its own pads from the nominal law, or its share
         if start is None:
-            return _stage(law, None, pilot, (c, 0), evaluate, workers)
+            return _stage(law, None, pilot, (c, 0), scores)
         return given[0][c::CHAINS], given[1][c::CHAINS]
 
-    options = dict(pilot=pilot, margin=margin, hit=hit, evaluate=evaluate, workers=workers,
-                   give_up=give_up, floor=floor)  # fmt: skip
+    options = dict(pilot=pilot, margin=margin, hit=hit, scores=scores, give_up=give_up,
+                   floor=floor)  # fmt: skip
     chains = []
     for c in range(CHAINS):
         # the second chain may not raise the summits above the turn where the first one
@@ -464,7 +489,7 @@ def importance_p_stick(spec, restoring_force: float, *, turn: float, preload: fl
                             event, tilts, law.cut, True)  # fmt: skip
     sizes = mixture(pads)
     laws = (None, *(q for t in tilts for q in (half(t), t)))
-    parts = [_stage(law, q, n, (CHAINS, j), evaluate, workers)
+    parts = [_stage(law, q, n, (CHAINS, j), scores)
              for j, (q, n) in enumerate(zip(laws, sizes, strict=True))]  # fmt: skip
     evaluations += pads
 
@@ -496,7 +521,7 @@ def importance_p_stick(spec, restoring_force: float, *, turn: float, preload: fl
     if np.any(y > 0):
         refit = fit(law, Tilt((1.0,) * BINS), counts[y > 0], y[y > 0], smoothing=1.0)
         n = math.ceil(FITTED * pads)
-        parts.append(_stage(law, refit, n, (CHAINS, len(laws)), evaluate, workers))
+        parts.append(_stage(law, refit, n, (CHAINS, len(laws)), scores))
         laws, sizes, evaluations = (*laws, refit), (*sizes, n), evaluations + n
 
     q, se, low, high, hits = recycled(list(range(len(parts))), chains)

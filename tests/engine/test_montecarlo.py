@@ -530,6 +530,19 @@ def test_z_scores_of_a_law_set_with_hysteresis_over_independent_patches_are_cali
     assert not mean_square_is_one(zs / 0.85) and not mean_square_is_one(zs / 1.2)
 
 
+def test_a_spec_unpickled_again_in_one_process_is_the_same_object():
+    # A worker process sent one chunk of pads after another holds one spec, which the pads'
+    # caches find by identity (an equal but distinct one compares every field at each lookup).
+    import pickle
+
+    spec = MonteCarloSpec(SURFACES["smooth"], MATERIALS["silicon"], np.linspace(-1.0, 3.0, 5),
+                          1e-10, 2, 7)  # fmt: skip
+    first, again = pickle.loads(pickle.dumps(spec)), pickle.loads(pickle.dumps(spec))
+    assert first is again and first == spec and first is not spec
+    other = pickle.loads(pickle.dumps(dataclasses.replace(spec, entropy=8)))
+    assert other is not first and other != first and copy.deepcopy(spec) == spec
+
+
 def test_a_spec_is_its_own_copy_of_h_and_hashes_alike_in_another_process(tmp_path):
     # The spec's hash is computed once (the pads' caches look it up many times), so its h
     # is its own and read-only; pickled to another process (Dask's workers hash strings

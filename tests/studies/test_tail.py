@@ -414,8 +414,8 @@ def test_pads_from_the_tilt_refitted_to_every_pad_in_the_event_join_the_estimate
 
     drawn, real = [], tail._stage
 
-    def record(law, tilt, n, key, evaluate, workers):
-        out = real(law, tilt, n, key, evaluate, workers)
+    def record(law, tilt, n, key, scores):
+        out = real(law, tilt, n, key, scores)
         drawn.append((tilt, n, key, *out))
         return out
 
