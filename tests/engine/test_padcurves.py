@@ -169,6 +169,14 @@ def test_the_pad_laws_are_the_ones_with_a_retraction():
     assert PAD_LAWS == ["dmt", "jkr", "maugis-dugdale"]
 
 
+def test_specs_of_one_surface_environment_and_range_share_one_open_gaps_table():
+    # The table depends on the surface, the environment and its range in h only: specs of
+    # other law sets, pad counts or seeds read the same one (made once), another humidity not.
+    table = padload.open_gap_table(humid("jkr"))
+    assert padload.open_gap_table(humid("dmt", pads=2, seed=7)) is table
+    assert padload.open_gap_table(humid("maugis-dugdale", rh=0.9)) is not table
+
+
 @pytest.mark.parametrize("material", MATERIALS_FOR_LAWS, ids=["silicon", "soft"])
 @pytest.mark.parametrize("law", PAD_LAWS)
 def test_every_pad_law_is_quasiconvex_on_each_branch_and_retracts_independently_of_its_history(

@@ -211,3 +211,22 @@ def test_forces_refuse_an_area_that_is_not_positive_and_finite(area):
         ParameterError, match=r"^area = .* m\^2 is out of range \(allowed: > 0 m\^2\)$"
     ):
         curves.forces(area)
+
+
+def test_the_gw_integrals_in_blocks_of_rows_are_the_bits_of_one_block(monkeypatch):
+    # _piecewise_gaussian evaluates its rows in blocks (to keep its temporaries off mmap):
+    # the rows are independent, so a humid curve's integrals are the same bits in blocks of a
+    # few rows (the last one short) as in one block, and its integrand sees its own rows.
+    from mcsim.model import distributions
+    from mcsim.physics.analytic import analytic_curves
+    from mcsim.physics.environment import Environment
+
+    env = Environment(hamaker=1.6e-19, cutoff=0.2e-9, rh=0.7)
+    h = np.linspace(-1.5, 4.0, 203)
+    curves = {}
+    for nodes in (10**9, 20_000):
+        monkeypatch.setattr(distributions, "_BLOCK_NODES", nodes)
+        curves[nodes] = analytic_curves(SURFACES["smooth"], SILICON, h, "maugis-dugdale",
+                                        branch="retract", turn=-1.5, environment=env)  # fmt: skip
+    for name in ("load", "area"):
+        np.testing.assert_array_equal(getattr(curves[20_000], name), getattr(curves[10**9], name))

@@ -284,10 +284,22 @@ def open_gap_table(spec: MonteCarloSpec) -> GapTable:
     """The spline of :func:`open_gaps` and its antiderivative, its range [lo, hi] in h, the
     functions themselves, and the spline's largest |dp/dh| (Pa) on the range: its derivative
     is a quadratic on each piece, so the largest magnitude lies at a knot or where the
-    (linear) second derivative is 0."""
-    from scipy.interpolate import CubicSpline
+    (linear) second derivative is 0.
 
-    surface, env = spec.surface, spec.environment
+    It depends on the surface, the environment and its range only (not the law set, the pads
+    or the seed): specs that share these share one table (:func:`_gap_table`), made once."""
+    surface = spec.surface
+    reach = -spec.edges.reach / surface.sigma
+    heights = surface.heights  # the highest summit: a measured histogram's top, else 12σ
+    top = float(heights.edges[-1]) if hasattr(heights, "edges") else 12.0
+    lo, hi = float(spec.h.min()) - 1.0, top + reach + 1.0
+    return _gap_table(surface, spec.environment, lo, hi)
+
+
+@functools.lru_cache(maxsize=16)
+def _gap_table(surface, env, lo: float, hi: float) -> GapTable:
+    """:func:`open_gap_table` of ``surface`` in ``env`` on [lo, hi] (h)."""
+    from scipy.interpolate import CubicSpline
 
     def exact(h):  # in blocks: the caps' expectation holds nodes × panels per point
         h = np.asarray(h, dtype=float)
@@ -302,10 +314,6 @@ def open_gap_table(spec: MonteCarloSpec) -> GapTable:
         w = open_gap_works(h_t, surface, env)
         return w["vdw"] + w["capillary"]
 
-    reach = -spec.edges.reach / surface.sigma
-    heights = surface.heights  # the highest summit: a measured histogram's top, else 12σ
-    top = float(heights.edges[-1]) if hasattr(heights, "edges") else 12.0
-    lo, hi = float(spec.h.min()) - 1.0, top + reach + 1.0
     grid = np.linspace(lo, hi, OPEN_GAP_POINTS)
     spline = CubicSpline(grid, exact(grid))
     slope = spline.derivative()
