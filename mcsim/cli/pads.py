@@ -164,13 +164,16 @@ def _friction_notes(report, spec) -> None:
 
 
 def _print_pads(pull_off) -> None:
-    """``--format csv``: one row per pad (:meth:`mcsim.store.results.PullOff.to_dataframe`)."""
-    df = pull_off.to_dataframe()
-    meaning = "; ".join(f"{name} ({df.attrs['long_names'][name]}, {unit})"
-                        for name, unit in df.attrs["units"].items())  # fmt: skip
+    """``--format csv``: one row per pad, the columns of
+    :meth:`mcsim.store.results.PullOff.to_dataframe` (without pandas: ≈0.4 s of its import)."""
+    import numpy as np
+
+    columns = pull_off.columns()
+    meaning = "; ".join(f"{name} ({long_name}, {unit})" for name, unit, long_name, _ in columns)
     print(f"mcsim: note: columns: pad (realization index), {meaning}", file=sys.stderr)
-    rows = [{"pad": i, **row} for i, row in enumerate(df.to_dict("records"))]
-    print_rows(rows, ["pad", *df.columns], "csv")
+    rows = [{"pad": i, **{name: np.asarray(v)[i].item() for name, _, _, v in columns}}
+            for i in range(len(pull_off.force))]  # fmt: skip
+    print_rows(rows, ["pad", *(name for name, *_ in columns)], "csv")
 
 
 def _method(pull_off) -> str:

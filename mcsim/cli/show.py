@@ -67,7 +67,8 @@ def run(args) -> int:
         print(f"load control  nominal pressure p = {min(p):g} .. {max(p):g} Pa ({len(p)} values)")
     if not np.any(state.done_blocks == state.n_blocks):
         return 0
-    z = read_run(args.run, allow_incomplete=True).compare()["z"].to_numpy()
+    rows = read_run(args.run, allow_incomplete=True).compare_rows()  # compare(), without pandas
+    z = np.array([row["z"] for row in rows], dtype=float)
     finite = z[np.isfinite(z)]
     if finite.size:
         part = "" if a["complete"] else " (completed realizations only)"

@@ -97,7 +97,13 @@ class LoadControl:
                 "equilibrium": self.equilibrium}  # fmt: skip
 
 
-def solve_targets(load, grid: np.ndarray, targets: np.ndarray, xtol: float = XTOL):
+def solve_targets(
+    load,
+    grid: np.ndarray,
+    targets: np.ndarray,
+    xtol: float = XTOL,
+    values: np.ndarray | None = None,
+):
     """Stable roots of ``load(h) = target`` along a descending grid of h (pure, no physics).
 
     Parameters
@@ -110,13 +116,16 @@ def solve_targets(load, grid: np.ndarray, targets: np.ndarray, xtol: float = XTO
         Loads to balance, in the unit of ``load``.
     xtol : float
         Tolerance of the roots in h.
+    values : ndarray, optional
+        ``load(grid)``, where the caller has it already (not computed twice).
 
     Returns
     -------
     h, jump, equilibrium : ndarray
         Root per target (NaN without equilibrium), jump and equilibrium flags.
     """
-    values = load(grid)
+    if values is None:
+        values = load(grid)
     tensile = np.flatnonzero(values < 0)
     # Rest at zero load: first index at or after the first tensile point with load >= 0.
     rest = 0
@@ -235,7 +244,7 @@ def balance(
             f"law set {laws.name!r} is nowhere tensile on this surface, so no finite "
             "separation carries p <= 0)"
         )
-    h, jump, found = solve_targets(load, grid, targets)
+    h, jump, found = solve_targets(load, grid, targets, values=values)
     curves = analytic_curves(
         surface, material, np.where(found, h, 0.0), laws, environment=environment
     )

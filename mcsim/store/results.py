@@ -125,18 +125,24 @@ class PullOff:
         ("mu_static", "1", "T_s/W"),
     )
 
+    def columns(self) -> list[tuple[str, str, str, np.ndarray]]:
+        """(name, unit, meaning, values per pad) of each column of :meth:`to_dataframe`."""
+        nan = np.full(self.force.shape, np.nan)
+        values = [self.force, self.h, self.h_turn,
+                  nan if self.turn_load is None else self.turn_load, self.grid_force, self.grid_h]  # fmt: skip
+        if self.static_friction is not None:
+            values += [self.static_friction, self.normal_load, self.mu_static]
+        return [(*column, v) for column, v in zip(self.COLUMNS, values)]
+
     def to_dataframe(self):
         """One row per pad (index ``pad``, the realization), the columns of :data:`COLUMNS`
         (the friction columns only with ``friction``); ``df.attrs["units"]`` and
         ``df.attrs["long_names"]`` give each column's unit and meaning."""
         import pandas as pd
 
-        nan = np.full(self.force.shape, np.nan)
-        values = [self.force, self.h, self.h_turn,
-                  nan if self.turn_load is None else self.turn_load, self.grid_force, self.grid_h]  # fmt: skip
-        if self.static_friction is not None:
-            values += [self.static_friction, self.normal_load, self.mu_static]
-        columns = self.COLUMNS[: len(values)]
+        table = self.columns()
+        columns = [(name, unit, meaning) for name, unit, meaning, _ in table]
+        values = [v for *_, v in table]
         df = pd.DataFrame({name: v for (name, _, _), v in zip(columns, values)},
                           index=pd.RangeIndex(len(self.force), name="pad"))  # fmt: skip
         df.attrs["units"] = {name: unit for name, unit, _ in columns}
@@ -328,8 +334,13 @@ class Run:
         outputs of the law set like the loads (the open gaps are not sampled)."""
         import pandas as pd
 
+        return pd.DataFrame(self.compare_rows())
+
+    def compare_rows(self) -> list[dict]:
+        """The rows of :meth:`compare`, each a dict of Python floats and strings (without
+        pandas: ``mcsim compare`` and ``mcsim show`` print them)."""
         spec = self.spec
-        return pd.DataFrame(compare_table(self.summary, self.analytic, spec.row_h, spec.row_branch))
+        return compare_table(self.summary, self.analytic, spec.row_h, spec.row_branch)
 
     def pull_off(self, turn: float | None = None, *, friction: bool = False,
                  progress: bool = False) -> PullOff:  # fmt: skip

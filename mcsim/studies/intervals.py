@@ -32,6 +32,24 @@ def _check_counts(k, n, confidence) -> None:
         raise ParameterError(f"confidence = {confidence!r}: allowed 0 < confidence < 1")
 
 
+def _beta_ppf(q: float, a: float, b: float) -> float:
+    """The q quantile of Beta(a, b): ``scipy.stats.beta.ppf(q, a, b)`` (its ends and NaN
+    outside its domain too), by the function of scipy.special (Boost's ibeta_inv) that it
+    calls, without importing scipy.stats (≈0.5 s of a command's start). A SciPy without that
+    private name (older than 1.12, or a later one that moves it) takes ``beta.ppf`` itself."""
+    try:
+        from scipy.special._ufuncs import _beta_ppf
+    except ImportError:
+        from scipy.stats import beta
+
+        return float(beta.ppf(q, a, b))
+    if not (a > 0 and b > 0 and 0 <= q <= 1):
+        return math.nan
+    if q in (0, 1):  # the ends of the support
+        return float(q)
+    return float(_beta_ppf(q, a, b))
+
+
 def clopper_pearson(k: int, n: int, confidence: float = CONFIDENCE) -> tuple[float, float]:
     """Clopper–Pearson exact interval of a binomial proportion from k successes in n trials.
 
@@ -44,12 +62,10 @@ def clopper_pearson(k: int, n: int, confidence: float = CONFIDENCE) -> tuple[flo
     ParameterError
         Unless 0 ≤ k ≤ n, n ≥ 1 and 0 < confidence < 1.
     """
-    from scipy.stats import beta
-
     _check_counts(k, n, confidence)
     alpha = 1 - confidence
-    lower = 0.0 if k == 0 else float(beta.ppf(alpha / 2, k, n - k + 1))
-    upper = 1.0 if k == n else float(beta.ppf(1 - alpha / 2, k + 1, n - k))
+    lower = 0.0 if k == 0 else _beta_ppf(alpha / 2, k, n - k + 1)
+    upper = 1.0 if k == n else _beta_ppf(1 - alpha / 2, k + 1, n - k)
     return lower, upper
 
 
@@ -65,10 +81,10 @@ def wilson(k: int, n: int, confidence: float = CONFIDENCE) -> tuple[float, float
     ParameterError
         Unless 0 ≤ k ≤ n, n ≥ 1 and 0 < confidence < 1.
     """
-    from scipy.stats import norm
+    from scipy.special import ndtri
 
     _check_counts(k, n, confidence)
-    z = float(norm.ppf(1 - (1 - confidence) / 2))
+    z = float(ndtri(1 - (1 - confidence) / 2))  # scipy.stats.norm.ppf
     p = k / n
     centre = (p + z * z / (2 * n)) / (1 + z * z / n)
     half = z * math.sqrt(p * (1 - p) / n + z * z / (4 * n * n)) / (1 + z * z / n)
@@ -104,10 +120,8 @@ def effective_clopper_pearson(q: float, se: float, k0: int, n0: int) -> tuple[fl
     whatever the other laws drew (with no event, [0, 1 − 0.025^(1/n0)] ≈ [0, 3.7/n0];
     :mod:`mcsim.studies.tail`: n0 = ⌈DEFENSIVE · pads⌉).
     """
-    from scipy.stats import beta
-
     if se > 0 and 0 < q < 1:
         n = q * (1 - q) / se**2
         x = q * n
-        return float(beta.ppf(0.025, x, n - x + 1)), float(beta.ppf(0.975, x + 1, n - x))
+        return _beta_ppf(0.025, x, n - x + 1), _beta_ppf(0.975, x + 1, n - x)
     return clopper_pearson(k0, n0)

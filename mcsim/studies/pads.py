@@ -135,22 +135,26 @@ def pad_statistics(
                          q05=float(q[0]), q50=float(q[1]), q95=float(q[2]), interval=interval, **stick)  # fmt: skip
 
 
-def analytic_pad_pull_off(spec, turn: float | None = None) -> float:
+def analytic_pad_pull_off(spec, turn: float | None = None, summary=None) -> float:
     """GW mean pull-off of one pad of a cycle run's inputs, N (see the module docstring).
 
     The analytic pull-off force/(A K) after the closest approach ``turn`` (d/σ; default the
     run's, ``spec.turn``; under a preload its mean-field turn) times A K, times round(ηA)/(ηA) for a fixed summit count. The minimum of the mean
     curve (continuous in h), not the mean of the per-pad minima on the run's grid.
+    ``summary``: that :func:`~mcsim.physics.adhesion.adhesion_summary` (of the spec's surface,
+    material, law set and environment at ``turn``) where the caller has it already.
     """
     import warnings
 
     from mcsim.physics.adhesion import RegimeWarning, adhesion_summary
 
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", RegimeWarning)
-        s = adhesion_summary(spec.surface, spec.material, spec.law,
-                             turn=spec.turn if turn is None else turn,
-                             environment=spec.environment)  # fmt: skip
+    s = summary
+    if s is None:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", RegimeWarning)
+            s = adhesion_summary(spec.surface, spec.material, spec.law,
+                                 turn=spec.turn if turn is None else turn,
+                                 environment=spec.environment)  # fmt: skip
     bias = spec.expected_summits / (spec.surface.eta * spec.area)
     return s.pull_off * spec.material.K * spec.area * bias
 
@@ -194,7 +198,7 @@ PROCESS_PADS = 1000
 def finite_pads(spec, restoring_force: float | None, *, preload: float | None = None, turn: float,
                 h_pull_off: float, tail: bool | None = None, friction: bool = False,
                 tangential_force: float | None = None, floor: float = 0.0,
-                workers: int = 1) -> dict:  # fmt: skip
+                workers: int = 1, summary=None) -> dict:  # fmt: skip
     """Pull-off statistics of the ``spec.realizations`` pads of a cycle spec, as sweep variables.
 
     Each pad's summits are drawn from ``spec``'s seed as a ``--cycle`` run of the same spec
@@ -232,6 +236,10 @@ def finite_pads(spec, restoring_force: float | None, *, preload: float | None = 
         Worker processes sharing one pool (:class:`~mcsim.studies.padpool.PadPool`): the
         plain pads in contiguous chunks where there are at least :data:`PROCESS_PADS`, and
         importance sampling's stages; 1: all in this process. The values do not depend on it.
+    summary : AdhesionSummary, optional
+        The mean curve's :func:`~mcsim.physics.adhesion.adhesion_summary` at ``turn`` (of the
+        spec's surface, material, law set and environment), where the caller has it already:
+        :func:`analytic_pad_pull_off` then does not compute it again.
 
     Returns
     -------
@@ -282,7 +290,7 @@ def finite_pads(spec, restoring_force: float | None, *, preload: float | None = 
             "work_of_separation_std": float(work.std(ddof=1)) if work.size > 1 else math.nan,
             "work_of_separation_q05": float(q05), "work_of_separation_q50": float(q50),
             "work_of_separation_q95": float(q95),
-            "pull_off_analytic": analytic_pad_pull_off(spec, turn),
+            "pull_off_analytic": analytic_pad_pull_off(spec, turn, summary),
             "contacting_summits": lam * float(spec.surface.heights.sf(turn))}  # fmt: skip
 
 

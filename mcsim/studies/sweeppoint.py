@@ -282,11 +282,13 @@ def _evaluate(point: Point, config: Config, out: dict) -> None:
     out |= curves.values
     out |= _regime(surface, material, law)
     preload = config.preload if point.preload is None else point.preload
+    known = None  # (its inputs, the summary): the pads' analytic pull-off, where the same
     if has_summary(law):
         turn = config.turn
         if preload is not None:
             turn = preload_turn(surface, material, preload, law, environment)
         summary = adhesion_summary(surface, material, law, turn=turn, **with_environment)
+        known = (surface, material, law, turn, environment), summary
         out |= {k: getattr(summary, k) for k in SUMMARY}
         if environment is not None:
             out |= {k: getattr(summary, k) for k in ENVIRONMENT_SUMMARY}
@@ -302,12 +304,15 @@ def _evaluate(point: Point, config: Config, out: dict) -> None:
             out[f"mc_{q}_se"] = run.summary.se[q]
     if config.pads:
         out |= _pads(point, config, law, out.get("turn", math.nan), out.get("h_pull_off", math.nan),
-                     preload)  # fmt: skip
+                     preload, known)  # fmt: skip
 
 
 def _pads(point: Point, config: Config, law: str, turn: float, h_pull_off: float,
-          preload: float | None) -> dict:  # fmt: skip
-    """The pads of one point: ``config.pads`` pads of the point's area from its own stream."""
+          preload: float | None, known=None) -> dict:  # fmt: skip
+    """The pads of one point: ``config.pads`` pads of the point's area from its own stream.
+    ``known``: ((surface, material, law, turn, environment), adhesion summary) of the point,
+    passed on to the pads where they are the pads' own inputs (the same objects, the same turn):
+    their analytic pull-off is then not computed twice."""
     from mcsim.engine.spec import MonteCarloSpec
 
     if not math.isfinite(turn):
@@ -322,11 +327,17 @@ def _pads(point: Point, config: Config, law: str, turn: float, h_pull_off: float
         if spec.environment is None
         else dataclasses.replace(spec, environment=spec.environment.acting())
     )  # the same pads as every such point's
+    summary = None
+    if known is not None:
+        (k_surface, k_material, k_law, k_turn, k_environment), k_summary = known
+        if (k_surface is acting.surface and k_material is acting.material and k_law == acting.law
+                and k_turn == turn and k_environment is acting.environment):  # fmt: skip
+            summary = k_summary
     return config.shared.get(
         (acting, force, lateral, preload, turn, h_pull_off),
         lambda: finite_pads(acting, force, preload=preload, turn=turn, h_pull_off=h_pull_off,
                             tail=config.tail, friction=config.friction, tangential_force=lateral,
-                            floor=config.floor, workers=config.pad_workers),
+                            floor=config.floor, workers=config.pad_workers, summary=summary),
     )  # fmt: skip
 
 
