@@ -90,6 +90,11 @@ from mcsim.studies.sweepresume import already_finished, read_checkpoint, recorde
 log = logging.getLogger(__name__)
 
 
+#: Fewest pads in all (tasks × pads a point) that a pads sweep on ``"processes"`` sends to
+#: worker processes where no importance sampling can run (:func:`_pool_pays`): 100 pads take
+#: 0.15–3 CPU s, two workers' start about 2.
+POOL_PADS = 100
+
 #: Separations d/σ of the curves unless given.
 DEFAULT_H = tuple(np.linspace(4.0, -1.0, 51).tolist())
 
@@ -215,7 +220,9 @@ def sweep(
         needs ``if __name__ == "__main__":``, as for any spawned process). No more
         processes than tasks start; one task (points whose pads act alike are one task)
         runs in this process, and its pads, plain and importance sampling's, on ``workers``
-        worker processes (:func:`mcsim.studies.pads.finite_pads`).
+        worker processes (:func:`mcsim.studies.pads.finite_pads`); fewer than
+        :data:`POOL_PADS` pads in all, where no importance sampling can run, in this process
+        one after another (:func:`_pool_pays`).
     out : str or path-like, optional
         Write the sweep (HDF5, see the module docstring) atomically; completed points
         are checkpointed in ``<stem>.partial<suffix>`` beside it.
@@ -521,6 +528,8 @@ def _run(stack, points, config, result: Sweep, done, workers, scheduler, progres
         if len(tasks) <= 1:  # one task here, its pads on the worker processes
             scheduler = None
             config = dataclasses.replace(config, pad_workers=n_workers)
+        elif not _pool_pays(len(tasks), config):  # a few pads: here, one after another
+            scheduler, n_workers = None, 1
         n_workers = max(1, min(n_workers, len(tasks)))
     bar = None
     if progress:
@@ -566,6 +575,21 @@ def _run(stack, points, config, result: Sweep, done, workers, scheduler, progres
         if checkpoint is not None and unsaved:
             checkpoint(done=done)
         raise
+
+
+def _pool_pays(tasks: int, config: Config) -> bool:
+    """Whether worker processes pay for their start (about 1 CPU s each: imports, compiled
+    kernels) on ``tasks`` tasks of pads: importance sampling may run (its thousands of pads;
+    ``tail`` True, or automatic from :data:`~mcsim.studies.rareevent.MIN_TAIL_PADS` pads a
+    point), or the tasks hold :data:`POOL_PADS` pads in all. Fewer run in this process one
+    after another: threads would contend for Python's lock (the guide's humid sweep of 320
+    pads took 13 s and 17.5 CPU s on 2 threads, 5.5–6.9 s and 10–12.5 CPU s on 2 processes)."""
+    from mcsim.studies.rareevent import MIN_TAIL_PADS
+
+    if not config.pads:
+        return True
+    tail = config.tail is True or (config.tail is None and config.pads >= MIN_TAIL_PADS)
+    return tail or tasks * config.pads >= POOL_PADS
 
 
 def _store(result: Sweep, done: np.ndarray, index: int, values: dict) -> None:

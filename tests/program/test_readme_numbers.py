@@ -519,6 +519,12 @@ def test_when_importance_sampling_replaces_the_fraction_of_the_pads():
     check_exact(r"where its effective sample size `p_stick_ess` is at least (\d+);", MIN_ESS)
 
 
+def test_a_few_pads_stay_in_the_commands_process():
+    from mcsim.studies.sweeps import POOL_PADS
+
+    check_exact(r"fewer than (\d+) pads in all, where no importance sampling can run", POOL_PADS)
+
+
 def test_the_report_resolves_p_stick_to_its_resolution():
     from mcsim.studies.report import DEFAULT_PADS, RESOLUTION
 

@@ -231,9 +231,13 @@ def test_points_whose_pads_act_alike_are_one_task_in_the_order_of_the_first(monk
     assert tasks == [[0.0, 0.1, 0.25], [0.5], [0.9]]
 
 
-def test_worker_processes_give_the_numbers_of_threads():
+def test_worker_processes_give_the_numbers_of_threads(monkeypatch):
     # scheduler="processes" (mcsim report's default): the points on spawned processes of this
-    # machine (a pad's search holds the GIL much of the time: threads gain little there)
+    # machine (a pad's search holds the GIL much of the time: threads gain little there),
+    # here on 9 pads in all (below POOL_PADS a sweep would keep them in its own process)
+    import mcsim.studies.sweeps
+
+    monkeypatch.setattr(mcsim.studies.sweeps, "POOL_PADS", 1)
     options = dict(law="jkr", h=H, pads=3, restoring_force="1 mN", preload=0, area="30 um^2",
                    seed=5, environment=HUMID, workers=2)  # fmt: skip
     grid = {"rh": [0.0, 0.2, 0.6]}

@@ -278,20 +278,28 @@ def test_the_cli_sweeps_points_run_where_asked(monkeypatch, capsys, tmp_path, op
     assert code == 130 and asked == [(scheduler, workers)], err
 
 
-def test_one_task_on_processes_runs_in_this_process(monkeypatch):
+@pytest.mark.parametrize("grid", [{"sigma": "3nm"}, {"sigma": "3nm,4nm,5nm"}])
+def test_one_task_or_a_few_pads_on_processes_run_in_this_process(monkeypatch, grid):
     # a pool would only add its processes' start: one point (or points whose pads act
-    # alike, one task) runs here, with the numbers of threads
+    # alike, one task), or 15 pads in all where no importance sampling can run (fewer than
+    # POOL_PADS), run here, with the numbers of threads
     import mcsim.studies.sweeps
 
     def no_pool(workers):
-        raise AssertionError("a process pool was started for one task")
+        raise AssertionError("a process pool was started for one task or a few pads")
 
     options = {"pads": 5, "seed": 3, **PADS_OPTIONS}
-    threads = sweep(SMOOTH, SILICON, {"sigma": "3nm"}, **options)
+    assert 3 * options["pads"] < mcsim.studies.sweeps.POOL_PADS
+    threads = sweep(SMOOTH, SILICON, grid, **options)
     monkeypatch.setattr(mcsim.studies.sweeps, "process_pool", no_pool)
-    here = sweep(SMOOTH, SILICON, {"sigma": "3nm"}, scheduler="processes", **options)
+    here = sweep(SMOOTH, SILICON, grid, scheduler="processes", **options)
     for name in threads.data:
         np.testing.assert_array_equal(here.data[name], threads.data[name], err_msg=name)
+    # the same points with more pads than that, or importance sampling possible, do start one
+    monkeypatch.setattr(mcsim.studies.sweeps, "POOL_PADS", 15)
+    if len(grid["sigma"].split(",")) > 1:
+        with pytest.raises(AssertionError, match="process pool was started"):
+            sweep(SMOOTH, SILICON, grid, scheduler="processes", **options)
 
 
 def test_cli_sweep_varies_the_restoring_force_and_plots_it(tmp_path, capsys):
