@@ -22,7 +22,7 @@ import threading
 import warnings
 from collections.abc import Callable, Iterator
 
-from mcsim.model.errors import MCSimError
+from mcsim.model.errors import MCSimError, WorkerError
 
 #: Seconds to wait for an existing scheduler to answer before giving up.
 CONNECT_TIMEOUT = 5.0
@@ -145,9 +145,10 @@ def process_pool(workers: int) -> Iterator[Callable[..., concurrent.futures.Futu
         yield submit
     except concurrent.futures.process.BrokenProcessPool:
         _terminate(pool)
-        raise MCSimError("a worker process ended abruptly: killed, out of memory, or a script "
-                         "without 'if __name__ == \"__main__\":' that each worker runs again "
-                         "(workers=1 runs in this process)") from None  # fmt: skip
+        raise WorkerError("a worker process ended abruptly: killed, out of memory, or a script "
+                          "that each worker runs again (one without 'if __name__ == "
+                          "\"__main__\":', or read from standard input; workers=1 runs in "
+                          "this process)") from None  # fmt: skip
     except BaseException:
         _terminate(pool)
         raise

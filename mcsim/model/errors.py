@@ -19,3 +19,9 @@ class UnitError(MCSimError):
 
 class RunFileError(MCSimError):
     """A run file cannot be written, or is not a readable mcsim run."""
+
+
+class WorkerError(MCSimError):
+    """A worker process of this machine ended abruptly (killed, out of memory, or a script
+    that each spawned worker runs again): the machine's failure, not one input's, so a sweep
+    raises it rather than recording it as one point's ``error``."""

@@ -22,7 +22,7 @@ import numpy as np
 from mcsim.engine.maps.designmap import REFERENCE, jkr_summaries
 from mcsim.model import units
 from mcsim.model.distributions import GAUSSIAN, Gaussian
-from mcsim.model.errors import MCSimError, ParameterError
+from mcsim.model.errors import MCSimError, ParameterError, WorkerError
 from mcsim.model.params import Material, Surface, plasticity_index
 from mcsim.model.units import parse_quantity
 from mcsim.physics.adhesion import (
@@ -259,6 +259,8 @@ def evaluate(point: Point, config: Config) -> dict:
     out: dict = {}
     try:
         _evaluate(point, config, out)
+    except WorkerError:  # the pads' worker processes failed, not this point: every one would
+        raise
     except (MCSimError, ArithmeticError, ValueError, RuntimeError) as err:
         out["error"] = f"{type(err).__name__}: {' '.join(str(err).split())}"
     return out

@@ -70,7 +70,7 @@ def test_a_script_that_starts_worker_processes_gets_a_result_or_an_error_not_a_h
         assert done.returncode == 0 and done.stdout == "result 1\n", done.stderr
     else:
         assert done.returncode == 1, done.stderr
-        assert "MCSimError: a worker process ended abruptly" in done.stderr
+        assert "WorkerError: a worker process ended abruptly" in done.stderr
 
 
 _KILLED = """import os, time

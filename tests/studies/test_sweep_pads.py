@@ -323,3 +323,25 @@ def test_a_varied_restoring_force_is_checked_in_one_line(options, match):
     vary = {"restoring_force": options.pop("vary", "1uN,2uN")}
     with pytest.raises(MCSimError, match=match):
         sweep(SMOOTH, SILICON, vary, law="jkr", **options)
+
+
+def test_a_failed_worker_process_stops_the_sweep_where_a_failed_point_is_recorded(monkeypatch):
+    # a point whose computation fails keeps its outputs so far and says why in "error"; the
+    # pads' worker processes failing (killed, out of memory, a script each worker runs
+    # again) is the machine's failure, not the point's: the sweep raises it
+    import mcsim.studies.sweeppoint
+    from mcsim.model.errors import WorkerError
+
+    def failing(error):
+        def _evaluate(point, config, out):
+            raise error
+
+        return _evaluate
+
+    options = {"pads": 3, "seed": 3, **PADS_OPTIONS}
+    monkeypatch.setattr(mcsim.studies.sweeppoint, "_evaluate", failing(ParameterError("bad")))
+    result = sweep(SMOOTH, SILICON, {"sigma": "3nm"}, **options)
+    assert list(result.data["error"].ravel()) == ["ParameterError: bad"]
+    monkeypatch.setattr(mcsim.studies.sweeppoint, "_evaluate", failing(WorkerError("ended")))
+    with pytest.raises(WorkerError, match="ended"):
+        sweep(SMOOTH, SILICON, {"sigma": "3nm"}, **options)
