@@ -520,9 +520,11 @@ def test_when_importance_sampling_replaces_the_fraction_of_the_pads():
 
 
 def test_a_few_pads_stay_in_the_commands_process():
+    from mcsim.studies.pads import PROCESS_PADS
     from mcsim.studies.sweeps import POOL_PADS
 
     check_exact(r"fewer than (\d+) pads in all, where no importance sampling can run", POOL_PADS)
+    check_exact(r"and its plain ones from (\d+) pads on, run on `--workers`", PROCESS_PADS)
 
 
 def test_the_report_resolves_p_stick_to_its_resolution():
