@@ -33,8 +33,9 @@ Criteria (PASS/FAIL lines, exit status 1 on a FAIL):
   most of its time: 2026-11-29, idle, 22.6 s on two threads against 17.5–19.1 s on one).
   Its wall seconds are printed with the CPU seconds of this process and of the workers
   (``os.times``) and the machine's load (``uptime``).
-* **Two ways in** (full run only; ``TwoWays``): in at least 8 of 10 runs the interval holds
-  the exact p or the chains disagree (the run says it cannot tell).
+* **Two ways in** (full run only; ``TwoWays``): in every one of 10 runs the interval holds
+  the exact p or the run says it cannot tell (``agree`` False: the chains disagree, or one
+  rests on fewer than CONFIRM effective events).
 * **With the environment** (full run only): humid air (A = 1.6e-19 J, D0 = 0.2 nm, RH 0.7,
   validation/pad_benchmark.py) through the same pad functions, at p ≈ 1e-2 against 24 000
   brute-force humid pads, |z| < 5.
@@ -156,7 +157,7 @@ def _coverage(pool, checks, lines, name, event, seeds, pads, pilot):
     ratio = np.array([q for q, *_ in runs]) / event.p
     lines.append(f"coverage, {name}, m = {event.m}, p = {event.p:.3g}: {covered} of {r} runs "
                  f"({pads} pads, stages of {pilot}) hold it; mean p_IS/p {ratio.mean():.3f} ± "
-                 f"{ratio.std(ddof=1) / math.sqrt(r):.3f}; chains disagree in "
+                 f"{ratio.std(ddof=1) / math.sqrt(r):.3f}; cannot tell in "
                  f"{sum(not a for *_, a in runs)}")  # fmt: skip
     checks.at_least(f"coverage at p = {event.p:.2g}, {name.split(',')[0]} (bound {LEVEL} r - "
                     f"{COVERAGE_SE:g} se)", covered, bound)  # fmt: skip
@@ -347,9 +348,9 @@ def main() -> None:
         told = sum(lo <= event.p <= hi or not a for _, lo, hi, a in runs)
         lines.append(f"two ways in (A share {event.share:.2f}), p = {event.p:.3g}: "
                      f"{sum(lo <= event.p <= hi for _, lo, hi, _ in runs)} of 10 runs hold it, "
-                     f"chains disagree in {sum(not a for *_, a in runs)}; p_IS/p: "
+                     f"cannot tell in {sum(not a for *_, a in runs)}; p_IS/p: "
                      f"{', '.join(f'{q / event.p:.2f}' for q, *_ in runs)}")  # fmt: skip
-        checks.at_least("two ways in: runs of 10 that hold p or whose chains disagree", told, 8)
+        checks.at_least("two ways in: runs of 10 that hold p or say they cannot tell", told, 10)
     before = os.times()
     e, sec = _tail(reach)  # its pool closed: the workers' CPU seconds are in os.times()
     after = os.times()

@@ -105,9 +105,13 @@ the event; q only sets the variance.
   tilted pads and its half of the final nominal ones (the balance heuristic of those three laws), independently
   of the other; where they differ by more than :data:`AGREE` = 3.29 of their combined
   standard error √(se₁² + se₂²) (for two correct normal estimates a chance of 0.1 %) the
-  tilts have found different ways into the event and ``agree`` is False: :func:`mcsim.studies.pads.rare_event` then keeps the plain
-  fraction. The pooled mixture holds both tilts, so a way in that one chain finds and the
-  other misses is in the estimate; a way in that both miss is not detected (docs/physics.md).
+  tilts have found different ways into the event and ``agree`` is False:
+  :func:`mcsim.studies.rareevent.rare_event` then keeps the plain fraction. So is it where
+  either chain's own estimate rests on fewer than :data:`CONFIRM` = 5 effective events (its
+  interval spans more than a factor of 7 and would "agree" with anything): a chain that
+  found no way in cannot confirm the other's. The pooled mixture holds both tilts, so a way
+  in that one chain finds and the other misses is in the estimate; a way in that both miss is
+  not detected (docs/physics.md).
   **The tall way in.** Two free chains follow the same way where the score's intermediate
   levels all lead there; under force control a pad sticks with many summits just below the
   turn and none above it, so a first tilt that raises the summits above the turn (r_k > 1 in
@@ -115,9 +119,12 @@ the event; q only sets the variance.
   under force control (a ``preload``; at a common turn more summits above it are the usual
   way, and the second chain stays free) the second chain then fits under r_k ≤ 1 in those bins (the cross-entropy fit restricted to
   that family: each bin's Poisson likelihood is concave, so its maximum under the bound is
-  the clipped one) and looks for the way below the turn: on an exact event with both ways
-  (validation/tail_benchmark.py's ``TwoWays``) 9 of 10 runs held p or disagreed, against 0
-  of 10 with two free chains (tests/studies/test_tail.py). Where the first tilt keeps the
+  the clipped one) and looks for the way below the turn. On an exact event with both ways
+  (validation/tail_benchmark.py's ``TwoWays``), where the score hides the way below the turn
+  until a pad is almost in it, the second chain found it in none of 30 runs: it ended with
+  0–2.5 effective events, and every run says it cannot tell (before :data:`CONFIRM`, 6 of
+  the 30 agreed at 0.25–0.72 p; with two free chains 0 of 10 held p or disagreed;
+  tests/studies/test_tail.py). Where the first tilt keeps the
   summits above the turn at or below nominal, as sticking pads' tilts do, the second chain
   is free; a rare release is not restricted.
 
@@ -176,12 +183,20 @@ DEFENSIVE = 0.2
 #: against 60 of 64 with the two-part mixture on the same seeds (validation/README.md).
 HALF_WAY = 0.3
 #: Independent cross-entropy chains, each with its own tilt in the final mixture: where their
-#: own estimates' intervals do not overlap the event has a way in that one tilt misses
-#: (module docstring), and the estimate is not trusted.
+#: own estimates differ by more than AGREE standard errors, or one of them rests on fewer than
+#: CONFIRM effective events, the event may have a way in that one tilt misses (module
+#: docstring), and the estimate is not trusted.
 CHAINS = 2
 #: Largest |z| = |p̂₁ − p̂₂|/√(se₁² + se₂²) of the chains' own estimates that agree: the two-sided
 #: normal 0.1 % point, so two correct chains disagree by chance in about one run of 1000.
 AGREE = 3.29
+#: Fewest effective events (:func:`~mcsim.studies.intervals.effective_sample_size`) each
+#: chain's own estimate must rest on for the chains' check to count as a confirmation: with 5
+#: its 95 % interval spans a factor of 7 (Clopper–Pearson of 5 events: [1.6, 11.7]), with 2 a
+#: factor of 30, wide enough to "agree" with anything. Measured (validation/README.md): 9.9–114
+#: on 40 chains of real pads at p ≈ 1e-4 and 5e-6; 0–2.5 on the second chain of all 30 runs of
+#: an event with a second way in that it did not find (``TwoWays``), 6 of which agreed before.
+CONFIRM = 5.0
 #: Pads drawn from the pooled tilt after the final ones, per final pad (module docstring): at
 #: 0.25 (5600 + 1400 final pads) the reach point's relative half-width stayed within 0.2 on 20
 #: of 20 seeds, against 15 of 20 with 8000 final pads alone (validation/README.md).
@@ -229,8 +244,9 @@ class TailEstimate:
     tilts, cut : tuple of Tilt, float
         Each chain's last tilt; the cut s_c, in σ.
     agree : bool
-        Whether the chains' own estimates agree within :data:`AGREE` combined standard errors
-        (module docstring); True where no final pads were drawn.
+        Whether the chains' own estimates agree within :data:`AGREE` combined standard errors,
+        each resting on at least :data:`CONFIRM` effective events (module docstring); True
+        where no final pads were drawn.
     chains : tuple of tuple of float
         Each chain's own estimate and 95 % interval (p, low, high) of the sampled side (the
         event, before ``"release"`` takes the complement), from its tilts' pads and its share
@@ -535,7 +551,8 @@ def _sample(law: Law, fr: float, *, turn: float, preload: float | None, pads: in
         own.append(recycled([len(parts) - 1, 1 + 2 * c, 2 + 2 * c], [chains[c]]))
     chain = tuple((o[0], o[2], o[3]) for o in own)
     (qa, sa, *_), (qb, sb, *_) = own
-    agree = abs(qa - qb) <= AGREE * math.hypot(sa, sb)
+    resolved = min(effective_sample_size(o[0], o[1]) for o in own) >= CONFIRM
+    agree = resolved and abs(qa - qb) <= AGREE * math.hypot(sa, sb)
     ess = effective_sample_size(q, se)
     if event == "release":
         q, low, high = 1.0 - q, 1.0 - high, 1.0 - low
