@@ -219,9 +219,9 @@ def add_parser(sub) -> None:
                    help="force pulling the pad sideways (N or with a unit, '50uN'; implies --friction): "
                    "p_slip, the fraction of pads whose static friction is below it, with its 95 %% interval")  # fmt: skip
     p.add_argument("--workers", type=workers_type,
-                   help="worker processes of importance sampling (--tail, and where it switches "
-                   "on by itself; default: all cores; 1: in this process); results do not "
-                   "depend on it")  # fmt: skip
+                   help="worker processes of the run's pads (where there are many) and of "
+                   "importance sampling (--tail, and where it switches on by itself); default: all "
+                   "cores; 1: in this process; results do not depend on it")  # fmt: skip
     p.add_argument("--format", choices=FORMATS, default="table",
                    help="table or json: the statistics; csv: one row per pad (pull-off in N)")  # fmt: skip
     p.add_argument(

@@ -343,7 +343,7 @@ class Run:
         return compare_table(self.summary, self.analytic, spec.row_h, spec.row_branch)
 
     def pull_off(self, turn: float | None = None, *, friction: bool = False,
-                 progress: bool = False) -> PullOff:  # fmt: skip
+                 progress: bool = False, pool=None) -> PullOff:  # fmt: skip
         """Per-patch pull-off of a cycle run (the law set must have a signed ``load``).
 
         Each pad's summits are drawn again from the seed (:mod:`mcsim.engine.pads.curves`;
@@ -353,9 +353,11 @@ class Run:
         preload (attribute ``preload``, Pa); else the run's min(h). With ``friction`` also
         each pad's static friction at that turn and the normal load of its μ_s
         (:mod:`mcsim.engine.pads.friction`; a ParameterError for a law set without friction).
-        With ``progress`` a progress bar over the pads on stderr.
+        With ``progress`` a progress bar over the pads on stderr. With ``pool`` (a
+        :class:`mcsim.studies.padpool.PadPool`: ``pool.map(fn, calls)`` evaluates
+        ``fn(*call)`` of each call on its ``pool.workers`` worker processes) the pads go to it
+        in contiguous ranges, one a worker at a time, joined in order: the same values.
         """
-        from mcsim.engine.pads import curves as padcurves
         from mcsim.engine.pads import friction as padfriction
         from mcsim.engine.pads import load as padload
 
@@ -368,7 +370,7 @@ class Run:
         if turn is not None and not turn >= spec.turn:
             raise ParameterError(f"turn = {turn!r}: allowed >= the run's lowest separation "
                                  f"h = {spec.turn:g} (no summit below it is drawn)")  # fmt: skip
-        M, R, sigma = spec.h.size, self.sums.shape[0], spec.surface.sigma
+        M, R = spec.h.size, self.sums.shape[0]
         load = padload.net_load(spec, self.sums, spec.rows()[0])
         j = np.argmin(load[:, M:], axis=1)
         grid_force = np.maximum(-load[np.arange(R), M + j], 0.0)
@@ -388,25 +390,33 @@ class Run:
                                      "cannot draw again")  # fmt: skip
             static, normal = np.empty(R), np.empty(R)
         if exact:
-            pads = range(R)
+            bar = None
             if progress:
                 import sys
 
                 from tqdm import tqdm
 
-                pads = tqdm(pads, unit=" pads", file=sys.stderr, leave=False)
-            for r in pads:
-                z = padload.patch_heights(spec, r)
-                _check_regenerated(spec, r, z, load[r, :M])
+                bar = tqdm(total=R, unit=" pads", file=sys.stderr, leave=False)
+            step = 1 if pool is None else pool.workers  # ranges evaluated at a time
+            calls = [(spec, load[lo:hi, :M], lo, turn, preload, friction)
+                     for lo, hi in _ranges(R, R if pool is None else step * _ROUNDS)]  # fmt: skip
+            done = []
+            for i in range(0, len(calls), step):
+                wave = calls[i : i + step]
+                done += (
+                    [_pad_range(*c) for c in wave] if pool is None else pool.map(_pad_range, wave)
+                )
+                if bar is not None:
+                    bar.update(sum(len(c[1]) for c in wave))
+            if bar is not None:
+                bar.close()
+            if R:
+                cols = [np.concatenate([d[k] for d in done]) for k in range(6)]
+                force, h, h_turn[:] = cols[0], cols[1], cols[2]
                 if preload is not None:
-                    d_t, turn_load[r] = padcurves.force_turn(spec, z, preload * spec.area)
-                    h_turn[r] = d_t / sigma
-                force[r], d_off = padcurves.pull_off(spec, z, h_turn[r] * sigma)
-                h[r] = d_off / sigma
+                    turn_load[:] = cols[3]
                 if friction:
-                    applied = None if preload is None else preload * spec.area
-                    static[r] = padfriction.static_friction(spec, z, h_turn[r] * sigma)
-                    normal[r] = padfriction.normal_load(spec, z, h_turn[r] * sigma, applied)
+                    static, normal = cols[4], cols[5]
         elif preload is not None:
             raise ParameterError("force control (preload) needs the pads' heights, which a GPU "
                                  "run cannot draw again")  # fmt: skip
@@ -452,6 +462,45 @@ class Run:
             frames += [frame(stat, -1, q, getattr(self.summary, stat)[q]) for stat in STATS]
             frames.append(frame("analytic", -1, q, self.analytic[q]))
         return pd.concat(frames, ignore_index=True)
+
+
+#: Progress-bar steps of :meth:`Run.pull_off` on a pool: the pads in that many waves of one
+#: contiguous range a worker (in this process: one pad a step).
+_ROUNDS = 4
+
+
+def _ranges(n: int, parts: int) -> list[tuple[int, int]]:
+    """``parts`` contiguous ranges of ``range(n)`` (fewer where ``n`` is smaller), in order."""
+    k = max(1, min(n, parts))
+    return [(i * n // k, (i + 1) * n // k) for i in range(k)]
+
+
+def _pad_range(spec: MonteCarloSpec, stored: np.ndarray, lo: int, turn: float | None,
+               preload: float | None, friction: bool) -> tuple[np.ndarray, ...]:  # fmt: skip
+    """Pads ``lo`` … ``lo + len(stored)`` − 1 of :meth:`Run.pull_off` (``stored``: their
+    approach sums): pull-off (N), its d/σ, the turn d/σ, the load there (N, NaN without
+    ``preload``), static friction and normal load (N, NaN without ``friction``)."""
+    from mcsim.engine.pads import curves as padcurves
+    from mcsim.engine.pads import friction as padfriction
+    from mcsim.engine.pads import load as padload
+
+    sigma, n = spec.surface.sigma, len(stored)
+    out = [np.empty(n), np.empty(n), np.full(n, spec.turn if turn is None else turn)]
+    out += [np.full(n, np.nan) for _ in range(3)]
+    force, h, h_turn, turn_load, static, normal = out
+    for i in range(n):
+        z = padload.patch_heights(spec, lo + i)
+        _check_regenerated(spec, lo + i, z, stored[i])
+        if preload is not None:
+            d_t, turn_load[i] = padcurves.force_turn(spec, z, preload * spec.area)
+            h_turn[i] = d_t / sigma
+        force[i], d_off = padcurves.pull_off(spec, z, h_turn[i] * sigma)
+        h[i] = d_off / sigma
+        if friction:
+            applied = None if preload is None else preload * spec.area
+            static[i] = padfriction.static_friction(spec, z, h_turn[i] * sigma)
+            normal[i] = padfriction.normal_load(spec, z, h_turn[i] * sigma, applied)
+    return force, h, h_turn, turn_load, static, normal
 
 
 def _check_regenerated(spec: MonteCarloSpec, r: int, z: np.ndarray, stored: np.ndarray) -> None:

@@ -1,4 +1,5 @@
 """Pads evaluated on worker processes: the plain pads of :func:`mcsim.studies.pads.finite_pads`
+and of a run (:meth:`mcsim.Run.pull_off`, as :func:`mcsim.studies.pads.pad_report` calls it),
 and the stages of :func:`mcsim.studies.tail.importance_p_stick`.
 
 A pad's search holds Python's lock for about 60 % of its time (NumPy between compiled sums),

@@ -494,9 +494,10 @@ def pad_report(
     progress : bool
         A progress bar over the pads on stderr (:meth:`mcsim.Run.pull_off`).
     workers : int
-        Worker processes of importance sampling, one pool for p_stick and p_slip
-        (:func:`tail_p_stick`); 1: in this process. The run's own pads are evaluated in this
-        process (:meth:`mcsim.Run.pull_off`). The values do not depend on it.
+        Worker processes sharing one pool: the run's own pads where there are at least
+        :data:`PROCESS_PADS` (:meth:`mcsim.Run.pull_off`), and importance sampling's stages
+        for p_stick and p_slip (:func:`tail_p_stick`); 1: all in this process. The values do
+        not depend on it.
 
     Returns
     -------
@@ -513,18 +514,19 @@ def pad_report(
     if tangential_force is not None:
         tangential_force = padfriction.check_tangential_force(tangential_force)
     friction = friction or tangential_force is not None
-    pull_off = run.pull_off(friction=friction, progress=progress)
-    statistics = pad_statistics(pull_off.force, restoring_force, interval)
-    spec, turns, turn = run.spec, {}, None
-    if pull_off.preload is not None:  # the analytic mean after the mean-field turn
-        t, turn = pull_off.h_turn, run.attrs.get("preload_turn_mean_field")
-        turns = {"preload": pull_off.preload, "h_turn_mean_field": turn,
-                 "h_turn_min": float(np.min(t)), "h_turn_q50": float(np.median(t)),
-                 "h_turn_max": float(np.max(t))}  # fmt: skip
-    turn = spec.turn if turn is None else float(turn)
-    contacts = spec.surface.eta * spec.area * float(spec.surface.heights.sf(turn))
     model = stick = fs = slip = None
     with opened(workers) as pool:
+        many = run.sums.shape[0] >= PROCESS_PADS  # fewer: the workers' start would cost more
+        pull_off = run.pull_off(friction=friction, progress=progress, pool=pool if many else None)
+        statistics = pad_statistics(pull_off.force, restoring_force, interval)
+        spec, turns, turn = run.spec, {}, None
+        if pull_off.preload is not None:  # the analytic mean after the mean-field turn
+            t, turn = pull_off.h_turn, run.attrs.get("preload_turn_mean_field")
+            turns = {"preload": pull_off.preload, "h_turn_mean_field": turn,
+                     "h_turn_min": float(np.min(t)), "h_turn_q50": float(np.median(t)),
+                     "h_turn_max": float(np.max(t))}  # fmt: skip
+        turn = spec.turn if turn is None else float(turn)
+        contacts = spec.surface.eta * spec.area * float(spec.surface.heights.sf(turn))
         if restoring_force is not None:
             fr = statistics.restoring_force
             model = min(max(_p_stick_model(spec, fr, pull_off.preload, turn), 0.0), 1.0)

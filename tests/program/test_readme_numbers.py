@@ -525,6 +525,7 @@ def test_a_few_pads_stay_in_the_commands_process():
 
     check_exact(r"fewer than (\d+) pads in all, where no importance sampling can run", POOL_PADS)
     check_exact(r"and its plain ones from (\d+) pads on, run on `--workers`", PROCESS_PADS)
+    check_exact(r"`mcsim pads`' \(the run's own pads from (\d+) on", PROCESS_PADS)
 
 
 def test_the_report_resolves_p_stick_to_its_resolution():

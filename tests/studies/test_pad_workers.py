@@ -161,3 +161,25 @@ def test_mcsim_pads_gives_its_importance_sampling_the_workers(monkeypatch, tmp_p
     for workers in (3, 1):
         run_cli(capsys, "pads", run, "--restoring-force", "1uN", "--tail", "--workers", workers)
     assert [(type(w), w.workers) for w in given] == [(PadPool, 3), (PadPool, 1)]
+
+
+def test_a_runs_own_pads_on_two_processes_are_bit_identical_to_one(monkeypatch, pools, tmp_path,
+                                                                   capsys):  # fmt: skip
+    # mcsim pads' plain pads (Run.pull_off): 40 pads pressed with 1 MPa, each to its own turn,
+    # with their static friction, in contiguous ranges on the pool from PROCESS_PADS pads on
+    import mcsim
+
+    run = tmp_path / "c.h5"
+    code, _, err = run_cli(capsys, "simulate", "--surface", "smooth", "--law", "jkr", "--area",
+                           "3um^2", "--h=4:-1:51", "--realizations", 40, "--seed", 6, "--workers",
+                           1, "--cycle", "--preload", "1MPa", "--quiet", "--out", run)  # fmt: skip
+    assert code == 0, err
+    monkeypatch.setattr(pads, "PROCESS_PADS", 10)
+    one = mcsim.pad_report(mcsim.read_run(run), 18e-6, friction=True).pull_off
+    assert pools == []
+    two = mcsim.pad_report(mcsim.read_run(run), 18e-6, friction=True, workers=2).pull_off
+    assert pools == [2] and one.turn_load is not None and np.all(one.static_friction > 0)
+    for field in dataclasses.fields(one):
+        np.testing.assert_array_equal(np.asarray(getattr(two, field.name), dtype=object),
+                                      np.asarray(getattr(one, field.name), dtype=object),
+                                      err_msg=field.name)  # fmt: skip
