@@ -2,8 +2,9 @@
 
 Errors in the input print one line (``mcsim: error: ...``) and exit with status 2;
 ``--debug`` shows the traceback instead. Ctrl-C exits with status 130 and leaves no
-partial output; ``simulate`` (see :mod:`mcsim.engine.interrupt`) also stops on SIGTERM (status
-143) and keeps its progress in the checkpoint beside the run file, for ``--resume``.
+partial output; SIGTERM the same with status 143. ``simulate`` (see
+:mod:`mcsim.engine.interrupt`) keeps its progress in the checkpoint beside the run file, for
+``--resume``.
 """
 
 from __future__ import annotations
@@ -11,6 +12,7 @@ from __future__ import annotations
 import argparse
 import re
 import shlex
+import signal
 import sys
 
 from mcsim._version import __version__
@@ -28,6 +30,7 @@ from mcsim.cli import (
     simulate,
     sweep,
 )
+from mcsim.engine.interrupt import Interrupted
 from mcsim.model.errors import MCSimError
 
 #: The commands, in the order of ``mcsim --help``.
@@ -136,9 +139,10 @@ def main(argv: list[str] | None = None) -> int:
     args.command_line = shlex.join(["mcsim", *map(str, words)])
     try:
         return args.func(args)
-    except KeyboardInterrupt:
-        print("mcsim: interrupted; no output written", file=sys.stderr)
-        return 130
+    except KeyboardInterrupt as stop:  # Ctrl-C, or SIGTERM (console) outside simulate and sweep
+        name = f" ({signal.Signals(stop.signum).name})" if isinstance(stop, Interrupted) else ""
+        print(f"mcsim: interrupted{name}; no output written", file=sys.stderr)
+        return getattr(stop, "exit_status", 130)
     except BrokenPipeError:  # output piped into `head` and the like
         import os
 
@@ -161,11 +165,20 @@ def main(argv: list[str] | None = None) -> int:
 FULL_COLLECTION_EVERY = 10_000
 
 
+def terminate(signum: int, frame) -> None:
+    """SIGTERM as Ctrl-C: :class:`~mcsim.engine.interrupt.Interrupted`, raised where the
+    command is (``simulate`` and ``sweep`` own the signal while they run and save their
+    progress first); the command ends with status 143 and one line, no output written."""
+    raise Interrupted(signum)
+
+
 def console() -> None:
     """Entry point of the ``mcsim`` command and ``python -m mcsim``.
 
-    Once the exit status is decided, SIGINT and SIGTERM are ignored, so that a late
-    signal can neither kill the interpreter while it exits nor print a traceback.
+    SIGTERM (a batch scheduler's, ``kill``) ends every command as Ctrl-C does
+    (:func:`terminate`), with status 143. Once the exit status is decided, SIGINT and
+    SIGTERM are ignored, so that a late signal can neither kill the interpreter while it
+    exits nor print a traceback.
 
     The cyclic garbage collector leaves the start-up's objects alone: importing NumPy,
     SciPy, h5py and numba's registries makes ~10⁵ long-lived objects and hardly any
@@ -178,10 +191,10 @@ def console() -> None:
     unaffected; nothing here touches the numbers.
     """
     import gc
-    import signal
 
     young, middle, _ = gc.get_threshold()
     gc.set_threshold(young, middle, FULL_COLLECTION_EVERY)
+    signal.signal(signal.SIGTERM, terminate)
     code = main()
     for sig in (signal.SIGINT, signal.SIGTERM):
         signal.signal(sig, signal.SIG_IGN)

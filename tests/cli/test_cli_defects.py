@@ -304,3 +304,29 @@ def test_a_command_run_in_process_records_its_own_arguments_not_the_interpreters
         command
         == f"mcsim simulate --surface smooth --area 1e-10 --h=3,2 --realizations 2 --seed 1 --out {out}"
     )
+
+
+def test_sigterm_ends_any_command_as_ctrl_c_does_with_status_143(capsys, tmp_path, monkeypatch):
+    # `mcsim pads` died of SIGTERM with no line of its own (only the resource tracker's
+    # warning of leaked semaphores, its workers left to notice); the command line now
+    # raises it as Ctrl-C in every command: one line, status 143, no output written
+    import os
+    import signal
+    import threading
+
+    from mcsim.cli.main import terminate
+
+    run, png = tmp_path / "c.h5", tmp_path / "pads.png"
+    code, _, err = run_cli(capsys, "simulate", "--surface", "smooth", "--law", "jkr", "--area",
+                           "3um^2", "--h=4:-1:51", "--realizations", 300, "--seed", 2, "--cycle",
+                           "--preload", "1MPa", "--workers", 1, "--quiet", "--out", run)  # fmt: skip
+    assert code == 0, err
+    previous = signal.signal(signal.SIGTERM, terminate)  # as the console entry point does
+    try:
+        threading.Timer(0.3, os.kill, (os.getpid(), signal.SIGTERM)).start()
+        code, _, err = run_cli(capsys, "pads", run, "--restoring-force", "1uN", "--workers", 1,
+                               "--plot", png)  # fmt: skip
+    finally:
+        signal.signal(signal.SIGTERM, previous)
+    assert code == 143 and err == "mcsim: interrupted (SIGTERM); no output written\n", err
+    assert not png.exists()
