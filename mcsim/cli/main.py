@@ -140,9 +140,10 @@ def main(argv: list[str] | None = None) -> int:
     try:
         return args.func(args)
     except KeyboardInterrupt as stop:  # Ctrl-C, or SIGTERM (console) outside simulate and sweep
-        name = f" ({signal.Signals(stop.signum).name})" if isinstance(stop, Interrupted) else ""
-        print(f"mcsim: interrupted{name}; no output written", file=sys.stderr)
-        return getattr(stop, "exit_status", 130)
+        signum = stop.signum if isinstance(stop, Interrupted) else signal.SIGINT
+        print(f"mcsim: interrupted ({signal.Signals(signum).name}); no output written",
+              file=sys.stderr)  # fmt: skip
+        return 128 + signum
     except BrokenPipeError:  # output piped into `head` and the like
         import os
 

@@ -116,7 +116,7 @@ def test_ctrl_c_during_the_work_leaves_nothing(tmp_path, capsys, monkeypatch):
     monkeypatch.setattr(study, "report", interrupted)
     monkeypatch.chdir(tmp_path)
     assert main(["report", SCAN, *DEVICE]) == 130
-    assert "interrupted; no output written" in capsys.readouterr().err
+    assert "interrupted (SIGINT); no output written" in capsys.readouterr().err
     assert list(tmp_path.iterdir()) == []
 
 

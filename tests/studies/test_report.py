@@ -406,7 +406,7 @@ def test_ctrl_c_ends_the_worker_processes_and_leaves_nothing(tmp_path):
     assert proc.returncode == 130, err
     lines = [line for line in err.replace("\r", "\n").splitlines()
              if line.strip() and not line.startswith("mcsim: report:") and "points" not in line]  # fmt: skip
-    assert lines == ["mcsim: interrupted; no output written"], err
+    assert lines == ["mcsim: interrupted (SIGINT); no output written"], err
     assert list(tmp_path.iterdir()) == []
     time.sleep(0.5)
     for pid in workers:  # ended (gone, or a zombie no one reaps), not left running their pads
