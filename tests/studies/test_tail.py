@@ -21,7 +21,7 @@ from mcsim.model.presets import MATERIALS, SURFACES
 from mcsim.studies.intervals import clopper_pearson, effective_clopper_pearson
 from mcsim.studies.pads import finite_pads, pad_statistics, tail_p_stick
 from mcsim.studies.rareevent import MIN_ESS, MIN_TAIL_PADS, SWITCH, rare_event
-from mcsim.studies.tail import CHAINS, FITTED, STAGES, importance_p_stick, mixture
+from mcsim.studies.tail import CHAINS, CONFIRM, FITTED, STAGES, importance_p_stick, mixture
 from mcsim.studies.tiltlaw import RATIO_FLOOR, Law, Tilt, cut
 
 #: The few-summit case of the issue: smooth at σ = 3 nm, 30 µm² (λ = 510 summits).
@@ -460,6 +460,16 @@ def test_where_the_chains_disagree_the_plain_fraction_stays(monkeypatch):
     out = rare_event(_spec(2), *plain, **options)
     assert out["p_stick_method"] == "pads" and out["p_stick"] == 0.03
     assert (out["p_stick_low"], out["p_stick_high"]) == clopper_pearson(3, 100)
+
+
+def test_a_chain_needs_confirm_effective_events_for_an_interval_within_a_factor_of_7():
+    # CONFIRM's reason: a chain's own interval on 5 effective events spans a factor of 7
+    # (Poisson's [1.62, 11.67]), on 2 a factor of 30, wide enough to agree with anything
+    def span(ess, q=1e-5):
+        low, high = effective_clopper_pearson(q, q * math.sqrt((1 - q) / ess), 0, 100)
+        return high / low
+
+    assert CONFIRM == 5 and 7 < span(CONFIRM) < 7.5 and 29 < span(2) < 31
 
 
 def test_a_sticking_with_a_second_tall_way_in_is_estimated_or_flagged():
