@@ -78,9 +78,9 @@ SIGMA, AREA, PRELOAD = 3e-9, 30e-12, 1e6
 H = np.linspace(4, -1, 51)
 HUMID = Environment(hamaker=1.6e-19, cutoff=0.2e-9, rh=0.7)
 #: Restoring forces (N) at p ≈ 1e-2 and 1e-3 (measured by brute force: 2013 and 188 of
-#: 2·10⁵ pads), p ≈ 5e-6, and the humid pads' p ≈ 1e-2 (240 of 24 000 pads at 492 µN; the
-#: humid pads with adsorbed films and the area conserved pull off harder than the earlier
-#: ones, whose 1e-2 lay at 206.7 µN, where 23 490 of these stick).
+#: 2·10⁵ pads), p ≈ 5e-6, and the humid pads' p ≈ 1e-2 (240 of 24 000 pads at 492 µN; today's
+#: humid pads pull off harder than those this point was first set on, whose 1e-2 lay at
+#: 206.7 µN, where 23 490 of today's stick: measured 2026-11-30).
 F_2, F_3, F_6, F_HUMID = 55e-6, 74e-6, 110e-6, 492e-6
 #: p ≈ 1e-4 (issue 44: 1.27e-4 [9.3e-5, 1.7e-4] from 2·10⁴ plain pads' tail at 88 µN).
 F_4 = 88e-6
