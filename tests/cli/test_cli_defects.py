@@ -306,10 +306,10 @@ def test_a_command_run_in_process_records_its_own_arguments_not_the_interpreters
     )
 
 
-def test_sigterm_ends_any_command_as_ctrl_c_does_with_status_143(capsys, tmp_path, monkeypatch):
+def test_sigterm_ends_any_command_as_ctrl_c_does_with_status_143(capsys, tmp_path):
     # `mcsim pads` died of SIGTERM with no line of its own (only the resource tracker's
-    # warning of leaked semaphores, its workers left to notice); the command line now
-    # raises it as Ctrl-C in every command: one line, status 143, no output written
+    # warning of leaked semaphores); the command line now raises it as Ctrl-C in every
+    # command: one line, status 143, no output written
     import os
     import signal
     import threading
