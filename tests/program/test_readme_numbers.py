@@ -506,6 +506,7 @@ def test_p_stick_table(tmp_path):
 
 def test_when_importance_sampling_replaces_the_fraction_of_the_pads():
     from mcsim.studies.rareevent import MIN_ESS, MIN_TAIL_PADS, SWITCH, TAIL_PADS, TAIL_PILOT
+    from mcsim.studies.tail import CONFIRM
 
     check_exact(r"\| at least (\d+) pads stick and (\d+) do not \| `pads`", SWITCH, SWITCH)
     check_exact(r"\| fewer than (\d+) on either side \(at least (\d+) pads\) \| `importance`",
@@ -517,6 +518,7 @@ def test_when_importance_sampling_replaces_the_fraction_of_the_pads():
                 r"`--pads` on, those pads are its first stage\) and as many pads again \(at least "
                 r"(\d+)\)", TAIL_PILOT, TAIL_PILOT, TAIL_PADS)  # fmt: skip
     check_exact(r"where its effective sample size `p_stick_ess` is at least (\d+);", MIN_ESS)
+    check_exact(r"rests on fewer than (\d+) effective pads, too few to confirm", CONFIRM)
 
 
 def test_a_few_pads_stay_in_the_commands_process():
